@@ -1,0 +1,51 @@
+# The one front door. `make run` flies the main job; `make test` installs, builds and passes
+# every test. Components add their own targets in <folder>/make.mk (bench-*, verify-*, fuzz-*).
+SHELL := /bin/bash
+.DEFAULT_GOAL := help
+ROOT := $(abspath $(dir $(lastword $(MAKEFILE_LIST))))
+WS := $(ROOT)/.build/ws
+VENV := $(ROOT)/.venv
+JOBS ?= 2
+# Every ROS-aware command runs with the workspace sourced and the venv's Python first on PATH.
+ROSENV := source $(WS)/devel/setup.bash && export PATH=$(VENV)/bin:$$PATH &&
+
+VERIFY_TARGETS :=
+BENCH_TARGETS :=
+FUZZ_TARGETS :=
+FUZZ_SMOKE_TARGETS :=
+-include $(sort $(wildcard $(ROOT)/*/make.mk))
+
+.PHONY: help deps build test run lint verify bench fuzz fuzz-smoke clean
+help:
+	@echo "make run    set up and fly the main job"
+	@echo "make test   set up, build and run every test"
+	@echo "make verify | bench | fuzz    static analysis, benchmarks, fuzzing"
+
+deps:
+	@$(ROOT)/tools/install_deps.sh
+
+$(WS)/src/drone_ros:
+	@mkdir -p $(WS)/src && ln -sfn ../../.. $(WS)/src/drone_ros && touch $(ROOT)/.build/CATKIN_IGNORE
+
+build: deps $(WS)/src/drone_ros
+	@cd $(WS) && catkin_make -j$(JOBS) -DPYTHON_EXECUTABLE=/usr/bin/python3 \
+	  -DCATKIN_ENABLE_TESTING=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo > $(ROOT)/.build/build.log 2>&1 \
+	  || { tail -n 60 $(ROOT)/.build/build.log; echo "build failed: full log in .build/build.log"; exit 1; }
+	@echo "build: ok (log in .build/build.log)"
+
+lint: deps $(WS)/src/drone_ros
+	@cd $(WS)/src && ROS_PACKAGE_PATH=$(WS)/src $(VENV)/bin/catkin_lint --strict -W2 --offline --ignore uninstalled_script drone_ros 2>&1 | grep -v rosdep; exit $${PIPESTATUS[0]}
+
+test: build lint
+	@$(ROSENV) $(ROOT)/tools/run_tests.sh $(WS) $(VENV)
+
+run: build
+	@$(ROSENV) $(ROOT)/tools/run_main.sh $(WS)
+
+verify: $(VERIFY_TARGETS)
+bench: $(BENCH_TARGETS)
+fuzz: $(FUZZ_TARGETS)
+fuzz-smoke: $(FUZZ_SMOKE_TARGETS)
+
+clean:
+	rm -rf $(ROOT)/.build

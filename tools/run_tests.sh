@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Runs every test of the package (catkin gtests, rostests, Python tests), then prints one
+# summary line over all of them and exits non-zero on any failure. Expects the workspace sourced.
+set -uo pipefail
+ws=$1
+venv=$2
+root=$(cd "$(dirname "$0")/.." && pwd)
+results=$ws/build/test_results
+rm -rf "$results"
+mkdir -p "$results/drone_ros"
+
+status=0
+(cd "$ws" && catkin_make run_tests -j2 > "$ws/../run_tests.log" 2>&1) || status=1
+grep -E '^\[ *(FAILED|  PASSED|  OK) *\]|FAILURE|ERROR:' "$ws/../run_tests.log" | grep -vE '^\[ +OK \]' | tail -n 40
+
+mapfile -t pytest_dirs < <(cd "$root" && for d in test */test; do [ -d "$d" ] && ls "$d"/test_*.py >/dev/null 2>&1 && echo "$root/$d"; done)
+if [ ${#pytest_dirs[@]} -gt 0 ]; then
+  "$venv/bin/python" -m pytest -q -p no:cacheprovider --junitxml="$results/drone_ros/pytest.xml" "${pytest_dirs[@]}" || status=1
+fi
+
+"$venv/bin/python" "$root/tools/summarize_results.py" "$results" || status=1
+exit $status

@@ -1,0 +1,44 @@
+#!/usr/bin/env python3
+"""Reads every JUnit XML under a results folder and prints one closing line:
+'N passed, N failed, N skipped'. Exits 1 when anything failed or nothing ran."""
+import sys
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+
+def count(results_dir):
+    passed = failed = skipped = 0
+    failures = []
+    for path in sorted(Path(results_dir).rglob("*.xml")):
+        try:
+            root = ET.parse(path).getroot()
+        except ET.ParseError as err:
+            failed += 1
+            failures.append(f"{path.name}: unreadable result file ({err})")
+            continue
+        cases = list(root.iter("testcase"))
+        if not cases and root.get("failures", "0") != "0":
+            failed += 1
+            failures.append(f"{path.name}: {root.get('name', 'suite')} failed without test cases")
+        for case in cases:
+            name = f"{case.get('classname', '')}.{case.get('name', '')}"
+            if case.find("failure") is not None or case.find("error") is not None:
+                failed += 1
+                failures.append(f"{path.name}: {name}")
+            elif case.find("skipped") is not None:
+                skipped += 1
+            else:
+                passed += 1
+    return passed, failed, skipped, failures
+
+
+def main():
+    passed, failed, skipped, failures = count(sys.argv[1])
+    for line in failures:
+        print(f"FAILED {line}")
+    print(f"{passed} passed, {failed} failed, {skipped} skipped")
+    return 0 if failed == 0 and passed > 0 else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
