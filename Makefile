@@ -28,7 +28,7 @@ $(WS)/src/drone_ros:
 	@mkdir -p $(WS)/src && ln -sfn ../../.. $(WS)/src/drone_ros && touch $(ROOT)/.build/CATKIN_IGNORE
 
 build: deps $(WS)/src/drone_ros
-	@cd $(WS) && catkin_make -j$(JOBS) -DPYTHON_EXECUTABLE=/usr/bin/python3 \
+	@cd $(WS) && PATH=/usr/bin:$$PATH catkin_make -j$(JOBS) -DPYTHON_EXECUTABLE=/usr/bin/python3 \
 	  -DCATKIN_ENABLE_TESTING=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo > $(ROOT)/.build/build.log 2>&1 \
 	  || { tail -n 60 $(ROOT)/.build/build.log; echo "build failed: full log in .build/build.log"; exit 1; }
 	@echo "build: ok (log in .build/build.log)"

@@ -10,6 +10,8 @@ rm -rf "$results"
 mkdir -p "$results/drone_ros"
 
 status=0
+# Python tests find the built executables through this.
+export DRONE_ROS_WS=$ws
 (cd "$ws" && catkin_make run_tests -j2 > "$ws/../run_tests.log" 2>&1) || status=1
 grep -E '^\[ *(FAILED|  PASSED|  OK) *\]|FAILURE|ERROR:' "$ws/../run_tests.log" | grep -vE '^\[ +OK \]' | tail -n 40
 
