@@ -13,7 +13,7 @@ VERIFY_TARGETS :=
 BENCH_TARGETS :=
 FUZZ_TARGETS :=
 FUZZ_SMOKE_TARGETS :=
--include $(sort $(wildcard $(ROOT)/*/make.mk))
+-include $(sort $(wildcard $(ROOT)/*/make.mk $(ROOT)/*/*/make.mk))
 
 .PHONY: help deps build test run lint verify bench fuzz fuzz-smoke clean
 help:

@@ -12,6 +12,8 @@
 #include <drone_ros/pwm.h>
 #include <drone_ros/way.h>
 
+#include "hp_command.h"
+
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -109,6 +111,58 @@ TEST(Messages, ServoCommandCrcCoversTheLittleEndianFieldBytes) {
   ASSERT_GE(bytes.size(), 4u);
   EXPECT_EQ(0x04, bytes[0]);
   EXPECT_EQ(0x01, bytes[3]);
+}
+
+TEST(ServoCommandCrc, MatchesTheStandardCheckValue) {
+  const uint8_t check[] = {'1', '2', '3', '4', '5', '6', '7', '8', '9'};
+  EXPECT_EQ(0xCBF43926u, ha_crc32(check, sizeof check));
+}
+
+TEST(ServoCommandCrc, HaPackingEqualsRosSerializationSoBothEndsAgree) {
+  drone_ros::ServoCommand cmd;
+  cmd.seq = 77;
+  cmd.stamp = ros::Time(1700000001, 5000);
+  cmd.throttle = 0.55f;
+  cmd.elevator_deg = -2.5f;
+  cmd.aileron_deg = 7.0f;
+  cmd.rudder_deg = -0.75f;
+  cmd.alpha_est_deg = 3.5f;
+  cmd.beta_est_deg = 0.25f;
+  cmd.estimator_converged = true;
+  cmd.sensor_links_healthy = true;
+  const auto ros_bytes = serialize(cmd);
+
+  HaHpCommand ha = {};
+  ha.seq = cmd.seq;
+  ha.stamp_sec = cmd.stamp.sec;
+  ha.stamp_nsec = cmd.stamp.nsec;
+  ha.throttle = cmd.throttle;
+  ha.elevator_deg = cmd.elevator_deg;
+  ha.aileron_deg = cmd.aileron_deg;
+  ha.rudder_deg = cmd.rudder_deg;
+  ha.alpha_est_deg = cmd.alpha_est_deg;
+  ha.beta_est_deg = cmd.beta_est_deg;
+  ha.estimator_converged = 1;
+  ha.sensor_links_healthy = 1;
+  uint8_t packed[HA_HP_COMMAND_FIELDS_LEN];
+  ha_hp_command_pack_fields(&ha, packed);
+  EXPECT_EQ(std::vector<uint8_t>(ros_bytes.begin(), ros_bytes.begin() + HA_HP_COMMAND_FIELDS_LEN),
+            std::vector<uint8_t>(packed, packed + HA_HP_COMMAND_FIELDS_LEN));
+  EXPECT_EQ(ha_crc32(ros_bytes.data(), HA_HP_COMMAND_FIELDS_LEN), ha_hp_command_compute_crc(&ha));
+}
+
+TEST(ServoCommandCrc, EveryFlippedBitOfTheCommandIsDetected) {
+  HaHpCommand ha = {};
+  ha.seq = 12;
+  ha.aileron_deg = 4.0f;
+  const uint32_t good = ha_hp_command_compute_crc(&ha);
+  uint8_t packed[HA_HP_COMMAND_FIELDS_LEN];
+  ha_hp_command_pack_fields(&ha, packed);
+  for (unsigned bit = 0; bit < 8 * HA_HP_COMMAND_FIELDS_LEN; ++bit) {
+    packed[bit / 8] ^= static_cast<uint8_t>(1u << (bit % 8));
+    EXPECT_NE(good, ha_crc32(packed, sizeof packed)) << "bit " << bit;
+    packed[bit / 8] ^= static_cast<uint8_t>(1u << (bit % 8));
+  }
 }
 
 TEST(Messages, DecisionStatusRoundTripKeepsReasonsAndCheckedValues) {

@@ -2,6 +2,7 @@
 round trips keep every field and the md5sums match the pinned ones, as in C++."""
 import io
 import math
+import zlib
 from pathlib import Path
 
 import pytest
@@ -86,3 +87,13 @@ def test_md5sum_is_pinned(name):
     cls = getattr(drone_msgs, name)
     assert pinned_md5sums()[cls._type] == cls._md5sum, (
         f"{cls._type} changed; the Due firmware depends on it: regenerate and re-pin deliberately")
+
+
+def test_servo_command_crc_is_zlib_crc32_over_the_first_38_bytes():
+    """What a Python tool (HiL, fault injection) must do to make a command the HA accepts."""
+    cmd = drone_msgs.ServoCommand(seq=77, throttle=0.55, elevator_deg=-2.5, aileron_deg=7.0)
+    raw, _ = round_trip(cmd)
+    cmd.crc32 = zlib.crc32(raw[:38])
+    raw2, back = round_trip(cmd)
+    assert raw2[:38] == raw[:38]
+    assert back.crc32 == zlib.crc32(raw2[:38])
