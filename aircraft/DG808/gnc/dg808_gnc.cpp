@@ -1,0 +1,287 @@
+// The DG808 GNC entry points: input checking, unit conversion, and the estimator -> guidance ->
+// inner-loop chain. All persistent state lives in one static instance, as in generated code.
+#include "dg808_gnc.h"
+
+#include <cmath>
+#include <cstring>
+
+#include "airdata_ekf.h"
+#include "dg808_gnc_data.h"
+#include "guidance.h"
+#include "inner_loops.h"
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDegToRad = kPi / 180.0;
+constexpr double kFtPerM = 1.0 / 0.3048;
+constexpr double kMPerFt = 0.3048;
+constexpr double kEarthRadiusM = 6378137.0;  // WGS84 equatorial: flat-earth scale near home
+// Beyond what the sensors can report (VN-200: +/-2000 deg/s, +/-16 g, 515 m/s; a pitot on this
+// airframe far beyond 1000 ft/s): a finite value out here is a corrupted message, not flight.
+constexpr double kMaxRateRadps = 35.0;
+constexpr double kMaxSpecificForceMps2 = 160.0;
+constexpr double kMaxVelocityMps = 515.0;
+constexpr double kMaxAirspeedFtps = 1000.0;
+constexpr double kMaxAngleRad = 2.0 * 3.14159265358979323846;
+constexpr double kMaxWaypointFt = 1.0e6;
+
+struct Gnc {
+  bool initialized = false;
+  DG808_GNC_Params params{};
+  dg808::SurfaceLimits limits{};
+  dg808::AirdataEkf ekf;
+  bool ekf_started = false;
+  dg808::Guidance guidance;
+  dg808::InnerLoops loops;
+  DG808_GNC_Output last{};
+  uint32_t rejected = 0;
+};
+
+Gnc g_gnc;
+
+bool finite_all(const double *v, size_t n) {
+  for (size_t i = 0; i < n; ++i) {
+    if (!std::isfinite(v[i])) {
+      return false;
+    }
+  }
+  return true;
+}
+
+bool input_finite(const DG808_GNC_Input &in) {
+  const double scalars[] = {in.airspeed_ftps, in.throttle_trim, in.elevator_trim_rad,
+                            in.aileron_trim_rad, in.rudder_trim_rad, in.lat_deg, in.lon_deg,
+                            in.alt_m, in.vel_north_mps, in.vel_east_mps, in.vel_down_mps,
+                            in.p_radps, in.q_radps, in.r_radps, in.fx_mps2, in.fy_mps2,
+                            in.fz_mps2, in.phi_rad, in.theta_rad, in.psi_rad, in.home_lat_deg,
+                            in.home_lon_deg, in.home_alt_m};
+  return finite_all(scalars, sizeof(scalars) / sizeof(scalars[0])) &&
+         finite_all(in.wp_north_ft, DG808_GNC_MAX_WAYPOINTS) &&
+         finite_all(in.wp_east_ft, DG808_GNC_MAX_WAYPOINTS) &&
+         finite_all(in.wp_height_ft, DG808_GNC_MAX_WAYPOINTS) &&
+         finite_all(in.wp_velocity_ftps, DG808_GNC_MAX_WAYPOINTS);
+}
+
+bool within(double v, double limit) {
+  return v >= -limit && v <= limit;
+}
+
+bool input_plausible(const DG808_GNC_Input &in) {
+  bool ok = within(in.airspeed_ftps, kMaxAirspeedFtps) && within(in.lat_deg, 90.0) &&
+            within(in.lon_deg, 180.0) && within(in.home_lat_deg, 90.0) &&
+            within(in.home_lon_deg, 180.0) && within(in.vel_north_mps, kMaxVelocityMps) &&
+            within(in.vel_east_mps, kMaxVelocityMps) && within(in.vel_down_mps, kMaxVelocityMps) &&
+            within(in.p_radps, kMaxRateRadps) && within(in.q_radps, kMaxRateRadps) &&
+            within(in.r_radps, kMaxRateRadps) && within(in.fx_mps2, kMaxSpecificForceMps2) &&
+            within(in.fy_mps2, kMaxSpecificForceMps2) && within(in.fz_mps2, kMaxSpecificForceMps2) &&
+            within(in.phi_rad, kMaxAngleRad) && within(in.theta_rad, kMaxAngleRad) &&
+            within(in.psi_rad, kMaxAngleRad) && within(in.alt_m - in.home_alt_m, 1.0e5) &&
+            within(in.throttle_trim, 1.0) && within(in.elevator_trim_rad, kMaxAngleRad) &&
+            within(in.aileron_trim_rad, kMaxAngleRad) && within(in.rudder_trim_rad, kMaxAngleRad);
+  for (int i = 0; ok && i < DG808_GNC_MAX_WAYPOINTS; ++i) {
+    ok = within(in.wp_north_ft[i], kMaxWaypointFt) && within(in.wp_east_ft[i], kMaxWaypointFt) &&
+         within(in.wp_height_ft[i], kMaxWaypointFt) && within(in.wp_velocity_ftps[i], kMaxAirspeedFtps);
+  }
+  return ok;
+}
+
+bool output_finite(const DG808_GNC_Output &o) {
+  const double v[] = {o.throttle, o.elevator_rad, o.aileron_rad, o.rudder_rad, o.vt_est_ftps,
+                      o.alpha_est_rad, o.beta_est_rad, o.alpha_sigma_rad, o.beta_sigma_rad,
+                      o.wind_north_ftps, o.wind_east_ftps, o.wind_up_ftps, o.north_ft, o.east_ft,
+                      o.height_ft, o.dist_to_waypoint_ft, o.cross_track_ft, o.vt_cmd_ftps,
+                      o.phi_cmd_rad, o.theta_cmd_rad, o.beta_cmd_rad, o.eta_lat_rad,
+                      o.eta_lon_rad, o.delta_psi_rad, o.n_op_ft, o.e_op_ft, o.h_op_ft};
+  return finite_all(v, sizeof(v) / sizeof(v[0])) &&
+         finite_all(o.mw_north_ft, DG808_GNC_PREVIEW_WAYPOINTS) &&
+         finite_all(o.mw_east_ft, DG808_GNC_PREVIEW_WAYPOINTS) &&
+         finite_all(o.mw_height_ft, DG808_GNC_PREVIEW_WAYPOINTS) &&
+         finite_all(o.mw_velocity_ftps, DG808_GNC_PREVIEW_WAYPOINTS);
+}
+
+bool params_valid(const DG808_GNC_Params &p) {
+  const double v[] = {p.dt_s, p.elevator_limit_deg, p.aileron_limit_deg, p.rudder_limit_deg,
+                      p.throttle_min, p.throttle_max, p.stall_speed_ftps, p.vt_trim_ftps,
+                      p.alpha0_rad, p.beta0_rad, p.mpf_radius_ft, p.max_allow_error_ft,
+                      p.dist2b_ft, p.kp_lon_rad_per_ft, p.ki_lon_rad_per_ft_s, p.max_bank_deg,
+                      p.max_pitch_cmd_deg, p.min_airspeed_cmd_ftps, p.airspeed_valid_min_ftps,
+                      p.converged_sigma_deg};
+  if (!finite_all(v, sizeof(v) / sizeof(v[0]))) {
+    return false;
+  }
+  return p.dt_s > 0.0 && p.dt_s <= 0.1 && p.elevator_limit_deg > 0.0 && p.aileron_limit_deg > 0.0 &&
+         p.rudder_limit_deg > 0.0 && p.throttle_min >= 0.0 && p.throttle_max <= 1.0 &&
+         p.throttle_min < p.throttle_max && p.stall_speed_ftps > 0.0 &&
+         p.vt_trim_ftps > p.stall_speed_ftps && p.mpf_radius_ft > 0.0 &&
+         p.max_allow_error_ft > 0.0 && p.dist2b_ft > 0.0 && p.kp_lon_rad_per_ft >= 0.0 &&
+         p.ki_lon_rad_per_ft_s >= 0.0 && p.max_bank_deg > 0.0 && p.max_bank_deg < 90.0 &&
+         p.max_pitch_cmd_deg > 0.0 && p.max_pitch_cmd_deg < 90.0 &&
+         p.min_airspeed_cmd_ftps > p.stall_speed_ftps && p.airspeed_valid_min_ftps > 0.0 &&
+         p.converged_sigma_deg > 0.0 && (p.guidance_selection == 0 || p.guidance_selection == 1) &&
+         (p.mpf_switch == 0 || p.mpf_switch == 1) && (p.path_select == 0 || p.path_select == 1) &&
+         std::fabs(p.alpha0_rad) < kPi / 2.0 && std::fabs(p.beta0_rad) < kPi / 2.0;
+}
+
+// A neutral command, flagged invalid: what the GNC says when it has nothing to fly.
+DG808_GNC_Output neutral_output(double throttle_min) {
+  DG808_GNC_Output o;
+  std::memset(&o, 0, sizeof(o));
+  o.throttle = throttle_min;
+  o.alpha_sigma_rad = kPi;
+  o.beta_sigma_rad = kPi;
+  o.guidance_mode = DG808_GNC_MODE_CIRCLE_HOME;
+  return o;
+}
+
+}  // namespace
+
+extern "C" int DG808_GNC_initialize(const DG808_GNC_Params *params) {
+  g_gnc = Gnc{};
+  g_gnc.last = neutral_output(0.0);
+  if (params == nullptr || !params_valid(*params)) {
+    return -1;
+  }
+  g_gnc.params = *params;
+  g_gnc.limits = {params->elevator_limit_deg * kDegToRad, params->aileron_limit_deg * kDegToRad,
+                  params->rudder_limit_deg * kDegToRad, params->throttle_min, params->throttle_max};
+  g_gnc.last = neutral_output(params->throttle_min);
+  g_gnc.guidance.reset(*params, DG808_TRIM_THETA_RAD);
+  g_gnc.loops.reset();
+  g_gnc.initialized = true;
+  return 0;
+}
+
+extern "C" void DG808_GNC_terminate(void) {
+  g_gnc.initialized = false;
+}
+
+extern "C" void DG808_GNC_step(const DG808_GNC_Input *in, DG808_GNC_Output *out) {
+  if (out == nullptr) {
+    return;
+  }
+  if (!g_gnc.initialized || in == nullptr) {
+    *out = neutral_output(g_gnc.initialized ? g_gnc.params.throttle_min : 0.0);
+    return;
+  }
+  if (!input_finite(*in) || !input_plausible(*in)) {
+    // Dropped and counted; the last finite command is repeated, flagged invalid.
+    ++g_gnc.rejected;
+    *out = g_gnc.last;
+    out->command_valid = 0;
+    out->inputs_finite = 0;
+    out->estimator_converged = 0;
+    out->rejected_inputs = g_gnc.rejected;
+    return;
+  }
+  const DG808_GNC_Params &p = g_gnc.params;
+  DG808_GNC_Output o = neutral_output(p.throttle_min);
+  o.inputs_finite = 1;
+  o.rejected_inputs = g_gnc.rejected;
+
+  const dg808::Surfaces trim{in->elevator_trim_rad, in->aileron_trim_rad, in->rudder_trim_rad,
+                             in->throttle_trim};
+  dg808::AirdataMeasurement m;
+  m.vel_ned_mps = {in->vel_north_mps, in->vel_east_mps, in->vel_down_mps};
+  m.rates_radps = {in->p_radps, in->q_radps, in->r_radps};
+  m.specific_force_mps2 = {in->fx_mps2, in->fy_mps2, in->fz_mps2};
+  m.euler_rad = {in->phi_rad, in->theta_rad, in->psi_rad};
+  m.airspeed_mps = in->airspeed_ftps * kMPerFt;
+  // The surfaces actually deflected: the pilot's (captured as trims every step while the pilot
+  // flies) or our last command.
+  m.elevator_rad = in->piccic == 0 ? in->elevator_trim_rad : g_gnc.last.elevator_rad;
+  m.rudder_rad = in->piccic == 0 ? in->rudder_trim_rad : g_gnc.last.rudder_rad;
+
+  dg808::AirdataEstimate est;
+  if (!g_gnc.ekf_started) {
+    const dg808::AirdataEkf::Config cfg{p.airspeed_valid_min_ftps * kMPerFt,
+                                        p.converged_sigma_deg * kDegToRad};
+    g_gnc.ekf.reset(cfg, m, p.alpha0_rad, p.beta0_rad);
+    g_gnc.ekf_started = true;
+    est = g_gnc.ekf.peek(m);
+  } else {
+    est = g_gnc.ekf.step(m, p.dt_s);
+  }
+  if (!std::isfinite(est.vt_mps) || !std::isfinite(est.alpha_rad) || !std::isfinite(est.beta_rad) ||
+      !est.wind_ned_mps.allFinite()) {
+    // Cannot happen with plausible inputs; if it does, start the filter over next step rather
+    // than carry a broken state.
+    g_gnc.ekf_started = false;
+    est = dg808::AirdataEstimate{};
+  }
+  o.vt_est_ftps = est.vt_mps * kFtPerM;
+  o.alpha_est_rad = est.alpha_rad;
+  o.beta_est_rad = est.beta_rad;
+  o.alpha_sigma_rad = est.alpha_sigma_rad;
+  o.beta_sigma_rad = est.beta_sigma_rad;
+  o.wind_north_ftps = est.wind_ned_mps.x() * kFtPerM;
+  o.wind_east_ftps = est.wind_ned_mps.y() * kFtPerM;
+  o.wind_up_ftps = -est.wind_ned_mps.z() * kFtPerM;
+  o.estimator_converged = est.converged ? 1 : 0;
+
+  // Flat earth around home, as the original's GPS-to-local block.
+  const bool home = in->home_valid != 0;
+  if (home) {
+    const double lat0 = in->home_lat_deg * kDegToRad;
+    o.north_ft = (in->lat_deg - in->home_lat_deg) * kDegToRad * kEarthRadiusM * kFtPerM;
+    o.east_ft = (in->lon_deg - in->home_lon_deg) * kDegToRad * kEarthRadiusM * std::cos(lat0) * kFtPerM;
+    o.height_ft = (in->alt_m - in->home_alt_m) * kFtPerM;
+  }
+  const bool computer_flies = in->piccic == 1;
+  const bool flying = computer_flies && est.converged && home;
+
+  const dg808::GuidanceState gs{o.north_ft, o.east_ft, o.height_ft, in->vel_north_mps * kFtPerM,
+                                in->vel_east_mps * kFtPerM, in->psi_rad};
+  const dg808::GuidanceCommand gc = g_gnc.guidance.step(*in, gs, flying);
+  o.guidance_mode = gc.mode;
+  o.waypoint_index = gc.waypoint_index;
+  o.dist_to_waypoint_ft = gc.dist_to_waypoint_ft;
+  o.cross_track_ft = gc.cross_track_ft;
+  o.vt_cmd_ftps = gc.vt_cmd_ftps;
+  o.phi_cmd_rad = gc.phi_cmd_rad;
+  o.theta_cmd_rad = gc.theta_cmd_rad;
+  o.beta_cmd_rad = 0.0;  // coordinated flight
+  o.eta_lat_rad = gc.eta_lat_rad;
+  o.eta_lon_rad = gc.eta_lon_rad;
+  o.delta_psi_rad = gc.delta_psi_rad;
+  o.n_op_ft = gc.n_op_ft;
+  o.e_op_ft = gc.e_op_ft;
+  o.h_op_ft = gc.h_op_ft;
+  const int32_t count = in->wp_count < 0 ? 0 : (in->wp_count > DG808_GNC_MAX_WAYPOINTS ? DG808_GNC_MAX_WAYPOINTS : in->wp_count);
+  for (int32_t k = 0; k < DG808_GNC_PREVIEW_WAYPOINTS && count > 0; ++k) {
+    const int32_t w = (gc.waypoint_index + k) % count;
+    o.mw_north_ft[k] = in->wp_north_ft[w];
+    o.mw_east_ft[k] = in->wp_east_ft[w];
+    o.mw_height_ft[k] = in->wp_height_ft[w];
+    o.mw_velocity_ftps[k] = in->wp_velocity_ftps[w];
+  }
+
+  dg808::Surfaces u;
+  if (est.converged) {
+    const dg808::LoopState x{est.vt_mps, est.alpha_rad, est.beta_rad, in->p_radps, in->q_radps,
+                             in->r_radps, in->phi_rad, in->theta_rad};
+    // est.converged implies vt >= airspeed_valid_min > 0.
+    const double vt_cmd_mps = gc.vt_cmd_ftps * kMPerFt;
+    const dg808::LoopReference ref{vt_cmd_mps, gc.theta_cmd_rad, gc.phi_cmd_rad,
+                                   DG808_GRAVITY_M_S2 / est.vt_mps * std::sin(gc.phi_cmd_rad)};
+    u = g_gnc.loops.step(x, ref, trim, g_gnc.limits, p.dt_s, flying);
+  } else {
+    // No air data to close the loops on: hold the trims, forget the integrators.
+    g_gnc.loops.reset();
+    u = dg808::clamp_to_limits(trim, g_gnc.limits);
+  }
+  o.elevator_rad = u.elevator_rad;
+  o.aileron_rad = u.aileron_rad;
+  o.rudder_rad = u.rudder_rad;
+  o.throttle = u.throttle;
+  o.command_valid = (est.converged && home) ? 1 : 0;
+
+  if (!output_finite(o)) {
+    // Cannot happen with finite inputs and validated parameters; if it ever does, say so.
+    o = neutral_output(p.throttle_min);
+    o.inputs_finite = 1;
+    o.rejected_inputs = g_gnc.rejected;
+  }
+  g_gnc.last = o;
+  *out = o;
+}

@@ -1,0 +1,160 @@
+#include "controller_node.h"
+
+#include <XmlRpcValue.h>
+
+#include <stdexcept>
+
+#include "command_builder.h"
+
+namespace controller {
+
+bool load_params(const ros::NodeHandle &pnh, ControllerParams *params, std::string *frame_id,
+                 std::string *error) {
+  const ParamLookup lookup = [&pnh](const std::string &key, double *value) {
+    XmlRpc::XmlRpcValue v;
+    if (!pnh.getParam(key, v)) {
+      return false;
+    }
+    switch (v.getType()) {
+      case XmlRpc::XmlRpcValue::TypeDouble: *value = static_cast<double>(v); return true;
+      case XmlRpc::XmlRpcValue::TypeInt: *value = static_cast<int>(v); return true;
+      case XmlRpc::XmlRpcValue::TypeBoolean: *value = static_cast<bool>(v) ? 1.0 : 0.0; return true;
+      default: return false;
+    }
+  };
+  if (!build_controller_params(lookup, params, error)) {
+    return false;
+  }
+  if (!pnh.getParam("frame_id", *frame_id) || frame_id->empty()) {
+    *error = "frame_id is missing or empty";
+    return false;
+  }
+  return true;
+}
+
+ControllerNode::ControllerNode(ros::NodeHandle &nh, const ControllerParams &params,
+                               const std::string &frame_id)
+    : params_(params), frame_id_(frame_id), board_(params) {
+  if (gnc_initialize(&params_.gnc) != 0) {
+    throw std::runtime_error("the GNC refused its parameters");
+  }
+  // Queue of 1: only the newest sample matters to a controller stepping on its own clock.
+  subs_.push_back(nh.subscribe<drone_ros::pwm>("/pwm", 1, [this](const drone_ros::pwm::ConstPtr &m) {
+    board_.on_pwm(*m, now_s());
+  }));
+  subs_.push_back(nh.subscribe<drone_ros::ins>("/ins", 1, [this](const drone_ros::ins::ConstPtr &m) {
+    board_.on_ins(*m, now_s());
+  }));
+  subs_.push_back(nh.subscribe<drone_ros::way>("/way", 1, [this](const drone_ros::way::ConstPtr &m) {
+    if (board_.on_way(*m)) {
+      ROS_INFO("new flight plan: %d waypoints", m->fp);
+    } else {
+      ROS_WARN("flight plan dropped: fp out of range or a waypoint not finite");
+    }
+  }));
+  subs_.push_back(nh.subscribe<sensor_msgs::NavSatFix>(
+      "/gps_position", 1, [this](const sensor_msgs::NavSatFix::ConstPtr &m) { board_.on_gps_position(*m, now_s()); }));
+  subs_.push_back(nh.subscribe<geometry_msgs::Twist>(
+      "/gps_velocity", 1, [this](const geometry_msgs::Twist::ConstPtr &m) { board_.on_gps_velocity(*m, now_s()); }));
+  subs_.push_back(nh.subscribe<sensor_msgs::Imu>(
+      "/imu_PQR_acceleration", 1, [this](const sensor_msgs::Imu::ConstPtr &m) { board_.on_imu(*m, now_s()); }));
+  subs_.push_back(nh.subscribe<geometry_msgs::Point>(
+      "/attitude", 1, [this](const geometry_msgs::Point::ConstPtr &m) { board_.on_attitude(*m, now_s()); }));
+  subs_.push_back(nh.subscribe<sensor_msgs::FluidPressure>(
+      "/pressure", 1, [this](const sensor_msgs::FluidPressure::ConstPtr &m) { board_.on_pressure(m->fluid_pressure); }));
+  subs_.push_back(nh.subscribe<sensor_msgs::BatteryState>(
+      "/battery_state", 1, [this](const sensor_msgs::BatteryState::ConstPtr &m) { board_.on_battery(m->voltage); }));
+  subs_.push_back(nh.subscribe("/decision_status", 10, &ControllerNode::on_decision, this));
+  servo_pub_ = nh.advertise<drone_ros::ServoCommand>("/servo_op", 10);
+  data_pub_ = nh.advertise<drone_ros::data>("/data", 10);
+  hil_pub_ = nh.advertise<drone_ros::hil_data>("/to_hil", 10);
+
+  diag_.setHardwareID(std::string("controller_") + GNC_AIRCRAFT_NAME);
+  diag_.add("performance controller", this, &ControllerNode::diagnose);
+  timer_ = nh.createSteadyTimer(ros::WallDuration(params_.gnc.dt_s), &ControllerNode::on_timer, this);
+  ROS_INFO("controller_%s stepping at %.1f Hz", GNC_AIRCRAFT_NAME, params_.rate_hz);
+}
+
+ControllerNode::~ControllerNode() {
+  gnc_terminate();
+}
+
+void ControllerNode::restart_gnc() {
+  gnc_terminate();
+  if (gnc_initialize(&params_.gnc) != 0) {
+    ROS_ERROR("GNC restart refused its parameters");  // validated at start-up: cannot happen
+  }
+  ++restarts_;
+  ROS_WARN("HP restart requested by the HA: GNC re-initialized (%u restarts)", restarts_);
+}
+
+void ControllerNode::on_decision(const drone_ros::DecisionStatus::ConstPtr &msg) {
+  // A rising edge of restart_requested is one restart; holding it high is not many.
+  if (msg->restart_requested && !restart_requested_) {
+    restart_gnc();
+  }
+  restart_requested_ = msg->restart_requested;
+  hp_in_control_ = msg->controller == drone_ros::DecisionStatus::CONTROLLER_HP;
+}
+
+void ControllerNode::on_timer(const ros::SteadyTimerEvent &event) {
+  const double now = now_s();
+  ++steps_;
+  // A step that starts more than one period after it was due means we fell behind.
+  if ((event.current_real - event.current_expected).toSec() > params_.gnc.dt_s) {
+    ++late_steps_;
+  }
+  board_.fill_input(&in_);
+  gnc_step(&in_, &out_);
+  unhealthy_mask_ = board_.unhealthy_links(now);
+  const ros::Time stamp = ros::Time::now();
+  const drone_ros::ServoCommand cmd = build_servo_command(seq_++, stamp, out_, unhealthy_mask_ == 0,
+                                                          params_.gnc.throttle_min);
+  if (!cmd.estimator_converged || !cmd.sensor_links_healthy) {
+    ++invalid_steps_;
+  }
+  servo_pub_.publish(cmd);
+
+  drone_ros::data data;
+  data.header.stamp = stamp;
+  data.header.frame_id = frame_id_;
+  fill_data(board_, out_, hp_in_control_, &data);
+  data_pub_.publish(data);
+
+  drone_ros::hil_data hil;
+  hil.header.stamp = stamp;
+  hil.header.frame_id = frame_id_;
+  fill_hil(out_, &hil);
+  hil_pub_.publish(hil);
+  diag_.update();
+}
+
+void ControllerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper &stat) {
+  std::string stale;
+  for (uint32_t i = 0; i < kLinkCount; ++i) {
+    if (unhealthy_mask_ & (1u << i)) {
+      stale += std::string(stale.empty() ? "" : " ") + link_name(static_cast<Link>(i));
+    }
+  }
+  if (!stale.empty()) {
+    stat.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "sensor links unhealthy: " + stale);
+  } else if (!out_.command_valid) {
+    stat.summary(diagnostic_msgs::DiagnosticStatus::WARN, "command invalid (estimator not converged or no home)");
+  } else {
+    stat.summary(diagnostic_msgs::DiagnosticStatus::OK, "flying");
+  }
+  stat.add("rate_hz", params_.rate_hz);
+  stat.add("seq", seq_);
+  stat.add("steps", steps_);
+  stat.add("late_steps", late_steps_);
+  stat.add("invalid_steps", invalid_steps_);
+  stat.add("restarts", restarts_);
+  stat.add("dropped_messages", board_.dropped_messages());
+  stat.add("rejected_gnc_inputs", out_.rejected_inputs);
+  stat.add("estimator_converged", static_cast<int>(out_.estimator_converged));
+  stat.add("home_valid", board_.home_valid());
+  stat.add("waypoint_index", out_.waypoint_index);
+  stat.add("guidance_mode", out_.guidance_mode);
+}
+
+}  // namespace controller

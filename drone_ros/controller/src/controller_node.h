@@ -1,0 +1,58 @@
+// controller_<aircraft>: steps the aircraft's GNC on a monotonic timer and publishes the HP
+// command (/servo_op), the ground telemetry (/data) and the HiL record (/to_hil). Thin: the
+// sensor bookkeeping is SensorBoard, the message building command_builder, the flying the GNC.
+#ifndef CONTROLLER_NODE_H
+#define CONTROLLER_NODE_H
+
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <drone_ros/DecisionStatus.h>
+#include <ros/ros.h>
+#include <sensor_msgs/BatteryState.h>
+#include <sensor_msgs/FluidPressure.h>
+
+#include <string>
+#include <vector>
+
+#include "controller_params.h"
+#include "sensor_board.h"
+
+namespace controller {
+
+// Reads and validates the node's private parameters (the one place); false with *error set.
+bool load_params(const ros::NodeHandle &pnh, ControllerParams *params, std::string *frame_id,
+                 std::string *error);
+
+class ControllerNode {
+ public:
+  ControllerNode(ros::NodeHandle &nh, const ControllerParams &params, const std::string &frame_id);
+  ~ControllerNode();
+
+ private:
+  static double now_s() { return ros::SteadyTime::now().toSec(); }
+  void on_timer(const ros::SteadyTimerEvent &event);
+  void on_decision(const drone_ros::DecisionStatus::ConstPtr &msg);
+  void restart_gnc();
+  void diagnose(diagnostic_updater::DiagnosticStatusWrapper &stat);
+
+  ControllerParams params_;
+  std::string frame_id_;
+  SensorBoard board_;
+  std::vector<ros::Subscriber> subs_;
+  ros::Publisher servo_pub_, data_pub_, hil_pub_;
+  ros::SteadyTimer timer_;
+  diagnostic_updater::Updater diag_;
+  GncInput in_{};
+  GncOutput out_{};
+  uint32_t seq_ = 0;
+  uint64_t steps_ = 0;
+  uint64_t late_steps_ = 0;
+  uint64_t invalid_steps_ = 0;
+  uint32_t restarts_ = 0;
+  uint32_t unhealthy_mask_ = 0;
+  bool restart_requested_ = false;
+  bool hp_in_control_ = false;
+};
+
+}  // namespace controller
+
+#endif

@@ -1,0 +1,124 @@
+#include "controller_params.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace controller {
+namespace {
+
+// Collects the first failure so the operator sees which parameter is wrong.
+class Reader {
+ public:
+  Reader(const ParamLookup &lookup, std::string *error) : lookup_(lookup), error_(error) {}
+
+  double get(const std::string &key, double lo, double hi) {
+    double v = 0.0;
+    if (!ok_) {
+      return 0.0;
+    }
+    if (!lookup_(key, &v)) {
+      fail(key + " is missing or not a number");
+    } else if (!std::isfinite(v) || v < lo || v > hi) {
+      std::ostringstream s;
+      s << key << " = " << v << " is outside [" << lo << ", " << hi << "]";
+      fail(s.str());
+    }
+    return v;
+  }
+
+  int32_t get_choice(const std::string &key, int32_t max_choice) {
+    const double v = get(key, 0.0, max_choice);
+    if (ok_ && v != std::floor(v)) {
+      fail(key + " must be an integer");
+    }
+    return static_cast<int32_t>(v);
+  }
+
+  void require(bool condition, const std::string &what) {
+    if (ok_ && !condition) {
+      fail(what);
+    }
+  }
+
+  bool ok() const { return ok_; }
+
+ private:
+  void fail(const std::string &message) {
+    ok_ = false;
+    if (error_ != nullptr) {
+      *error_ = message;
+    }
+  }
+
+  const ParamLookup &lookup_;
+  std::string *error_;
+  bool ok_ = true;
+};
+
+constexpr double kPi = 3.14159265358979323846;
+
+}  // namespace
+
+bool build_controller_params(const ParamLookup &lookup, ControllerParams *params, std::string *error) {
+  if (params == nullptr) {
+    return false;
+  }
+  Reader r(lookup, error);
+  ControllerParams p;
+  GncParams &g = p.gnc;
+  // The thesis ran at 20 Hz; the HA decides at up to 100 Hz, so the HP may not step faster.
+  g.dt_s = r.get("dt", 0.01, 0.05);
+  p.rate_hz = g.dt_s > 0.0 ? 1.0 / g.dt_s : 0.0;
+
+  g.elevator_limit_deg = r.get("limits/actuators/elevator_limit_deg", 1.0, 45.0);
+  g.aileron_limit_deg = r.get("limits/actuators/aileron_limit_deg", 1.0, 45.0);
+  g.rudder_limit_deg = r.get("limits/actuators/rudder_limit_deg", 1.0, 45.0);
+  g.throttle_min = r.get("limits/actuators/throttle_min", 0.0, 1.0);
+  g.throttle_max = r.get("limits/actuators/throttle_max", 0.0, 1.0);
+  r.require(g.throttle_min < g.throttle_max, "limits: throttle_min must be below throttle_max");
+  g.stall_speed_ftps = r.get("limits/state/stall_speed_ftps", 1.0, 300.0);
+  const double roll_limit_deg = r.get("limits/state/roll_limit_deg", 1.0, 89.0);
+  const double pitch_limit_deg = r.get("limits/state/pitch_limit_deg", 1.0, 89.0);
+
+  p.throttle_trim = r.get("throttle_trim", g.throttle_min, g.throttle_max);
+  p.elevator_trim_rad = r.get("elevator_trim", -g.elevator_limit_deg * kPi / 180.0, g.elevator_limit_deg * kPi / 180.0);
+  p.aileron_trim_rad = r.get("aileron_trim", -g.aileron_limit_deg * kPi / 180.0, g.aileron_limit_deg * kPi / 180.0);
+  p.rudder_trim_rad = r.get("rudder_trim", -g.rudder_limit_deg * kPi / 180.0, g.rudder_limit_deg * kPi / 180.0);
+  g.vt_trim_ftps = r.get("VTtrim", 0.0, 300.0);
+  r.require(g.vt_trim_ftps > g.stall_speed_ftps, "VTtrim must be above limits' stall_speed_ftps");
+  g.alpha0_rad = r.get("alpha", -0.5, 0.5);
+  g.beta0_rad = r.get("beta", -0.5, 0.5);
+
+  g.guidance_selection = r.get_choice("guidance_selection", 1);
+  p.home_cmd = r.get_choice("hmcmd", 1) == 1;
+  g.mpf_switch = r.get_choice("mpf_switch", 1);
+  g.mpf_radius_ft = r.get("mpf_radius", 20.0, 5000.0);
+  g.path_select = r.get_choice("path_select", 1);
+  g.max_allow_error_ft = r.get("max_allow_error", 10.0, 50000.0);
+  g.dist2b_ft = r.get("dist2b", 1.0, 5000.0);
+  g.kp_lon_rad_per_ft = r.get("KpLon", 0.0, 1.0);
+  g.ki_lon_rad_per_ft_s = r.get("KiLon", 0.0, 1.0);
+  g.max_bank_deg = r.get("max_bank_deg", 1.0, roll_limit_deg);
+  g.max_pitch_cmd_deg = r.get("max_pitch_cmd_deg", 1.0, pitch_limit_deg);
+  g.min_airspeed_cmd_ftps = r.get("min_airspeed_cmd_ftps", 0.0, 300.0);
+  r.require(g.min_airspeed_cmd_ftps > g.stall_speed_ftps,
+            "min_airspeed_cmd_ftps must be above limits' stall_speed_ftps");
+  g.airspeed_valid_min_ftps = r.get("airspeed_valid_min_ftps", 1.0, 300.0);
+  r.require(g.airspeed_valid_min_ftps < g.stall_speed_ftps,
+            "airspeed_valid_min_ftps must be below the stall speed, or flight has no air data");
+  g.converged_sigma_deg = r.get("converged_sigma_deg", 0.1, 10.0);
+
+  p.q_weight = r.get("Q_weight", 1e-6, 1e6);
+  r.require(p.q_weight == GNC_DESIGN_Q_WEIGHT,
+            "Q_weight differs from the weight the checked-in gains were designed with: rerun "
+            "aircraft/" GNC_AIRCRAFT_NAME "/design/design_gains.py");
+  p.sensor_timeout_s = r.get("sensor_timeout_s", 0.02, 10.0);
+  r.require(p.sensor_timeout_s >= 2.0 * g.dt_s, "sensor_timeout_s must cover at least two periods");
+  if (!r.ok()) {
+    return false;
+  }
+  *params = p;
+  return true;
+}
+
+}  // namespace controller

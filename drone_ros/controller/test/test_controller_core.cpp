@@ -1,0 +1,184 @@
+// The node's ROS-free parts: parameter validation, sensor bookkeeping and the command it puts
+// on the wire (sequence, CRC, health flags, never a NaN).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <map>
+#include <string>
+
+#include "command_builder.h"
+#include "controller_params.h"
+#include "sensor_board.h"
+#include "yaml_lookup.h"
+
+namespace {
+
+controller::ControllerParams aircraft(const std::map<std::string, double> &overrides = {}) {
+  const auto values = controller_test::aircraft_params(AIRCRAFT_DIR, overrides);
+  controller::ControllerParams p;
+  std::string error;
+  EXPECT_TRUE(controller::build_controller_params(controller_test::lookup_in(values), &p, &error)) << error;
+  return p;
+}
+
+std::string refusal(const std::map<std::string, double> &overrides, const std::string &remove = "") {
+  auto values = controller_test::aircraft_params(AIRCRAFT_DIR, overrides);
+  if (!remove.empty()) {
+    values.erase(remove);
+  }
+  controller::ControllerParams p;
+  std::string error;
+  EXPECT_FALSE(controller::build_controller_params(controller_test::lookup_in(values), &p, &error));
+  return error;
+}
+
+void feed_all(controller::SensorBoard &board, double now_s, uint8_t piccic = 1) {
+  drone_ros::pwm pwm;
+  pwm.PICCIC = piccic;
+  pwm.Throttle = 0.4;
+  pwm.Elevator = 0.02;
+  pwm.Aileron = -0.01;
+  pwm.Rudder = 0.005;
+  pwm.velocity = 60.0;
+  pwm.usbstatus = 1;
+  board.on_pwm(pwm, now_s);
+  drone_ros::ins ins;
+  ins.usbstatus = 1;
+  board.on_ins(ins, now_s);
+  sensor_msgs::NavSatFix fix;
+  fix.status.status = sensor_msgs::NavSatStatus::STATUS_FIX;
+  fix.latitude = 40.0;
+  fix.longitude = -83.0;
+  fix.altitude = 250.0;
+  board.on_gps_position(fix, now_s);
+  board.on_gps_velocity(geometry_msgs::Twist(), now_s);
+  board.on_imu(sensor_msgs::Imu(), now_s);
+  board.on_attitude(geometry_msgs::Point(), now_s);
+}
+
+TEST(ControllerParams, AircraftFilesAreAcceptedAndRateFollowsDt) {
+  const auto p = aircraft();
+  EXPECT_DOUBLE_EQ(p.rate_hz, 1.0 / p.gnc.dt_s);
+  EXPECT_DOUBLE_EQ(aircraft({{"dt", 0.01}}).rate_hz, 100.0);
+}
+
+TEST(ControllerParams, OutOfRangeOrMissingValuesAreRefusedByName) {
+  EXPECT_NE(refusal({{"dt", 0.005}}).find("dt"), std::string::npos);
+  EXPECT_NE(refusal({{"mpf_radius", std::numeric_limits<double>::quiet_NaN()}}).find("mpf_radius"), std::string::npos);
+  EXPECT_NE(refusal({{"path_select", 0.5}}).find("path_select"), std::string::npos);
+  EXPECT_NE(refusal({}, "limits/state/stall_speed_ftps").find("stall_speed_ftps"), std::string::npos);
+  EXPECT_NE(refusal({{"Q_weight", 2.0}}).find("design_gains.py"), std::string::npos);
+  EXPECT_NE(refusal({{"max_bank_deg", 70.0}}).find("max_bank_deg"), std::string::npos);
+}
+
+TEST(SensorBoard, MissingSensorsAreReportedUnhealthyUntilTheyArrive) {
+  controller::SensorBoard board(aircraft());
+  EXPECT_EQ(board.unhealthy_links(0.0), (1u << controller::kLinkCount) - 1);
+  feed_all(board, 10.0);
+  EXPECT_EQ(board.unhealthy_links(10.1), 0u);
+}
+
+TEST(SensorBoard, StaleAttitudeMakesTheLinksUnhealthy) {
+  const auto p = aircraft();
+  controller::SensorBoard board(p);
+  feed_all(board, 10.0);
+  const double later = 10.0 + p.sensor_timeout_s + 0.01;
+  feed_all(board, later);
+  board.on_attitude(geometry_msgs::Point(), 10.0);  // the attitude's last arrival is old
+  EXPECT_EQ(board.unhealthy_links(later), 1u << controller::kLinkAttitude);
+}
+
+TEST(SensorBoard, LinkReportedDownByItsNodeIsUnhealthyEvenWhenFresh) {
+  controller::SensorBoard board(aircraft());
+  feed_all(board, 1.0);
+  drone_ros::ins ins;
+  ins.usbstatus = 0;
+  board.on_ins(ins, 1.0);
+  EXPECT_EQ(board.unhealthy_links(1.0), 1u << controller::kLinkIns);
+}
+
+TEST(SensorBoard, NanMessagesAreCountedAndDropped) {
+  controller::SensorBoard board(aircraft());
+  feed_all(board, 1.0);
+  geometry_msgs::Point bad;
+  bad.x = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(board.on_attitude(bad, 2.0));
+  EXPECT_EQ(board.dropped_messages(), 1u);
+  GncInput in{};
+  board.fill_input(&in);
+  EXPECT_TRUE(std::isfinite(in.phi_rad));
+  drone_ros::way plan;
+  plan.fp = 33;
+  EXPECT_FALSE(board.on_way(plan));
+  EXPECT_EQ(board.dropped_waypoint_plans(), 1u);
+}
+
+TEST(SensorBoard, PilotInCommandCapturesRcTrimsAndComputerKeepsThem) {
+  const auto p = aircraft();
+  controller::SensorBoard board(p);
+  EXPECT_DOUBLE_EQ(board.elevator_trim_rad(), p.elevator_trim_rad);
+  feed_all(board, 1.0, 0);  // pilot flying with elevator 0.02 rad
+  EXPECT_DOUBLE_EQ(board.elevator_trim_rad(), 0.02);
+  EXPECT_DOUBLE_EQ(board.throttle_trim(), 0.4);
+  drone_ros::pwm cic;
+  cic.PICCIC = 1;
+  cic.Elevator = -0.1;  // computer in command: RC no longer moves the trims
+  cic.usbstatus = 1;
+  board.on_pwm(cic, 2.0);
+  EXPECT_DOUBLE_EQ(board.elevator_trim_rad(), 0.02);
+  GncInput in{};
+  board.fill_input(&in);
+  EXPECT_DOUBLE_EQ(in.elevator_trim_rad, 0.02);
+  EXPECT_EQ(in.home_valid, 1);
+}
+
+TEST(ServoCommand, CarriesDegreesAndAValidCrc) {
+  GncOutput out{};
+  out.throttle = 0.3;
+  out.elevator_rad = 0.1;
+  out.alpha_est_rad = 0.05;
+  out.estimator_converged = 1;
+  out.command_valid = 1;
+  out.inputs_finite = 1;
+  const auto cmd = controller::build_servo_command(7, ros::Time(12, 34), out, true, 0.0);
+  EXPECT_EQ(cmd.seq, 7u);
+  EXPECT_NEAR(cmd.elevator_deg, 0.1 * 180.0 / M_PI, 1e-4);
+  EXPECT_TRUE(cmd.estimator_converged);
+  EXPECT_TRUE(cmd.sensor_links_healthy);
+  EXPECT_EQ(cmd.crc32, controller::servo_command_crc(cmd));
+  auto corrupted = cmd;
+  corrupted.rudder_deg += 1.0f;
+  EXPECT_NE(corrupted.crc32, controller::servo_command_crc(corrupted));
+}
+
+TEST(ServoCommand, NanFromTheGncNeverReachesTheWire) {
+  GncOutput out{};
+  out.estimator_converged = 1;
+  out.command_valid = 1;
+  out.inputs_finite = 1;
+  out.aileron_rad = std::numeric_limits<double>::quiet_NaN();
+  const auto cmd = controller::build_servo_command(1, ros::Time(1, 0), out, true, 0.0);
+  EXPECT_TRUE(std::isfinite(cmd.aileron_deg));
+  EXPECT_FALSE(cmd.estimator_converged);
+  EXPECT_EQ(cmd.crc32, controller::servo_command_crc(cmd));
+}
+
+TEST(ServoCommand, InvalidGncOutputOrBadLinksAreFlaggedNotHidden) {
+  GncOutput out{};
+  out.estimator_converged = 1;
+  out.command_valid = 0;
+  out.inputs_finite = 1;
+  EXPECT_FALSE(controller::build_servo_command(1, ros::Time(1, 0), out, true, 0.0).estimator_converged);
+  out.command_valid = 1;
+  EXPECT_FALSE(controller::build_servo_command(1, ros::Time(1, 0), out, false, 0.0).sensor_links_healthy);
+  out.inputs_finite = 0;
+  EXPECT_FALSE(controller::build_servo_command(1, ros::Time(1, 0), out, true, 0.0).sensor_links_healthy);
+}
+
+}  // namespace
+
+int main(int argc, char **argv) {
+  testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}

@@ -1,0 +1,392 @@
+// Closed-loop tests of the DG808 GNC without ROS: the generated controller flies the nonlinear
+// 6-DOF model built from the same airframe data (test/sim). Bands are stated with each test.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <string>
+
+#include "c_boundary.h"
+#include "controller_params.h"
+#include "sim/dg808_sim.h"
+#include "yaml_lookup.h"
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kRadToDeg = 180.0 / kPi;
+
+class Flight {
+ public:
+  explicit Flight(const std::map<std::string, double> &overrides = {},
+                  const dg808sim::SimConfig &sim_config = dg808sim::SimConfig{})
+      : sim_(sim_config) {
+    values_ = controller_test::aircraft_params(AIRCRAFT_DIR, overrides);
+    std::string error;
+    ok_ = controller::build_controller_params(controller_test::lookup_in(values_), &params_, &error);
+    EXPECT_TRUE(ok_) << error;
+    EXPECT_EQ(DG808_GNC_initialize(&params_.gnc), 0);
+    in_ = DG808_GNC_Input{};
+    in_.piccic = 1;  // computer in command
+    in_.throttle_trim = params_.throttle_trim;
+    in_.elevator_trim_rad = params_.elevator_trim_rad;
+    in_.aileron_trim_rad = params_.aileron_trim_rad;
+    in_.rudder_trim_rad = params_.rudder_trim_rad;
+  }
+  ~Flight() { DG808_GNC_terminate(); }
+
+  void set_plan(const double (*wps)[3], int count) {
+    for (int i = 0; i < count; ++i) {
+      in_.wp_north_ft[i] = wps[i][0];
+      in_.wp_east_ft[i] = wps[i][1];
+      in_.wp_height_ft[i] = wps[i][2];
+      in_.wp_velocity_ftps[i] = params_.gnc.vt_trim_ftps;
+    }
+    in_.wp_count = count;
+    ++in_.wp_revision;
+  }
+
+  void step() {
+    sim_.sense(in_);
+    DG808_GNC_step(&in_, &out_);
+    sim_.advance(out_, params_.gnc.dt_s);
+    t_s_ += params_.gnc.dt_s;
+  }
+
+  double dt() const { return params_.gnc.dt_s; }
+  dg808sim::Sim &sim() { return sim_; }
+  DG808_GNC_Input &in() { return in_; }
+  const DG808_GNC_Output &out() const { return out_; }
+  const controller::ControllerParams &params() const { return params_; }
+  double t() const { return t_s_; }
+
+ private:
+  std::map<std::string, double> values_;
+  controller::ControllerParams params_{};
+  bool ok_ = false;
+  dg808sim::Sim sim_;
+  DG808_GNC_Input in_{};
+  DG808_GNC_Output out_{};
+  double t_s_ = 0.0;
+};
+
+bool all_finite(const DG808_GNC_Output &o) {
+  const double v[] = {o.throttle, o.elevator_rad, o.aileron_rad, o.rudder_rad, o.vt_est_ftps,
+                      o.alpha_est_rad, o.beta_est_rad, o.wind_north_ftps, o.wind_east_ftps,
+                      o.wind_up_ftps, o.phi_cmd_rad, o.theta_cmd_rad, o.vt_cmd_ftps, o.n_op_ft,
+                      o.e_op_ft, o.h_op_ft, o.dist_to_waypoint_ft};
+  return std::all_of(std::begin(v), std::end(v), [](double x) { return std::isfinite(x); });
+}
+
+double segment_distance(double pn, double pe, const double *a, const double *b) {
+  const double dn = b[0] - a[0], de = b[1] - a[1];
+  const double len2 = dn * dn + de * de;
+  const double t = std::clamp(((pn - a[0]) * dn + (pe - a[1]) * de) / len2, 0.0, 1.0);
+  return std::hypot(pn - (a[0] + t * dn), pe - (a[1] + t * de));
+}
+
+// Altitude band +/-10 ft and airspeed band +/-2 ft/s, after 5 s, over 60 s of straight flight
+// towards a far waypoint at the trim height, in a 3 m/s crosswind with sensor noise.
+TEST(GncClosedLoop, FromTrimHoldsAltitudeAndAirspeedWithinBands) {
+  dg808sim::SimConfig cfg;
+  cfg.wind_ned_mps = Eigen::Vector3d(0.0, 3.0, 0.0);
+  Flight f({}, cfg);
+  const double trim_ftps = f.params().gnc.vt_trim_ftps;
+  f.sim().set_trimmed_flight(trim_ftps, 200.0, 0.0);
+  const double plan[1][3] = {{30000.0, 0.0, 200.0}};
+  f.set_plan(plan, 1);
+  double worst_alt_ft = 0.0, worst_vt_ftps = 0.0;
+  while (f.t() < 60.0) {
+    f.step();
+    ASSERT_TRUE(all_finite(f.out()));
+    if (f.t() > 5.0) {
+      EXPECT_TRUE(f.out().command_valid) << "at t=" << f.t();
+      worst_alt_ft = std::max(worst_alt_ft, std::fabs(f.sim().height_ft() - 200.0));
+      worst_vt_ftps = std::max(worst_vt_ftps, std::fabs(f.sim().airspeed_ftps() - trim_ftps));
+    }
+  }
+  EXPECT_LT(worst_alt_ft, 10.0);
+  EXPECT_LT(worst_vt_ftps, 2.0);
+  RecordProperty("worst_altitude_error_ft", std::to_string(worst_alt_ft));
+  RecordProperty("worst_airspeed_error_ftps", std::to_string(worst_vt_ftps));
+}
+
+// The real aircraft is not the design model: 15 % heavier (and its inertia), 25 % more drag,
+// 20 % less control power. Flying the square from trim it still holds altitude within 15 ft and
+// airspeed within 4 ft/s after the first 10 s.
+TEST(GncClosedLoop, HoldsAltitudeAndAirspeedWithModelErrors) {
+  dg808sim::SimConfig cfg;
+  cfg.mass_scale = 1.15;
+  cfg.drag_scale = 1.25;
+  cfg.control_power_scale = 0.8;
+  cfg.wind_ned_mps = Eigen::Vector3d(0.0, 3.0, 0.0);
+  Flight f({}, cfg);
+  const double trim_ftps = f.params().gnc.vt_trim_ftps;
+  f.sim().set_trimmed_flight(trim_ftps, 200.0, 0.0);
+  const double square[4][3] = {{1000.0, 0.0, 200.0}, {1000.0, 2000.0, 200.0},
+                               {-1000.0, 2000.0, 200.0}, {-1000.0, 0.0, 200.0}};
+  f.set_plan(square, 4);
+  double worst_alt_ft = 0.0, worst_vt_ftps = 0.0;
+  while (f.t() < 150.0) {
+    f.step();
+    ASSERT_TRUE(all_finite(f.out()));
+    if (f.t() > 10.0) {
+      EXPECT_TRUE(f.out().command_valid) << "at t=" << f.t();
+      worst_alt_ft = std::max(worst_alt_ft, std::fabs(f.sim().height_ft() - 200.0));
+      worst_vt_ftps = std::max(worst_vt_ftps, std::fabs(f.sim().airspeed_ftps() - trim_ftps));
+    }
+  }
+  EXPECT_LT(worst_alt_ft, 15.0);
+  EXPECT_LT(worst_vt_ftps, 4.0);
+  RecordProperty("worst_altitude_error_ft", std::to_string(worst_alt_ft));
+  RecordProperty("worst_airspeed_error_ftps", std::to_string(worst_vt_ftps));
+}
+
+// A 2000 ft square at 200 ft AGL in a 2.8 m/s wind: from reaching waypoint 0 on, through all
+// four corners, the aircraft stays within 80 ft of the square's edges (RMS within 25 ft) and
+// within 15 ft of its height through the 35 deg banked turns.
+TEST(GncClosedLoop, FliesFourWaypointSquareWithinCrossTrackBand) {
+  dg808sim::SimConfig cfg;
+  cfg.wind_ned_mps = Eigen::Vector3d(-2.0, 2.0, 0.0);
+  Flight f({}, cfg);
+  f.sim().set_trimmed_flight(f.params().gnc.vt_trim_ftps, 200.0, 0.0);
+  const double square[4][3] = {{1000.0, 0.0, 200.0}, {1000.0, 2000.0, 200.0},
+                               {-1000.0, 2000.0, 200.0}, {-1000.0, 0.0, 200.0}};
+  f.set_plan(square, 4);
+  bool captured = false;
+  int laps_wp = 0, last_index = 0;
+  double worst_ft = 0.0, sum_sq = 0.0, worst_alt_ft = 0.0;
+  long samples = 0;
+  while (laps_wp < 5 && f.t() < 400.0) {
+    f.step();
+    ASSERT_TRUE(all_finite(f.out()));
+    if (f.out().waypoint_index != last_index) {
+      last_index = f.out().waypoint_index;
+      ++laps_wp;
+      captured = true;  // reached waypoint 0: on the square from here
+    }
+    if (captured) {
+      double d = std::numeric_limits<double>::infinity();
+      for (int i = 0; i < 4; ++i) {
+        d = std::min(d, segment_distance(f.sim().north_ft(), f.sim().east_ft(), square[i], square[(i + 1) % 4]));
+      }
+      worst_ft = std::max(worst_ft, d);
+      worst_alt_ft = std::max(worst_alt_ft, std::fabs(f.sim().height_ft() - 200.0));
+      sum_sq += d * d;
+      ++samples;
+    }
+  }
+  ASSERT_EQ(laps_wp, 5) << "did not fly the whole square in " << f.t() << " s";
+  const double rms_ft = std::sqrt(sum_sq / samples);
+  EXPECT_LT(worst_ft, 80.0);
+  EXPECT_LT(rms_ft, 25.0);
+  EXPECT_LT(worst_alt_ft, 15.0);
+  RecordProperty("worst_altitude_error_ft", std::to_string(worst_alt_ft));
+  // Flying all four headings makes the wind observable: estimated within 2 ft/s per axis.
+  EXPECT_NEAR(f.out().wind_north_ftps, cfg.wind_ned_mps.x() / 0.3048, 2.0);
+  EXPECT_NEAR(f.out().wind_east_ftps, cfg.wind_ned_mps.y() / 0.3048, 2.0);
+  EXPECT_NEAR(f.out().wind_up_ftps, 0.0, 2.0);
+  RecordProperty("worst_cross_track_ft", std::to_string(worst_ft));
+  RecordProperty("rms_cross_track_ft", std::to_string(rms_ft));
+}
+
+// Return home (hmcmd): from 30 s on the aircraft circles home at mpf_radius within +/-30 ft and
+// holds its height within +/-10 ft, in a 2.8 m/s wind.
+TEST(GncClosedLoop, ReturnHomeCommandCirclesHomeAtTheMpfRadius) {
+  dg808sim::SimConfig cfg;
+  cfg.wind_ned_mps = Eigen::Vector3d(-2.0, 2.0, 0.0);
+  Flight f({}, cfg);
+  f.sim().set_trimmed_flight(f.params().gnc.vt_trim_ftps, 200.0, 0.0);
+  f.in().home_cmd = 1;
+  const double radius_ft = f.params().gnc.mpf_radius_ft;
+  double worst_radius_ft = 0.0, worst_alt_ft = 0.0;
+  while (f.t() < 150.0) {
+    f.step();
+    ASSERT_TRUE(all_finite(f.out()));
+    EXPECT_EQ(f.out().guidance_mode, DG808_GNC_MODE_CIRCLE_HOME);
+    if (f.t() > 30.0) {
+      const double r = std::hypot(f.sim().north_ft(), f.sim().east_ft());
+      worst_radius_ft = std::max(worst_radius_ft, std::fabs(r - radius_ft));
+      worst_alt_ft = std::max(worst_alt_ft, std::fabs(f.sim().height_ft() - 200.0));
+    }
+  }
+  EXPECT_LT(worst_radius_ft, 30.0);
+  EXPECT_LT(worst_alt_ft, 10.0);
+}
+
+// Releasing the return-home command resumes the flight plan where it was left.
+TEST(GncClosedLoop, ReleasingReturnHomeResumesThePlan) {
+  Flight f;
+  f.sim().set_trimmed_flight(f.params().gnc.vt_trim_ftps, 200.0, 0.0);
+  const double plan[2][3] = {{3000.0, 0.0, 200.0}, {3000.0, 3000.0, 200.0}};
+  f.set_plan(plan, 2);
+  f.in().home_cmd = 1;
+  while (f.t() < 20.0) {
+    f.step();
+  }
+  EXPECT_EQ(f.out().guidance_mode, DG808_GNC_MODE_CIRCLE_HOME);
+  f.in().home_cmd = 0;
+  f.step();
+  EXPECT_NE(f.out().guidance_mode, DG808_GNC_MODE_CIRCLE_HOME);
+  EXPECT_EQ(f.out().waypoint_index, 0);
+  while (f.t() < 100.0) {
+    f.step();
+  }
+  EXPECT_EQ(f.out().guidance_mode, DG808_GNC_MODE_FLIGHT_PLAN);
+  EXPECT_LT(std::fabs(f.out().cross_track_ft), 30.0);
+}
+
+// path_select 1: after the last waypoint the aircraft circles home instead of starting over.
+TEST(GncClosedLoop, PathSelectOneCirclesHomeAfterTheLastWaypoint) {
+  Flight f({{"path_select", 1.0}});
+  f.sim().set_trimmed_flight(f.params().gnc.vt_trim_ftps, 200.0, 0.0);
+  const double plan[2][3] = {{800.0, 0.0, 200.0}, {800.0, 800.0, 220.0}};
+  f.set_plan(plan, 2);
+  bool circled = false;
+  while (f.t() < 120.0 && !circled) {
+    f.step();
+    circled = f.out().guidance_mode == DG808_GNC_MODE_CIRCLE_HOME;
+  }
+  EXPECT_TRUE(circled);
+  EXPECT_EQ(f.out().waypoint_index, 1);
+  EXPECT_NEAR(f.sim().north_ft(), 800.0, 150.0);
+  EXPECT_NEAR(f.sim().east_ft(), 800.0, 150.0);
+  EXPECT_NEAR(f.out().h_op_ft, 220.0, 1e-9);  // circles at the last waypoint's height
+}
+
+// Started with alpha 10 deg and beta -8 deg off, the estimator reports not converged at first,
+// then within 5 s reports converged with alpha and beta within 1 deg of the truth.
+TEST(GncClosedLoop, EstimatorConvergesFromWrongInitialAlphaBeta) {
+  dg808sim::SimConfig cfg;
+  cfg.wind_ned_mps = Eigen::Vector3d(2.0, -3.0, 0.0);
+  Flight f({{"alpha", 10.0 / kRadToDeg}, {"beta", -8.0 / kRadToDeg}}, cfg);
+  f.sim().set_trimmed_flight(f.params().gnc.vt_trim_ftps, 200.0, 0.5);
+  const double plan[1][3] = {{30000.0, 20000.0, 200.0}};
+  f.set_plan(plan, 1);
+  f.step();
+  EXPECT_FALSE(f.out().estimator_converged);
+  EXPECT_GT(std::fabs(f.out().alpha_est_rad - f.sim().alpha_rad()) * kRadToDeg, 5.0);
+  while (f.t() < 5.0) {
+    f.step();
+  }
+  for (int i = 0; i < 100; ++i) {  // and it stays there
+    f.step();
+    EXPECT_TRUE(f.out().estimator_converged);
+    EXPECT_NEAR(f.out().alpha_est_rad * kRadToDeg, f.sim().alpha_rad() * kRadToDeg, 1.0);
+    EXPECT_NEAR(f.out().beta_est_rad * kRadToDeg, f.sim().beta_rad() * kRadToDeg, 1.0);
+    EXPECT_NEAR(f.out().vt_est_ftps, f.sim().airspeed_ftps(), 2.0);
+  }
+}
+
+// Standing on the ground the pitot reads zero: the thesis's EKF produced NaN here. The command
+// stays finite and is flagged invalid, step after step.
+TEST(GncClosedLoop, ZeroAirspeedOnTheGroundGivesFiniteCommandFlaggedInvalid) {
+  Flight f;
+  f.sim().set_on_ground();
+  for (int i = 0; i < 400; ++i) {
+    f.step();
+    ASSERT_TRUE(all_finite(f.out())) << "step " << i;
+    EXPECT_FALSE(f.out().command_valid);
+    EXPECT_FALSE(f.out().estimator_converged);
+    EXPECT_GE(f.out().throttle, f.params().gnc.throttle_min);
+    EXPECT_LE(f.out().throttle, f.params().gnc.throttle_max);
+  }
+  EXPECT_NEAR(f.out().vt_est_ftps, 0.0, 3.0);
+}
+
+// A NaN, infinite or impossible value in any input is dropped and counted: the step returns the
+// last finite command flagged invalid, and the GNC flies on normally with the next good input.
+TEST(GncClosedLoop, NanInputGivesFiniteCommandFlaggedInvalidAndIsCounted) {
+  Flight f;
+  f.sim().set_trimmed_flight(f.params().gnc.vt_trim_ftps, 200.0, 0.0);
+  const double plan[1][3] = {{30000.0, 0.0, 200.0}};
+  f.set_plan(plan, 1);
+  while (f.t() < 3.0) {
+    f.step();
+  }
+  ASSERT_TRUE(f.out().command_valid);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  // NaN, infinity, or a finite value no sensor can produce (a corrupted message).
+  struct Corruption {
+    double *field;
+    double value;
+  };
+  const Corruption corruptions[] = {{&f.in().airspeed_ftps, nan},
+                                    {&f.in().phi_rad, nan},
+                                    {&f.in().lat_deg, std::numeric_limits<double>::infinity()},
+                                    {&f.in().fz_mps2, nan},
+                                    {&f.in().wp_height_ft[0], nan},
+                                    {&f.in().airspeed_ftps, 1e12},
+                                    {&f.in().q_radps, -1e9}};
+  uint32_t expected_rejects = 0;
+  for (const Corruption &c : corruptions) {
+    double *field = c.field;
+    f.sim().sense(f.in());
+    const double saved = *field;
+    *field = c.value;
+    DG808_GNC_Output out{};
+    DG808_GNC_step(&f.in(), &out);
+    ++expected_rejects;
+    EXPECT_TRUE(all_finite(out));
+    EXPECT_FALSE(out.command_valid);
+    EXPECT_FALSE(out.inputs_finite);
+    EXPECT_FALSE(out.estimator_converged);
+    EXPECT_EQ(out.rejected_inputs, expected_rejects);
+    *field = saved;
+    f.step();
+    EXPECT_TRUE(f.out().command_valid);
+    EXPECT_TRUE(f.out().inputs_finite);
+  }
+}
+
+// The HP restart: initialize() mid-flight starts the estimator again (not converged on its
+// first step), and it converges and flies on from there.
+TEST(GncClosedLoop, RestartMidFlightReinitializesAndRecovers) {
+  Flight f;
+  f.sim().set_trimmed_flight(f.params().gnc.vt_trim_ftps, 200.0, 0.0);
+  const double plan[1][3] = {{30000.0, 0.0, 200.0}};
+  f.set_plan(plan, 1);
+  while (f.t() < 3.0) {
+    f.step();
+  }
+  ASSERT_TRUE(f.out().estimator_converged);
+  ASSERT_EQ(DG808_GNC_initialize(&f.params().gnc), 0);
+  f.step();
+  EXPECT_FALSE(f.out().estimator_converged);
+  while (f.t() < 20.0) {
+    f.step();
+  }
+  EXPECT_TRUE(f.out().command_valid);
+  EXPECT_NEAR(f.sim().height_ft(), 200.0, 15.0);
+}
+
+// Bad parameters are refused: the GNC stays uninitialized and answers with a neutral command
+// flagged invalid.
+TEST(GncClosedLoop, InvalidParametersAreRefusedAndCommandStaysInvalid) {
+  Flight f;
+  GncParams bad = f.params().gnc;
+  bad.mpf_radius_ft = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(DG808_GNC_initialize(&bad), -1);
+  f.sim().set_trimmed_flight(f.params().gnc.vt_trim_ftps, 200.0, 0.0);
+  f.step();
+  EXPECT_FALSE(f.out().command_valid);
+  EXPECT_TRUE(all_finite(f.out()));
+}
+
+// The entry points are callable from C99 (c_boundary.c): a terminated or unconfigured GNC
+// answers with a finite neutral command flagged invalid, and refuses a NULL configuration.
+TEST(GncClosedLoop, CBoundaryStepsATerminatedGncToANeutralInvalidCommand) {
+  double throttle = -1.0;
+  EXPECT_EQ(c_boundary_step_uninitialized(&throttle), 0);
+  EXPECT_EQ(throttle, 0.0);
+  EXPECT_EQ(c_boundary_initialize_null(), -1);
+}
+
+}  // namespace
+
+int main(int argc, char **argv) {
+  testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}
