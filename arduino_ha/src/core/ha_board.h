@@ -1,0 +1,40 @@
+/* The narrow Board interface between the portable HA core and the hardware. The Due layer
+ * (arduino_ha/src/due/) and the host fake board (arduino_ha/test/) implement it; the core never
+ * calls it directly: ha_app.c reads it once per period, hands plain values to ha_core_step and
+ * writes the outputs back. Every function gets the implementation's context pointer first. */
+#ifndef HA_BOARD_H
+#define HA_BOARD_H
+
+#include <stdint.h>
+
+#include "ha_types.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct {
+  void *ctx;
+  /* Free-running microsecond clock; wraps at 2^32 (about 71 min), the core handles the wrap. */
+  uint32_t (*micros)(void *ctx);
+  /* Drive the four servos/ESC. Values are already checked, finite and inside S_u. */
+  void (*write_servos)(void *ctx, const HaSurfaces *surfaces);
+  /* Latest captured RC pulses incl. the PIC/CIC channel; sets rc->valid. */
+  void (*read_rc)(void *ctx, HaRcInputs *rc);
+  /* HA's own pitot (AMS5812). Returns 1 and writes *airspeed_ftps on a good reading, else 0. */
+  int (*read_airspeed_ftps)(void *ctx, float *airspeed_ftps);
+  /* Battery voltage. Returns 1 and writes *battery_v on a good reading, else 0. */
+  int (*read_battery_v)(void *ctx, float *battery_v);
+  /* Level of the HP reset line: 1 = hold the HP computer in reset, 0 = release. */
+  void (*set_hp_reset)(void *ctx, int asserted);
+  /* HA_LED_* bits. */
+  void (*set_leds)(void *ctx, uint8_t leds);
+  /* Called once per completed period; a hung loop stops kicking and the watchdog resets. */
+  void (*kick_watchdog)(void *ctx);
+} HaBoard;
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* HA_BOARD_H */

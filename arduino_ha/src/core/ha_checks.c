@@ -1,0 +1,103 @@
+#include "ha_checks.h"
+
+#include "ha_num.h"
+#include "ha_region.h"
+#include "hp_command.h"
+
+static uint32_t flag(int failed, uint32_t reason) { return failed ? reason : 0u; }
+
+static int surfaces_finite(const HaHpCommand *c) {
+  return ha_finite(c->throttle) && ha_finite(c->elevator_deg) && ha_finite(c->aileron_deg) &&
+         ha_finite(c->rudder_deg);
+}
+
+/* HP crashed: nothing at all within the timeout. */
+static uint32_t check_no_command(const HaAircraftConfig *cfg, const HaCmdFacts *f) {
+  return flag(!f->have_cmd || f->age_us > cfg->no_command_timeout_us, HA_REASON_NO_COMMAND);
+}
+
+/* Late: more consecutive periods without a new command than tolerated. */
+static uint32_t check_deadline(const HaAircraftConfig *cfg, const HaCmdFacts *f) {
+  return flag(f->late_periods > cfg->late_periods_tolerated, HA_REASON_DEADLINE_MISS);
+}
+
+static uint32_t check_finite(const HaHpCommand *c) {
+  return flag(!surfaces_finite(c) || !ha_finite(c->alpha_est_deg) || !ha_finite(c->beta_est_deg),
+              HA_REASON_NOT_FINITE);
+}
+
+static uint32_t check_actuator_region(const HaAircraftConfig *cfg, const HaHpCommand *c,
+                                      float *region_max) {
+  float u[HA_U_DIM];
+  u[HA_U_ELEVATOR_DEG] = c->elevator_deg;
+  u[HA_U_AILERON_DEG] = c->aileron_deg;
+  u[HA_U_RUDDER_DEG] = c->rudder_deg;
+  u[HA_U_THROTTLE] = c->throttle;
+  *region_max = ha_actuator_region_max(cfg, u);
+  /* The box S_u is built from is checked exactly too: float rounding of S_u u can round a value
+   * a hair outside (say a negative denormal throttle) onto the boundary. An accepted command
+   * therefore passes the final saturation unchanged. */
+  const int in_box =
+      ha_in_range(c->elevator_deg, -cfg->elevator_limit_deg, cfg->elevator_limit_deg) &&
+      ha_in_range(c->aileron_deg, -cfg->aileron_limit_deg, cfg->aileron_limit_deg) &&
+      ha_in_range(c->rudder_deg, -cfg->rudder_limit_deg, cfg->rudder_limit_deg) &&
+      ha_in_range(c->throttle, cfg->throttle_min, cfg->throttle_max);
+  return flag(*region_max > 1.0f || !in_box, HA_REASON_ACTUATOR_REGION);
+}
+
+/* Estimator divergence: the HP's own alpha/beta beyond their limits. */
+static uint32_t check_alpha_beta(const HaAircraftConfig *cfg, const HaHpCommand *c) {
+  return flag(!ha_in_range(c->alpha_est_deg, -cfg->alpha_limit_deg, cfg->alpha_limit_deg) ||
+                  !ha_in_range(c->beta_est_deg, -cfg->beta_limit_deg, cfg->beta_limit_deg),
+              HA_REASON_ALPHA_BETA);
+}
+
+static uint32_t check_sensor_link(const HaHpCommand *c) {
+  return flag(c->sensor_links_healthy != 1u, HA_REASON_SENSOR_LINK);
+}
+
+static uint32_t check_estimator(const HaHpCommand *c) {
+  return flag(c->estimator_converged != 1u, HA_REASON_ESTIMATOR);
+}
+
+static uint32_t check_frozen(const HaCmdFacts *f) { return flag(f->frozen, HA_REASON_FROZEN); }
+
+static uint32_t check_integrity(const HaHpCommand *c) {
+  return flag(ha_hp_command_compute_crc(c) != c->crc32, HA_REASON_INTEGRITY);
+}
+
+/* Airborne with an airspeed at or below stall, or unknown. */
+static uint32_t check_stall(const HaAircraftConfig *cfg, const HaStateView *s) {
+  return flag(s->airborne && (!s->airspeed_ok || s->airspeed_ftps <= cfg->stall_speed_ftps),
+              HA_REASON_STALL);
+}
+
+/* Above the ceiling, or altitude unknown. */
+static uint32_t check_ceiling(const HaAircraftConfig *cfg, const HaStateView *s) {
+  return flag(!s->altitude_ok || s->x[HA_X_ALT_AGL_FT] > cfg->ceiling_agl_ft, HA_REASON_CEILING);
+}
+
+static uint32_t check_state_region(const HaAircraftConfig *cfg, const HaStateView *s,
+                                   float *region_max) {
+  *region_max = ha_state_region_max(cfg, s->x);
+  return flag(!s->attitude_ok || !s->altitude_ok || *region_max > 1.0f,
+              HA_REASON_STATE_REGION);
+}
+
+uint32_t ha_checks_evaluate(const HaAircraftConfig *cfg, const HaCmdFacts *facts,
+                            const HaStateView *state, float *state_region_max,
+                            float *actuator_region_max) {
+  uint32_t reasons = check_no_command(cfg, facts) | check_deadline(cfg, facts) |
+                     check_stall(cfg, state) | check_ceiling(cfg, state) |
+                     check_state_region(cfg, state, state_region_max);
+  *actuator_region_max = 0.0f;
+  if (facts->have_cmd) {
+    const HaHpCommand *c = facts->cmd;
+    reasons |= check_finite(c) | check_alpha_beta(cfg, c) | check_sensor_link(c) |
+               check_estimator(c) | check_frozen(facts) | check_integrity(c);
+    /* A non-finite surface cannot be shown inside S_u: it fails the region too. */
+    reasons |= surfaces_finite(c) ? check_actuator_region(cfg, c, actuator_region_max)
+                                  : HA_REASON_ACTUATOR_REGION;
+  }
+  return reasons;
+}

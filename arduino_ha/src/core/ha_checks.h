@@ -1,0 +1,51 @@
+/* The checks of the decision logic. Each check is one function that only produces a flag; the
+ * policy (ha_policy.c) alone decides what the flags mean. */
+#ifndef HA_CHECKS_H
+#define HA_CHECKS_H
+
+#include <stdint.h>
+
+#include "ha_core.h"
+
+/* Reasons that concern the HP command itself (they reset the stable window). */
+#define HA_REASONS_COMMAND                                                                 \
+  (HA_REASON_NO_COMMAND | HA_REASON_DEADLINE_MISS | HA_REASON_NOT_FINITE |                 \
+   HA_REASON_ACTUATOR_REGION | HA_REASON_ALPHA_BETA | HA_REASON_SENSOR_LINK |              \
+   HA_REASON_FROZEN | HA_REASON_INTEGRITY | HA_REASON_ESTIMATOR)
+
+/* The aircraft state after checking: a component that failed its check is marked not ok and
+ * holds a harmless value (the region centre, or 0), never the raw input. */
+typedef struct {
+  uint8_t attitude_ok; /* roll, pitch, P, Q, R: present, fresh, finite, plausible */
+  uint8_t altitude_ok;
+  uint8_t position_ok; /* north, east, heading */
+  uint8_t airspeed_ok;
+  uint8_t alpha_beta_ok; /* the HP command's estimates are finite */
+  uint8_t airborne;      /* above alt0, or altitude unknown */
+  uint8_t on_ground;     /* reported on the ground, low and slow: the self-test may run */
+  float x[HA_X_DIM];
+  float airspeed_ftps;
+  float heading_deg;
+  float north_ft;
+  float east_ft;
+} HaStateView;
+
+/* What the core's bookkeeping knows about the HP command this period. */
+typedef struct {
+  uint8_t have_cmd;     /* a command has ever arrived */
+  uint32_t age_us;      /* since the latest arrived */
+  uint32_t late_periods; /* consecutive periods without a new command */
+  uint8_t frozen;       /* the latest command repeated its predecessor's seq */
+  const HaHpCommand *cmd; /* never NULL; meaningful only when have_cmd */
+} HaCmdFacts;
+
+/* cmd is the latest HP command (never NULL); have_cmd says whether one ever arrived. */
+void ha_state_view(const HaAircraftConfig *cfg, const HaInputs *in, const HaHpCommand *cmd,
+                   int have_cmd, uint32_t now_us, HaStateView *out);
+
+/* Runs every check; returns the HA_REASON_* bits and the two region values. */
+uint32_t ha_checks_evaluate(const HaAircraftConfig *cfg, const HaCmdFacts *facts,
+                            const HaStateView *state, float *state_region_max,
+                            float *actuator_region_max);
+
+#endif /* HA_CHECKS_H */

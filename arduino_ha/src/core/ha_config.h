@@ -1,0 +1,118 @@
+/* Per-aircraft configuration of the HA core. Never filled by hand: tools/gen_aircraft_config.py
+ * turns aircraft/<name>/limits.yaml into a const initializer (src/generated/aircraft_config.h),
+ * so no limit is a literal in the core. Times are converted to integer microseconds by the
+ * generator, so the core never converts a float to an integer time. */
+#ifndef HA_CONFIG_H
+#define HA_CONFIG_H
+
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* State vector x of the safety region S_x (x - x0) <= 1, in this order. */
+enum {
+  HA_X_ALPHA_DEG = 0,
+  HA_X_BETA_DEG = 1,
+  HA_X_ROLL_DEG = 2,
+  HA_X_PITCH_DEG = 3,
+  HA_X_P_DEG_S = 4,
+  HA_X_Q_DEG_S = 5,
+  HA_X_R_DEG_S = 6,
+  HA_X_ALT_AGL_FT = 7,
+  HA_X_DIM = 8
+};
+
+/* Actuator vector u of the actuator region S_u (u - u0) <= 1, in this order. */
+enum {
+  HA_U_ELEVATOR_DEG = 0,
+  HA_U_AILERON_DEG = 1,
+  HA_U_RUDDER_DEG = 2,
+  HA_U_THROTTLE = 3,
+  HA_U_DIM = 4
+};
+
+#define HA_SX_MAX_ROWS 20
+#define HA_SU_MAX_ROWS 10
+/* Upper bound on max_restarts (the restart history is a fixed array). */
+#define HA_MAX_RESTARTS_CAP 16
+
+typedef struct {
+  const char *aircraft;
+
+  /* Safety regions: row i holds when sum_j s[i][j] * (v[j] - v0[j]) <= 1. */
+  uint32_t sx_rows;
+  float sx[HA_SX_MAX_ROWS][HA_X_DIM];
+  float x0[HA_X_DIM];
+  uint32_t su_rows;
+  float su[HA_SU_MAX_ROWS][HA_U_DIM];
+  float u0[HA_U_DIM];
+  float inner_region_fraction; /* switch back only while max(S_x (x - x0)) <= this */
+
+  /* Actuators (the box S_u is built from; the final saturation uses it directly). */
+  float elevator_limit_deg;
+  float aileron_limit_deg;
+  float rudder_limit_deg;
+  float throttle_min;
+  float throttle_max;
+  float surface_rate_limit_deg_per_s;
+  float throttle_rate_limit_per_s;
+
+  /* State checks. */
+  float alpha_limit_deg;
+  float beta_limit_deg;
+  float stall_speed_ftps;
+  float ceiling_agl_ft;
+  float airborne_agl_ft;
+  float max_airspeed_ftps; /* a reading above this is a broken sensor, not a fast aircraft */
+  uint32_t state_timeout_us; /* attitude/position older than this is not trusted */
+
+  /* Decision logic. */
+  uint32_t period_us;
+  uint32_t late_periods_tolerated;
+  uint32_t no_command_timeout_us;
+  uint32_t stable_window_us;
+  uint32_t max_restarts;
+  uint32_t restart_window_us;
+  uint32_t hp_reset_pulse_us;
+
+  /* RC receiver and servo pulse calibration: [min, max] maps linearly onto [-limit, +limit]
+   * (throttle onto [throttle_min, throttle_max]). */
+  uint32_t rc_pulse_min_us;
+  uint32_t rc_pulse_max_us;
+  uint32_t pic_threshold_us; /* PIC channel pulse >= this: pilot in command */
+  uint32_t servo_pulse_min_us;
+  uint32_t servo_pulse_max_us;
+
+  /* Safety controller (cascaded PID). */
+  float sc_bank_limit_deg;
+  float sc_circle_radius_ft;
+  float sc_circle_direction; /* +1 clockwise seen from above (right turns), -1 counter-clockwise */
+  float sc_radial_gain_deg_per_ft;
+  float sc_radial_correction_max_deg;
+  float sc_heading_to_bank_gain;
+  float sc_roll_kp, sc_roll_ki, sc_roll_kd; /* aileron deg per deg, per deg*s, per deg/s */
+  float sc_pitch_kp, sc_pitch_ki, sc_pitch_kd;
+  float sc_yaw_damper_gain; /* rudder deg per deg/s of R */
+  float sc_alt_min_ft;
+  float sc_alt_max_ft;
+  float sc_alt_to_pitch_gain_deg_per_ft;
+  float sc_pitch_cmd_limit_deg;
+  float sc_stall_margin;             /* target airspeed = stall_speed_ftps * margin */
+  float sc_speed_to_pitch_gain_deg_per_ftps; /* nose down when slow: speed beats altitude */
+  float sc_throttle_trim;
+  float sc_throttle_kp_per_ftps;
+  float sc_throttle_ki_per_ft;
+  float sc_integrator_authority; /* integrator range as a fraction of the actuator half range */
+
+  /* Pre-flight surface self-test. */
+  uint32_t self_test_step_us;
+  float self_test_throttle_max;
+} HaAircraftConfig;
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* HA_CONFIG_H */

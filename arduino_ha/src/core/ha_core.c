@@ -1,0 +1,251 @@
+#include "ha_core.h"
+
+#include <string.h>
+
+#include "ha_checks.h"
+#include "ha_num.h"
+#include "ha_policy.h"
+#include "ha_safety_ctrl.h"
+#include "ha_self_test.h"
+#include "ha_surfaces.h"
+
+/* Who produced the surfaces last period (a change starts a rate-limited transition). */
+enum { SRC_HA = 0, SRC_HP = 1, SRC_MANUAL = 2, SRC_SELF_TEST = 3 };
+
+#define HA_REASONS_STATE (HA_REASON_STALL | HA_REASON_CEILING | HA_REASON_STATE_REGION)
+
+static uint32_t add_sat(uint32_t a, uint32_t b) { return a > UINT32_MAX - b ? UINT32_MAX : a + b; }
+
+void ha_core_init(HaCore *core, const HaAircraftConfig *cfg) {
+  memset(core, 0, sizeof *core);
+  core->cfg = cfg;
+  core->controller = HA_CONTROLLER_HA;
+  core->applied.throttle = cfg->throttle_min;
+  core->last_source = SRC_HA;
+  ha_safety_ctrl_reset(&core->sc);
+}
+
+/* Period length actually elapsed, bounded: past the no-command timeout everything has timed out
+ * anyway, and a bound keeps one late call from driving a huge integrator or slew step. */
+static uint32_t period_dt_us(const HaCore *core, uint32_t now_us) {
+  const uint32_t dt = core->have_step ? ha_elapsed_us(now_us, core->last_step_us)
+                                      : core->cfg->period_us;
+  return dt < core->cfg->no_command_timeout_us ? dt : core->cfg->no_command_timeout_us;
+}
+
+/* Arrival bookkeeping: new command, consecutive late periods, repeated sequence number. */
+static void track_command(HaCore *core, const HaInputs *in, uint32_t now_us, uint32_t dt_us,
+                          HaCmdFacts *f) {
+  if (in->hp_cmd_count != core->seen_cmd_count) {
+    core->frozen = (uint8_t)(core->have_seq && in->hp_cmd.seq == core->last_seq);
+    core->last_seq = in->hp_cmd.seq;
+    core->have_seq = 1u;
+    core->seen_cmd_count = in->hp_cmd_count;
+    core->late_periods = 0u;
+    core->cmd_age_us = ha_elapsed_us(now_us, in->hp_cmd_rx_us);
+  } else {
+    core->late_periods = add_sat(core->late_periods, 1u);
+    core->cmd_age_us = add_sat(core->cmd_age_us, dt_us);
+  }
+  f->have_cmd = core->have_seq;
+  f->age_us = core->cmd_age_us;
+  f->late_periods = core->late_periods;
+  f->frozen = core->frozen;
+  f->cmd = &in->hp_cmd;
+}
+
+/* Forget restarts older than the window (before the 32-bit clock could wrap onto them). */
+static void prune_restarts(HaCore *core, uint32_t now_us) {
+  uint32_t kept = 0u, i;
+  for (i = 0u; i < core->restart_history_len && i < HA_MAX_RESTARTS_CAP; ++i) {
+    if (ha_elapsed_us(now_us, core->restart_times_us[i]) < core->cfg->restart_window_us) {
+      core->restart_times_us[kept++] = core->restart_times_us[i];
+    }
+  }
+  core->restart_history_len = kept;
+}
+
+static int restart_cap_reached(const HaCore *core) {
+  return core->restart_history_len >= core->cfg->max_restarts;
+}
+
+static void request_restart(HaCore *core, uint32_t now_us, HaOutputs *out) {
+  if (core->restart_history_len < HA_MAX_RESTARTS_CAP) {
+    core->restart_times_us[core->restart_history_len++] = now_us;
+  }
+  if (core->restart_count < UINT16_MAX) {
+    core->restart_count++;
+  }
+  core->reset_active = 1u;
+  core->reset_started_us = now_us;
+  out->restart_requested = 1u;
+}
+
+/* Operator requests never bypass a check: they only move the HA's own intent. */
+static void handle_operator(HaCore *core, const HaInputs *in, const HaStateView *view,
+                            uint32_t now_us, HaOutputs *out) {
+  int accepted = 0;
+  if (in->operator_count == core->seen_operator_count) {
+    return;
+  }
+  core->seen_operator_count = in->operator_count;
+  if (in->operator_command == HA_OP_SELECT_HP && !core->latched) {
+    core->ground_command = 0u;
+    accepted = 1;
+  } else if (in->operator_command == HA_OP_SELECT_HA) {
+    core->ground_command = 1u;
+    accepted = 1;
+  } else if (in->operator_command == HA_OP_RESTART_HP && !core->latched &&
+             core->controller != HA_CONTROLLER_HP) {
+    request_restart(core, now_us, out);
+    accepted = 1;
+  } else if (in->operator_command == HA_OP_SELF_TEST && view->on_ground &&
+             core->controller != HA_CONTROLLER_HP && core->controller != HA_CONTROLLER_MANUAL) {
+    ha_self_test_start(&core->self_test, now_us);
+    accepted = 1;
+  }
+  core->operator_ack_id = in->operator_request_id;
+  core->operator_ack_accepted = (uint8_t)accepted;
+}
+
+/* Bookkeeping of a change of controller: why, the restart, the latch, a fresh stable window. */
+static void on_switch(HaCore *core, uint8_t next, uint32_t reasons, uint32_t now_us,
+                      HaOutputs *out) {
+  const int from_hp_side =
+      core->controller == HA_CONTROLLER_HP || core->controller == HA_CONTROLLER_RECOVERING;
+  const int to_ha = next == HA_CONTROLLER_HA || next == HA_CONTROLLER_HA_LATCHED;
+  const int hp_fault = !core->ground_command && !core->self_test.active;
+  if (from_hp_side && to_ha) {
+    core->reasons_at_switch = reasons;
+    core->stable_for_us = 0u;
+    if (next == HA_CONTROLLER_HA && hp_fault) {
+      request_restart(core, now_us, out);
+    }
+  }
+  if (next == HA_CONTROLLER_HA_LATCHED) {
+    core->latched = 1u;
+  }
+  core->controller = next;
+}
+
+static uint8_t choose_source(const HaCore *core) {
+  if (core->controller == HA_CONTROLLER_MANUAL) return SRC_MANUAL;
+  if (core->self_test.active) return SRC_SELF_TEST;
+  if (core->controller == HA_CONTROLLER_HP) return SRC_HP;
+  return SRC_HA;
+}
+
+static void fill_outputs(const HaCore *core, const HaStateView *view, const HaInputs *in,
+                         uint32_t reasons, float sx_max, float su_max, HaOutputs *out) {
+  static const uint8_t kLeds[] = {HA_LED_HP, HA_LED_HA, HA_LED_HA, HA_LED_HA, HA_LED_MANUAL};
+  out->surfaces = core->applied;
+  out->controller = core->controller;
+  out->reasons = reasons;
+  out->reasons_at_switch = core->reasons_at_switch;
+  out->restart_count = core->restart_count;
+  out->hp_reset_asserted = core->reset_active;
+  out->last_seq = core->last_seq;
+  out->stable_for_s = (float)core->stable_for_us * 1.0e-6f;
+  out->airspeed_ftps = view->airspeed_ftps;
+  out->altitude_agl_ft = view->altitude_ok ? view->x[HA_X_ALT_AGL_FT] : 0.0f;
+  out->alpha_deg = view->alpha_beta_ok ? in->hp_cmd.alpha_est_deg : 0.0f;
+  out->beta_deg = view->alpha_beta_ok ? in->hp_cmd.beta_est_deg : 0.0f;
+  out->state_region_max = sx_max;
+  out->actuator_region_max = su_max;
+  out->self_test_active = core->self_test.active;
+  out->leds = (uint8_t)(kLeds[core->controller <= HA_CONTROLLER_MANUAL ? core->controller : 1u] |
+                        (reasons != 0u ? HA_LED_FAULT : 0u));
+  out->operator_ack_id = core->operator_ack_id;
+  out->operator_ack_accepted = core->operator_ack_accepted;
+  out->operator_ack_count = core->seen_operator_count;
+}
+
+void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *out) {
+  const HaAircraftConfig *cfg = core->cfg;
+  const uint32_t dt_us = period_dt_us(core, now_us);
+  const float dt_s = (float)dt_us * 1.0e-6f;
+  HaCmdFacts facts;
+  HaStateView view;
+  HaPolicyIn policy;
+  HaSurfaces ha_cmd, target;
+  float sx_max = 0.0f, su_max = 0.0f;
+  uint32_t reasons;
+  uint8_t source;
+
+  out->restart_requested = 0u;
+  track_command(core, in, now_us, dt_us, &facts);
+  ha_state_view(cfg, in, facts.cmd, facts.have_cmd, now_us, &view);
+  handle_operator(core, in, &view, now_us, out);
+  reasons = ha_checks_evaluate(cfg, &facts, &view, &sx_max, &su_max) |
+            (core->ground_command ? HA_REASON_GROUND_COMMAND : 0u);
+  core->stable_for_us = (reasons & HA_REASONS_COMMAND) ? 0u : add_sat(core->stable_for_us, dt_us);
+  prune_restarts(core, now_us);
+
+  policy.controller = core->controller;
+  policy.manual = (uint8_t)(in->rc.valid && in->rc.pulse_us[HA_RC_PIC] >= cfg->pic_threshold_us);
+  if (policy.manual || !view.on_ground) {
+    core->self_test.active = 0u; /* the pilot or a lift-off ends the self-test */
+  }
+  policy.latched = core->latched;
+  policy.self_test = core->self_test.active;
+  policy.ground_command = core->ground_command;
+  policy.reasons = reasons;
+  policy.stable = (uint8_t)(core->stable_for_us >= cfg->stable_window_us);
+  policy.inner = (uint8_t)(!(reasons & HA_REASONS_STATE) && sx_max <= cfg->inner_region_fraction);
+  policy.restart_cap_reached = (uint8_t)restart_cap_reached(core);
+  {
+    const uint8_t next = ha_policy_decide(&policy);
+    if (next != core->controller) {
+      on_switch(core, next, reasons, now_us, out);
+    }
+  }
+
+  /* The safety controller runs every period; it tracks the applied surfaces unless it alone
+   * produced them last period. */
+  ha_safety_ctrl_step(&core->sc, cfg, &view, &core->applied,
+                      core->last_source == SRC_HA && !core->transition_active, dt_s, &ha_cmd);
+  source = choose_source(core);
+  target = ha_cmd;
+  if (source == SRC_MANUAL) {
+    ha_surfaces_from_rc(cfg, &in->rc, &target);
+  } else if (source == SRC_HP) {
+    ha_surfaces_from_cmd(&in->hp_cmd, &target); /* every check passed: finite, inside S_u */
+  } else if (source == SRC_SELF_TEST && !ha_self_test_target(&core->self_test, cfg, now_us,
+                                                              &target)) {
+    target = ha_cmd; /* the sequence just ended */
+    source = SRC_HA;
+  }
+  ha_surfaces_saturate(cfg, &target);
+  if (source != core->last_source || source == SRC_SELF_TEST) {
+    core->transition_active = 1u;
+  }
+  if (core->transition_active) {
+    HaSurfaces limited;
+    core->transition_active =
+        (uint8_t)!ha_surfaces_rate_limit(cfg, &core->applied, &target, dt_s, &limited);
+    target = limited;
+  }
+  ha_surfaces_saturate(cfg, &target); /* the last word: nothing outside S_u reaches a servo */
+  core->applied = target;
+  core->last_source = source;
+
+  if (core->reset_active &&
+      ha_elapsed_us(now_us, core->reset_started_us) >= cfg->hp_reset_pulse_us) {
+    core->reset_active = 0u;
+  }
+  core->have_step = 1u;
+  core->last_step_us = now_us;
+  fill_outputs(core, &view, in, reasons, sx_max, su_max, out);
+}
+
+void ha_inputs_put_hp_command(HaInputs *in, const HaHpCommand *cmd, uint32_t now_us) {
+  in->hp_cmd = *cmd;
+  in->hp_cmd_rx_us = now_us;
+  in->hp_cmd_count++;
+}
+
+void ha_inputs_put_operator(HaInputs *in, uint8_t command, uint32_t request_id) {
+  in->operator_command = command;
+  in->operator_request_id = request_id;
+  in->operator_count++;
+}

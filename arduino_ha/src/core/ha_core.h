@@ -1,0 +1,177 @@
+/* The HA core: one call per control period decides who drives the servos (HP, HA safety
+ * controller, or the pilot) and what goes to them. Pure: time and inputs in, outputs out; no
+ * board access, no heap, no recursion. The numeric values of CONTROLLER_* and REASON_* are those
+ * of msg/DecisionStatus.msg, and HA_OP_* those of msg/OperatorCommand.msg. */
+#ifndef HA_CORE_H
+#define HA_CORE_H
+
+#include <stdint.h>
+
+#include "ha_config.h"
+#include "ha_types.h"
+#include "hp_command.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* msg/DecisionStatus.msg controller */
+enum {
+  HA_CONTROLLER_HP = 0,
+  HA_CONTROLLER_HA = 1,
+  HA_CONTROLLER_RECOVERING = 2,
+  HA_CONTROLLER_HA_LATCHED = 3,
+  HA_CONTROLLER_MANUAL = 4
+};
+
+/* msg/DecisionStatus.msg reasons */
+#define HA_REASON_NO_COMMAND 1u
+#define HA_REASON_DEADLINE_MISS 2u
+#define HA_REASON_NOT_FINITE 4u
+#define HA_REASON_ACTUATOR_REGION 8u
+#define HA_REASON_ALPHA_BETA 16u
+#define HA_REASON_SENSOR_LINK 32u
+#define HA_REASON_STALL 64u
+#define HA_REASON_CEILING 128u
+#define HA_REASON_STATE_REGION 256u
+#define HA_REASON_FROZEN 512u
+#define HA_REASON_INTEGRITY 1024u
+#define HA_REASON_ESTIMATOR 2048u
+#define HA_REASON_GROUND_COMMAND 4096u
+
+/* msg/OperatorCommand.msg command (0: no request) */
+enum {
+  HA_OP_NONE = 0,
+  HA_OP_SELECT_HP = 1,
+  HA_OP_SELECT_HA = 2,
+  HA_OP_RESTART_HP = 3,
+  HA_OP_SELF_TEST = 4
+};
+
+typedef struct {
+  /* Aircraft state. Airspeed is the HA's own pitot; attitude, rates, altitude and position come
+   * from the INS through the link and carry their arrival time. Anything NaN/inf/out of range or
+   * stale fails the state checks; the core never uses it unchecked. */
+  float airspeed_ftps;
+  float roll_deg;     /* right wing down positive */
+  float pitch_deg;    /* nose up positive */
+  float heading_deg;  /* true, clockwise from north, any wrap */
+  float p_deg_s;      /* body roll rate */
+  float q_deg_s;      /* body pitch rate */
+  float r_deg_s;      /* body yaw rate, nose right positive */
+  float altitude_agl_ft;
+  float north_ft;     /* position relative to the home/rally point the HA circles */
+  float east_ft;
+  uint8_t on_ground;  /* 1: weight on wheels / landed as reported by the INS side */
+  uint8_t state_valid;  /* 0 until the link has delivered a state at least once */
+  uint32_t state_rx_us; /* when that state arrived */
+
+  HaRcInputs rc;
+  float battery_v; /* reported only */
+
+  /* The latest HP command (alpha/beta estimates are its alpha_est_deg/beta_est_deg). The link
+   * increments hp_cmd_count on every command it delivers; 0 means none yet. */
+  HaHpCommand hp_cmd;
+  uint32_t hp_cmd_count;
+  uint32_t hp_cmd_rx_us;
+
+  /* The latest operator request; operator_count increments on each new one. */
+  uint8_t operator_command; /* HA_OP_* */
+  uint32_t operator_request_id;
+  uint32_t operator_count;
+} HaInputs;
+
+typedef struct {
+  HaSurfaces surfaces; /* what goes to the servos: always finite and inside S_u */
+  uint8_t controller;  /* HA_CONTROLLER_* */
+  uint32_t reasons;    /* HA_REASON_* failing this period */
+  uint32_t reasons_at_switch;
+  uint16_t restart_count;
+  uint8_t restart_requested; /* 1 in the period a restart is requested (send it to the HP side) */
+  uint8_t hp_reset_asserted; /* level for the HP reset line */
+  uint32_t last_seq;
+  float stable_for_s;
+  /* Checked values (NaN never leaves the core: unchecked values are reported as 0). */
+  float airspeed_ftps;
+  float altitude_agl_ft;
+  float alpha_deg;
+  float beta_deg;
+  float state_region_max;    /* max_i (S_x (x - x0))_i */
+  float actuator_region_max; /* max_i (S_u (u - u0))_i of the HP command */
+  uint8_t self_test_active;
+  uint8_t leds; /* HA_LED_* */
+  /* Acknowledgement of the latest operator request: operator_ack_count equals the input's
+   * operator_count once handled. */
+  uint32_t operator_ack_id;
+  uint8_t operator_ack_accepted;
+  uint32_t operator_ack_count;
+} HaOutputs;
+
+/* Cascaded-PID safety controller memory. */
+typedef struct {
+  float roll_integ_deg;
+  float pitch_integ_deg;
+  float throttle_integ;
+} HaSafetyCtrlState;
+
+typedef struct {
+  uint8_t active;
+  uint32_t step;
+  uint32_t step_started_us;
+} HaSelfTestState;
+
+typedef struct {
+  const HaAircraftConfig *cfg;
+  uint8_t controller;       /* HA_CONTROLLER_* */
+  uint8_t latched;          /* the restart cap was reached: HA for good */
+  uint8_t ground_command;   /* the operator selected the HA */
+  uint32_t reasons_at_switch;
+  uint8_t have_step;        /* 0 before the first step */
+  uint32_t last_step_us;
+  /* HP command bookkeeping */
+  uint32_t seen_cmd_count;
+  uint8_t have_seq;
+  uint8_t frozen;
+  uint32_t last_seq;
+  uint32_t late_periods;
+  uint32_t cmd_age_us;
+  uint32_t stable_for_us;   /* the command has been valid this long (saturating) */
+  /* restarts */
+  uint16_t restart_count;
+  uint32_t restart_times_us[HA_MAX_RESTARTS_CAP];
+  uint32_t restart_history_len;
+  uint8_t reset_active;
+  uint32_t reset_started_us;
+  /* operator */
+  uint32_t seen_operator_count;
+  uint32_t operator_ack_id;
+  uint8_t operator_ack_accepted;
+  /* bumpless transfer */
+  HaSurfaces applied;       /* what went to the servos last period */
+  uint8_t transition_active;
+  uint8_t last_source;
+  HaSafetyCtrlState sc;
+  HaSelfTestState self_test;
+} HaCore;
+
+/* cfg must outlive core (it is the generated const). A core that has not been stepped drives
+ * nothing; the first step starts in HA_CONTROLLER_HA. */
+void ha_core_init(HaCore *core, const HaAircraftConfig *cfg);
+
+/* One control period at now_us (free-running, wrapping microsecond clock). */
+void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *out);
+
+/* Helpers for the link and the board layer. */
+/* Records a received HP command (increments hp_cmd_count). */
+void ha_inputs_put_hp_command(HaInputs *in, const HaHpCommand *cmd, uint32_t now_us);
+/* Records an operator request (increments operator_count). */
+void ha_inputs_put_operator(HaInputs *in, uint8_t command, uint32_t request_id);
+/* Servo pulse width for a surface value already inside S_u (cfg servo calibration). */
+void ha_surfaces_to_pulses_us(const HaAircraftConfig *cfg, const HaSurfaces *s,
+                              uint16_t pulses_us[HA_U_DIM]);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* HA_CORE_H */

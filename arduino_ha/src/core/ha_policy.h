@@ -1,0 +1,21 @@
+/* The one policy: flags and state in, the controller that drives the servos out. */
+#ifndef HA_POLICY_H
+#define HA_POLICY_H
+
+#include <stdint.h>
+
+typedef struct {
+  uint8_t controller;          /* HA_CONTROLLER_* now */
+  uint8_t manual;              /* RC alive and the PIC/CIC switch at PIC */
+  uint8_t latched;             /* the restart cap was reached before */
+  uint8_t self_test;           /* the pre-flight self-test is running */
+  uint8_t ground_command;      /* the operator selected the HA */
+  uint32_t reasons;            /* HA_REASON_* failing this period */
+  uint8_t stable;              /* the HP command has been valid for the stable window */
+  uint8_t inner;               /* the state is inside the inner region, no stall, no ceiling */
+  uint8_t restart_cap_reached; /* K restarts already within T */
+} HaPolicyIn;
+
+uint8_t ha_policy_decide(const HaPolicyIn *p);
+
+#endif /* HA_POLICY_H */

@@ -1,0 +1,11 @@
+/* Safety regions in matrix form: max_i (S (v - v0))_i, inside while <= 1. */
+#ifndef HA_REGION_H
+#define HA_REGION_H
+
+#include "ha_config.h"
+
+/* x must be finite (the caller checks). */
+float ha_state_region_max(const HaAircraftConfig *cfg, const float x[HA_X_DIM]);
+float ha_actuator_region_max(const HaAircraftConfig *cfg, const float u[HA_U_DIM]);
+
+#endif /* HA_REGION_H */

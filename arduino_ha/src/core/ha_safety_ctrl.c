@@ -1,0 +1,115 @@
+#include "ha_safety_ctrl.h"
+
+#include <math.h>
+
+#include "ha_num.h"
+#include "ha_surfaces.h"
+
+#define HA_G_FTPS2 32.174f /* standard gravity, physics not aircraft data */
+#define HA_RAD_PER_DEG 0.017453292f
+
+/* Wraps a finite angle in [-1080, 1080] deg into [-180, 180). */
+static float wrap180(float deg) {
+  return deg - 360.0f * floorf((deg + 180.0f) / 360.0f);
+}
+
+/* One PID channel with conditional-integration anti-windup and output saturation. When another
+ * controller drives the surface, the integrator is back-calculated so pd + integ == applied, as
+ * far as its authority allows; the core's rate limiter covers any remaining difference. */
+static float pid(float *integ, float pd, float integ_step, float limit, float authority,
+                 int in_control, float applied) {
+  const float integ_limit = authority * limit;
+  if (!in_control) {
+    *integ = ha_clampf(applied - pd, -integ_limit, integ_limit);
+  } else {
+    const float candidate = *integ + integ_step;
+    const float unsat = pd + candidate;
+    /* Integrate only while it does not push further into saturation (no windup). */
+    if (!((unsat > limit && integ_step > 0.0f) || (unsat < -limit && integ_step < 0.0f))) {
+      *integ = ha_clampf(candidate, -integ_limit, integ_limit);
+    }
+  }
+  return ha_clampf(pd + *integ, -limit, limit);
+}
+
+/* Outer lateral loop: the bank that flies the circle around home. */
+static float bank_command_deg(const HaAircraftConfig *cfg, const HaStateView *s) {
+  const float dir = cfg->sc_circle_direction;
+  const float target_ftps = cfg->stall_speed_ftps * cfg->sc_stall_margin;
+  const float radius_ft = cfg->sc_circle_radius_ft;
+  float distance_ft, bearing_deg, correction_deg, course_deg, bank_deg;
+  if (!s->position_ok) {
+    return 0.0f; /* without a position: wings level */
+  }
+  distance_ft = sqrtf(s->north_ft * s->north_ft + s->east_ft * s->east_ft);
+  bearing_deg = atan2f(s->east_ft, s->north_ft) / HA_RAD_PER_DEG;
+  correction_deg = ha_clampf(cfg->sc_radial_gain_deg_per_ft * (distance_ft - radius_ft),
+                             -cfg->sc_radial_correction_max_deg,
+                             cfg->sc_radial_correction_max_deg);
+  /* Tangent to the circle, turned inwards when outside and outwards when inside. */
+  course_deg = bearing_deg + dir * (90.0f + correction_deg);
+  /* Feed-forward: the bank of a steady turn of this radius at the target speed. */
+  bank_deg = dir * atanf(target_ftps * target_ftps / (HA_G_FTPS2 * radius_ft)) / HA_RAD_PER_DEG;
+  bank_deg += cfg->sc_heading_to_bank_gain * wrap180(course_deg - s->heading_deg);
+  return ha_clampf(bank_deg, -cfg->sc_bank_limit_deg, cfg->sc_bank_limit_deg);
+}
+
+/* Outer longitudinal loop: altitude to the middle of the band, but speed first. */
+static float pitch_command_deg(const HaAircraftConfig *cfg, const HaStateView *s) {
+  const float target_ftps = cfg->stall_speed_ftps * cfg->sc_stall_margin;
+  const float mid_ft = 0.5f * (cfg->sc_alt_min_ft + cfg->sc_alt_max_ft);
+  float pitch_deg = 0.0f;
+  if (s->altitude_ok) {
+    pitch_deg += cfg->sc_alt_to_pitch_gain_deg_per_ft * (mid_ft - s->x[HA_X_ALT_AGL_FT]);
+  }
+  if (s->airspeed_ok && s->airspeed_ftps < target_ftps) {
+    pitch_deg -= cfg->sc_speed_to_pitch_gain_deg_per_ftps * (target_ftps - s->airspeed_ftps);
+  }
+  return ha_clampf(pitch_deg, -cfg->sc_pitch_cmd_limit_deg, cfg->sc_pitch_cmd_limit_deg);
+}
+
+void ha_safety_ctrl_step(HaSafetyCtrlState *st, const HaAircraftConfig *cfg,
+                         const HaStateView *s, const HaSurfaces *applied, int in_control,
+                         float dt_s, HaSurfaces *out) {
+  const float target_ftps = cfg->stall_speed_ftps * cfg->sc_stall_margin;
+  const float throttle_half = 0.5f * (cfg->throttle_max - cfg->throttle_min);
+  const float throttle_mid = cfg->throttle_min + throttle_half;
+  float roll_pd = 0.0f, roll_step = 0.0f, pitch_pd = 0.0f, pitch_step = 0.0f;
+  float thr_pd = cfg->sc_throttle_trim - throttle_mid, thr_step = 0.0f;
+  float nose_up_deg;
+  if (s->attitude_ok) {
+    const float roll_err = bank_command_deg(cfg, s) - s->x[HA_X_ROLL_DEG];
+    const float pitch_err = pitch_command_deg(cfg, s) - s->x[HA_X_PITCH_DEG];
+    roll_pd = cfg->sc_roll_kp * roll_err - cfg->sc_roll_kd * s->x[HA_X_P_DEG_S];
+    roll_step = cfg->sc_roll_ki * roll_err * dt_s;
+    pitch_pd = cfg->sc_pitch_kp * pitch_err - cfg->sc_pitch_kd * s->x[HA_X_Q_DEG_S];
+    pitch_step = cfg->sc_pitch_ki * pitch_err * dt_s;
+  }
+  if (s->airborne && s->airspeed_ok) {
+    const float speed_err = target_ftps - s->airspeed_ftps;
+    thr_pd += cfg->sc_throttle_kp_per_ftps * speed_err;
+    thr_step = cfg->sc_throttle_ki_per_ft * speed_err * dt_s;
+  }
+  const float auth = cfg->sc_integrator_authority;
+  out->aileron_deg = pid(&st->roll_integ_deg, roll_pd, roll_step, cfg->aileron_limit_deg, auth,
+                         in_control, applied->aileron_deg);
+  /* Elevator trailing edge down is positive (nose down): the loop works in nose-up degrees. */
+  nose_up_deg = pid(&st->pitch_integ_deg, pitch_pd, pitch_step, cfg->elevator_limit_deg, auth,
+                    in_control, -applied->elevator_deg);
+  out->elevator_deg = -nose_up_deg;
+  /* Throttle is handled about the middle of its range so the same symmetric PID applies. */
+  out->throttle = throttle_mid + pid(&st->throttle_integ, thr_pd, thr_step, throttle_half, auth,
+                                     in_control, applied->throttle - throttle_mid);
+  if (!s->airborne) {
+    out->throttle = cfg->throttle_min; /* on the ground the motor idles */
+  }
+  /* Yaw damper only: rudder against the yaw rate (yaw left positive). */
+  out->rudder_deg = s->attitude_ok ? cfg->sc_yaw_damper_gain * s->x[HA_X_R_DEG_S] : 0.0f;
+  ha_surfaces_saturate(cfg, out);
+}
+
+void ha_safety_ctrl_reset(HaSafetyCtrlState *st) {
+  st->roll_integ_deg = 0.0f;
+  st->pitch_integ_deg = 0.0f;
+  st->throttle_integ = 0.0f;
+}

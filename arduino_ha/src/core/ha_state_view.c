@@ -1,0 +1,75 @@
+#include "ha_checks.h"
+#include "ha_num.h"
+
+/* Physical plausibility, not aircraft limits: an attitude outside these is a broken message. */
+#define HA_ROLL_SPAN_DEG 180.0f
+#define HA_PITCH_SPAN_DEG 90.0f
+#define HA_HEADING_SPAN_DEG 720.0f
+#define HA_RATE_SPAN_DEG_S 2000.0f
+#define HA_ALT_SPAN_FT 100000.0f
+#define HA_POSITION_SPAN_FT 1.0e6f
+
+static int attitude_plausible(const HaInputs *in) {
+  return ha_in_range(in->roll_deg, -HA_ROLL_SPAN_DEG, HA_ROLL_SPAN_DEG) &&
+         ha_in_range(in->pitch_deg, -HA_PITCH_SPAN_DEG, HA_PITCH_SPAN_DEG) &&
+         ha_in_range(in->p_deg_s, -HA_RATE_SPAN_DEG_S, HA_RATE_SPAN_DEG_S) &&
+         ha_in_range(in->q_deg_s, -HA_RATE_SPAN_DEG_S, HA_RATE_SPAN_DEG_S) &&
+         ha_in_range(in->r_deg_s, -HA_RATE_SPAN_DEG_S, HA_RATE_SPAN_DEG_S);
+}
+
+static int position_plausible(const HaInputs *in) {
+  return ha_in_range(in->north_ft, -HA_POSITION_SPAN_FT, HA_POSITION_SPAN_FT) &&
+         ha_in_range(in->east_ft, -HA_POSITION_SPAN_FT, HA_POSITION_SPAN_FT) &&
+         ha_in_range(in->heading_deg, -HA_HEADING_SPAN_DEG, HA_HEADING_SPAN_DEG);
+}
+
+/* Every stored value is clamped to its plausible span even when its ok flag is set: the flag
+ * says whether to trust it, the clamp guarantees later arithmetic cannot overflow. */
+void ha_state_view(const HaAircraftConfig *cfg, const HaInputs *in, const HaHpCommand *cmd,
+                   int have_cmd, uint32_t now_us, HaStateView *out) {
+  const int fresh = in->state_valid != 0u &&
+                    ha_elapsed_us(now_us, in->state_rx_us) <= cfg->state_timeout_us;
+  int j;
+  for (j = 0; j < HA_X_DIM; ++j) {
+    out->x[j] = cfg->x0[j];
+  }
+  out->attitude_ok = (uint8_t)(fresh && attitude_plausible(in));
+  out->altitude_ok =
+      (uint8_t)(fresh && ha_in_range(in->altitude_agl_ft, -HA_ALT_SPAN_FT, HA_ALT_SPAN_FT));
+  out->position_ok = (uint8_t)(fresh && position_plausible(in));
+  out->airspeed_ok = (uint8_t)ha_in_range(in->airspeed_ftps, 0.0f, cfg->max_airspeed_ftps);
+  out->alpha_beta_ok = (uint8_t)(have_cmd && ha_finite(cmd->alpha_est_deg) &&
+                                 ha_finite(cmd->beta_est_deg));
+  if (out->attitude_ok) {
+    out->x[HA_X_ROLL_DEG] = ha_clampf(in->roll_deg, -HA_ROLL_SPAN_DEG, HA_ROLL_SPAN_DEG);
+    out->x[HA_X_PITCH_DEG] = ha_clampf(in->pitch_deg, -HA_PITCH_SPAN_DEG, HA_PITCH_SPAN_DEG);
+    out->x[HA_X_P_DEG_S] = ha_clampf(in->p_deg_s, -HA_RATE_SPAN_DEG_S, HA_RATE_SPAN_DEG_S);
+    out->x[HA_X_Q_DEG_S] = ha_clampf(in->q_deg_s, -HA_RATE_SPAN_DEG_S, HA_RATE_SPAN_DEG_S);
+    out->x[HA_X_R_DEG_S] = ha_clampf(in->r_deg_s, -HA_RATE_SPAN_DEG_S, HA_RATE_SPAN_DEG_S);
+  }
+  if (out->altitude_ok) {
+    out->x[HA_X_ALT_AGL_FT] = ha_clampf(in->altitude_agl_ft, -HA_ALT_SPAN_FT, HA_ALT_SPAN_FT);
+  }
+  /* alpha and beta are the HP's estimates: without a command they stay at the centre and the
+   * other checks decide (no command means the HA flies anyway). Beyond +/-180 deg an estimate
+   * fails the alpha/beta check anyway; the clamp only keeps S_x arithmetic bounded. */
+  if (out->alpha_beta_ok) {
+    out->x[HA_X_ALPHA_DEG] = ha_clampf(cmd->alpha_est_deg, -HA_ROLL_SPAN_DEG, HA_ROLL_SPAN_DEG);
+    out->x[HA_X_BETA_DEG] = ha_clampf(cmd->beta_est_deg, -HA_ROLL_SPAN_DEG, HA_ROLL_SPAN_DEG);
+  }
+  out->airspeed_ftps =
+      out->airspeed_ok ? ha_clampf(in->airspeed_ftps, 0.0f, cfg->max_airspeed_ftps) : 0.0f;
+  out->heading_deg = out->position_ok
+                         ? ha_clampf(in->heading_deg, -HA_HEADING_SPAN_DEG, HA_HEADING_SPAN_DEG)
+                         : 0.0f;
+  out->north_ft =
+      out->position_ok ? ha_clampf(in->north_ft, -HA_POSITION_SPAN_FT, HA_POSITION_SPAN_FT) : 0.0f;
+  out->east_ft =
+      out->position_ok ? ha_clampf(in->east_ft, -HA_POSITION_SPAN_FT, HA_POSITION_SPAN_FT) : 0.0f;
+  /* The thesis's rule (airborne above alt0); an unknown altitude counts as airborne, so the
+   * stall check is never skipped on missing data. */
+  out->airborne = (uint8_t)!(out->altitude_ok && in->altitude_agl_ft <= cfg->airborne_agl_ft);
+  /* The self-test moves every surface and spins the motor: only when everything says parked. */
+  out->on_ground = (uint8_t)(in->on_ground != 0u && !out->airborne && out->airspeed_ok &&
+                             in->airspeed_ftps < cfg->stall_speed_ftps);
+}

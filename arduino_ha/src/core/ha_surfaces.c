@@ -1,0 +1,84 @@
+#include "ha_surfaces.h"
+
+#include "ha_num.h"
+
+void ha_surfaces_saturate(const HaAircraftConfig *cfg, HaSurfaces *s) {
+  s->elevator_deg =
+      ha_clampf(s->elevator_deg, -cfg->elevator_limit_deg, cfg->elevator_limit_deg);
+  s->aileron_deg = ha_clampf(s->aileron_deg, -cfg->aileron_limit_deg, cfg->aileron_limit_deg);
+  s->rudder_deg = ha_clampf(s->rudder_deg, -cfg->rudder_limit_deg, cfg->rudder_limit_deg);
+  s->throttle = ha_clampf(s->throttle, cfg->throttle_min, cfg->throttle_max);
+}
+
+static float step_towards(float prev, float target, float max_step, int *reached) {
+  const float delta = target - prev;
+  if (delta > max_step) {
+    *reached = 0;
+    return prev + max_step;
+  }
+  if (delta < -max_step) {
+    *reached = 0;
+    return prev - max_step;
+  }
+  return target;
+}
+
+int ha_surfaces_rate_limit(const HaAircraftConfig *cfg, const HaSurfaces *prev,
+                           const HaSurfaces *target, float dt_s, HaSurfaces *out) {
+  const float surface_step = cfg->surface_rate_limit_deg_per_s * dt_s;
+  const float throttle_step = cfg->throttle_rate_limit_per_s * dt_s;
+  int reached = 1;
+  out->elevator_deg =
+      step_towards(prev->elevator_deg, target->elevator_deg, surface_step, &reached);
+  out->aileron_deg = step_towards(prev->aileron_deg, target->aileron_deg, surface_step, &reached);
+  out->rudder_deg = step_towards(prev->rudder_deg, target->rudder_deg, surface_step, &reached);
+  out->throttle = step_towards(prev->throttle, target->throttle, throttle_step, &reached);
+  return reached;
+}
+
+/* Fraction [0, 1] of the pulse within the configured range. */
+static float pulse_fraction(const HaAircraftConfig *cfg, uint16_t pulse_us) {
+  const float span = (float)(cfg->rc_pulse_max_us - cfg->rc_pulse_min_us);
+  const float f = ((float)pulse_us - (float)cfg->rc_pulse_min_us) / span;
+  return ha_clampf(f, 0.0f, 1.0f);
+}
+
+static float symmetric(float fraction, float limit) { return (2.0f * fraction - 1.0f) * limit; }
+
+void ha_surfaces_from_rc(const HaAircraftConfig *cfg, const HaRcInputs *rc, HaSurfaces *out) {
+  out->elevator_deg = symmetric(pulse_fraction(cfg, rc->pulse_us[HA_RC_ELEVATOR]),
+                                cfg->elevator_limit_deg);
+  out->aileron_deg = symmetric(pulse_fraction(cfg, rc->pulse_us[HA_RC_AILERON]),
+                               cfg->aileron_limit_deg);
+  out->rudder_deg = symmetric(pulse_fraction(cfg, rc->pulse_us[HA_RC_RUDDER]),
+                              cfg->rudder_limit_deg);
+  out->throttle = cfg->throttle_min + pulse_fraction(cfg, rc->pulse_us[HA_RC_THROTTLE]) *
+                                          (cfg->throttle_max - cfg->throttle_min);
+  ha_surfaces_saturate(cfg, out);
+}
+
+void ha_surfaces_from_cmd(const HaHpCommand *cmd, HaSurfaces *out) {
+  out->throttle = cmd->throttle;
+  out->elevator_deg = cmd->elevator_deg;
+  out->aileron_deg = cmd->aileron_deg;
+  out->rudder_deg = cmd->rudder_deg;
+}
+
+static uint16_t to_pulse(const HaAircraftConfig *cfg, float value, float lo, float hi) {
+  const float span_us = (float)(cfg->servo_pulse_max_us - cfg->servo_pulse_min_us);
+  /* Clamp the value first: a NaN then maps to neutral (or idle), not to a full deflection. */
+  const float f = (ha_clampf(value, lo, hi) - lo) / (hi - lo);
+  /* + 0.5 rounds to nearest; f in [0, 1] keeps the result inside the configured pulse range. */
+  return (uint16_t)((float)cfg->servo_pulse_min_us + f * span_us + 0.5f);
+}
+
+void ha_surfaces_to_pulses_us(const HaAircraftConfig *cfg, const HaSurfaces *s,
+                              uint16_t pulses_us[HA_U_DIM]) {
+  pulses_us[HA_U_ELEVATOR_DEG] =
+      to_pulse(cfg, s->elevator_deg, -cfg->elevator_limit_deg, cfg->elevator_limit_deg);
+  pulses_us[HA_U_AILERON_DEG] =
+      to_pulse(cfg, s->aileron_deg, -cfg->aileron_limit_deg, cfg->aileron_limit_deg);
+  pulses_us[HA_U_RUDDER_DEG] =
+      to_pulse(cfg, s->rudder_deg, -cfg->rudder_limit_deg, cfg->rudder_limit_deg);
+  pulses_us[HA_U_THROTTLE] = to_pulse(cfg, s->throttle, cfg->throttle_min, cfg->throttle_max);
+}

@@ -1,0 +1,59 @@
+#include "fake_board.h"
+
+namespace {
+
+FakeBoard* self(void* ctx) { return static_cast<FakeBoard*>(ctx); }
+
+uint32_t micros(void* ctx) { return self(ctx)->now_us; }
+
+void write_servos(void* ctx, const HaSurfaces* s) { self(ctx)->servo_writes.push_back(*s); }
+
+void read_rc(void* ctx, HaRcInputs* rc) { *rc = self(ctx)->rc; }
+
+int read_airspeed(void* ctx, float* v) {
+  *v = self(ctx)->airspeed_ftps;
+  return self(ctx)->airspeed_ok ? 1 : 0;
+}
+
+int read_battery(void* ctx, float* v) {
+  *v = self(ctx)->battery_v;
+  return self(ctx)->battery_ok ? 1 : 0;
+}
+
+void set_hp_reset(void* ctx, int asserted) {
+  FakeBoard* b = self(ctx);
+  if (asserted != 0 && !b->hp_reset) {
+    b->hp_reset_assertions++;
+  }
+  b->hp_reset = asserted != 0;
+}
+
+void set_leds(void* ctx, uint8_t leds) { self(ctx)->leds = leds; }
+
+void kick_watchdog(void* ctx) { self(ctx)->watchdog_kicks++; }
+
+}  // namespace
+
+FakeBoard::FakeBoard() {
+  iface.ctx = this;
+  iface.micros = micros;
+  iface.write_servos = write_servos;
+  iface.read_rc = read_rc;
+  iface.read_airspeed_ftps = read_airspeed;
+  iface.read_battery_v = read_battery;
+  iface.set_hp_reset = set_hp_reset;
+  iface.set_leds = set_leds;
+  iface.kick_watchdog = kick_watchdog;
+  CenterSticks();
+}
+
+void FakeBoard::CenterSticks() {
+  rc.pulse_us[HA_RC_THROTTLE] = 1000;
+  rc.pulse_us[HA_RC_ELEVATOR] = 1500;
+  rc.pulse_us[HA_RC_AILERON] = 1500;
+  rc.pulse_us[HA_RC_RUDDER] = 1500;
+  rc.pulse_us[HA_RC_PIC] = 1000;
+  rc.valid = 1;
+}
+
+void FakeBoard::SetPilotInCommand(bool pilot) { rc.pulse_us[HA_RC_PIC] = pilot ? 2000 : 1000; }

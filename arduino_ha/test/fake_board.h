@@ -1,0 +1,34 @@
+// Host implementation of the HA Board interface: a simulated clock and recorded outputs, so a
+// test sees exactly what the Due would put on its pins.
+#ifndef ARDUINO_HA_TEST_FAKE_BOARD_H
+#define ARDUINO_HA_TEST_FAKE_BOARD_H
+
+#include <cstdint>
+#include <vector>
+
+#include "ha_board.h"
+
+struct FakeBoard {
+  FakeBoard();
+  FakeBoard(const FakeBoard&) = delete;
+  FakeBoard& operator=(const FakeBoard&) = delete;
+
+  // Sticks centred, throttle low, PIC switch at CIC (computer in command), receiver alive.
+  void CenterSticks();
+  void SetPilotInCommand(bool pilot);
+
+  HaBoard iface;
+  uint32_t now_us = 0;
+  HaRcInputs rc{};
+  float airspeed_ftps = 0.0f;
+  bool airspeed_ok = true;
+  float battery_v = 12.6f;
+  bool battery_ok = true;
+  std::vector<HaSurfaces> servo_writes;
+  bool hp_reset = false;
+  int hp_reset_assertions = 0;  // rising edges of the reset line
+  uint8_t leds = 0;
+  uint64_t watchdog_kicks = 0;
+};
+
+#endif  // ARDUINO_HA_TEST_FAKE_BOARD_H

@@ -1,0 +1,98 @@
+// Bumpless switching both ways: at a switch no surface moves faster than the configured rate.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "ha_test_util.h"
+
+namespace {
+
+// Largest per-period change of any servo over the recorded writes, as a rate.
+struct Rates {
+  float surface_deg_per_s = 0.0f;
+  float throttle_per_s = 0.0f;
+};
+
+Rates MaxRates(const Timeline& t, size_t from) {
+  Rates r;
+  const float dt = t.cfg.period_us * 1e-6f;
+  for (size_t i = from + 1; i < t.board.servo_writes.size(); ++i) {
+    const HaSurfaces& a = t.board.servo_writes[i - 1];
+    const HaSurfaces& b = t.board.servo_writes[i];
+    r.surface_deg_per_s = std::max({r.surface_deg_per_s,
+                                    std::fabs(b.elevator_deg - a.elevator_deg) / dt,
+                                    std::fabs(b.aileron_deg - a.aileron_deg) / dt,
+                                    std::fabs(b.rudder_deg - a.rudder_deg) / dt});
+    r.throttle_per_s = std::max(r.throttle_per_s, std::fabs(b.throttle - a.throttle) / dt);
+  }
+  return r;
+}
+
+void ExpectWithinRate(const Timeline& t, size_t from) {
+  const Rates r = MaxRates(t, from);
+  EXPECT_LE(r.surface_deg_per_s, t.cfg.surface_rate_limit_deg_per_s * 1.001f);
+  EXPECT_LE(r.throttle_per_s, t.cfg.throttle_rate_limit_per_s * 1.001f);
+}
+
+TEST(HaBumpless, NoSurfaceStepsFasterThanLimitAtSwitch) {
+  Timeline t;
+  // HA -> HP: the HP wants full deflections the moment it is handed control.
+  for (int i = 0; i < 1000; ++i) {
+    t.StepWithGood(t.cfg.aileron_limit_deg, -t.cfg.elevator_limit_deg, t.cfg.rudder_limit_deg,
+                   t.cfg.throttle_max);
+    if (t.controller() == HA_CONTROLLER_HP) break;
+  }
+  ASSERT_EQ(t.controller(), HA_CONTROLLER_HP);
+  size_t from = t.board.servo_writes.size() - 2;
+  for (int i = 0; i < 300; ++i) {
+    t.StepWithGood(t.cfg.aileron_limit_deg, -t.cfg.elevator_limit_deg, t.cfg.rudder_limit_deg,
+                   t.cfg.throttle_max);
+  }
+  ExpectWithinRate(t, from);
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HP) << "reasons " << t.out().reasons;
+  // It got there in the end: the transition is over and the HP's command passes unchanged.
+  EXPECT_FLOAT_EQ(t.servos().aileron_deg, t.cfg.aileron_limit_deg);
+  EXPECT_FLOAT_EQ(t.servos().throttle, t.cfg.throttle_max);
+
+  // HP -> manual with the sticks at the opposite corner.
+  from = t.board.servo_writes.size() - 1;
+  t.board.SetPilotInCommand(true);
+  t.board.rc.pulse_us[HA_RC_AILERON] = 1000;
+  t.board.rc.pulse_us[HA_RC_ELEVATOR] = 2000;
+  t.board.rc.pulse_us[HA_RC_RUDDER] = 1000;
+  for (int i = 0; i < 200; ++i) t.StepWithGood();
+  ASSERT_EQ(t.controller(), HA_CONTROLLER_MANUAL);
+  ExpectWithinRate(t, from);
+  EXPECT_FLOAT_EQ(t.servos().aileron_deg, -t.cfg.aileron_limit_deg);
+
+  // Manual -> HA -> HP glitch -> HA: every switch on the way within the rate.
+  from = t.board.servo_writes.size() - 1;
+  t.board.SetPilotInCommand(false);
+  for (int i = 0; i < 400; ++i) t.StepWithGood(-5.0f, 8.0f);
+  HaHpCommand bad = MakeCommand(t.NextSeq(), 1.0f, 0.0f, 0.0f, 0.0f);
+  bad.crc32 ^= 1u;
+  t.StepWith(bad);
+  for (int i = 0; i < 100; ++i) t.Step();
+  ExpectWithinRate(t, from);
+}
+
+TEST(HaBumpless, HaTakeoverStartsFromAppliedSurfaces) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  for (int i = 0; i < 50; ++i) t.StepWithGood(6.0f, -4.0f, 2.0f, 0.6f);
+  const HaSurfaces before = t.servos();
+  t.Step();
+  t.Step();  // crash: the HA takes over this period
+  ASSERT_EQ(t.controller(), HA_CONTROLLER_HA);
+  const HaSurfaces after = t.servos();
+  const float dt = t.cfg.period_us * 1e-6f;
+  // Integrators tracked the applied surfaces: the HA continues from there.
+  EXPECT_LE(std::fabs(after.aileron_deg - before.aileron_deg),
+            t.cfg.surface_rate_limit_deg_per_s * dt * 1.001f);
+  EXPECT_LE(std::fabs(after.elevator_deg - before.elevator_deg),
+            t.cfg.surface_rate_limit_deg_per_s * dt * 1.001f);
+  EXPECT_LE(std::fabs(after.throttle - before.throttle),
+            t.cfg.throttle_rate_limit_per_s * dt * 1.001f);
+}
+
+}  // namespace

@@ -1,0 +1,397 @@
+// The HA decision logic, one scripted timeline per behaviour: a fake board, a simulated clock
+// and an HP that sends (or stops sending) commands.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "ha_test_util.h"
+
+namespace {
+
+TEST(HaDecision, BootsOnHaAndHandsOverAfterStableWindow) {
+  Timeline t;
+  t.Step();
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HA);
+  EXPECT_TRUE(t.out().reasons & HA_REASON_NO_COMMAND);
+  EXPECT_EQ(t.out().restart_count, 0u);  // booting is not a failure
+  const int periods = t.ReachHp();
+  const int window = static_cast<int>(t.cfg.stable_window_us / t.cfg.period_us);
+  EXPECT_GE(periods, window);
+  EXPECT_LE(periods, window + 2);
+}
+
+void HpCrashSwitchesAfterTolerance(uint32_t tolerated) {
+  HaAircraftConfig cfg = ha_aircraft_config;
+  cfg.late_periods_tolerated = tolerated;
+  Timeline t(cfg);
+  ASSERT_GT(t.ReachHp(), 0);
+  t.StepWithGood(3.0f);
+  const HaSurfaces last_hp = t.servos();
+  // The HP process dies: nothing more arrives. Every tolerated late period holds its command.
+  for (uint32_t late = 1; late <= tolerated; ++late) {
+    t.Step();
+    EXPECT_EQ(t.controller(), HA_CONTROLLER_HP) << "late period " << late;
+    EXPECT_FLOAT_EQ(t.servos().aileron_deg, last_hp.aileron_deg);
+  }
+  // The next missed deadline switches, in that very period.
+  t.Step();
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HA);
+  EXPECT_TRUE(t.out().reasons & HA_REASON_DEADLINE_MISS);
+  EXPECT_TRUE(t.out().reasons_at_switch & HA_REASON_DEADLINE_MISS);
+  EXPECT_EQ(t.out().restart_requested, 1u);
+  EXPECT_EQ(t.out().restart_count, 1u);
+  EXPECT_TRUE(t.board.hp_reset);
+  // Later the no-command timeout reports the crash for what it is; the reset pulse ends.
+  for (int i = 0; i < 20; ++i) t.Step();
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HA);
+  EXPECT_TRUE(t.out().reasons & HA_REASON_NO_COMMAND);
+  EXPECT_FALSE(t.board.hp_reset);
+  EXPECT_EQ(t.board.hp_reset_assertions, 1);
+}
+
+TEST(HaDecision, HpCrashSwitchesWithinOnePeriodAfterDeadline) {
+  HpCrashSwitchesAfterTolerance(ha_aircraft_config.late_periods_tolerated);
+  HpCrashSwitchesAfterTolerance(0u);  // no tolerance: the first missed deadline switches
+}
+
+TEST(HaDecision, OneLatePeriodToleratedTwoSwitch) {
+  ASSERT_EQ(ha_aircraft_config.late_periods_tolerated, 1u);
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  // An HP that misses every other deadline stays in control for a long time.
+  for (int i = 0; i < 300; ++i) {
+    t.StepWithGood(static_cast<float>(i % 7));
+    ASSERT_EQ(t.controller(), HA_CONTROLLER_HP);
+    const float commanded = t.servos().aileron_deg;
+    t.Step();
+    ASSERT_EQ(t.controller(), HA_CONTROLLER_HP) << "single late period at " << i;
+    ASSERT_EQ(t.out().reasons, 0u);
+    ASSERT_FLOAT_EQ(t.servos().aileron_deg, commanded);  // the last command is held
+  }
+  // Two in a row do not.
+  t.StepWithGood();
+  t.Step();
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HP);
+  t.Step();
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HA);
+  EXPECT_EQ(t.out().reasons_at_switch, HA_REASON_DEADLINE_MISS);
+}
+
+TEST(HaDecision, NanAileronNeverReachesServo) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  HaHpCommand bad = MakeCommand(t.NextSeq(), 0.5f, 0.0f, std::numeric_limits<float>::quiet_NaN(),
+                                0.0f);  // CRC is valid: the HP really computed a NaN
+  t.StepWith(bad);
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HA);
+  EXPECT_TRUE(t.out().reasons & HA_REASON_NOT_FINITE);
+  EXPECT_FALSE(t.out().reasons & HA_REASON_INTEGRITY);
+  bad.aileron_deg = std::numeric_limits<float>::infinity();
+  bad.seq = t.NextSeq();
+  SealCommand(&bad);
+  t.StepWith(bad);
+  for (const HaSurfaces& s : t.board.servo_writes) {
+    ASSERT_TRUE(SurfacesInside(t.cfg, s));
+  }
+  EXPECT_TRUE(std::isfinite(t.out().actuator_region_max));
+}
+
+TEST(HaDecision, CommandOutsideActuatorRegionSwitches) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  t.StepWithGood(0.0f, t.cfg.elevator_limit_deg + 0.5f);
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HA);
+  EXPECT_EQ(t.out().reasons, HA_REASON_ACTUATOR_REGION);
+  EXPECT_GT(t.out().actuator_region_max, 1.0f);
+  EXPECT_LE(std::fabs(t.servos().elevator_deg), t.cfg.elevator_limit_deg);
+}
+
+TEST(HaDecision, AboveCeilingSwitchesAndDescends) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  PointMassAircraft ac;
+  ac.north_ft = t.cfg.sc_circle_radius_ft;
+  ac.heading_deg = 90.0f;
+  ac.altitude_ft = t.cfg.ceiling_agl_ft - 5.0f;
+  ac.pitch_deg = 8.0f;  // the HP is climbing through the ceiling
+  ac.airspeed_ftps = 65.0f;
+  bool switched = false;
+  float peak_ft = 0.0f;
+  for (int i = 0; i < 100 * 120; ++i) {
+    ac.WriteTo(&t.app.inputs, t.board.now_us);
+    t.board.airspeed_ftps = ac.airspeed_ftps;
+    t.refresh_state = false;
+    t.StepWithGood(0.0f, -3.0f, 0.0f, 0.8f);  // a healthy HP that keeps climbing
+    if (!switched && t.controller() != HA_CONTROLLER_HP) {
+      switched = true;
+      EXPECT_GT(ac.altitude_ft, t.cfg.ceiling_agl_ft);
+      EXPECT_TRUE(t.out().reasons_at_switch & HA_REASON_CEILING);
+    }
+    ac.Step(t.servos(), t.cfg.period_us * 1e-6f);
+    peak_ft = std::max(peak_ft, ac.altitude_ft);
+  }
+  ASSERT_TRUE(switched);
+  EXPECT_LT(peak_ft, t.cfg.ceiling_agl_ft + 30.0f);
+  // Two minutes later the HA holds it inside its band, well below the ceiling.
+  EXPECT_LE(ac.altitude_ft, t.cfg.sc_alt_max_ft);
+  EXPECT_GE(ac.altitude_ft, t.cfg.sc_alt_min_ft);
+}
+
+TEST(HaDecision, StallWhileAirborneSwitches) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  t.board.airspeed_ftps = t.cfg.stall_speed_ftps - 1.0f;
+  t.StepWithGood();
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HA);
+  EXPECT_EQ(t.out().reasons_at_switch, HA_REASON_STALL);
+  // The HA pushes the nose down and opens the throttle to regain speed.
+  for (int i = 0; i < 50; ++i) t.StepWithGood();
+  EXPECT_GT(t.servos().elevator_deg, 0.0f);
+  EXPECT_GT(t.servos().throttle, t.cfg.sc_throttle_trim);
+}
+
+TEST(HaDecision, NoAirspeedOnTheGroundIsNoStall) {
+  Timeline t;
+  t.Parked();
+  ASSERT_GT(t.ReachHp(), 0);
+  EXPECT_EQ(t.out().reasons, 0u);
+  // A dead pitot in flight, though, counts as a stall.
+  t.Cruise();
+  t.board.airspeed_ok = false;
+  t.StepWithGood();
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HA);
+  EXPECT_TRUE(t.out().reasons & HA_REASON_STALL);
+}
+
+TEST(HaDecision, SwitchBackOnlyAfterStableWindowInsideInnerRegion) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  HaHpCommand glitch = MakeCommand(t.NextSeq(), 0.5f, 0.0f, 0.0f, 0.0f);
+  glitch.sensor_links_healthy = 0;
+  SealCommand(&glitch);
+  t.StepWith(glitch);
+  ASSERT_EQ(t.controller(), HA_CONTROLLER_HA);
+  // Roll between the inner and the outer region: inside S_x, not inside the inner region.
+  const float roll_limit = 1.0f / t.cfg.sx[4][HA_X_ROLL_DEG];
+  t.app.inputs.roll_deg = roll_limit * 0.5f * (1.0f + t.cfg.inner_region_fraction);
+  const int window = static_cast<int>(t.cfg.stable_window_us / t.cfg.period_us);
+  for (int i = 0; i < 3 * window; ++i) {
+    t.StepWithGood();
+    ASSERT_EQ(t.controller(), HA_CONTROLLER_RECOVERING) << "period " << i;
+    ASSERT_EQ(t.out().reasons, 0u);
+  }
+  EXPECT_GT(t.out().stable_for_s, 2.9f * t.cfg.stable_window_us * 1e-6f);
+  // Back inside the inner region: handed back at once, the window having elapsed.
+  t.app.inputs.roll_deg = 0.0f;
+  t.StepWithGood();
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HP);
+
+  // Inside the inner region but a command glitch restarts the window.
+  t.StepWith(glitch);
+  ASSERT_EQ(t.controller(), HA_CONTROLLER_HA);
+  int periods = 0;
+  for (; periods < 3 * window && t.controller() != HA_CONTROLLER_HP; ++periods) {
+    t.StepWithGood();
+    if (periods == window / 2) {
+      t.StepWith(glitch);  // invalid again halfway through: back to HA, window restarts
+      ASSERT_EQ(t.controller(), HA_CONTROLLER_HA);
+    }
+  }
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HP);
+  EXPECT_GE(periods, window + window / 2);
+}
+
+TEST(HaDecision, PilotSwitchBeatsEverything) {
+  Timeline t;
+  t.board.SetPilotInCommand(true);
+  t.board.rc.pulse_us[HA_RC_AILERON] = 2000;  // full right
+  t.board.rc.pulse_us[HA_RC_THROTTLE] = 1500;
+  // No HP, a stall, above the ceiling, a ground command, NaN commands: the pilot flies.
+  t.Cruise(t.cfg.ceiling_agl_ft + 50.0f, t.cfg.stall_speed_ftps - 5.0f);
+  t.Operator(HA_OP_SELECT_HA);
+  HaHpCommand nan_cmd = MakeCommand(t.NextSeq(), NAN, NAN, NAN, NAN);
+  for (int i = 0; i < 300; ++i) {
+    nan_cmd.seq = t.NextSeq();
+    SealCommand(&nan_cmd);
+    t.StepWith(nan_cmd);
+    ASSERT_EQ(t.controller(), HA_CONTROLLER_MANUAL);
+  }
+  EXPECT_FLOAT_EQ(t.servos().aileron_deg, t.cfg.aileron_limit_deg);
+  EXPECT_FLOAT_EQ(t.servos().throttle, 0.5f * (t.cfg.throttle_min + t.cfg.throttle_max));
+  EXPECT_EQ(t.board.leds & HA_LED_MANUAL, HA_LED_MANUAL);
+  // Even a latched HA yields to the pilot.
+  HaAircraftConfig one = ha_aircraft_config;
+  one.max_restarts = 1;
+  Timeline l(one);
+  ASSERT_GT(l.ReachHp(), 0);
+  l.Step(); l.Step();  // crash 1: restart
+  ASSERT_GT(l.ReachHp(), 0);
+  l.Step(); l.Step();  // crash 2: latched
+  ASSERT_EQ(l.controller(), HA_CONTROLLER_HA_LATCHED);
+  l.board.SetPilotInCommand(true);
+  l.Step();
+  EXPECT_EQ(l.controller(), HA_CONTROLLER_MANUAL);
+  l.board.SetPilotInCommand(false);
+  l.Step();
+  EXPECT_EQ(l.controller(), HA_CONTROLLER_HA_LATCHED);
+  // A dead receiver cannot claim PIC: the HA flies.
+  t.board.rc.valid = 0;
+  t.Step();
+  EXPECT_NE(t.controller(), HA_CONTROLLER_MANUAL);
+}
+
+TEST(HaDecision, RestartCapLatchesHa) {
+  Timeline t;
+  const uint32_t k = t.cfg.max_restarts;
+  ASSERT_GE(k, 1u);
+  for (uint32_t crash = 1; crash <= k; ++crash) {
+    ASSERT_GT(t.ReachHp(), 0) << "recovery " << crash;
+    t.Step();
+    t.Step();
+    ASSERT_EQ(t.controller(), HA_CONTROLLER_HA);
+    ASSERT_EQ(t.out().restart_count, crash);
+    for (int i = 0; i < 20; ++i) t.Step();  // the HP reboots
+  }
+  // Recovery K+1 fails too, well inside T: that was one too many.
+  ASSERT_GT(t.ReachHp(), 0);
+  t.Step();
+  t.Step();
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HA_LATCHED);
+  EXPECT_EQ(t.out().restart_count, k);  // no further restart is requested
+  EXPECT_EQ(t.board.hp_reset_assertions, static_cast<int>(k));
+  // A perfect HP and an operator asking for it change nothing.
+  t.Operator(HA_OP_SELECT_HP);
+  for (int i = 0; i < 1000; ++i) t.StepWithGood();
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HA_LATCHED);
+  EXPECT_EQ(t.out().operator_ack_accepted, 0u);
+}
+
+TEST(HaDecision, RestartsSpreadBeyondWindowDoNotLatch) {
+  Timeline t;
+  const int window_periods = static_cast<int>(t.cfg.restart_window_us / t.cfg.period_us);
+  for (uint32_t crash = 1; crash <= 2 * t.cfg.max_restarts; ++crash) {
+    ASSERT_GT(t.ReachHp(), 0);
+    t.Step();
+    t.Step();
+    ASSERT_EQ(t.controller(), HA_CONTROLLER_HA) << "crash " << crash;
+    // Fly on the HP long enough that older restarts leave the window.
+    ASSERT_GT(t.ReachHp(), 0);
+    for (int i = 0; i < window_periods / static_cast<int>(t.cfg.max_restarts); ++i) {
+      t.StepWithGood();
+    }
+  }
+  EXPECT_EQ(t.out().restart_count, 2 * t.cfg.max_restarts);
+}
+
+TEST(HaDecision, FrozenSequenceNumberSwitches) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  const HaHpCommand stuck = MakeCommand(t.NextSeq(), 0.5f, 1.0f, 1.0f, 0.0f);
+  t.StepWith(stuck);
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HP);
+  t.StepWith(stuck);  // arrives on time, but it is the same command again
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HA);
+  EXPECT_EQ(t.out().reasons_at_switch, HA_REASON_FROZEN);
+  EXPECT_EQ(t.out().last_seq, stuck.seq);
+}
+
+TEST(HaDecision, CorruptCrcSwitches) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  HaHpCommand cmd = MakeCommand(t.NextSeq(), 0.5f, 0.0f, 4.0f, 0.0f);
+  cmd.aileron_deg = 14.0f;  // one field changed after the CRC was computed
+  t.StepWith(cmd);
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HA);
+  EXPECT_EQ(t.out().reasons_at_switch, HA_REASON_INTEGRITY);
+  EXPECT_NE(t.servos().aileron_deg, 14.0f);
+}
+
+TEST(HaDecision, EstimatorDivergenceAndNonConvergenceSwitch) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  HaHpCommand cmd = MakeCommand(t.NextSeq(), 0.5f, 0.0f, 0.0f, 0.0f);
+  cmd.alpha_est_deg = t.cfg.alpha_limit_deg + 1.0f;
+  SealCommand(&cmd);
+  t.StepWith(cmd);
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HA);
+  EXPECT_TRUE(t.out().reasons_at_switch & HA_REASON_ALPHA_BETA);
+  Timeline u;
+  ASSERT_GT(u.ReachHp(), 0);
+  cmd = MakeCommand(u.NextSeq(), 0.5f, 0.0f, 0.0f, 0.0f);
+  cmd.estimator_converged = 0;
+  SealCommand(&cmd);
+  u.StepWith(cmd);
+  EXPECT_EQ(u.controller(), HA_CONTROLLER_HA);
+  EXPECT_EQ(u.out().reasons_at_switch, HA_REASON_ESTIMATOR);
+}
+
+TEST(HaDecision, StaleInsStateSwitches) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  t.refresh_state = false;  // the INS stops; the HP keeps sending
+  int periods = 0;
+  while (t.controller() == HA_CONTROLLER_HP && periods < 100) {
+    t.StepWithGood();
+    ++periods;
+  }
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HA);
+  EXPECT_TRUE(t.out().reasons_at_switch & HA_REASON_STATE_REGION);
+  EXPECT_LE(static_cast<uint32_t>(periods) * t.cfg.period_us,
+            t.cfg.state_timeout_us + 2u * t.cfg.period_us);
+}
+
+TEST(HaDecision, OperatorSelectsHaThenHpWithoutRestart) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  t.Operator(HA_OP_SELECT_HA);
+  t.StepWithGood();
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HA);
+  EXPECT_EQ(t.out().reasons, HA_REASON_GROUND_COMMAND);
+  EXPECT_EQ(t.out().restart_count, 0u);  // the operator's choice is no HP failure
+  EXPECT_EQ(t.out().operator_ack_accepted, 1u);
+  EXPECT_EQ(t.out().operator_ack_id, t.operator_id);
+  for (int i = 0; i < 500; ++i) t.StepWithGood();
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HA);
+  t.Operator(HA_OP_SELECT_HP);
+  EXPECT_GT(t.ReachHp(), 0);
+}
+
+TEST(HaDecision, OperatorRestartPulsesResetLine) {
+  Timeline t;
+  t.Step();
+  t.Operator(HA_OP_RESTART_HP);
+  t.Step();
+  EXPECT_EQ(t.out().restart_requested, 1u);
+  EXPECT_TRUE(t.board.hp_reset);
+  const int pulse = static_cast<int>(t.cfg.hp_reset_pulse_us / t.cfg.period_us);
+  for (int i = 0; i < pulse; ++i) t.Step();
+  EXPECT_FALSE(t.board.hp_reset);
+  // Refused while the HP is flying: restarting it then would be a self-inflicted failure.
+  ASSERT_GT(t.ReachHp(), 0);
+  t.Operator(HA_OP_RESTART_HP);
+  t.StepWithGood();
+  EXPECT_EQ(t.out().operator_ack_accepted, 0u);
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HP);
+}
+
+TEST(HaDecision, ClockWrapDoesNotLookLikeACrash) {
+  Timeline t;
+  t.board.now_us = 0xFFFFFFFFu - 3u * t.cfg.stable_window_us;
+  ASSERT_GT(t.ReachHp(), 0);
+  for (int i = 0; i < 1000; ++i) {
+    t.StepWithGood();
+    ASSERT_EQ(t.controller(), HA_CONTROLLER_HP) << "period " << i;
+  }
+  EXPECT_LT(t.board.now_us, 0x10000000u);  // it did wrap
+}
+
+TEST(HaDecision, BoardIsServedEveryPeriod) {
+  Timeline t;
+  for (int i = 0; i < 10; ++i) t.StepWithGood();
+  EXPECT_EQ(t.board.watchdog_kicks, 10u);
+  EXPECT_EQ(t.board.servo_writes.size(), 10u);
+  EXPECT_EQ(t.board.leds & (HA_LED_HA | HA_LED_FAULT), HA_LED_HA);  // recovering, no fault
+}
+
+}  // namespace

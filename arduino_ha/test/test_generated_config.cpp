@@ -1,0 +1,75 @@
+// The aircraft configuration is generated from limits.yaml; arduino-cli compiles a checked-in
+// copy, which must never drift from the YAML.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <unistd.h>
+
+#include "ha_aircraft.h"
+
+namespace {
+
+std::string Slurp(const std::string& path) {
+  std::ifstream f(path);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+std::string Generate(const std::string& yaml, int* status) {
+  char name[] = "/tmp/ha_config_XXXXXX";
+  const int fd = mkstemp(name);
+  EXPECT_GE(fd, 0);
+  close(fd);
+  const std::string cmd = std::string(HA_PYTHON) + " " + HA_CONFIG_GENERATOR + " " + yaml + " " +
+                          name + " 2>/dev/null";
+  *status = std::system(cmd.c_str());
+  std::string text = Slurp(name);
+  std::remove(name);
+  return text;
+}
+
+TEST(HaGeneratedConfig, GeneratedConfigMatchesCheckedInCopy) {
+  int status = -1;
+  const std::string fresh = Generate(HA_LIMITS_YAML, &status);
+  ASSERT_EQ(status, 0);
+  ASSERT_FALSE(fresh.empty());
+  EXPECT_EQ(fresh, Slurp(HA_CHECKED_IN_CONFIG))
+      << "run: arduino_ha/tools/gen_aircraft_config.py aircraft/DG808/limits.yaml "
+         "arduino_ha/src/generated/aircraft_config.h";
+}
+
+TEST(HaGeneratedConfig, CarriesTheYamlLimits) {
+  // Spot checks against the documented DG808 figures (issue 3 and limits.yaml).
+  EXPECT_STREQ(ha_aircraft_config.aircraft, "DG808");
+  EXPECT_FLOAT_EQ(ha_aircraft_config.aileron_limit_deg, 15.0f);
+  EXPECT_FLOAT_EQ(ha_aircraft_config.elevator_limit_deg, 20.0f);
+  EXPECT_FLOAT_EQ(ha_aircraft_config.ceiling_agl_ft, 400.0f);
+  EXPECT_EQ(ha_aircraft_config.period_us, 10000u);
+  EXPECT_EQ(ha_aircraft_config.su_rows, 8u);
+}
+
+TEST(HaGeneratedConfig, GeneratorRefusesBandAboveCeiling) {
+  const std::string yaml = Slurp(HA_LIMITS_YAML);
+  const std::string key = "alt_max_ft: ";
+  const size_t at = yaml.find(key);
+  ASSERT_NE(at, std::string::npos);
+  const size_t end = yaml.find('\n', at);
+  const std::string bad = yaml.substr(0, at) + key + "399.0" + yaml.substr(end);
+  char name[] = "/tmp/ha_limits_XXXXXX";
+  const int fd = mkstemp(name);
+  ASSERT_GE(fd, 0);
+  close(fd);
+  std::ofstream(name) << bad;
+  int status = 0;
+  Generate(name, &status);
+  std::remove(name);
+  EXPECT_NE(status, 0);
+}
+
+}  // namespace

@@ -1,0 +1,192 @@
+// Randomized property test of the whole core over millions of hostile inputs (NaN, +/-inf, huge,
+// denormal, limit-hugging and plain garbage), seeded so every failure reproduces:
+//   1. what goes to the servos is always finite and inside S_u;
+//   2. an HP command outside S_u never reaches a servo (the HP is not in control with it);
+//   3. every reported value is finite.
+// Episodes alternate between mostly sane and fully hostile inputs so that the HP really is in
+// control often enough for property 2 to be exercised.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <random>
+
+#include "ha_test_util.h"
+
+namespace {
+
+class Hostile {
+ public:
+  explicit Hostile(uint64_t seed) : rng_(seed) {}
+
+  bool Chance(double p) { return std::uniform_real_distribution<double>(0.0, 1.0)(rng_) < p; }
+  uint32_t U32() { return static_cast<uint32_t>(rng_()); }
+  float Uniform(float lo, float hi) { return std::uniform_real_distribution<float>(lo, hi)(rng_); }
+
+  float AnyFloat() {
+    switch (rng_() % 9) {
+      case 0: return std::numeric_limits<float>::quiet_NaN();
+      case 1: return (rng_() & 1) ? std::numeric_limits<float>::infinity()
+                                  : -std::numeric_limits<float>::infinity();
+      case 2: return ((rng_() & 1) ? 1.0f : -1.0f) * Uniform(1e30f, 3.4e38f);
+      case 3: return ((rng_() & 1) ? 1.0f : -1.0f) * Uniform(1e-45f, 1e-38f);  // denormals
+      case 4: return (rng_() & 1) ? 0.0f : -0.0f;
+      case 5: {  // any bit pattern, signalling NaNs included
+        const uint32_t bits = U32();
+        float f;
+        std::memcpy(&f, &bits, sizeof f);
+        return f;
+      }
+      default: return Uniform(-1000.0f, 1000.0f);
+    }
+  }
+  // A sane value most of the time, anything with probability p.
+  float Maybe(double p, float sane) { return Chance(p) ? AnyFloat() : sane; }
+  // Near a limit on either side: where off-by-one comparisons hide.
+  float NearLimit(float limit) {
+    return ((rng_() & 1) ? 1.0f : -1.0f) * limit * Uniform(0.95f, 1.05f);
+  }
+  // Near the limit or anything at all.
+  float Beyond(float limit) { return Chance(0.5) ? NearLimit(limit) : AnyFloat(); }
+
+ private:
+  std::mt19937_64 rng_;
+};
+
+TEST(HaProperties, ServosAlwaysFiniteInsideSuAndOutsideCommandsNeverReachThem) {
+  const HaAircraftConfig& cfg = ha_aircraft_config;
+  Hostile h(0x5eed1234u);
+  const int kEpisodes = 1000;
+  const int kStepsPerEpisode = 3000;  // 30 s of flight each: long enough to hand over to the HP
+  uint64_t steps = 0, hp_steps = 0, outside_rejected = 0;
+  HaCore core;
+  HaInputs in;
+  HaOutputs out;
+  for (int episode = 0; episode < kEpisodes; ++episode) {
+    // Probability that any one input is hostile in this episode.
+    const double kHostility[] = {1.0, 0.05, 0.002, 0.0002};
+    const double p = kHostility[episode % 4];
+    ha_core_init(&core, &cfg);
+    std::memset(&in, 0, sizeof in);
+    std::memset(&out, 0, sizeof out);
+    uint32_t now = h.U32();
+    uint32_t seq = h.U32();
+    for (int i = 0; i < kStepsPerEpisode; ++i, ++steps) {
+      now += h.Chance(p) ? h.U32() % (10u * cfg.period_us) : cfg.period_us;
+      // Aircraft state: cruise with noise, or garbage.
+      in.airspeed_ftps = h.Maybe(p, h.Uniform(50.0f, 70.0f));
+      in.roll_deg = h.Maybe(p, h.Uniform(-10.0f, 10.0f));
+      in.pitch_deg = h.Maybe(p, h.Uniform(-5.0f, 5.0f));
+      in.heading_deg = h.Maybe(p, h.Uniform(-720.0f, 720.0f));
+      in.p_deg_s = h.Maybe(p, h.Uniform(-5.0f, 5.0f));
+      in.q_deg_s = h.Maybe(p, h.Uniform(-5.0f, 5.0f));
+      in.r_deg_s = h.Maybe(p, h.Uniform(-5.0f, 5.0f));
+      in.altitude_agl_ft = h.Maybe(p, h.Uniform(100.0f, 250.0f));
+      in.north_ft = h.Maybe(p, h.Uniform(-1000.0f, 1000.0f));
+      in.east_ft = h.Maybe(p, h.Uniform(-1000.0f, 1000.0f));
+      in.on_ground = h.Chance(p) ? static_cast<uint8_t>(h.U32()) : 0u;
+      in.state_valid = h.Chance(p) ? static_cast<uint8_t>(h.U32()) : 1u;
+      in.state_rx_us = h.Chance(p) ? h.U32() : now;
+      in.battery_v = h.Maybe(p, 12.0f);
+      for (int c = 0; c < HA_RC_CHANNELS; ++c) {
+        in.rc.pulse_us[c] = static_cast<uint16_t>(h.Chance(p) ? h.U32() : 1000u + h.U32() % 400u);
+      }
+      in.rc.valid = h.Chance(p) ? static_cast<uint8_t>(h.U32()) : 1u;
+      if (h.Chance(p * 0.1)) {
+        ha_inputs_put_operator(&in, static_cast<uint8_t>(h.U32() % 6u), h.U32());
+      }
+      // The HP command: mostly valid and fresh; sometimes late, stale, corrupt or hostile.
+      if (!h.Chance(p)) {
+        HaHpCommand c = MakeCommand(h.Chance(p) ? seq : ++seq, h.Uniform(0.0f, 1.0f),
+                                    h.Uniform(-10.0f, 10.0f), h.Uniform(-10.0f, 10.0f),
+                                    h.Uniform(-10.0f, 10.0f));
+        if (h.Chance(p * 5.0)) {  // beyond S_u with a valid CRC: only the region check can stop it
+          switch (h.U32() % 4u) {
+            case 0: c.elevator_deg = h.Beyond(cfg.elevator_limit_deg); break;
+            case 1: c.aileron_deg = h.Beyond(cfg.aileron_limit_deg); break;
+            case 2: c.rudder_deg = h.Beyond(cfg.rudder_limit_deg); break;
+            default: c.throttle = h.Chance(0.5) ? h.Uniform(-0.1f, 1.1f) : h.AnyFloat(); break;
+          }
+          SealCommand(&c);
+        }
+        if (h.Chance(p)) {
+          c.alpha_est_deg = h.AnyFloat();
+          c.beta_est_deg = h.AnyFloat();
+          c.estimator_converged = static_cast<uint8_t>(h.U32());
+          c.sensor_links_healthy = static_cast<uint8_t>(h.U32());
+          if (h.Chance(0.5)) SealCommand(&c);
+        }
+        ha_inputs_put_hp_command(&in, &c, h.Chance(p) ? h.U32() : now - cfg.period_us / 2u);
+      }
+
+      ha_core_step(&core, &in, now, &out);
+
+      ASSERT_TRUE(SurfacesInside(cfg, out.surfaces)) << "episode " << episode << " step " << i;
+      const HaSurfaces cmd{in.hp_cmd.throttle, in.hp_cmd.elevator_deg, in.hp_cmd.aileron_deg,
+                           in.hp_cmd.rudder_deg};
+      const bool cmd_outside = in.hp_cmd_count > 0 && !SurfacesInside(cfg, cmd);
+      if (cmd_outside) {
+        ASSERT_NE(out.controller, HA_CONTROLLER_HP)
+            << "episode " << episode << " step " << i << " command " << cmd.throttle << " "
+            << cmd.elevator_deg << " " << cmd.aileron_deg << " " << cmd.rudder_deg
+            << " region " << out.actuator_region_max;
+        ++outside_rejected;
+      }
+      if (out.controller == HA_CONTROLLER_HP) {
+        ++hp_steps;
+        // Once the handover slew is over, the HP's command passes bit for bit: the checks
+        // accepted exactly what the saturation leaves unchanged.
+        if (!core.transition_active) {
+          ASSERT_EQ(std::memcmp(&out.surfaces, &cmd, sizeof cmd), 0)
+              << "episode " << episode << " step " << i;
+        }
+      }
+      ASSERT_TRUE(std::isfinite(out.stable_for_s) && std::isfinite(out.airspeed_ftps) &&
+                  std::isfinite(out.altitude_agl_ft) && std::isfinite(out.alpha_deg) &&
+                  std::isfinite(out.beta_deg) && std::isfinite(out.state_region_max) &&
+                  std::isfinite(out.actuator_region_max));
+      ASSERT_LE(out.controller, HA_CONTROLLER_MANUAL);
+    }
+  }
+  RecordProperty("steps", static_cast<int>(steps));
+  std::printf("steps: %llu, HP in control: %llu, outside-S_u commands rejected: %llu\n",
+              static_cast<unsigned long long>(steps), static_cast<unsigned long long>(hp_steps),
+              static_cast<unsigned long long>(outside_rejected));
+  // The property must have been exercised, not vacuously true.
+  EXPECT_EQ(steps, static_cast<uint64_t>(kEpisodes) * kStepsPerEpisode);
+  EXPECT_GT(hp_steps, steps / 10);
+  EXPECT_GT(outside_rejected, 10000u);
+}
+
+TEST(HaProperties, HostileBoardReadingsNeverReachServosAndWatchdogIsKicked) {
+  // The same through ha_app_period: a board whose clock jumps and whose readings fail or lie.
+  Hostile h(0xb0a4d5u);
+  Timeline t;
+  const int kPeriods = 300000;
+  for (int i = 0; i < kPeriods; ++i) {
+    const double p = (i / 3000) % 2 == 0 ? 0.3 : 0.001;
+    t.board.airspeed_ftps = h.Maybe(p, h.Uniform(45.0f, 70.0f));
+    t.board.airspeed_ok = !h.Chance(p);
+    t.board.battery_v = h.Maybe(p, 12.0f);
+    t.board.battery_ok = !h.Chance(p);
+    for (int c = 0; c < HA_RC_CHANNELS; ++c) {
+      t.board.rc.pulse_us[c] =
+          static_cast<uint16_t>(h.Chance(p) ? h.U32() : 1000u + h.U32() % 1000u);
+    }
+    t.board.rc.valid = static_cast<uint8_t>(h.Chance(p) ? h.U32() : 1u);
+    if (h.Chance(p)) t.board.now_us += h.U32();
+    if (h.Chance(p)) {
+      t.Step();
+    } else {
+      t.StepWithGood(h.Uniform(-10.0f, 10.0f), h.Uniform(-10.0f, 10.0f), 0.0f,
+                     h.Uniform(0.0f, 1.0f));
+    }
+    ASSERT_TRUE(SurfacesInside(t.cfg, t.servos())) << "period " << i;
+  }
+  EXPECT_EQ(t.board.watchdog_kicks, static_cast<uint64_t>(kPeriods));
+  EXPECT_EQ(t.board.servo_writes.size(), static_cast<size_t>(kPeriods));
+}
+
+}  // namespace

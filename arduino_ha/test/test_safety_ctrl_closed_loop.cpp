@@ -1,0 +1,100 @@
+// The safety controller in closed loop with a point-mass aircraft and no HP at all: it keeps the
+// aircraft inside its safety region indefinitely, circling home in its altitude band.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "ha_test_util.h"
+
+extern "C" {
+#include "ha_region.h"
+}
+
+namespace {
+
+struct Start {
+  const char* name;
+  float north_ft, east_ft, heading_deg, roll_deg, pitch_deg, airspeed_ftps, altitude_ft;
+};
+
+struct Envelope {
+  float min_airspeed_ftps = 1e9f, max_altitude_ft = -1e9f, min_altitude_ft = 1e9f;
+  float max_region = -1e9f, max_abs_roll_deg = 0.0f;
+  float min_radius_ft = 1e9f, max_radius_ft = 0.0f;
+};
+
+// Flies `seconds` on the HA alone; records the envelope after `settle_s`.
+Envelope Fly(const Start& s, float seconds, float settle_s, Envelope* whole) {
+  const HaAircraftConfig& cfg = ha_aircraft_config;
+  HaCore core;
+  ha_core_init(&core, &cfg);
+  HaInputs in{};
+  HaOutputs out{};
+  PointMassAircraft ac;
+  ac.north_ft = s.north_ft;
+  ac.east_ft = s.east_ft;
+  ac.heading_deg = s.heading_deg;
+  ac.roll_deg = s.roll_deg;
+  ac.pitch_deg = s.pitch_deg;
+  ac.airspeed_ftps = s.airspeed_ftps;
+  ac.altitude_ft = s.altitude_ft;
+  Envelope settled;
+  uint32_t now = 123456u;
+  const float dt = cfg.period_us * 1e-6f;
+  const int steps = static_cast<int>(seconds / dt);
+  for (int i = 0; i < steps; ++i) {
+    now += cfg.period_us;
+    ac.WriteTo(&in, now);
+    ha_core_step(&core, &in, now, &out);
+    EXPECT_NE(out.controller, HA_CONTROLLER_HP);
+    ac.Step(out.surfaces, dt);
+    float x[HA_X_DIM] = {0, 0, ac.roll_deg, ac.pitch_deg, ac.p_deg_s, ac.q_deg_s, ac.r_deg_s,
+                         ac.altitude_ft};
+    for (Envelope* e : {whole, i * dt >= settle_s ? &settled : nullptr}) {
+      if (e == nullptr) continue;
+      e->min_airspeed_ftps = std::min(e->min_airspeed_ftps, ac.airspeed_ftps);
+      e->max_altitude_ft = std::max(e->max_altitude_ft, ac.altitude_ft);
+      e->min_altitude_ft = std::min(e->min_altitude_ft, ac.altitude_ft);
+      e->max_region = std::max(e->max_region, ha_state_region_max(&cfg, x));
+      e->max_abs_roll_deg = std::max(e->max_abs_roll_deg, std::fabs(ac.roll_deg));
+      e->min_radius_ft = std::min(e->min_radius_ft, ac.DistanceFt());
+      e->max_radius_ft = std::max(e->max_radius_ft, ac.DistanceFt());
+    }
+  }
+  return settled;
+}
+
+TEST(HaSafetyCtrl, KeepsAircraftInsideRegionWithHpGone) {
+  const HaAircraftConfig& cfg = ha_aircraft_config;
+  const Start starts[] = {
+      {"on the circle, level", cfg.sc_circle_radius_ft, 0, 90, 0, 2, 60, 200},
+      {"far away, heading out, banked", 2500, -1500, 300, 35, 5, 75, 330},
+      {"over home, slow, nose up", 0, 0, 45, -20, 15, 48, 120},
+      {"near the ceiling, fast, diving", -800, 600, 180, 10, -15, 95, 380},
+  };
+  for (const Start& s : starts) {
+    SCOPED_TRACE(s.name);
+    Envelope whole;
+    const Envelope e = Fly(s, 600.0f, 90.0f, &whole);
+    std::printf("%-34s whole: V>=%.1f ft/s h=[%.0f,%.0f] ft region<=%.2f | settled: V>=%.1f "
+                "h=[%.0f,%.0f] |roll|<=%.1f r=[%.0f,%.0f] ft region<=%.2f\n",
+                s.name, whole.min_airspeed_ftps, whole.min_altitude_ft, whole.max_altitude_ft,
+                whole.max_region, e.min_airspeed_ftps, e.min_altitude_ft, e.max_altitude_ft,
+                e.max_abs_roll_deg, e.min_radius_ft, e.max_radius_ft, e.max_region);
+    // Never out of the region, never stalled, never above the ceiling, from the first period.
+    EXPECT_LE(whole.max_region, 1.0f);
+    EXPECT_GT(whole.min_airspeed_ftps, cfg.stall_speed_ftps);
+    EXPECT_LE(whole.max_altitude_ft, cfg.ceiling_agl_ft);
+    // Once settled: bank-limited circle of the configured radius inside the altitude band.
+    EXPECT_LE(e.max_abs_roll_deg, cfg.sc_bank_limit_deg + 2.0f);
+    EXPECT_GT(e.min_airspeed_ftps, cfg.stall_speed_ftps * 0.5f * (1.0f + cfg.sc_stall_margin));
+    EXPECT_GE(e.min_altitude_ft, cfg.sc_alt_min_ft);
+    EXPECT_LE(e.max_altitude_ft, cfg.sc_alt_max_ft);
+    EXPECT_LE(e.max_region, cfg.inner_region_fraction);
+    EXPECT_GT(e.min_radius_ft, 0.7f * cfg.sc_circle_radius_ft);
+    EXPECT_LT(e.max_radius_ft, 1.3f * cfg.sc_circle_radius_ft);
+  }
+}
+
+}  // namespace

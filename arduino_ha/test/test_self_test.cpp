@@ -1,0 +1,68 @@
+// Pre-flight surface self-test: only on the ground and only on command.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "ha_test_util.h"
+
+namespace {
+
+TEST(HaSelfTest, SelfTestRefusedInFlight) {
+  Timeline t;
+  t.Cruise();
+  t.app.inputs.on_ground = 1;  // a wrong ground flag is not enough: altitude and speed say flying
+  for (int i = 0; i < 10; ++i) t.Step();
+  t.Operator(HA_OP_SELF_TEST);
+  const size_t from = t.board.servo_writes.size();
+  for (int i = 0; i < 300; ++i) t.Step();
+  EXPECT_EQ(t.out().operator_ack_count, 1u);
+  EXPECT_EQ(t.out().operator_ack_accepted, 0u);
+  EXPECT_EQ(t.out().self_test_active, 0u);
+  for (size_t i = from; i < t.board.servo_writes.size(); ++i) {
+    ASSERT_LT(std::fabs(t.board.servo_writes[i].elevator_deg), 0.9f * t.cfg.elevator_limit_deg);
+  }
+}
+
+TEST(HaSelfTest, OnGroundSweepsEachSurfaceToBothLimitsThenThrottle) {
+  Timeline t;
+  t.Parked();
+  for (int i = 0; i < 10; ++i) t.Step();
+  t.Operator(HA_OP_SELF_TEST);
+  t.Step();
+  EXPECT_EQ(t.out().operator_ack_accepted, 1u);
+  EXPECT_EQ(t.out().self_test_active, 1u);
+  HaSurfaces lo{}, hi{};
+  int periods = 0;
+  while (t.out().self_test_active && periods < 100000) {
+    t.Step();
+    const HaSurfaces s = t.servos();
+    lo = {std::min(lo.throttle, s.throttle), std::min(lo.elevator_deg, s.elevator_deg),
+          std::min(lo.aileron_deg, s.aileron_deg), std::min(lo.rudder_deg, s.rudder_deg)};
+    hi = {std::max(hi.throttle, s.throttle), std::max(hi.elevator_deg, s.elevator_deg),
+          std::max(hi.aileron_deg, s.aileron_deg), std::max(hi.rudder_deg, s.rudder_deg)};
+    ++periods;
+  }
+  EXPECT_FLOAT_EQ(hi.elevator_deg, t.cfg.elevator_limit_deg);
+  EXPECT_FLOAT_EQ(lo.elevator_deg, -t.cfg.elevator_limit_deg);
+  EXPECT_FLOAT_EQ(hi.aileron_deg, t.cfg.aileron_limit_deg);
+  EXPECT_FLOAT_EQ(lo.aileron_deg, -t.cfg.aileron_limit_deg);
+  EXPECT_FLOAT_EQ(hi.rudder_deg, t.cfg.rudder_limit_deg);
+  EXPECT_FLOAT_EQ(lo.rudder_deg, -t.cfg.rudder_limit_deg);
+  EXPECT_FLOAT_EQ(hi.throttle, t.cfg.self_test_throttle_max);
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HA);
+}
+
+TEST(HaSelfTest, PilotSwitchAbortsSelfTest) {
+  Timeline t;
+  t.Parked();
+  t.Step();
+  t.Operator(HA_OP_SELF_TEST);
+  for (int i = 0; i < 50; ++i) t.Step();
+  ASSERT_EQ(t.out().self_test_active, 1u);
+  t.board.SetPilotInCommand(true);
+  t.Step();
+  EXPECT_EQ(t.out().self_test_active, 0u);
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_MANUAL);
+}
+
+}  // namespace

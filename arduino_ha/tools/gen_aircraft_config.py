@@ -1,0 +1,249 @@
+#!/usr/bin/python3
+"""Turn aircraft/<name>/limits.yaml into the HA core's const HaAircraftConfig initializer.
+
+The HA core must hold no per-aircraft literal, and arduino-cli cannot run generators, so this
+script writes a C header (a checked-in copy for the Due, a fresh one in the build dir for host
+builds; a test keeps them identical). It builds the safety regions S_x and S_u from the limits,
+converts times to integer microseconds and refuses a configuration that makes no sense.
+
+usage: gen_aircraft_config.py <limits.yaml> <out.h>     (out '-' writes to stdout)
+"""
+import math
+import sys
+
+import yaml
+
+# Order of the state and actuator vectors: must match HA_X_* and HA_U_* in src/core/ha_config.h.
+X_NAMES = ["alpha_deg", "beta_deg", "roll_deg", "pitch_deg", "p_deg_s", "q_deg_s", "r_deg_s",
+           "alt_agl_ft"]
+U_NAMES = ["elevator_deg", "aileron_deg", "rudder_deg", "throttle"]
+SX_MAX_ROWS = 20
+SU_MAX_ROWS = 10
+MAX_RESTARTS_CAP = 16
+
+
+class ConfigError(Exception):
+    pass
+
+
+def need(section, key, low=None, high=None):
+    if key not in section:
+        raise ConfigError("missing key: %s" % key)
+    value = section[key]
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise ConfigError("%s must be a number" % key)
+    value = float(value)
+    if not math.isfinite(value):
+        raise ConfigError("%s must be finite" % key)
+    if low is not None and value < low:
+        raise ConfigError("%s = %g is below %g" % (key, value, low))
+    if high is not None and value > high:
+        raise ConfigError("%s = %g is above %g" % (key, value, high))
+    return value
+
+
+def positive(section, key):
+    value = need(section, key)
+    if value <= 0.0:
+        raise ConfigError("%s must be > 0" % key)
+    return value
+
+
+def us(seconds):
+    return int(round(seconds * 1e6))
+
+
+def symmetric_rows(dim, index, limit):
+    """Rows +v/limit <= 1 and -v/limit <= 1 of a symmetric box constraint."""
+    up = [0.0] * dim
+    down = [0.0] * dim
+    up[index] = 1.0 / limit
+    down[index] = -1.0 / limit
+    return [up, down]
+
+
+def build(doc):
+    act = doc["actuators"]
+    st = doc["state"]
+    dec = doc["decision"]
+    sen = doc["sensors"]
+    rc = doc["rc"]
+    servo = doc["servo"]
+    sc = doc["safety_controller"]
+    selft = doc["self_test"]
+    c = {}
+    c["aircraft"] = str(doc["aircraft"])
+
+    c["elevator_limit_deg"] = positive(act, "elevator_limit_deg")
+    c["aileron_limit_deg"] = positive(act, "aileron_limit_deg")
+    c["rudder_limit_deg"] = positive(act, "rudder_limit_deg")
+    c["throttle_min"] = need(act, "throttle_min", 0.0, 1.0)
+    c["throttle_max"] = need(act, "throttle_max", 0.0, 1.0)
+    if c["throttle_max"] <= c["throttle_min"]:
+        raise ConfigError("throttle_max must exceed throttle_min")
+    c["surface_rate_limit_deg_per_s"] = positive(act, "surface_rate_limit_deg_per_s")
+    c["throttle_rate_limit_per_s"] = positive(act, "throttle_rate_limit_per_s")
+
+    c["alpha_limit_deg"] = need(st, "alpha_limit_deg", 1.0, 90.0)
+    c["beta_limit_deg"] = need(st, "beta_limit_deg", 1.0, 90.0)
+    roll = need(st, "roll_limit_deg", 1.0, 180.0)
+    pitch = need(st, "pitch_limit_deg", 1.0, 90.0)
+    rate = positive(st, "body_rate_limit_deg_per_s")
+    c["stall_speed_ftps"] = positive(st, "stall_speed_ftps")
+    c["ceiling_agl_ft"] = positive(st, "ceiling_agl_ft")
+    c["airborne_agl_ft"] = need(st, "airborne_agl_ft", 0.0, c["ceiling_agl_ft"])
+    c["inner_region_fraction"] = need(st, "inner_region_fraction", 0.05, 0.99)
+    c["max_airspeed_ftps"] = need(sen, "max_airspeed_ftps", c["stall_speed_ftps"])
+    c["state_timeout_us"] = us(positive(sen, "state_timeout_s"))
+
+    # S_x (x - x0) <= 1: symmetric boxes on the angles and rates, and the ceiling on altitude
+    # (the HA needs no lower altitude bound here: the stall and airborne checks cover it).
+    limits = [c["alpha_limit_deg"], c["beta_limit_deg"], roll, pitch, rate, rate, rate]
+    sx = []
+    for i, lim in enumerate(limits):
+        sx += symmetric_rows(len(X_NAMES), i, lim)
+    alt = [0.0] * len(X_NAMES)
+    alt[X_NAMES.index("alt_agl_ft")] = 1.0 / c["ceiling_agl_ft"]
+    sx.append(alt)
+    c["sx"] = sx
+    c["x0"] = [0.0] * len(X_NAMES)
+
+    # S_u (u - u0) <= 1: surfaces symmetric about neutral, throttle centred on its range.
+    su = []
+    for i, lim in enumerate([c["elevator_limit_deg"], c["aileron_limit_deg"],
+                             c["rudder_limit_deg"]]):
+        su += symmetric_rows(len(U_NAMES), i, lim)
+    half = (c["throttle_max"] - c["throttle_min"]) / 2.0
+    su += symmetric_rows(len(U_NAMES), 3, half)
+    c["su"] = su
+    c["u0"] = [0.0, 0.0, 0.0, (c["throttle_max"] + c["throttle_min"]) / 2.0]
+    if len(sx) > SX_MAX_ROWS or len(su) > SU_MAX_ROWS:
+        raise ConfigError("too many region rows for HA_SX_MAX_ROWS/HA_SU_MAX_ROWS")
+
+    rate_hz = need(dec, "rate_hz", 1.0, 1000.0)
+    c["period_us"] = us(1.0 / rate_hz)
+    c["late_periods_tolerated"] = int(need(dec, "late_periods_tolerated", 0.0, 100.0))
+    c["no_command_timeout_us"] = us(positive(dec, "no_command_timeout_s"))
+    c["stable_window_us"] = us(positive(dec, "stable_window_s"))
+    c["max_restarts"] = int(need(dec, "max_restarts", 1.0, MAX_RESTARTS_CAP))
+    c["restart_window_us"] = us(positive(dec, "restart_window_s"))
+    c["hp_reset_pulse_us"] = us(positive(dec, "hp_reset_pulse_s"))
+    # The microsecond clock wraps after 2^32 us; longer windows could not be measured.
+    for key in ("stable_window_us", "restart_window_us", "no_command_timeout_us"):
+        if c[key] >= 2 ** 31:
+            raise ConfigError("%s too long for a 32-bit microsecond clock" % key)
+
+    for prefix, sec in (("rc", rc), ("servo", servo)):
+        lo = int(need(sec, "pulse_min_us", 500.0, 2500.0))
+        hi = int(need(sec, "pulse_max_us", 500.0, 2500.0))
+        if hi <= lo:
+            raise ConfigError("%s pulse_max_us must exceed pulse_min_us" % prefix)
+        c[prefix + "_pulse_min_us"] = lo
+        c[prefix + "_pulse_max_us"] = hi
+    c["pic_threshold_us"] = int(need(rc, "pic_threshold_us", c["rc_pulse_min_us"],
+                                     c["rc_pulse_max_us"]))
+
+    c["sc_bank_limit_deg"] = need(sc, "bank_limit_deg", 1.0, roll * c["inner_region_fraction"])
+    c["sc_circle_radius_ft"] = positive(sc, "circle_radius_ft")
+    direction = need(sc, "circle_direction")
+    if direction not in (1.0, -1.0):
+        raise ConfigError("circle_direction must be 1 or -1")
+    c["sc_circle_direction"] = direction
+    for key in ("radial_gain_deg_per_ft", "heading_to_bank_gain", "roll_kp", "pitch_kp",
+                "alt_to_pitch_gain_deg_per_ft", "speed_to_pitch_gain_deg_per_ftps",
+                "throttle_kp_per_ftps"):
+        c["sc_" + key] = positive(sc, key)
+    c["sc_radial_correction_max_deg"] = need(sc, "radial_correction_max_deg", 0.0, 90.0)
+    for key in ("roll_ki", "roll_kd", "pitch_ki", "pitch_kd", "yaw_damper_gain",
+                "throttle_ki_per_ft"):
+        c["sc_" + key] = need(sc, key, 0.0)
+    c["sc_alt_min_ft"] = need(sc, "alt_min_ft", c["airborne_agl_ft"], c["ceiling_agl_ft"])
+    c["sc_alt_max_ft"] = need(sc, "alt_max_ft", c["sc_alt_min_ft"], c["ceiling_agl_ft"])
+    if c["sc_alt_max_ft"] >= c["ceiling_agl_ft"] * c["inner_region_fraction"]:
+        raise ConfigError("safety controller band must lie inside the inner region")
+    c["sc_pitch_cmd_limit_deg"] = need(sc, "pitch_cmd_limit_deg", 1.0,
+                                       pitch * c["inner_region_fraction"])
+    c["sc_stall_margin"] = need(sc, "stall_margin", 1.05, 3.0)
+    if c["stall_speed_ftps"] * c["sc_stall_margin"] >= c["max_airspeed_ftps"]:
+        raise ConfigError("target airspeed above max_airspeed_ftps")
+    c["sc_throttle_trim"] = need(sc, "throttle_trim", c["throttle_min"], c["throttle_max"])
+    c["sc_integrator_authority"] = need(sc, "integrator_authority", 0.0, 1.0)
+
+    step_s = positive(selft, "step_s")
+    c["self_test_throttle_max"] = need(selft, "throttle_max", c["throttle_min"],
+                                       c["throttle_max"])
+    slowest = max(2.0 * max(c["elevator_limit_deg"], c["aileron_limit_deg"],
+                            c["rudder_limit_deg"]) / c["surface_rate_limit_deg_per_s"],
+                  (c["self_test_throttle_max"] - c["throttle_min"])
+                  / c["throttle_rate_limit_per_s"])
+    if step_s <= slowest:
+        raise ConfigError("self_test step_s must exceed %.3f s (slew limit to limit)" % slowest)
+    c["self_test_step_us"] = us(step_s)
+    return c
+
+
+def f32(value):
+    text = "%.9g" % value
+    if "." not in text and "e" not in text and "n" not in text:
+        text += ".0"
+    return text + "f"
+
+
+def row(values):
+    return "{" + ", ".join(f32(v) for v in values) + "}"
+
+
+def render(c, source):
+    floats = [k for k in c if isinstance(c[k], float)]
+    ints = [k for k in c if isinstance(c[k], int)]
+    lines = [
+        "/* Generated by arduino_ha/tools/gen_aircraft_config.py from %s." % source,
+        " * Do not edit: change the YAML and rebuild (CMake regenerates it; the checked-in copy",
+        " * must match). */",
+        "#ifndef HA_GENERATED_AIRCRAFT_CONFIG_H",
+        "#define HA_GENERATED_AIRCRAFT_CONFIG_H",
+        "",
+        "/* S_x rows over (%s);" % ", ".join(X_NAMES),
+        " * S_u rows over (%s). */" % ", ".join(U_NAMES),
+        "#define HA_AIRCRAFT_CONFIG_INITIALIZER \\",
+        "  { \\",
+        "    .aircraft = \"%s\", \\" % c["aircraft"],
+        "    .sx_rows = %du, \\" % len(c["sx"]),
+        "    .sx = { \\",
+    ]
+    lines += ["      %s, \\" % row(r) for r in c["sx"]]
+    lines += ["    }, \\", "    .x0 = %s, \\" % row(c["x0"]),
+              "    .su_rows = %du, \\" % len(c["su"]), "    .su = { \\"]
+    lines += ["      %s, \\" % row(r) for r in c["su"]]
+    lines += ["    }, \\", "    .u0 = %s, \\" % row(c["u0"])]
+    for key in floats:
+        lines.append("    .%s = %s, \\" % (key, f32(c[key])))
+    for key in ints:
+        lines.append("    .%s = %du, \\" % (key, c[key]))
+    lines += ["  }", "", "#endif /* HA_GENERATED_AIRCRAFT_CONFIG_H */", ""]
+    return "\n".join(lines)
+
+
+def main(argv):
+    if len(argv) != 3:
+        sys.stderr.write(__doc__)
+        return 2
+    with open(argv[1]) as f:
+        doc = yaml.safe_load(f)
+    # Name the source by aircraft, not by absolute path, so every checkout generates the same bytes.
+    source = "aircraft/%s/limits.yaml" % doc.get("aircraft", "?")
+    try:
+        text = render(build(doc), source)
+    except (ConfigError, KeyError, TypeError) as err:
+        sys.stderr.write("gen_aircraft_config: %s: %s\n" % (argv[1], err))
+        return 1
+    if argv[2] == "-":
+        sys.stdout.write(text)
+    else:
+        with open(argv[2], "w") as f:
+            f.write(text)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
