@@ -1,0 +1,40 @@
+# microhard_gs targets, included by the root Makefile.
+#   make fuzz-gs         libFuzzer (clang, ASan+UBSan) over the link bytes, GS_FUZZ_SECONDS long
+#   make fuzz-gs-smoke   the same for 20 s
+#   make bench-gs        telemetry rate held and CPU share of the node at 10 Hz and 50 Hz
+GS_DIR := $(ROOT)/microhard_gs
+GS_FUZZ_DIR ?= $(ROOT)/.build/fuzz_gs
+GS_FUZZ_BIN := $(GS_FUZZ_DIR)/fuzz_gs_core
+GS_CLANGXX ?= $(shell command -v clang++-14 || command -v clang++)
+GS_FUZZ_SECONDS ?= 300
+GS_FUZZ_SOURCES := $(GS_DIR)/fuzz/fuzz_gs_core.cpp $(GS_DIR)/src/core/gs_core.cpp \
+  $(GS_DIR)/src/core/mission.cpp $(GS_DIR)/src/core/geo.cpp $(GS_DIR)/src/core/params.cpp \
+  $(GS_DIR)/src/core/signing_key.cpp
+
+.PHONY: fuzz-gs fuzz-gs-smoke bench-gs
+FUZZ_TARGETS += fuzz-gs
+FUZZ_SMOKE_TARGETS += fuzz-gs-smoke
+BENCH_TARGETS += bench-gs
+
+# The MAVLink headers are generated from the installed pymavlink here too, never checked in.
+$(GS_FUZZ_DIR)/mavlink/common/mavlink.h:
+	@$(VENV)/bin/python -c "import pymavlink" 2>/dev/null || { echo "fuzz-gs: no pymavlink in $(VENV): run make deps"; exit 1; }
+	@rm -rf $(GS_FUZZ_DIR)/mavlink && mkdir -p $(GS_FUZZ_DIR)
+	@$(VENV)/bin/python -m pymavlink.tools.mavgen --lang=C --wire-protocol=2.0 -o $(GS_FUZZ_DIR)/mavlink \
+	  "$$($(VENV)/bin/python -c 'import os, pymavlink; print(os.path.join(os.path.dirname(pymavlink.__file__), "dialects/v20/common.xml"))')" > /dev/null
+
+$(GS_FUZZ_BIN): $(GS_FUZZ_SOURCES) $(wildcard $(GS_DIR)/src/core/*.h) $(GS_FUZZ_DIR)/mavlink/common/mavlink.h
+	@test -n "$(GS_CLANGXX)" || { echo "fuzz-gs: clang++ not found (microhard_gs/apt-packages.txt)"; exit 1; }
+	$(GS_CLANGXX) -std=c++17 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
+	  -Wall -Wextra -Werror -I$(GS_DIR)/src/core -isystem $(GS_FUZZ_DIR)/mavlink $(GS_FUZZ_SOURCES) -o $@
+
+fuzz-gs: $(GS_FUZZ_BIN)
+	@mkdir -p $(GS_FUZZ_DIR)/corpus
+	$(GS_FUZZ_BIN) -max_total_time=$(GS_FUZZ_SECONDS) -print_final_stats=1 -artifact_prefix=$(GS_FUZZ_DIR)/ \
+	  $(GS_FUZZ_DIR)/corpus $(GS_DIR)/fuzz/corpus
+
+fuzz-gs-smoke:
+	@$(MAKE) --no-print-directory -f $(ROOT)/Makefile fuzz-gs GS_FUZZ_SECONDS=20
+
+bench-gs: build
+	@$(ROSENV) DRONE_ROS_WS=$(WS) $(VENV)/bin/python $(GS_DIR)/bench/bench_gs.py

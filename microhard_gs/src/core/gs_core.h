@@ -1,0 +1,207 @@
+// The ground-station bridge without ROS and without sockets: bytes and time in, MAVLink frames
+// and requests for the ROS side out. Everything here is driven by the caller's clock, so the
+// mission state machine's timeouts and the telemetry schedule run on a simulated clock in tests.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "geo.h"
+#include "mavlink_all.h"
+#include "mission.h"
+#include "params.h"
+#include "signing_key.h"
+
+namespace microhard_gs {
+
+struct Clock {
+  uint64_t mono_ms = 0;  // monotonic: schedules and timeouts
+  uint64_t unix_us = 0;  // wall clock: only for MAVLink 2 signing timestamps
+};
+
+struct GsConfig {
+  uint8_t system_id = 1;
+  uint8_t component_id = MAV_COMP_ID_AUTOPILOT1;
+  double telemetry_rate_hz = 0.0;
+  MissionLimits limits;
+  double airborne_agl_ft = 0.0;  // above this the vehicle reports itself armed/flying
+  bool home_fixed = false;
+  GeoPoint home;
+  uint32_t mission_item_timeout_ms = 1500;
+  uint32_t mission_max_retries = 5;
+  bool signing = false;
+  SigningKey signing_key{};
+  uint8_t signing_link_id = 0;
+};
+
+// What the controller reported last on /data, in the units of the `data` message.
+struct Telemetry {
+  double roll_rad = 0, pitch_rad = 0, yaw_rad = 0;
+  double p_radps = 0, q_radps = 0, r_radps = 0;
+  double lat_deg = 0, lon_deg = 0, alt_m = 0;
+  double v_north_mps = 0, v_east_mps = 0, v_down_mps = 0;
+  double airspeed_ftps = 0;
+  double throttle = 0;  // [0..1]
+  double voltage_v = 0;
+  bool ins_link_up = false;
+  bool ha_link_up = false;
+  bool computer_in_command = false;
+  int32_t waypoint_index = 0;
+};
+
+struct DecisionInfo {
+  uint8_t controller = 0;  // DecisionStatus.CONTROLLER_*
+  uint32_t reasons = 0;
+  uint32_t reasons_at_switch = 0;
+  double altitude_agl_ft = 0.0;
+};
+
+// Operator requests; values match drone_ros/OperatorCommand's constants.
+enum class OperatorRequest : uint8_t { kSelectHp = 1, kSelectHa = 2, kRestartHp = 3, kSelfTest = 4 };
+
+struct ParamChange {
+  std::string ros_name;
+  double value = 0.0;
+};
+
+struct Counters {
+  uint64_t frames_ok = 0;
+  uint64_t frames_bad_crc = 0;       // corrupt frames (CRC or length), dropped
+  uint64_t refused_unsigned = 0;     // signing on: unsigned message that changes something
+  uint64_t refused_bad_signature = 0;
+  uint64_t ignored_other_target = 0; // addressed to another system
+  uint64_t missions_accepted = 0;
+  uint64_t missions_rejected = 0;
+  uint64_t mission_request_retries = 0;
+  uint64_t mission_uploads_timed_out = 0;
+  uint64_t commands_accepted = 0;
+  uint64_t commands_refused = 0;
+  uint64_t telemetry_sets_sent = 0;
+};
+
+class GsCore {
+ public:
+  // The config is assumed validated by the caller (the node's parameter reader).
+  GsCore(const GsConfig& config, const ParamTable& params);
+  GsCore(const GsCore&) = delete;
+  GsCore& operator=(const GsCore&) = delete;
+
+  // Bytes from the link, in any chunking. Corrupt frames are counted and dropped.
+  void handle_bytes(const uint8_t* data, size_t len, const Clock& now);
+  // Runs the telemetry schedule and the mission upload timeouts. Call at least every 10 ms.
+  void tick(const Clock& now);
+
+  void set_telemetry(const Telemetry& t, const Clock& now);
+  void set_decision(const DecisionInfo& d);
+
+  // Outputs, drained by the caller.
+  std::vector<std::vector<uint8_t>> take_frames();
+  std::vector<WayPlan> take_way_plans();
+  std::vector<OperatorRequest> take_operator_requests();
+  std::vector<ParamChange> take_param_changes();
+
+  const Counters& counters() const { return counters_; }
+  bool home_known() const { return home_known_; }
+  const GeoPoint& home() const { return home_; }
+  int mission_count() const { return mission_count_; }
+  bool upload_in_progress() const { return upload_.active; }
+  const ParamTable& params() const { return params_; }
+
+ private:
+  struct Upload {
+    bool active = false;
+    bool legacy = false;  // the GCS answered with MISSION_ITEM: ask with MISSION_REQUEST
+    uint8_t partner_sys = 0, partner_comp = 0;
+    int count = 0;
+    int next_seq = 0;
+    uint32_t retries = 0;
+    uint64_t last_request_ms = 0;
+    MissionItem items[kMaxMissionItems];
+  };
+  // The answer to the last finished upload, resent if the GCS repeats the last item because it
+  // lost our MISSION_ACK.
+  struct LastUploadResult {
+    bool valid = false;
+    uint8_t partner_sys = 0, partner_comp = 0;
+    int last_seq = -1;
+    uint8_t result = 0;
+    uint64_t finished_ms = 0;
+  };
+
+  void update_signing_clock(const Clock& now);
+  void dispatch(const mavlink_message_t& msg, const Clock& now);
+  bool addressed_to_us(uint8_t target_system, uint8_t target_component);
+
+  void on_param_request_list();
+  void on_param_request_read(const mavlink_message_t& msg);
+  void on_param_set(const mavlink_message_t& msg);
+  void send_param(size_t index);
+
+  void on_mission_count(const mavlink_message_t& msg, const Clock& now);
+  void on_mission_item(const mavlink_message_t& msg, const MissionItem& item, uint8_t target_sys,
+                       uint8_t target_comp, uint8_t mission_type, bool legacy, const Clock& now);
+  void on_mission_request_list(const mavlink_message_t& msg);
+  void on_mission_request(const mavlink_message_t& msg, bool legacy);
+  void on_mission_clear_all(const mavlink_message_t& msg);
+  void on_mission_ack(const mavlink_message_t& msg);
+  void request_next_item(const Clock& now);
+  void finish_upload(uint8_t result, const std::string& reason, const Clock& now);
+  void send_mission_ack(uint8_t sys, uint8_t comp, uint8_t result, uint8_t mission_type);
+
+  void on_command(const mavlink_message_t& msg, uint16_t command, const float params[7],
+                  uint8_t target_sys, uint8_t target_comp);
+  void send_command_ack(const mavlink_message_t& msg, uint16_t command, uint8_t result);
+  uint8_t execute_command(uint16_t command, const float params[7]);
+
+  void send_heartbeat();
+  void send_telemetry_set(const Clock& now);
+  void send_home_position();
+  void send_autopilot_version();
+  void send_statustext(uint8_t severity, const std::string& text);
+
+  template <typename Encode>
+  void emit(Encode encode);
+
+  GsConfig config_;
+  ParamTable params_;
+  Counters counters_;
+
+  mavlink_status_t rx_status_{};
+  mavlink_message_t rx_buffer_{};
+  mavlink_status_t tx_status_{};
+  mavlink_signing_t signing_{};
+  mavlink_signing_streams_t signing_streams_{};
+
+  bool started_ = false;
+  uint64_t boot_ms_ = 0;
+  uint64_t next_heartbeat_ms_ = 0;
+  uint64_t next_telemetry_ms_ = 0;
+
+  bool have_telemetry_ = false;
+  uint64_t telemetry_ms_ = 0;
+  Telemetry telemetry_;
+  bool have_decision_ = false;
+  DecisionInfo decision_;
+
+  bool home_known_ = false;
+  GeoPoint home_;
+
+  Upload upload_;
+  LastUploadResult last_upload_;
+  MissionItem mission_[kMaxMissionItems];
+  int mission_count_ = 0;
+
+  uint16_t statustext_id_ = 0;
+
+  std::vector<std::vector<uint8_t>> frames_;
+  std::vector<WayPlan> way_plans_;
+  std::vector<OperatorRequest> operator_requests_;
+  std::vector<ParamChange> param_changes_;
+};
+
+// Names of the DecisionStatus REASON_* bits set in `reasons`, comma separated ("NO_COMMAND,STALL").
+std::string reason_names(uint32_t reasons);
+const char* controller_name(uint8_t controller);
+
+}  // namespace microhard_gs

@@ -1,0 +1,48 @@
+// The controller's tunable parameters (the thesis's /controller_param/* set) as the MAVLink
+// parameter protocol sees them: a fixed-order table with 16-character ids.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace microhard_gs {
+
+struct ParamSpec {
+  const char* ros_name;  // key under the controller's parameter namespace
+  const char* mav_id;    // MAVLink param_id: at most 16 characters
+  bool is_integer;       // switches and selections are integers, gains and trims reals
+  bool read_only;        // shown but never set from the ground (see the table for why)
+};
+
+// The tunable set of controller_DG808: the thesis's read_parameter() list plus the ones today's
+// controller added (aircraft/DG808/controller_param.yaml). Left out on purpose: alpha/beta/gps_v*
+// (HiL and estimator start values), enable, hmcmd and controller_selection (commands, which
+// travel as MAVLink commands and /operator_command, never as parameters), frame_id (a string).
+const std::vector<ParamSpec>& controller_param_specs();
+
+class ParamTable {
+ public:
+  struct Entry {
+    std::string mav_id;
+    std::string ros_name;
+    bool is_integer = false;
+    bool read_only = false;
+    double value = 0.0;
+  };
+
+  void add(const ParamSpec& spec, double value);
+  size_t size() const { return entries_.size(); }
+  const Entry& at(size_t index) const { return entries_[index]; }
+  // Index of the parameter with this MAVLink id, or -1. `id` may lack a terminator when it is
+  // exactly 16 characters, as on the wire.
+  int find(const char* id, size_t id_len) const;
+  // False (and unchanged) when read-only, not finite, or not an integer for an integer one.
+  bool set(size_t index, double value);
+
+ private:
+  std::vector<Entry> entries_;
+};
+
+}  // namespace microhard_gs

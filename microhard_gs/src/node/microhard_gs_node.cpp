@@ -1,0 +1,208 @@
+// microhard_gs: thin ROS shell around GsCore. Subscribes /data and /decision_status, publishes
+// /way, /operator_command and diagnostics, and moves bytes between the link and the core.
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <drone_ros/DecisionStatus.h>
+#include <drone_ros/OperatorCommand.h>
+#include <drone_ros/data.h>
+#include <drone_ros/way.h>
+#include <poll.h>
+#include <ros/ros.h>
+
+#include <chrono>
+#include <memory>
+
+#include "gs_core.h"
+#include "node_config.h"
+#include "serial_transport.h"
+#include "udp_transport.h"
+
+namespace microhard_gs {
+namespace {
+
+Clock now_clock() {
+  using namespace std::chrono;
+  Clock c;
+  c.mono_ms = static_cast<uint64_t>(duration_cast<milliseconds>(steady_clock::now().time_since_epoch()).count());
+  c.unix_us = static_cast<uint64_t>(duration_cast<microseconds>(system_clock::now().time_since_epoch()).count());
+  return c;
+}
+
+Telemetry to_telemetry(const drone_ros::data& d) {
+  Telemetry t;
+  t.roll_rad = d.angle.x;
+  t.pitch_rad = d.angle.y;
+  t.yaw_rad = d.angle.z;
+  t.p_radps = d.angrate.x;
+  t.q_radps = d.angrate.y;
+  t.r_radps = d.angrate.z;
+  t.lat_deg = d.lla.x;
+  t.lon_deg = d.lla.y;
+  t.alt_m = d.lla.z;
+  t.v_north_mps = d.velocity.x;
+  t.v_east_mps = d.velocity.y;
+  t.v_down_mps = d.velocity.z;
+  t.airspeed_ftps = d.air_velocity;
+  t.computer_in_command = d.PICCIC == 1;
+  t.throttle = t.computer_in_command ? d.autothrottle : d.Throttle;
+  t.voltage_v = d.voltage;
+  t.ins_link_up = d.v_usbstatus == 1;
+  t.ha_link_up = d.a_usbstatus == 1;
+  t.waypoint_index = d.waypoint_index;
+  return t;
+}
+
+class Node {
+ public:
+  Node(ros::NodeHandle& nh, NodeConfig config, std::unique_ptr<Transport> link)
+      : config_(std::move(config)), link_(std::move(link)), core_(config_.core, config_.params) {
+    way_pub_ = nh.advertise<drone_ros::way>("/way", 1, true);  // latched: a late controller gets it
+    command_pub_ = nh.advertise<drone_ros::OperatorCommand>("/operator_command", 10);
+    data_sub_ = nh.subscribe("/data", 10, &Node::on_data, this);
+    decision_sub_ = nh.subscribe("/decision_status", 10, &Node::on_decision, this);
+    updater_.setHardwareID(link_->describe());
+    updater_.add("link", this, &Node::diagnose);
+  }
+
+  void run() {
+    uint8_t buf[2048];
+    while (ros::ok()) {
+      pollfd p{link_->fd(), POLLIN, 0};
+      poll(&p, 1, 5);  // 5 ms: well inside a 50 Hz telemetry period
+      const Clock now = now_clock();
+      if (p.revents & POLLIN) {
+        for (int i = 0; i < 64; ++i) {  // drain, but keep ROS callbacks flowing under a flood
+          const long n = link_->receive(buf, sizeof buf);
+          if (n <= 0) {
+            if (n < 0) ++link_errors_;
+            break;
+          }
+          core_.handle_bytes(buf, static_cast<size_t>(n), now);
+        }
+      }
+      ros::spinOnce();
+      core_.tick(now_clock());
+      flush();
+      updater_.update();
+    }
+  }
+
+ private:
+  void on_data(const drone_ros::data::ConstPtr& msg) { core_.set_telemetry(to_telemetry(*msg), now_clock()); }
+
+  void on_decision(const drone_ros::DecisionStatus::ConstPtr& msg) {
+    DecisionInfo d;
+    d.controller = msg->controller;
+    d.reasons = msg->reasons;
+    d.reasons_at_switch = msg->reasons_at_switch;
+    d.altitude_agl_ft = msg->altitude_agl_ft;
+    core_.set_decision(d);
+  }
+
+  void flush() {
+    for (const auto& frame : core_.take_frames()) {
+      if (!link_->send(frame.data(), frame.size())) ++send_failures_;
+    }
+    for (const WayPlan& plan : core_.take_way_plans()) {
+      drone_ros::way w;
+      for (int i = 0; i < plan.fp; ++i) {
+        w.north[i] = plan.north_ft[i];
+        w.east[i] = plan.east_ft[i];
+        w.height[i] = plan.height_ft[i];
+        w.velocity[i] = plan.velocity_ftps[i];
+      }
+      w.fp = plan.fp;
+      way_pub_.publish(w);
+      ROS_INFO("microhard_gs: flight plan of %d waypoints published on /way", plan.fp);
+    }
+    for (OperatorRequest r : core_.take_operator_requests()) {
+      drone_ros::OperatorCommand c;
+      c.stamp = ros::Time::now();
+      c.command = static_cast<uint8_t>(r);
+      c.request_id = ++request_id_;
+      command_pub_.publish(c);
+    }
+    for (const ParamChange& change : core_.take_param_changes()) {
+      // The controller reads its tunables from this namespace.
+      ros::param::set(config_.controller_param_ns + "/" + change.ros_name, change.value);
+    }
+  }
+
+  void diagnose(diagnostic_updater::DiagnosticStatusWrapper& s) {
+    const Counters& c = core_.counters();
+    if (!core_.home_known()) {
+      s.summary(diagnostic_msgs::DiagnosticStatus::WARN, "no home position yet");
+    } else if (core_.params().size() == 0) {
+      // Some thesis tunables are absent from today's controller (listed below, not a fault);
+      // none at all means controller_param_ns points at the wrong node.
+      s.summary(diagnostic_msgs::DiagnosticStatus::WARN, "no controller parameters found");
+    } else {
+      s.summary(diagnostic_msgs::DiagnosticStatus::OK, "ok");
+    }
+    s.add("link", link_->describe());
+    s.add("signing", config_.core.signing ? "on" : "off");
+    s.add("frames_ok", c.frames_ok);
+    s.add("frames_bad_crc", c.frames_bad_crc);
+    s.add("refused_unsigned", c.refused_unsigned);
+    s.add("refused_bad_signature", c.refused_bad_signature);
+    s.add("ignored_other_target", c.ignored_other_target);
+    s.add("missions_accepted", c.missions_accepted);
+    s.add("missions_rejected", c.missions_rejected);
+    s.add("mission_request_retries", c.mission_request_retries);
+    s.add("mission_uploads_timed_out", c.mission_uploads_timed_out);
+    s.add("commands_accepted", c.commands_accepted);
+    s.add("commands_refused", c.commands_refused);
+    s.add("telemetry_sets_sent", c.telemetry_sets_sent);
+    s.add("send_failures", send_failures_);
+    s.add("link_errors", link_errors_);
+    s.add("parameters_served", core_.params().size());
+    std::string missing;
+    for (const auto& m : config_.missing_params) missing += (missing.empty() ? "" : ",") + m;
+    s.add("parameters_missing", missing);
+  }
+
+  NodeConfig config_;
+  std::unique_ptr<Transport> link_;
+  GsCore core_;
+  ros::Publisher way_pub_;
+  ros::Publisher command_pub_;
+  ros::Subscriber data_sub_;
+  ros::Subscriber decision_sub_;
+  diagnostic_updater::Updater updater_;
+  uint32_t request_id_ = 0;
+  uint64_t send_failures_ = 0;
+  uint64_t link_errors_ = 0;
+};
+
+}  // namespace
+}  // namespace microhard_gs
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "microhard_gs");
+  ros::NodeHandle nh;
+  ros::NodeHandle pnh("~");
+  microhard_gs::NodeConfig config;
+  std::string error;
+  if (!microhard_gs::read_node_config(pnh, &config, &error)) {
+    ROS_FATAL("microhard_gs: %s", error.c_str());
+    return 2;
+  }
+  if (!config.missing_params.empty()) {
+    ROS_INFO("microhard_gs: %zu known tunables not on the server under %s; not served",
+             config.missing_params.size(), config.controller_param_ns.c_str());
+  }
+  std::unique_ptr<microhard_gs::Transport> link;
+  if (config.transport == "udp") {
+    link = microhard_gs::UdpTransport::open(config.udp, &error);
+  } else {
+    link = microhard_gs::SerialTransport::open(config.serial_port, config.serial_baud, &error);
+  }
+  if (!link) {
+    ROS_FATAL("microhard_gs: %s", error.c_str());
+    return 2;
+  }
+  ROS_INFO("microhard_gs: system %u on %s, signing %s, %zu parameters", config.core.system_id,
+           link->describe().c_str(), config.core.signing ? "on" : "off", config.params.size());
+  microhard_gs::Node node(nh, std::move(config), std::move(link));
+  node.run();
+  return 0;
+}

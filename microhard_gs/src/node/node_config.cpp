@@ -1,0 +1,140 @@
+#include "node_config.h"
+
+#include <ros/param.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "serial_transport.h"
+
+namespace microhard_gs {
+namespace {
+
+bool need(const ros::NodeHandle& nh, const std::string& name, double* out, std::string* error) {
+  if (!nh.getParam(name, *out) || !std::isfinite(*out)) {
+    *error = "missing or non-numeric parameter " + nh.resolveName(name);
+    return false;
+  }
+  return true;
+}
+
+bool in_range(const std::string& name, double v, double lo, double hi, std::string* error) {
+  if (v < lo || v > hi) {
+    std::ostringstream s;
+    s << name << " = " << v << " outside [" << lo << ", " << hi << "]";
+    *error = s.str();
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+bool read_node_config(const ros::NodeHandle& nh, NodeConfig* c, std::string* error) {
+  nh.param<std::string>("transport", c->transport, "udp");
+  nh.param<std::string>("udp_bind_address", c->udp.bind_address, "0.0.0.0");
+  nh.param("udp_bind_port", c->udp.bind_port, 14555);
+  nh.param<std::string>("udp_remote_address", c->udp.remote_address, "127.0.0.1");
+  nh.param("udp_remote_port", c->udp.remote_port, 14550);  // QGroundControl listens here
+  nh.param("udp_follow_sender", c->udp.follow_sender, true);
+  nh.param<std::string>("serial_port", c->serial_port, "/dev/ttyUSB0");
+  nh.param("serial_baud", c->serial_baud, 57600);
+  nh.param<std::string>("signing_key_file", c->signing_key_file, "");
+  // The controller loads its tunables (aircraft/<name>/controller_param.yaml) into its private
+  // namespace; the thesis kept them in /controller_param.
+  nh.param<std::string>("controller_param_ns", c->controller_param_ns, "/controller_DG808");
+  int system_id = 1;
+  nh.param("system_id", system_id, 1);
+
+  if (c->transport != "udp" && c->transport != "serial") {
+    *error = "transport must be udp or serial, not " + c->transport;
+    return false;
+  }
+  if (c->transport == "serial" && !SerialTransport::is_supported_baud(c->serial_baud)) {
+    *error = "serial_baud " + std::to_string(c->serial_baud) + " not supported";
+    return false;
+  }
+  if (!in_range("system_id", system_id, 1, 254, error)) return false;
+  c->core.system_id = static_cast<uint8_t>(system_id);
+
+  double rate_hz = 0, floor_ft = 0, radius_ft = 0, speed_ftps = 0, timeout_s = 0, retries = 0;
+  double ceiling_ft = 0, stall_ftps = 0, airborne_ft = 0;
+  if (!need(nh, "telemetry_rate_hz", &rate_hz, error) || !need(nh, "mission/floor_agl_ft", &floor_ft, error) ||
+      !need(nh, "mission/max_radius_ft", &radius_ft, error) ||
+      !need(nh, "mission/default_speed_ftps", &speed_ftps, error) ||
+      !need(nh, "mission/item_timeout_s", &timeout_s, error) || !need(nh, "mission/max_retries", &retries, error) ||
+      !need(nh, "limits/state/ceiling_agl_ft", &ceiling_ft, error) ||
+      !need(nh, "limits/state/stall_speed_ftps", &stall_ftps, error) ||
+      !need(nh, "limits/state/airborne_agl_ft", &airborne_ft, error)) {
+    return false;
+  }
+  if (!in_range("telemetry_rate_hz", rate_hz, 0.5, 100.0, error) ||
+      !in_range("mission/floor_agl_ft", floor_ft, 0.0, ceiling_ft, error) ||
+      !in_range("mission/max_radius_ft", radius_ft, 100.0, 100000.0, error) ||
+      !in_range("mission/default_speed_ftps", speed_ftps, stall_ftps, 500.0, error) ||
+      !in_range("mission/item_timeout_s", timeout_s, 0.05, 30.0, error) ||
+      !in_range("mission/max_retries", retries, 0.0, 50.0, error)) {
+    return false;
+  }
+  c->core.telemetry_rate_hz = rate_hz;
+  c->core.limits.floor_ft = floor_ft;
+  c->core.limits.ceiling_ft = ceiling_ft;
+  c->core.limits.max_radius_ft = radius_ft;
+  c->core.limits.min_speed_ftps = stall_ftps;
+  c->core.limits.default_speed_ftps = speed_ftps;
+  c->core.airborne_agl_ft = airborne_ft;
+  c->core.mission_item_timeout_ms = static_cast<uint32_t>(std::lround(timeout_s * 1000.0));
+  c->core.mission_max_retries = static_cast<uint32_t>(std::lround(retries));
+
+  bool home_fixed = false;
+  nh.param("home/fixed", home_fixed, false);
+  c->core.home_fixed = home_fixed;
+  if (home_fixed) {
+    if (!need(nh, "home/lat_deg", &c->core.home.lat_deg, error) ||
+        !need(nh, "home/lon_deg", &c->core.home.lon_deg, error) ||
+        !need(nh, "home/alt_m", &c->core.home.alt_m, error)) {
+      return false;
+    }
+    if (!is_valid_position(c->core.home.lat_deg, c->core.home.lon_deg)) {
+      *error = "home/lat_deg, home/lon_deg not a valid position";
+      return false;
+    }
+  }
+
+  if (!c->signing_key_file.empty()) {
+    std::ifstream in(c->signing_key_file);
+    if (!in) {
+      *error = "cannot read signing_key_file " + c->signing_key_file;
+      return false;
+    }
+    std::stringstream text;
+    text << in.rdbuf();
+    std::string why;
+    if (!parse_signing_key(text.str(), &c->core.signing_key, &why)) {
+      *error = c->signing_key_file + ": " + why;
+      return false;
+    }
+    c->core.signing = true;
+  }
+
+  // The tunables: whatever of the known set the controller's namespace holds.
+  for (const ParamSpec& spec : controller_param_specs()) {
+    const std::string key = c->controller_param_ns + "/" + spec.ros_name;
+    double value = 0.0;
+    int ivalue = 0;
+    bool bvalue = false;
+    if (ros::param::get(key, value)) {
+      c->params.add(spec, value);
+    } else if (ros::param::get(key, ivalue)) {
+      c->params.add(spec, ivalue);
+    } else if (ros::param::get(key, bvalue)) {
+      c->params.add(spec, bvalue ? 1.0 : 0.0);
+    } else {
+      c->missing_params.push_back(spec.ros_name);
+    }
+  }
+  return true;
+}
+
+}  // namespace microhard_gs

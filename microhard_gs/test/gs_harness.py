@@ -1,0 +1,309 @@
+"""Shared machinery of the microhard_gs Python tests and benchmark (a helper, not a test).
+
+Starts a private ROS master on a free port, loads the controller parameter fixture, launches
+microhard_gs with its launch file, runs gs_ros_probe.py as the controller stand-in, and gives the
+test a pymavlink connection: the real ground-station client, over UDP on 127.0.0.1 only. Every
+process started here is stopped by stop().
+"""
+import json
+import os
+import queue
+import random
+import signal
+import socket
+import subprocess
+import threading
+import time
+
+os.environ.setdefault("MAVLINK20", "1")
+from pymavlink import mavutil  # noqa: E402  (MAVLINK20 must be set first)
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+HOME = (40.1100, -88.2200, 220.0)  # where the probe says the aircraft is: becomes home
+ROS_PYTHON = "/usr/bin/python3"
+FT_PER_M = 1.0 / 0.3048
+
+mavlink = mavutil.mavlink
+
+
+def free_port(kind=socket.SOCK_DGRAM):
+    with socket.socket(socket.AF_INET, kind) as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+class LossyRelay:
+    """Forwards datagrams between the GCS and the node, dropping a fraction each way."""
+
+    def __init__(self, node_port, gcs_port, loss, seed=7):
+        self.node_addr = ("127.0.0.1", node_port)
+        self.gcs_addr = ("127.0.0.1", gcs_port)
+        self.loss = loss
+        self.rng = random.Random(seed)
+        self.sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+        self.sock.bind(("127.0.0.1", 0))
+        self.sock.settimeout(0.1)
+        self.port = self.sock.getsockname()[1]
+        self.forwarded = 0
+        self.dropped = 0
+        self._stop = False
+        self._thread = threading.Thread(target=self._run, daemon=True)
+        self._thread.start()
+
+    def _run(self):
+        while not self._stop:
+            try:
+                payload, addr = self.sock.recvfrom(4096)
+            except socket.timeout:
+                continue
+            except OSError:
+                return
+            if self.rng.random() < self.loss:
+                self.dropped += 1
+                continue
+            self.forwarded += 1
+            target = self.gcs_addr if addr == self.node_addr else self.node_addr
+            self.sock.sendto(payload, target)
+
+    def stop(self):
+        self._stop = True
+        self._thread.join(timeout=2)
+        self.sock.close()
+
+
+class GsSystem:
+    def __init__(self, launch_args=None, relay_loss=None, probe_rate_hz=20.0, udp_client=True):
+        self.procs = []
+        self.events = queue.Queue()
+        self.diagnostics = {}
+        self.relay = None
+        self.conn = None
+        ws = os.environ.get("DRONE_ROS_WS")
+        if not ws:
+            raise RuntimeError("DRONE_ROS_WS must point at the built catkin workspace")
+        self.env = dict(os.environ)
+        self.master_port = free_port(socket.SOCK_STREAM)
+        self.env["ROS_MASTER_URI"] = "http://127.0.0.1:%d" % self.master_port
+        self.env["ROS_IP"] = "127.0.0.1"
+        self.env.pop("ROS_HOSTNAME", None)
+        self.env["ROS_LOG_DIR"] = os.environ.get("ROS_LOG_DIR", "/tmp/microhard_gs_test_logs")
+        self.node_port = free_port()
+        self.gcs_port = free_port()
+        remote_port = self.gcs_port
+        try:
+            if relay_loss is not None:
+                self.relay = LossyRelay(self.node_port, self.gcs_port, relay_loss)
+                remote_port = self.relay.port
+            self._start(["rosmaster", "--core", "-p", str(self.master_port)])
+            self._wait_for_master()
+            subprocess.run(["rosparam", "load", os.path.join(HERE, "controller_params_fixture.yaml"),
+                            "/controller_DG808"], env=self.env, check=True, timeout=30)
+            args = {"udp_bind_address": "127.0.0.1", "udp_bind_port": self.node_port,
+                    "udp_remote_address": "127.0.0.1", "udp_remote_port": remote_port}
+            args.update(launch_args or {})
+            self.launch = self._start(["roslaunch", "drone_ros", "microhard_gs.launch"] +
+                                      ["%s:=%s" % kv for kv in args.items()])
+            self.probe = self._start([ROS_PYTHON, os.path.join(HERE, "gs_ros_probe.py"),
+                                      "--lat", str(HOME[0]), "--lon", str(HOME[1]), "--alt", str(HOME[2]),
+                                      "--rate", str(probe_rate_hz)],
+                                     stdin=subprocess.PIPE, stdout=subprocess.PIPE)
+            threading.Thread(target=self._read_probe, daemon=True).start()
+            if self.wait_event(lambda e: e["topic"] == "connected", 60) is None:
+                raise RuntimeError("microhard_gs and the probe never connected on ROS")
+            if not udp_client:  # the test talks over another link (the serial transport)
+                return
+            self.conn = mavutil.mavlink_connection("udpin:127.0.0.1:%d" % self.gcs_port,
+                                                   source_system=255, source_component=190, dialect="common")
+            hb = self.conn.wait_heartbeat(timeout=30)
+            if hb is None:
+                raise RuntimeError("no HEARTBEAT from microhard_gs")
+        except Exception:
+            self.stop()
+            raise
+
+    def _start(self, cmd, **kw):
+        os.makedirs(self.env["ROS_LOG_DIR"], exist_ok=True)
+        log = open(os.path.join(self.env["ROS_LOG_DIR"], "%s-%d.log" % (os.path.basename(cmd[-1] if cmd[0] == ROS_PYTHON else cmd[0]), self.master_port)), "ab")
+        kw.setdefault("stdout", log)
+        p = subprocess.Popen(cmd, env=self.env, start_new_session=True, stderr=log, **kw)
+        log.close()
+        self.procs.append(p)
+        return p
+
+    def _wait_for_master(self):
+        deadline = time.time() + 20
+        while time.time() < deadline:
+            try:
+                with socket.create_connection(("127.0.0.1", self.master_port), timeout=0.5):
+                    return
+            except OSError:
+                time.sleep(0.1)
+        raise RuntimeError("rosmaster did not start")
+
+    def _read_probe(self):
+        for line in self.probe.stdout:
+            try:
+                event = json.loads(line)
+            except ValueError:
+                continue
+            if event.get("topic") == "diagnostics":
+                self.diagnostics = event["values"]
+            self.events.put(event)
+
+    def wait_event(self, predicate, timeout):
+        deadline = time.time() + timeout
+        while time.time() < deadline:
+            try:
+                event = self.events.get(timeout=max(0.01, deadline - time.time()))
+            except queue.Empty:
+                break
+            if predicate(event):
+                return event
+        return None
+
+    def drain_events(self):
+        out = []
+        while True:
+            try:
+                out.append(self.events.get_nowait())
+            except queue.Empty:
+                return out
+
+    def send_decision(self, controller, reasons, altitude_agl_ft=0.0):
+        self.probe.stdin.write(("decision %d %d %f\n" % (controller, reasons, altitude_agl_ft)).encode())
+        self.probe.stdin.flush()
+
+    def diagnostic(self, key, timeout=5.0):
+        """Waits for a fresh diagnostics message and returns one of its values."""
+        event = self.wait_event(lambda e: e["topic"] == "diagnostics", timeout)
+        return None if event is None else event["values"].get(key)
+
+    def stop(self):
+        if self.conn is not None:
+            self.conn.close()
+            self.conn = None
+        for p in reversed(self.procs):
+            if p.poll() is None:
+                try:
+                    os.killpg(p.pid, signal.SIGINT)
+                except ProcessLookupError:
+                    pass
+        for p in reversed(self.procs):
+            try:
+                p.wait(timeout=10)
+            except subprocess.TimeoutExpired:
+                os.killpg(p.pid, signal.SIGKILL)
+                p.wait(timeout=5)
+        self.procs = []
+        if self.relay is not None:
+            self.relay.stop()
+            self.relay = None
+
+
+# --------------------------------------------------------------------------- MAVLink client side
+
+def local_to_latlon(north_ft, east_ft):
+    """Inverse of the node's flat-earth projection, for building test missions (ft -> deg)."""
+    import math
+    a, e2 = 6378137.0, 6.69437999014e-3
+    lat0 = math.radians(HOME[0])
+    w2 = 1 - e2 * math.sin(lat0) ** 2
+    r_n = a * (1 - e2) / (w2 * math.sqrt(w2))
+    r_e = a / math.sqrt(w2)
+    lat = HOME[0] + math.degrees(north_ft / FT_PER_M / r_n)
+    lon = HOME[1] + math.degrees(east_ft / FT_PER_M / (r_e * math.cos(lat0)))
+    return lat, lon
+
+
+def waypoint(seq, north_ft, east_ft, height_ft):
+    lat, lon = local_to_latlon(north_ft, east_ft)
+    return mavlink.MAVLink_mission_item_int_message(
+        1, 1, seq, mavlink.MAV_FRAME_GLOBAL_RELATIVE_ALT_INT, mavlink.MAV_CMD_NAV_WAYPOINT, 0, 1,
+        0, 10, 0, float("nan"), int(round(lat * 1e7)), int(round(lon * 1e7)), height_ft / FT_PER_M,
+        mavlink.MAV_MISSION_TYPE_MISSION)
+
+
+def as_legacy(item):
+    return mavlink.MAVLink_mission_item_message(
+        item.target_system, item.target_component, item.seq, mavlink.MAV_FRAME_GLOBAL_RELATIVE_ALT,
+        item.command, item.current, item.autocontinue, item.param1, item.param2, item.param3, item.param4,
+        item.x * 1e-7, item.y * 1e-7, item.z, item.mission_type)
+
+
+def upload_mission(conn, items, count=None, resend_s=1.0, timeout_s=30.0, legacy=False):
+    """Uploads like QGroundControl: send the count, answer each request, resend on silence.
+    Returns the MISSION_ACK (None if none came)."""
+    count = len(items) if count is None else count
+    conn.mav.mission_count_send(1, 1, count, mavlink.MAV_MISSION_TYPE_MISSION)
+    deadline = time.time() + timeout_s
+    last_activity = time.time()
+    last_sent = None
+    while time.time() < deadline:
+        msg = conn.recv_match(type=["MISSION_REQUEST_INT", "MISSION_REQUEST", "MISSION_ACK"],
+                              blocking=True, timeout=0.1)
+        if msg is None:
+            if time.time() - last_activity > resend_s:
+                if last_sent is None:
+                    conn.mav.mission_count_send(1, 1, count, mavlink.MAV_MISSION_TYPE_MISSION)
+                else:
+                    conn.mav.send(last_sent)
+                last_activity = time.time()
+            continue
+        if msg.get_type() == "MISSION_ACK":
+            return msg
+        last_activity = time.time()
+        if msg.seq < len(items):
+            item = items[msg.seq]
+            last_sent = as_legacy(item) if legacy else item
+            conn.mav.send(last_sent)
+    return None
+
+
+def download_mission(conn, timeout_s=10.0, attempts=1):
+    """Downloads like QGroundControl: every request is repeated on silence, `attempts` times."""
+    def ask(send, kind, match=lambda m: True):
+        for _ in range(attempts):
+            send()
+            deadline = time.time() + timeout_s
+            while time.time() < deadline:
+                m = conn.recv_match(type=kind, blocking=True, timeout=0.1)
+                if m is not None and match(m):
+                    return m
+        return None
+
+    count_msg = ask(lambda: conn.mav.mission_request_list_send(1, 1, mavlink.MAV_MISSION_TYPE_MISSION),
+                    "MISSION_COUNT")
+    if count_msg is None:
+        return None
+    items = []
+    for seq in range(count_msg.count):
+        item = ask(lambda: conn.mav.mission_request_int_send(1, 1, seq, mavlink.MAV_MISSION_TYPE_MISSION),
+                   "MISSION_ITEM_INT", lambda m: m.seq == seq)
+        if item is None:
+            return None
+        items.append(item)
+    conn.mav.mission_ack_send(1, 1, mavlink.MAV_MISSION_ACCEPTED, mavlink.MAV_MISSION_TYPE_MISSION)
+    return items
+
+
+def command_long(conn, command, *params):
+    p = list(params) + [0.0] * (7 - len(params))
+    conn.mav.command_long_send(1, 1, command, 0, *p)
+
+
+def wait_command_ack(conn, command, timeout_s=5.0):
+    deadline = time.time() + timeout_s
+    while time.time() < deadline:
+        ack = conn.recv_match(type="COMMAND_ACK", blocking=True, timeout=0.2)
+        if ack is not None and ack.command == command:
+            return ack
+    return None
+
+
+def wait_statustext(conn, needle, timeout_s=5.0):
+    deadline = time.time() + timeout_s
+    while time.time() < deadline:
+        st = conn.recv_match(type="STATUSTEXT", blocking=True, timeout=0.2)
+        if st is not None and needle in st.text:
+            return st
+    return None

@@ -1,0 +1,424 @@
+// GsCore driven like the node drives it, but with a simulated clock and a MAVLink "ground
+// station" built from the same generated library: telemetry schedule, mission state machine
+// (timeouts, retries, lost ACK), parameters, commands, signing, corrupt input.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+#include "gs_core.h"
+
+using namespace microhard_gs;
+
+namespace {
+
+constexpr uint64_t kUnixStartUs = 1795000000ULL * 1000000ULL;  // any time after 2015
+const GeoPoint kHome{40.11, -88.22, 220.0};
+
+GsConfig base_config() {
+  GsConfig c;
+  c.system_id = 1;
+  c.telemetry_rate_hz = 10.0;
+  c.limits.floor_ft = 100.0;
+  c.limits.ceiling_ft = 400.0;
+  c.limits.max_radius_ft = 3000.0;
+  c.limits.min_speed_ftps = 42.0;
+  c.limits.default_speed_ftps = 60.0;
+  c.airborne_agl_ft = 30.0;
+  c.home_fixed = true;
+  c.home = kHome;
+  c.mission_item_timeout_ms = 1500;
+  c.mission_max_retries = 5;
+  return c;
+}
+
+ParamTable some_params() {
+  ParamTable t;
+  const auto& specs = controller_param_specs();
+  for (size_t i = 0; i < specs.size(); ++i) t.add(specs[i], static_cast<double>(i));
+  return t;
+}
+
+// The ground station side: encodes requests, decodes what the vehicle sent.
+class Gcs {
+ public:
+  explicit Gcs(const SigningKey* key = nullptr) {
+    if (key != nullptr) {
+      std::memcpy(signing_.secret_key, key->data(), 32);
+      signing_.flags = MAVLINK_SIGNING_FLAG_SIGN_OUTGOING;
+      signing_.timestamp = (kUnixStartUs - 1420070400ULL * 1000000ULL) / 10;
+      tx_.signing = &signing_;
+      tx_.signing_streams = &streams_;
+    }
+  }
+  template <typename Encode>
+  std::vector<uint8_t> frame(Encode encode) {
+    mavlink_message_t msg;
+    encode(&msg);
+    uint8_t buf[MAVLINK_MAX_PACKET_LEN];
+    const uint16_t n = mavlink_msg_to_send_buffer(buf, &msg);
+    return std::vector<uint8_t>(buf, buf + n);
+  }
+  std::vector<uint8_t> command(uint16_t cmd, float p1 = 0, float p2 = 0) {
+    return frame([&](mavlink_message_t* m) {
+      mavlink_msg_command_long_pack_status(255, 190, &tx_, m, 1, 1, cmd, 0, p1, p2, 0, 0, 0, 0, 0);
+    });
+  }
+  std::vector<uint8_t> count(uint16_t n) {
+    return frame([&](mavlink_message_t* m) {
+      mavlink_msg_mission_count_pack_status(255, 190, &tx_, m, 1, 1, n, MAV_MISSION_TYPE_MISSION);
+    });
+  }
+  std::vector<uint8_t> item(uint16_t seq, double north_ft, double east_ft, double height_ft) {
+    double lat = 0, lon = 0;
+    north_east_ft_to_geodetic(kHome, NorthEastFt{north_ft, east_ft}, &lat, &lon);
+    return frame([&](mavlink_message_t* m) {
+      mavlink_msg_mission_item_int_pack_status(
+          255, 190, &tx_, m, 1, 1, seq, MAV_FRAME_GLOBAL_RELATIVE_ALT_INT, MAV_CMD_NAV_WAYPOINT, 0, 1, 0, 0, 0, 0,
+          static_cast<int32_t>(std::lround(lat * 1e7)), static_cast<int32_t>(std::lround(lon * 1e7)),
+          static_cast<float>(height_ft * 0.3048), MAV_MISSION_TYPE_MISSION);
+    });
+  }
+
+ private:
+  mavlink_status_t tx_{};
+  mavlink_signing_t signing_{};
+  mavlink_signing_streams_t streams_{};
+};
+
+std::vector<mavlink_message_t> decode_all(const std::vector<std::vector<uint8_t>>& frames) {
+  std::vector<mavlink_message_t> out;
+  mavlink_status_t status{};
+  mavlink_message_t buffer{};
+  for (const auto& f : frames) {
+    for (uint8_t b : f) {
+      mavlink_message_t msg;
+      mavlink_status_t s;
+      if (mavlink_frame_char_buffer(&buffer, &status, b, &msg, &s) == MAVLINK_FRAMING_OK) out.push_back(msg);
+    }
+  }
+  return out;
+}
+
+std::vector<mavlink_message_t> of_type(const std::vector<mavlink_message_t>& msgs, uint32_t id) {
+  std::vector<mavlink_message_t> out;
+  for (const auto& m : msgs) {
+    if (m.msgid == id) out.push_back(m);
+  }
+  return out;
+}
+
+class Bench {
+ public:
+  explicit Bench(const GsConfig& config = base_config()) : core(config, some_params()) {}
+  Clock at(uint64_t ms) const { return Clock{ms, kUnixStartUs + ms * 1000}; }
+  std::vector<mavlink_message_t> feed(const std::vector<uint8_t>& bytes) {
+    core.handle_bytes(bytes.data(), bytes.size(), at(now_ms));
+    return decode_all(core.take_frames());
+  }
+  // Advances the simulated clock in 5 ms steps, as the node's poll loop does.
+  std::vector<mavlink_message_t> run_for(uint64_t ms) {
+    const uint64_t end = now_ms + ms;
+    std::vector<std::vector<uint8_t>> frames;
+    for (; now_ms < end; now_ms += 5) {
+      core.tick(at(now_ms));
+      for (auto& f : core.take_frames()) frames.push_back(std::move(f));
+    }
+    return decode_all(frames);
+  }
+  GsCore core;
+  uint64_t now_ms = 1000;
+};
+
+Telemetry flying() {
+  Telemetry t;
+  t.lat_deg = kHome.lat_deg;
+  t.lon_deg = kHome.lon_deg;
+  t.alt_m = kHome.alt_m + 60.0;
+  t.v_north_mps = 15.0;
+  t.airspeed_ftps = 55.0;
+  t.ins_link_up = true;
+  t.ha_link_up = true;
+  t.computer_in_command = true;
+  return t;
+}
+
+uint8_t ack_of(const mavlink_message_t& m) { return mavlink_msg_mission_ack_get_type(&m); }
+
+}  // namespace
+
+TEST(Telemetry, TenHertzScheduleHoldsOverTenSimulatedSeconds) {
+  Bench b;
+  b.core.set_telemetry(flying(), b.at(b.now_ms));
+  std::vector<mavlink_message_t> msgs;
+  for (int s = 0; s < 10; ++s) {  // keep /data fresh, as the controller does
+    auto part = b.run_for(1000);
+    msgs.insert(msgs.end(), part.begin(), part.end());
+    b.core.set_telemetry(flying(), b.at(b.now_ms));
+  }
+  EXPECT_NEAR(static_cast<double>(of_type(msgs, MAVLINK_MSG_ID_ATTITUDE).size()), 100.0, 1.0);
+  EXPECT_NEAR(static_cast<double>(of_type(msgs, MAVLINK_MSG_ID_GLOBAL_POSITION_INT).size()), 100.0, 1.0);
+  EXPECT_NEAR(static_cast<double>(of_type(msgs, MAVLINK_MSG_ID_HEARTBEAT).size()), 10.0, 1.0);
+  const auto hb = of_type(msgs, MAVLINK_MSG_ID_HEARTBEAT).front();
+  EXPECT_EQ(mavlink_msg_heartbeat_get_type(&hb), MAV_TYPE_FIXED_WING);
+  EXPECT_EQ(hb.compid, MAV_COMP_ID_AUTOPILOT1);
+  const auto hud = of_type(msgs, MAVLINK_MSG_ID_VFR_HUD).back();
+  EXPECT_NEAR(mavlink_msg_vfr_hud_get_airspeed(&hud), 55.0 * 0.3048, 1e-4);
+  const auto pos = of_type(msgs, MAVLINK_MSG_ID_GLOBAL_POSITION_INT).back();
+  EXPECT_EQ(mavlink_msg_global_position_int_get_relative_alt(&pos), 60000);
+}
+
+TEST(Telemetry, StaleDataStopsPositionReportsButNotHeartbeat) {
+  Bench b;
+  b.core.set_telemetry(flying(), b.at(b.now_ms));
+  b.run_for(2500);  // /data went quiet 2.5 s ago
+  const auto msgs = b.run_for(2000);
+  EXPECT_TRUE(of_type(msgs, MAVLINK_MSG_ID_GLOBAL_POSITION_INT).empty());
+  EXPECT_FALSE(of_type(msgs, MAVLINK_MSG_ID_HEARTBEAT).empty());
+  EXPECT_FALSE(of_type(msgs, MAVLINK_MSG_ID_SYS_STATUS).empty());
+}
+
+TEST(MissionUpload, LostItemsAreRequestedAgainAfterTheTimeoutThenTheUploadGivesUp) {
+  Bench b;
+  b.run_for(10);
+  auto out = b.feed(Gcs().count(3));
+  ASSERT_EQ(of_type(out, MAVLINK_MSG_ID_MISSION_REQUEST_INT).size(), 1u);
+  // The GCS never answers: 5 retries at 1.5 s, then a cancel ACK and a STATUSTEXT.
+  auto msgs = b.run_for(1490);
+  EXPECT_TRUE(of_type(msgs, MAVLINK_MSG_ID_MISSION_REQUEST_INT).empty());
+  msgs = b.run_for(1500 * 5 + 100);
+  EXPECT_EQ(of_type(msgs, MAVLINK_MSG_ID_MISSION_REQUEST_INT).size(), 5u);
+  const auto acks = of_type(msgs, MAVLINK_MSG_ID_MISSION_ACK);
+  ASSERT_EQ(acks.size(), 1u);
+  EXPECT_EQ(ack_of(acks[0]), MAV_MISSION_OPERATION_CANCELLED);
+  EXPECT_FALSE(b.core.upload_in_progress());
+  EXPECT_EQ(b.core.counters().mission_uploads_timed_out, 1u);
+}
+
+TEST(MissionUpload, ThreeItemsAcceptedAndPlanPublished) {
+  Bench b;
+  Gcs gcs;
+  b.feed(gcs.count(3));
+  b.feed(gcs.item(0, 0, 0, 150));
+  b.feed(gcs.item(1, 500, 0, 200));
+  const auto out = b.feed(gcs.item(2, 500, 500, 250));
+  const auto acks = of_type(out, MAVLINK_MSG_ID_MISSION_ACK);
+  ASSERT_EQ(acks.size(), 1u);
+  EXPECT_EQ(ack_of(acks[0]), MAV_MISSION_ACCEPTED);
+  const auto plans = b.core.take_way_plans();
+  ASSERT_EQ(plans.size(), 1u);
+  EXPECT_EQ(plans[0].fp, 3);
+  EXPECT_NEAR(plans[0].east_ft[2], 500.0, 0.5);
+  EXPECT_NEAR(plans[0].height_ft[2], 250.0, 0.01);
+}
+
+TEST(MissionUpload, RepeatedLastItemAfterALostAckGetsTheAckAgain) {
+  Bench b;
+  Gcs gcs;
+  b.feed(gcs.count(1));
+  auto first = b.feed(gcs.item(0, 0, 0, 150));
+  ASSERT_EQ(of_type(first, MAVLINK_MSG_ID_MISSION_ACK).size(), 1u);
+  b.run_for(1500);
+  const auto again = b.feed(gcs.item(0, 0, 0, 150));
+  const auto acks = of_type(again, MAVLINK_MSG_ID_MISSION_ACK);
+  ASSERT_EQ(acks.size(), 1u);
+  EXPECT_EQ(ack_of(acks[0]), MAV_MISSION_ACCEPTED);
+  EXPECT_EQ(b.core.take_way_plans().size(), 1u);  // accepted once, not twice
+}
+
+TEST(MissionUpload, DuplicateItemIsAnsweredWithARequestForTheNextOne) {
+  Bench b;
+  Gcs gcs;
+  b.feed(gcs.count(3));
+  b.feed(gcs.item(0, 0, 0, 150));
+  const auto out = b.feed(gcs.item(0, 0, 0, 150));
+  const auto reqs = of_type(out, MAVLINK_MSG_ID_MISSION_REQUEST_INT);
+  ASSERT_EQ(reqs.size(), 1u);
+  EXPECT_EQ(mavlink_msg_mission_request_int_get_seq(&reqs[0]), 1);
+}
+
+TEST(MissionUpload, CeilingViolationRejectsAndKeepsTheOldMission) {
+  Bench b;
+  Gcs gcs;
+  b.feed(gcs.count(1));
+  b.feed(gcs.item(0, 0, 0, 150));
+  b.core.take_way_plans();
+  b.feed(gcs.count(2));
+  b.feed(gcs.item(0, 0, 0, 150));
+  const auto out = b.feed(gcs.item(1, 0, 0, 600));
+  const auto acks = of_type(out, MAVLINK_MSG_ID_MISSION_ACK);
+  ASSERT_EQ(acks.size(), 1u);
+  EXPECT_EQ(ack_of(acks[0]), MAV_MISSION_INVALID_PARAM7);
+  const auto texts = of_type(out, MAVLINK_MSG_ID_STATUSTEXT);
+  ASSERT_FALSE(texts.empty());
+  char text[51] = {};
+  mavlink_msg_statustext_get_text(&texts[0], text);
+  EXPECT_NE(std::string(text).find("ceiling"), std::string::npos) << text;
+  EXPECT_TRUE(b.core.take_way_plans().empty());
+  EXPECT_EQ(b.core.mission_count(), 1);
+}
+
+TEST(MissionUpload, NoHomeMeansDenied) {
+  GsConfig c = base_config();
+  c.home_fixed = false;
+  Bench b(c);
+  Gcs gcs;
+  b.feed(gcs.count(1));
+  const auto acks = of_type(b.feed(gcs.item(0, 0, 0, 150)), MAVLINK_MSG_ID_MISSION_ACK);
+  ASSERT_EQ(acks.size(), 1u);
+  EXPECT_EQ(ack_of(acks[0]), MAV_MISSION_DENIED);
+}
+
+TEST(Parameters, SetIsEchoedAndReportedAsAChangeForTheController) {
+  Bench b;
+  Gcs gcs;
+  const auto out = b.feed(gcs.frame([&](mavlink_message_t* m) {
+    const char id[16] = "mpf_radius";  // the packer copies all 16 bytes
+    mavlink_msg_param_set_pack(255, 190, m, 1, 1, id, 321.0f, MAV_PARAM_TYPE_REAL32);
+  }));
+  const auto values = of_type(out, MAVLINK_MSG_ID_PARAM_VALUE);
+  ASSERT_EQ(values.size(), 1u);
+  EXPECT_FLOAT_EQ(mavlink_msg_param_value_get_param_value(&values[0]), 321.0f);
+  const auto changes = b.core.take_param_changes();
+  ASSERT_EQ(changes.size(), 1u);
+  EXPECT_EQ(changes[0].ros_name, "mpf_radius");
+  EXPECT_DOUBLE_EQ(changes[0].value, 321.0);
+}
+
+TEST(Parameters, NonIntegerForAnIntegerParameterIsRefusedButEchoed) {
+  Bench b;
+  Gcs gcs;
+  const auto out = b.feed(gcs.frame([&](mavlink_message_t* m) {
+    const char id[16] = "path_select";
+    mavlink_msg_param_set_pack(255, 190, m, 1, 1, id, 2.5f, MAV_PARAM_TYPE_REAL32);
+  }));
+  EXPECT_EQ(of_type(out, MAVLINK_MSG_ID_PARAM_VALUE).size(), 1u);
+  EXPECT_TRUE(b.core.take_param_changes().empty());
+}
+
+TEST(Parameters, ListSendsEveryParameterWithItsIndex) {
+  Bench b;
+  const auto out = b.feed(Gcs().frame([&](mavlink_message_t* m) { mavlink_msg_param_request_list_pack(255, 190, m, 1, 1); }));
+  const auto values = of_type(out, MAVLINK_MSG_ID_PARAM_VALUE);
+  ASSERT_EQ(values.size(), controller_param_specs().size());
+  EXPECT_EQ(mavlink_msg_param_value_get_param_index(&values.back()), values.size() - 1);
+}
+
+TEST(Commands, SelectHaIsForwardedAndAcknowledged) {
+  Bench b;
+  const auto out = b.feed(Gcs().command(MAV_CMD_DO_SET_MODE, MAV_MODE_FLAG_CUSTOM_MODE_ENABLED, 1));
+  const auto acks = of_type(out, MAVLINK_MSG_ID_COMMAND_ACK);
+  ASSERT_EQ(acks.size(), 1u);
+  EXPECT_EQ(mavlink_msg_command_ack_get_result(&acks[0]), MAV_RESULT_ACCEPTED);
+  const auto reqs = b.core.take_operator_requests();
+  ASSERT_EQ(reqs.size(), 1u);
+  EXPECT_EQ(reqs[0], OperatorRequest::kSelectHa);
+}
+
+TEST(Commands, UnknownCommandIsUnsupported) {
+  Bench b;
+  const auto acks = of_type(b.feed(Gcs().command(MAV_CMD_NAV_LAND)), MAVLINK_MSG_ID_COMMAND_ACK);
+  ASSERT_EQ(acks.size(), 1u);
+  EXPECT_EQ(mavlink_msg_command_ack_get_result(&acks[0]), MAV_RESULT_UNSUPPORTED);
+  EXPECT_TRUE(b.core.take_operator_requests().empty());
+}
+
+TEST(Decision, SwitchToHaIsAnnouncedWithItsReasons) {
+  Bench b;
+  DecisionInfo d;
+  d.controller = 0;
+  b.core.set_decision(d);
+  EXPECT_TRUE(decode_all(b.core.take_frames()).empty());  // the first status is no switch
+  d.controller = 1;
+  d.reasons_at_switch = 2 | 128;  // DEADLINE_MISS, CEILING
+  b.core.set_decision(d);
+  const auto texts = of_type(decode_all(b.core.take_frames()), MAVLINK_MSG_ID_STATUSTEXT);
+  ASSERT_EQ(texts.size(), 1u);
+  char text[51] = {};
+  mavlink_msg_statustext_get_text(&texts[0], text);
+  EXPECT_STREQ(text, "Controller HP->HA: DEADLINE_MISS,CEILING");
+}
+
+TEST(Decision, LongReasonListIsSentInChunks) {
+  Bench b;
+  DecisionInfo d;
+  b.core.set_decision(d);
+  d.controller = 3;
+  d.reasons_at_switch = 0x1FFF;  // every reason
+  b.core.set_decision(d);
+  const auto texts = of_type(decode_all(b.core.take_frames()), MAVLINK_MSG_ID_STATUSTEXT);
+  ASSERT_GE(texts.size(), 3u);
+  std::string joined;
+  for (const auto& t : texts) {
+    EXPECT_NE(mavlink_msg_statustext_get_id(&t), 0);
+    char text[51] = {};
+    mavlink_msg_statustext_get_text(&t, text);
+    joined += text;
+  }
+  EXPECT_NE(joined.find("GROUND_COMMAND"), std::string::npos) << joined;
+  EXPECT_EQ(mavlink_msg_statustext_get_severity(&texts[0]), MAV_SEVERITY_CRITICAL);
+}
+
+TEST(Signing, UnsignedCommandIsRefusedWithDeniedAndCounted) {
+  SigningKey key{};
+  for (size_t i = 0; i < key.size(); ++i) key[i] = static_cast<uint8_t>(i + 1);
+  GsConfig c = base_config();
+  c.signing = true;
+  c.signing_key = key;
+  Bench b(c);
+  b.run_for(10);
+  Gcs signed_gcs(&key);
+  auto out = b.feed(signed_gcs.command(MAV_CMD_DO_SET_MODE, MAV_MODE_FLAG_CUSTOM_MODE_ENABLED, 1));
+  auto acks = of_type(out, MAVLINK_MSG_ID_COMMAND_ACK);
+  ASSERT_EQ(acks.size(), 1u);
+  EXPECT_EQ(mavlink_msg_command_ack_get_result(&acks[0]), MAV_RESULT_ACCEPTED);
+  EXPECT_EQ(b.core.take_operator_requests().size(), 1u);
+
+  b.run_for(100);
+  out = b.feed(Gcs().command(MAV_CMD_DO_SET_MODE, MAV_MODE_FLAG_CUSTOM_MODE_ENABLED, 1));
+  acks = of_type(out, MAVLINK_MSG_ID_COMMAND_ACK);
+  ASSERT_EQ(acks.size(), 1u);
+  EXPECT_EQ(mavlink_msg_command_ack_get_result(&acks[0]), MAV_RESULT_DENIED);
+  EXPECT_TRUE(b.core.take_operator_requests().empty());
+  EXPECT_EQ(b.core.counters().refused_unsigned, 1u);
+
+  SigningKey wrong = key;
+  wrong[0] ^= 0xFF;
+  b.feed(Gcs(&wrong).count(2));
+  EXPECT_FALSE(b.core.upload_in_progress());
+  EXPECT_EQ(b.core.counters().refused_bad_signature, 1u);
+}
+
+TEST(Robustness, CorruptFramesAreCountedAndTheNextGoodFrameStillParses) {
+  Bench b;
+  auto bad = Gcs().command(MAV_CMD_DO_SET_MODE, MAV_MODE_FLAG_CUSTOM_MODE_ENABLED, 1);
+  bad[bad.size() - 1] ^= 0x55;
+  b.feed(bad);
+  EXPECT_EQ(b.core.counters().frames_bad_crc, 1u);
+  EXPECT_TRUE(b.core.take_operator_requests().empty());
+  b.feed(Gcs().command(MAV_CMD_DO_SET_MODE, MAV_MODE_FLAG_CUSTOM_MODE_ENABLED, 0));
+  EXPECT_EQ(b.core.take_operator_requests().size(), 1u);
+}
+
+TEST(SigningKeyFile, HexKeyParsesAndGarbageIsRefused) {
+  SigningKey key{};
+  std::string error;
+  EXPECT_TRUE(parse_signing_key(std::string(64, 'a') + "\n", &key, &error));
+  EXPECT_EQ(key[0], 0xaa);
+  EXPECT_FALSE(parse_signing_key(std::string(63, 'a'), &key, &error));
+  EXPECT_FALSE(parse_signing_key(std::string(62, 'a') + "zz", &key, &error));
+  EXPECT_FALSE(parse_signing_key(std::string(64, '0'), &key, &error));
+}
+
+TEST(Parameters, LqrWeightIsReadOnlyFromTheGround) {
+  Bench b;
+  const auto out = b.feed(Gcs().frame([&](mavlink_message_t* m) {
+    const char id[16] = "Q_weight";
+    mavlink_msg_param_set_pack(255, 190, m, 1, 1, id, 99.0f, MAV_PARAM_TYPE_REAL32);
+  }));
+  const auto values = of_type(out, MAVLINK_MSG_ID_PARAM_VALUE);
+  ASSERT_EQ(values.size(), 1u);
+  EXPECT_NE(mavlink_msg_param_value_get_param_value(&values[0]), 99.0f);  // echoes the value in force
+  EXPECT_TRUE(b.core.take_param_changes().empty());
+}

@@ -1,0 +1,139 @@
+// Mission validation and the lat/lon -> feet-from-home conversion, without any link.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "geo.h"
+#include "mavlink_all.h"
+#include "mission.h"
+
+using namespace microhard_gs;
+
+namespace {
+const GeoPoint kHome{40.1100, -88.2200, 220.0};
+
+MissionLimits limits() {
+  MissionLimits l;
+  l.floor_ft = 100.0;
+  l.ceiling_ft = 400.0;
+  l.max_radius_ft = 3000.0;
+  l.min_speed_ftps = 42.0;
+  l.default_speed_ftps = 60.0;
+  return l;
+}
+
+MissionItem waypoint(uint16_t seq, double north_ft, double east_ft, double height_ft) {
+  double lat = 0, lon = 0;
+  north_east_ft_to_geodetic(kHome, NorthEastFt{north_ft, east_ft}, &lat, &lon);
+  MissionItem it;
+  it.seq = seq;
+  it.frame = MAV_FRAME_GLOBAL_RELATIVE_ALT_INT;
+  it.command = MAV_CMD_NAV_WAYPOINT;
+  it.x = static_cast<int32_t>(std::lround(lat * 1e7));
+  it.y = static_cast<int32_t>(std::lround(lon * 1e7));
+  it.z = static_cast<float>(height_ft / kFeetPerMetre);
+  return it;
+}
+}  // namespace
+
+TEST(Geo, OneArcMinuteNorthIsAboutOneNauticalMile) {
+  const NorthEastFt ne = geodetic_to_north_east_ft(kHome, kHome.lat_deg + 1.0 / 60.0, kHome.lon_deg);
+  EXPECT_NEAR(ne.north_ft, 6076.0, 15.0);  // a nautical mile, give or take the ellipsoid
+  EXPECT_NEAR(ne.east_ft, 0.0, 1e-9);
+}
+
+TEST(Geo, EastShrinksWithCosineOfLatitude) {
+  const NorthEastFt at_home = geodetic_to_north_east_ft(kHome, kHome.lat_deg, kHome.lon_deg + 0.01);
+  const GeoPoint equator{0.0001, -88.22, 0.0};
+  const NorthEastFt at_equator = geodetic_to_north_east_ft(equator, equator.lat_deg, equator.lon_deg + 0.01);
+  EXPECT_NEAR(at_home.east_ft / at_equator.east_ft, std::cos(kHome.lat_deg * M_PI / 180.0), 0.002);
+}
+
+TEST(Geo, RoundTripIsExactToAnInch) {
+  double lat = 0, lon = 0;
+  north_east_ft_to_geodetic(kHome, NorthEastFt{-1234.5, 2345.6}, &lat, &lon);
+  const NorthEastFt back = geodetic_to_north_east_ft(kHome, lat, lon);
+  EXPECT_NEAR(back.north_ft, -1234.5, 0.08);
+  EXPECT_NEAR(back.east_ft, 2345.6, 0.08);
+}
+
+TEST(Mission, TenWaypointsBecomeAFlightPlanInFeetFromHome) {
+  MissionItem items[10];
+  for (int i = 0; i < 10; ++i) items[i] = waypoint(static_cast<uint16_t>(i), 100.0 * i, -50.0 * i, 150.0 + 10 * i);
+  WayPlan plan;
+  const MissionVerdict v = build_way_plan(items, 10, kHome, limits(), &plan);
+  ASSERT_TRUE(v.ok()) << v.reason;
+  ASSERT_EQ(plan.fp, 10);
+  EXPECT_NEAR(plan.north_ft[7], 700.0, 0.5);
+  EXPECT_NEAR(plan.east_ft[7], -350.0, 0.5);
+  EXPECT_NEAR(plan.height_ft[7], 220.0, 0.01);
+  EXPECT_DOUBLE_EQ(plan.velocity_ftps[7], 60.0);
+}
+
+TEST(Mission, WaypointAt600FtIsRejectedNamingTheCeiling) {
+  MissionItem items[2] = {waypoint(0, 0, 0, 200), waypoint(1, 100, 0, 600)};
+  WayPlan plan;
+  plan.fp = 7;  // stands for the mission already held
+  const MissionVerdict v = build_way_plan(items, 2, kHome, limits(), &plan);
+  EXPECT_EQ(v.result, MAV_MISSION_INVALID_PARAM7);
+  EXPECT_NE(v.reason.find("ceiling"), std::string::npos) << v.reason;
+  EXPECT_EQ(plan.fp, 7);  // untouched
+}
+
+TEST(Mission, WaypointBelowTheFloorIsRejected) {
+  const MissionVerdict v = check_mission_item(waypoint(3, 0, 0, 50), kHome, limits());
+  EXPECT_EQ(v.result, MAV_MISSION_INVALID_PARAM7);
+  EXPECT_NE(v.reason.find("floor"), std::string::npos);
+}
+
+TEST(Mission, WaypointBeyondTheRadiusIsRejected) {
+  const MissionVerdict v = check_mission_item(waypoint(0, 2500, 2500, 200), kHome, limits());
+  EXPECT_EQ(v.result, MAV_MISSION_INVALID_PARAM5_X);
+  EXPECT_NE(v.reason.find("from home"), std::string::npos);
+}
+
+TEST(Mission, AmslFrameIsMeasuredFromHomeAltitude) {
+  MissionItem it = waypoint(0, 0, 0, 0);
+  it.frame = MAV_FRAME_GLOBAL_INT;
+  it.z = static_cast<float>(kHome.alt_m + 500.0 / kFeetPerMetre);  // 500 ft above home
+  EXPECT_EQ(check_mission_item(it, kHome, limits()).result, MAV_MISSION_INVALID_PARAM7);
+  it.z = static_cast<float>(kHome.alt_m + 300.0 / kFeetPerMetre);
+  EXPECT_TRUE(check_mission_item(it, kHome, limits()).ok());
+}
+
+TEST(Mission, ThirtyThreeItemsDoNotFit) {
+  MissionItem items[kMaxMissionItems];
+  WayPlan plan;
+  EXPECT_EQ(build_way_plan(items, 33, kHome, limits(), &plan).result, MAV_MISSION_NO_SPACE);
+}
+
+TEST(Mission, ChangeSpeedAppliesToFollowingLegsAndStallIsRefused) {
+  MissionItem speed;
+  speed.seq = 1;
+  speed.command = MAV_CMD_DO_CHANGE_SPEED;
+  speed.frame = MAV_FRAME_MISSION;
+  speed.param2 = 25.0f;  // m/s
+  MissionItem items[3] = {waypoint(0, 0, 0, 200), speed, waypoint(2, 300, 0, 200)};
+  WayPlan plan;
+  ASSERT_TRUE(build_way_plan(items, 3, kHome, limits(), &plan).ok());
+  ASSERT_EQ(plan.fp, 2);
+  EXPECT_DOUBLE_EQ(plan.velocity_ftps[0], 60.0);
+  EXPECT_NEAR(plan.velocity_ftps[1], 25.0 * kFeetPerMetre, 1e-4);
+  items[1].param2 = 10.0f;  // 33 ft/s, below the 42 ft/s stall
+  EXPECT_EQ(build_way_plan(items, 3, kHome, limits(), &plan).result, MAV_MISSION_INVALID_PARAM2);
+}
+
+TEST(Mission, TakeoffAndOtherFramesAreUnsupported) {
+  MissionItem it = waypoint(0, 0, 0, 200);
+  it.command = MAV_CMD_NAV_TAKEOFF;
+  EXPECT_EQ(check_mission_item(it, kHome, limits()).result, MAV_MISSION_UNSUPPORTED);
+  it = waypoint(0, 0, 0, 200);
+  it.frame = MAV_FRAME_LOCAL_NED;
+  EXPECT_EQ(check_mission_item(it, kHome, limits()).result, MAV_MISSION_UNSUPPORTED_FRAME);
+}
+
+TEST(Mission, NotANumberAltitudeIsRejected) {
+  MissionItem it = waypoint(0, 0, 0, 200);
+  it.z = NAN;
+  EXPECT_EQ(check_mission_item(it, kHome, limits()).result, MAV_MISSION_INVALID_PARAM7);
+}

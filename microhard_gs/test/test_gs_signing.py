@@ -1,0 +1,85 @@
+"""With a MAVLink 2 signing key configured, only correctly signed messages change anything:
+unsigned and badly signed ones are refused and counted, while read-only requests still work."""
+import os
+import sys
+
+import pytest
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import gs_harness as gh  # noqa: E402
+from gs_harness import mavlink  # noqa: E402
+
+KEY = bytes(range(1, 33))
+WRONG_KEY = bytes(range(101, 133))
+SELECT_HA = (mavlink.MAV_MODE_FLAG_CUSTOM_MODE_ENABLED, 1)
+
+
+@pytest.fixture(scope="module")
+def signed_gs(tmp_path_factory):
+    key_file = tmp_path_factory.mktemp("signing") / "gs.key"
+    key_file.write_text(KEY.hex() + "\n")
+    # pymavlink checks every signature in Python: a low telemetry rate keeps its backlog short.
+    system = gh.GsSystem(launch_args={"signing_key_file": str(key_file), "telemetry_rate_hz": 2.0})
+    system.conn.setup_signing(KEY, sign_outgoing=True)
+    yield system
+    system.stop()
+
+
+def test_signed_command_is_accepted_and_forwarded(signed_gs):
+    gs = signed_gs
+    gs.drain_events()
+    gh.command_long(gs.conn, mavlink.MAV_CMD_DO_SET_MODE, *SELECT_HA)
+    ack = gh.wait_command_ack(gs.conn, mavlink.MAV_CMD_DO_SET_MODE)
+    assert ack is not None and ack.result == mavlink.MAV_RESULT_ACCEPTED
+    event = gs.wait_event(lambda e: e["topic"] == "operator_command", 5)
+    assert event is not None and event["command"] == 2
+
+
+def test_unsigned_command_is_refused_and_counted(signed_gs):
+    gs = signed_gs
+    before = int(gs.diagnostic("refused_unsigned"))
+    gs.drain_events()
+    gs.conn.mav.signing.sign_outgoing = False
+    try:
+        gh.command_long(gs.conn, mavlink.MAV_CMD_DO_SET_MODE, *SELECT_HA)
+        ack = gh.wait_command_ack(gs.conn, mavlink.MAV_CMD_DO_SET_MODE)
+    finally:
+        gs.conn.mav.signing.sign_outgoing = True
+    assert ack is not None and ack.result == mavlink.MAV_RESULT_DENIED
+    assert gs.wait_event(lambda e: e["topic"] == "operator_command", 1.5) is None
+    assert int(gs.diagnostic("refused_unsigned")) >= before + 1
+
+
+def test_badly_signed_mission_is_refused_and_counted(signed_gs):
+    gs = signed_gs
+    before = int(gs.diagnostic("refused_bad_signature"))
+    gs.drain_events()
+    gs.conn.mav.signing.secret_key = WRONG_KEY
+    try:
+        gs.conn.mav.mission_count_send(1, 1, 3, mavlink.MAV_MISSION_TYPE_MISSION)
+        request = gs.conn.recv_match(type=["MISSION_REQUEST_INT", "MISSION_REQUEST"], blocking=True, timeout=1.5)
+    finally:
+        gs.conn.mav.signing.secret_key = KEY
+    assert request is None  # the upload never started
+    assert int(gs.diagnostic("refused_bad_signature")) >= before + 1
+
+
+def test_unsigned_read_only_requests_still_work(signed_gs):
+    gs = signed_gs
+    gs.conn.mav.signing.sign_outgoing = False
+    try:
+        gs.conn.mav.param_request_read_send(1, 1, b"mpf_radius", -1)
+        value = gs.conn.recv_match(type="PARAM_VALUE", blocking=True, timeout=5)
+    finally:
+        gs.conn.mav.signing.sign_outgoing = True
+    assert value is not None and value.param_value == pytest.approx(250.0)
+
+
+def test_signed_mission_upload_is_accepted(signed_gs):
+    gs = signed_gs
+    gs.drain_events()
+    items = [gh.waypoint(i, 100.0 * i, 0.0, 200.0) for i in range(4)]
+    ack = gh.upload_mission(gs.conn, items)
+    assert ack is not None and ack.type == mavlink.MAV_MISSION_ACCEPTED
+    event = gs.wait_event(lambda e: e["topic"] == "way", 5)
+    assert event is not None and event["fp"] == 4

@@ -1,0 +1,239 @@
+"""A real MAVLink client (pymavlink) talks to microhard_gs over UDP on loopback: the vehicle,
+its parameters, missions (good and bad), operator commands and decision-logic announcements."""
+import math
+import os
+import subprocess
+import sys
+import time
+
+import pytest
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import gs_harness as gh  # noqa: E402
+from gs_harness import mavlink  # noqa: E402
+
+TEN = [(100.0 * i, 80.0 * (i % 3), 150.0 + 10.0 * i) for i in range(10)]
+
+
+@pytest.fixture(scope="module")
+def gs():
+    system = gh.GsSystem()
+    yield system
+    system.stop()
+
+
+def hold_ten_waypoint_mission(gs):
+    """Uploads the 10-waypoint mission and waits until its plan is on /way."""
+    gs.drain_events()
+    ack = gh.upload_mission(gs.conn, ten_waypoint_mission())
+    assert ack is not None and ack.type == mavlink.MAV_MISSION_ACCEPTED
+    assert gs.wait_event(lambda e: e["topic"] == "way", 5) is not None
+    gs.drain_events()
+
+
+def ten_waypoint_mission():
+    return [gh.waypoint(i, n, e, h) for i, (n, e, h) in enumerate(TEN)]
+
+
+def test_ground_station_sees_a_fixed_wing_vehicle_with_telemetry(gs):
+    hb = gs.conn.wait_heartbeat(timeout=5)
+    assert hb.type == mavlink.MAV_TYPE_FIXED_WING
+    assert hb.autopilot == mavlink.MAV_AUTOPILOT_GENERIC
+    assert (hb.get_srcSystem(), hb.get_srcComponent()) == (1, 1)
+    seen = {}
+    deadline = time.time() + 5
+    wanted = {"SYS_STATUS", "ATTITUDE", "GLOBAL_POSITION_INT", "VFR_HUD", "GPS_RAW_INT", "HOME_POSITION"}
+    while time.time() < deadline and not wanted <= set(seen):
+        m = gs.conn.recv_match(blocking=True, timeout=0.5)
+        if m is not None:
+            seen[m.get_type()] = m
+    assert wanted <= set(seen), "missing %s" % (wanted - set(seen))
+    pos = seen["GLOBAL_POSITION_INT"]
+    assert pos.lat == pytest.approx(gh.HOME[0] * 1e7, abs=2)
+    assert pos.lon == pytest.approx(gh.HOME[1] * 1e7, abs=2)
+    assert seen["VFR_HUD"].airspeed == pytest.approx(55.0 / gh.FT_PER_M, rel=1e-3)
+    assert seen["GPS_RAW_INT"].fix_type == mavlink.GPS_FIX_TYPE_3D_FIX
+    assert seen["HOME_POSITION"].latitude == pytest.approx(gh.HOME[0] * 1e7, abs=2)
+
+
+def test_autopilot_version_advertises_mission_int_and_mavlink2(gs):
+    gh.command_long(gs.conn, mavlink.MAV_CMD_REQUEST_MESSAGE, mavlink.MAVLINK_MSG_ID_AUTOPILOT_VERSION)
+    ack = gh.wait_command_ack(gs.conn, mavlink.MAV_CMD_REQUEST_MESSAGE)
+    assert ack is not None and ack.result == mavlink.MAV_RESULT_ACCEPTED
+    version = gs.conn.recv_match(type="AUTOPILOT_VERSION", blocking=True, timeout=5)
+    assert version is not None
+    assert version.capabilities & mavlink.MAV_PROTOCOL_CAPABILITY_MISSION_INT
+    assert version.capabilities & mavlink.MAV_PROTOCOL_CAPABILITY_MAVLINK2
+
+
+def download_parameters(conn, timeout_s=10.0):
+    conn.mav.param_request_list_send(1, 1)
+    got = {}
+    count = None
+    deadline = time.time() + timeout_s
+    while time.time() < deadline and (count is None or len(got) < count):
+        m = conn.recv_match(type="PARAM_VALUE", blocking=True, timeout=0.5)
+        if m is None:
+            if count is not None:  # ask for what is missing, as QGroundControl does
+                for index in set(range(count)) - set(got):
+                    conn.mav.param_request_read_send(1, 1, b"", index)
+            continue
+        count = m.param_count
+        got[m.param_index] = m
+    return count, got
+
+
+def decode(m):
+    if m.param_type == mavlink.MAV_PARAM_TYPE_INT32:
+        import struct
+        return struct.unpack("<i", struct.pack("<f", m.param_value))[0]
+    return m.param_value
+
+
+def test_parameter_download_completes_with_the_controller_tunables(gs):
+    count, got = download_parameters(gs.conn)
+    assert count == 45
+    assert sorted(got) == list(range(45))
+    by_id = {m.param_id: decode(m) for m in got.values()}
+    assert by_id["mpf_radius"] == pytest.approx(250.0)
+    assert by_id["path_select"] == 3
+    assert by_id["GUIDANCE_SELECT"] == 2
+    assert by_id["dt"] == pytest.approx(0.05)
+    assert by_id["MIN_AIRSPD_CMD"] == pytest.approx(50.0)
+
+
+def test_parameter_read_by_name_and_set_is_echoed_and_reaches_the_controller(gs):
+    gs.conn.mav.param_request_read_send(1, 1, b"KpLon", -1)
+    m = gs.conn.recv_match(type="PARAM_VALUE", blocking=True, timeout=5)
+    assert m.param_id == "KpLon" and m.param_value == pytest.approx(0.11)
+    gs.conn.mav.param_set_send(1, 1, b"KpLon", 0.125, mavlink.MAV_PARAM_TYPE_REAL32)
+    echo = gs.conn.recv_match(type="PARAM_VALUE", blocking=True, timeout=5)
+    assert echo.param_id == "KpLon" and echo.param_value == pytest.approx(0.125)
+    out = subprocess.run(["rosparam", "get", "/controller_DG808/KpLon"], env=gs.env,
+                         capture_output=True, text=True, timeout=30)
+    assert float(out.stdout) == pytest.approx(0.125)
+
+
+def test_lqr_weight_cannot_be_changed_from_the_ground(gs):
+    gs.conn.mav.param_set_send(1, 1, b"Q_weight", 99.0, mavlink.MAV_PARAM_TYPE_REAL32)
+    echo = gs.conn.recv_match(type="PARAM_VALUE", blocking=True, timeout=5)
+    assert echo.param_id == "Q_weight" and echo.param_value == pytest.approx(10.0)
+
+
+def assert_plan_is_ten(event, tolerance_ft=0.5):
+    assert event is not None, "no flight plan on /way"
+    assert event["fp"] == 10
+    for i, (n, e, h) in enumerate(TEN):
+        assert event["north"][i] == pytest.approx(n, abs=tolerance_ft)
+        assert event["east"][i] == pytest.approx(e, abs=tolerance_ft)
+        assert event["height"][i] == pytest.approx(h, abs=0.01)
+        assert event["velocity"][i] == pytest.approx(60.0)
+
+
+def test_ten_waypoint_mission_is_accepted_and_appears_on_way(gs):
+    gs.drain_events()
+    ack = gh.upload_mission(gs.conn, ten_waypoint_mission())
+    assert ack is not None and ack.type == mavlink.MAV_MISSION_ACCEPTED
+    assert_plan_is_ten(gs.wait_event(lambda e: e["topic"] == "way", 5))
+    items = gh.download_mission(gs.conn)
+    assert [(i.seq, i.x, i.y) for i in items] == [(m.seq, m.x, m.y) for m in ten_waypoint_mission()]
+    current = gs.conn.recv_match(type="MISSION_CURRENT", blocking=True, timeout=5)
+    assert current is not None and current.seq == 0
+
+
+def test_waypoint_at_600_ft_is_rejected_and_the_old_mission_kept(gs):
+    hold_ten_waypoint_mission(gs)
+    bad = [gh.waypoint(0, 0, 0, 200), gh.waypoint(1, 300, 0, 600), gh.waypoint(2, 600, 0, 200)]
+    ack = gh.upload_mission(gs.conn, bad)
+    assert ack is not None and ack.type == mavlink.MAV_MISSION_INVALID_PARAM7
+    assert gh.wait_statustext(gs.conn, "ceiling") is not None
+    assert len(gh.download_mission(gs.conn)) == 10
+    assert gs.wait_event(lambda e: e["topic"] == "way", 1.0) is None
+
+
+def test_mission_of_33_items_is_rejected_and_the_old_mission_kept(gs):
+    hold_ten_waypoint_mission(gs)
+    items = [gh.waypoint(i, 10.0 * i, 0, 200) for i in range(33)]
+    ack = gh.upload_mission(gs.conn, items)
+    assert ack is not None and ack.type == mavlink.MAV_MISSION_NO_SPACE
+    assert gh.wait_statustext(gs.conn, "33 items") is not None
+    assert len(gh.download_mission(gs.conn)) == 10
+    assert gs.wait_event(lambda e: e["topic"] == "way", 1.0) is None
+
+
+def test_legacy_mission_item_upload_is_accepted(gs):
+    gs.drain_events()
+    ack = gh.upload_mission(gs.conn, ten_waypoint_mission(), legacy=True)
+    assert ack is not None and ack.type == mavlink.MAV_MISSION_ACCEPTED
+    # float32 degrees resolve about 2 ft at this longitude: why MISSION_ITEM_INT exists
+    assert_plan_is_ten(gs.wait_event(lambda e: e["topic"] == "way", 5), tolerance_ft=3.0)
+
+
+def test_clearing_the_mission_publishes_an_empty_plan(gs):
+    hold_ten_waypoint_mission(gs)
+    gs.conn.mav.mission_clear_all_send(1, 1, mavlink.MAV_MISSION_TYPE_MISSION)
+    ack = gs.conn.recv_match(type="MISSION_ACK", blocking=True, timeout=5)
+    assert ack.type == mavlink.MAV_MISSION_ACCEPTED
+    event = gs.wait_event(lambda e: e["topic"] == "way", 5)
+    assert event is not None and event["fp"] == 0
+    assert gh.download_mission(gs.conn) == []
+
+
+@pytest.mark.parametrize("command,params,expected", [
+    (mavlink.MAV_CMD_DO_SET_MODE, (mavlink.MAV_MODE_FLAG_CUSTOM_MODE_ENABLED, 1), 2),  # SELECT_HA
+    (mavlink.MAV_CMD_DO_SET_MODE, (mavlink.MAV_MODE_FLAG_CUSTOM_MODE_ENABLED, 0), 1),  # SELECT_HP
+    (mavlink.MAV_CMD_PREFLIGHT_REBOOT_SHUTDOWN, (0, 1), 3),                           # RESTART_HP
+    (mavlink.MAV_CMD_ACTUATOR_TEST, (), 4),                                            # SELF_TEST
+])
+def test_operator_command_is_acknowledged_and_forwarded_to_the_ha(gs, command, params, expected):
+    gs.drain_events()
+    gh.command_long(gs.conn, command, *params)
+    ack = gh.wait_command_ack(gs.conn, command)
+    assert ack is not None and ack.result == mavlink.MAV_RESULT_ACCEPTED
+    event = gs.wait_event(lambda e: e["topic"] == "operator_command", 5)
+    assert event is not None and event["command"] == expected
+
+
+def test_rebooting_the_ha_from_the_ground_is_denied(gs):
+    gs.drain_events()
+    gh.command_long(gs.conn, mavlink.MAV_CMD_PREFLIGHT_REBOOT_SHUTDOWN, 1, 0)
+    ack = gh.wait_command_ack(gs.conn, mavlink.MAV_CMD_PREFLIGHT_REBOOT_SHUTDOWN)
+    assert ack is not None and ack.result == mavlink.MAV_RESULT_DENIED
+    assert gs.wait_event(lambda e: e["topic"] == "operator_command", 1.0) is None
+
+
+def test_decision_switch_to_ha_reaches_the_operator_naming_the_reasons(gs):
+    gs.send_decision(0, 0)
+    gs.wait_event(lambda e: e["topic"] == "decision_sent", 5)
+    time.sleep(0.3)
+    gs.send_decision(1, 1 | 64)  # NO_COMMAND and STALL
+    st = gh.wait_statustext(gs.conn, "HP->HA")
+    assert st is not None
+    assert "NO_COMMAND" in st.text and "STALL" in st.text
+    assert st.severity == mavlink.MAV_SEVERITY_WARNING
+    hb = gs.conn.recv_match(type="HEARTBEAT", blocking=True, timeout=3)
+    assert hb.custom_mode == 1
+
+
+def test_self_test_in_the_air_is_refused(gs):
+    gs.send_decision(0, 0, altitude_agl_ft=150.0)
+    gs.wait_event(lambda e: e["topic"] == "decision_sent", 5)
+    time.sleep(0.3)
+    gs.drain_events()
+    gh.command_long(gs.conn, mavlink.MAV_CMD_ACTUATOR_TEST)
+    ack = gh.wait_command_ack(gs.conn, mavlink.MAV_CMD_ACTUATOR_TEST)
+    assert ack is not None and ack.result == mavlink.MAV_RESULT_TEMPORARILY_REJECTED
+    assert gs.wait_event(lambda e: e["topic"] == "operator_command", 1.0) is None
+    gs.send_decision(0, 0, altitude_agl_ft=0.0)
+
+
+def test_corrupt_frames_are_counted_and_dropped_and_the_link_keeps_working(gs):
+    before = int(gs.diagnostic("frames_bad_crc"))
+    frame = bytearray(gs.conn.mav.param_request_list_encode(1, 1).pack(gs.conn.mav))
+    frame[-1] ^= 0xFF  # break the CRC
+    for _ in range(5):
+        gs.conn.write(bytes(frame))
+    time.sleep(1.5)
+    assert int(gs.diagnostic("frames_bad_crc")) >= before + 5
+    count, got = download_parameters(gs.conn)
+    assert count == 45 and len(got) == 45
