@@ -296,6 +296,28 @@ TEST(HaDecision, FrozenSequenceNumberSwitches) {
   EXPECT_EQ(t.out().last_seq, stuck.seq);
 }
 
+TEST(HaDecision, SequenceNumberGoingBackwardsSwitches) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  const uint32_t ahead = t.NextSeq();
+  t.StepWith(MakeCommand(ahead, 0.5f, 1.0f, 1.0f, 0.0f));
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HP);
+  t.StepWith(MakeCommand(ahead - 5u, 0.5f, 1.0f, 1.0f, 0.0f));  // a stale command replayed late
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HA);
+  EXPECT_EQ(t.out().reasons_at_switch, HA_REASON_FROZEN);
+}
+
+TEST(HaDecision, SequenceNumberWrapAroundIsNotAFault) {
+  Timeline t;
+  t.seq = 0xFFFFFFF0u;  // the HP's counter wraps while it earns control and while it flies
+  ASSERT_GT(t.ReachHp(), 0);
+  for (int i = 0; i < 40; ++i) {
+    t.StepWith(MakeCommand(t.NextSeq(), 0.5f, 1.0f, 1.0f, 0.0f));
+    ASSERT_EQ(t.controller(), HA_CONTROLLER_HP) << "seq " << t.seq;
+  }
+  EXPECT_LT(t.seq, 0x1000u);
+}
+
 TEST(HaDecision, CorruptCrcSwitches) {
   Timeline t;
   ASSERT_GT(t.ReachHp(), 0);

@@ -37,7 +37,10 @@ static uint32_t period_dt_us(const HaCore *core, uint32_t now_us) {
 static void track_command(HaCore *core, const HaInputs *in, uint32_t now_us, uint32_t dt_us,
                           HaCmdFacts *f) {
   if (in->hp_cmd_count != core->seen_cmd_count) {
-    core->frozen = (uint8_t)(core->have_seq && in->hp_cmd.seq == core->last_seq);
+    /* A command must be ahead of the last one, modulo 2^32: a repeat is a frozen HP, a step
+     * back is a stale or replayed command. Forward jumps are lost frames, not faults. */
+    const uint32_t advance = in->hp_cmd.seq - core->last_seq;
+    core->frozen = (uint8_t)(core->have_seq && (advance == 0u || advance > 0x7FFFFFFFu));
     core->last_seq = in->hp_cmd.seq;
     core->have_seq = 1u;
     core->seen_cmd_count = in->hp_cmd_count;
