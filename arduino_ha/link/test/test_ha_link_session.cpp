@@ -1,0 +1,258 @@
+// The Due's link session as the host sees it: topic negotiation answers the documented topic
+// request, time sync, commands handed to the core with their arrival time, logs, parameters,
+// and a silent or departing host noticed.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "ha_link.h"
+#include "link_test_util.h"
+
+using link_test::Bytes;
+using link_test::frame;
+
+namespace {
+
+const Bytes kTopicRequest{0xFF, 0xFE, 0x00, 0x00, 0xFF, 0x00, 0x00, 0xFF};
+
+struct Device {
+  HaLink link;
+  link_test::Capture tx;
+  std::vector<std::pair<HaHpCommand, uint32_t>> commands;
+  std::vector<uint8_t> operator_requests;
+  std::vector<int32_t> param_ints;
+
+  Device() {
+    HaLinkCallbacks cb{};
+    cb.write = &link_test::Capture::write;
+    cb.on_command = [](void *ctx, const HaHpCommand *cmd, uint32_t at_us) {
+      static_cast<Device *>(ctx)->commands.emplace_back(*cmd, at_us);
+    };
+    cb.on_operator = [](void *ctx, const drone_ros_OperatorCommand *op, uint32_t) {
+      static_cast<Device *>(ctx)->operator_requests.push_back(op->command);
+    };
+    cb.on_param = [](void *ctx, const rosserial_msgs_RequestParamResponse *r) {
+      for (uint32_t i = 0; i < r->ints_count; ++i) static_cast<Device *>(ctx)->param_ints.push_back(r->ints[i]);
+    };
+    cb.ctx = this;
+    ha_link_init(&link, &cb);
+    // The capture is a member: route writes to it, not to the Device.
+    link.cb.ctx = this;
+    link.cb.write = [](void *ctx, const uint8_t *d, size_t n) {
+      link_test::Capture::write(&static_cast<Device *>(ctx)->tx, d, n);
+    };
+  }
+  void rx(const Bytes &b, uint32_t now_us) { ha_link_receive(&link, b.data(), b.size(), now_us); }
+  Bytes time_reply(uint32_t sec, uint32_t nsec) {
+    Bytes p;
+    link_test::put_u32(p, sec);
+    link_test::put_u32(p, nsec);
+    return frame(10, p);
+  }
+};
+
+struct TopicInfoWire {
+  uint16_t id;
+  std::string name, type, md5;
+  int32_t buffer_size;
+};
+
+// rosserial_msgs/TopicInfo: uint16 topic_id, string topic_name, string message_type,
+// string md5sum, int32 buffer_size.
+TopicInfoWire parse_topic_info(const Bytes &p) {
+  size_t pos = 0;
+  auto u32 = [&]() {
+    uint32_t v = static_cast<uint32_t>(p.at(pos)) | static_cast<uint32_t>(p.at(pos + 1)) << 8 |
+                 static_cast<uint32_t>(p.at(pos + 2)) << 16 | static_cast<uint32_t>(p.at(pos + 3)) << 24;
+    pos += 4;
+    return v;
+  };
+  auto str = [&]() {
+    const uint32_t n = u32();
+    std::string s(p.begin() + static_cast<long>(pos), p.begin() + static_cast<long>(pos + n));
+    pos += n;
+    return s;
+  };
+  TopicInfoWire t;
+  t.id = static_cast<uint16_t>(p.at(0) | p.at(1) << 8);
+  pos = 2;
+  t.name = str();
+  t.type = str();
+  t.md5 = str();
+  t.buffer_size = static_cast<int32_t>(u32());
+  EXPECT_EQ(pos, p.size());
+  return t;
+}
+
+}  // namespace
+
+TEST(HaLinkSession, HostTopicRequestIsAnsweredWithEveryTopicAndThenATimeRequest) {
+  Device d;
+  d.rx(kTopicRequest, 1000u);
+  const auto frames = d.tx.frames();
+  ASSERT_EQ(frames.size(), 5u);
+  std::vector<TopicInfoWire> infos;
+  for (size_t i = 0; i < 4; ++i) infos.push_back(parse_topic_info(frames[i].second));
+  EXPECT_EQ(frames[0].first, 0u);  // ID_PUBLISHER
+  EXPECT_EQ(infos[0].name, "pwm");
+  EXPECT_EQ(infos[0].type, "drone_ros/pwm");
+  EXPECT_EQ(infos[0].md5, "0142956581c4f433f915c54487cd0567");
+  EXPECT_GE(infos[0].id, 100u);
+  EXPECT_EQ(frames[1].first, 0u);
+  EXPECT_EQ(infos[1].type, "drone_ros/DecisionStatus");
+  EXPECT_EQ(frames[2].first, 1u);  // ID_SUBSCRIBER
+  EXPECT_EQ(infos[2].name, "servo_op");
+  EXPECT_EQ(infos[2].md5, "aa3c1563aed64772cc32f85160797a04");
+  EXPECT_EQ(infos[2].buffer_size, 256);
+  EXPECT_EQ(frames[3].first, 1u);
+  EXPECT_EQ(infos[3].type, "drone_ros/OperatorCommand");
+  EXPECT_EQ(frames[4].first, 10u);  // std_msgs/Time request
+  EXPECT_EQ(frames[4].second.size(), 8u);
+  EXPECT_TRUE(ha_link_connected(&d.link));
+}
+
+TEST(HaLinkSession, TimeReplySetsRosTimeCorrectedByHalfTheRoundTrip) {
+  Device d;
+  d.rx(kTopicRequest, 1000u);
+  d.rx(d.time_reply(1700000000u, 999000000u), 5000u);  // round trip 4 ms
+  const HaRosTime now = ha_link_ros_time(&d.link, 5000u);
+  EXPECT_EQ(now.sec, 1700000001u);
+  EXPECT_EQ(now.nsec, 1000000u);  // 999 ms + 2 ms
+  const HaRosTime later = ha_link_ros_time(&d.link, 1005000u);
+  EXPECT_EQ(later.sec, 1700000002u);
+  EXPECT_EQ(d.link.counters.time_syncs, 1u);
+}
+
+TEST(HaLinkSession, ServoCommandBuiltFromTheMsgLayoutReachesTheCoreWithItsArrivalTime) {
+  Device d;
+  link_test::Cmd c;
+  c.seq = 4000000123u;
+  c.crc = 0xDEADBEEFu;
+  d.rx(frame(100, link_test::servo_command_payload(c)), 777u);
+  ASSERT_EQ(d.commands.size(), 1u);
+  const HaHpCommand &got = d.commands[0].first;
+  EXPECT_EQ(got.seq, 4000000123u);
+  EXPECT_EQ(got.stamp_sec, c.sec);
+  EXPECT_EQ(got.stamp_nsec, c.nsec);
+  EXPECT_FLOAT_EQ(got.elevator_deg, -2.0f);
+  EXPECT_FLOAT_EQ(got.beta_est_deg, -0.5f);
+  EXPECT_EQ(got.estimator_converged, 1u);
+  EXPECT_EQ(got.crc32, 0xDEADBEEFu);  // the link leaves the CRC to the core
+  EXPECT_EQ(d.commands[0].second, 777u);
+}
+
+TEST(HaLinkSession, TruncatedOrPaddedCommandIsCountedNotDelivered) {
+  Device d;
+  Bytes p = link_test::servo_command_payload(link_test::Cmd{});
+  Bytes shorter(p.begin(), p.end() - 1);
+  Bytes longer = p;
+  longer.push_back(0);
+  d.rx(frame(100, shorter), 0u);
+  d.rx(frame(100, longer), 0u);
+  EXPECT_TRUE(d.commands.empty());
+  EXPECT_EQ(d.link.counters.bad_payload, 2u);
+}
+
+TEST(HaLinkSession, UnknownTopicIdIsCountedAndTheLinkCarriesOn) {
+  Device d;
+  d.rx(frame(4242, Bytes{1, 2, 3}), 0u);
+  d.rx(frame(100, link_test::servo_command_payload(link_test::Cmd{})), 0u);
+  EXPECT_EQ(d.link.counters.unknown_topic, 1u);
+  EXPECT_EQ(d.commands.size(), 1u);
+}
+
+TEST(HaLinkSession, NothingIsPublishedBeforeTheHostAsksForTopics) {
+  Device d;
+  drone_ros_pwm pwm{};
+  EXPECT_FALSE(ha_link_publish_pwm(&d.link, &pwm));
+  EXPECT_TRUE(d.tx.bytes.empty());
+  d.rx(kTopicRequest, 0u);
+  d.tx.bytes.clear();
+  pwm.PICCIC = 1;
+  pwm.velocity = 88.5;
+  EXPECT_TRUE(ha_link_publish_pwm(&d.link, &pwm));
+  const auto frames = d.tx.frames();
+  ASSERT_EQ(frames.size(), 1u);
+  EXPECT_EQ(frames[0].first, HA_LINK_TOPIC_PWM);
+  // Header (seq, stamp, empty frame_id) 16 bytes, PICCIC, 6 float64, usbstatus.
+  EXPECT_EQ(frames[0].second.size(), 16u + 1u + 48u + 1u);
+  EXPECT_EQ(frames[0].second[16], 1u);
+}
+
+TEST(HaLinkSession, SilentHostIsNoticedAndPublishingStopsUntilItAsksAgain) {
+  Device d;
+  d.rx(kTopicRequest, 0u);
+  uint32_t t = 0;
+  for (; t <= 3000000u; t += 10000u) ha_link_poll(&d.link, t);  // 3 s, no time replies
+  EXPECT_FALSE(ha_link_connected(&d.link));
+  EXPECT_EQ(d.link.counters.sync_losses, 1u);
+  drone_ros_DecisionStatus status{};
+  EXPECT_FALSE(ha_link_publish_decision_status(&d.link, &status));
+  d.rx(kTopicRequest, t);
+  EXPECT_TRUE(ha_link_connected(&d.link));
+  EXPECT_TRUE(ha_link_publish_decision_status(&d.link, &status));
+}
+
+TEST(HaLinkSession, AnsweredTimeRequestsKeepTheLinkUp) {
+  Device d;
+  d.rx(kTopicRequest, 0u);
+  size_t answered = 0;
+  for (uint32_t t = 0; t <= 5000000u; t += 10000u) {
+    ha_link_poll(&d.link, t);
+    const auto frames = d.tx.frames();
+    for (; answered < frames.size(); ++answered) {
+      if (frames[answered].first == 10u) d.rx(d.time_reply(100u, 0u), t);
+    }
+  }
+  EXPECT_TRUE(ha_link_connected(&d.link));
+  EXPECT_GE(d.link.counters.time_syncs, 9u);
+}
+
+TEST(HaLinkSession, TxStopFromTheHostDisconnects) {
+  Device d;
+  d.rx(kTopicRequest, 0u);
+  d.rx({0xFF, 0xFE, 0x00, 0x00, 0xFF, 0x0B, 0x00, 0xF4}, 10u);
+  EXPECT_FALSE(ha_link_connected(&d.link));
+  EXPECT_EQ(d.link.counters.tx_stops, 1u);
+}
+
+TEST(HaLinkSession, LogGoesOutAsRosserialLogOnTopicSeven) {
+  Device d;
+  d.rx(kTopicRequest, 0u);
+  d.tx.bytes.clear();
+  ASSERT_TRUE(ha_link_log(&d.link, ROSSERIAL_MSGS_LOG_WARN, "pitot stale"));
+  Bytes expected{2};
+  link_test::put_str(expected, "pitot stale");
+  const auto frames = d.tx.frames();
+  ASSERT_EQ(frames.size(), 1u);
+  EXPECT_EQ(frames[0].first, 7u);
+  EXPECT_EQ(frames[0].second, expected);
+}
+
+TEST(HaLinkSession, ParameterRequestAndReplyFollowRequestParam) {
+  Device d;
+  d.rx(kTopicRequest, 0u);
+  d.tx.bytes.clear();
+  ASSERT_TRUE(ha_link_request_param(&d.link, "~rate_hz"));
+  Bytes request;
+  link_test::put_str(request, "~rate_hz");
+  ASSERT_EQ(d.tx.frames().at(0), std::make_pair(uint16_t{6}, request));
+  Bytes reply;  // int32[] ints = {100}, float32[] floats = {}, string[] strings = {}
+  link_test::put_u32(reply, 1);
+  link_test::put_u32(reply, 100);
+  link_test::put_u32(reply, 0);
+  link_test::put_u32(reply, 0);
+  d.rx(frame(6, reply), 10u);
+  EXPECT_EQ(d.param_ints, std::vector<int32_t>{100});
+}
+
+TEST(HaLinkSession, OperatorRequestIsHandedOver) {
+  Device d;
+  Bytes p;
+  link_test::put_u32(p, 5);
+  link_test::put_u32(p, 6);
+  p.push_back(2);  // SELECT_HA
+  link_test::put_u32(p, 77);
+  d.rx(frame(101, p), 0u);
+  EXPECT_EQ(d.operator_requests, std::vector<uint8_t>{2});
+}
