@@ -1,0 +1,71 @@
+#include "node_params.h"
+
+#include "output_config.h"
+#include "vn_command.h"
+
+namespace vn200 {
+
+bool loadParams(const ros::NodeHandle& pnh, NodeParams* p, std::string* error) {
+  pnh.param("port", p->port, p->port);
+  pnh.param("baud", p->baud, p->baud);
+  pnh.param("sensor_baud", p->sensor_baud, p->sensor_baud);
+  pnh.param("rate_hz", p->rate_hz, p->rate_hz);
+  pnh.param("sensor_port", p->sensor_port, p->sensor_port);
+  pnh.param("frame_id", p->frame_id, p->frame_id);
+  pnh.param("frd_frame_id", p->frd_frame_id, p->frd_frame_id);
+  pnh.param("world_frame_id", p->world_frame_id, p->world_frame_id);
+  pnh.param("replay_file", p->replay_file, p->replay_file);
+  pnh.param("replay_speed", p->replay_speed, p->replay_speed);
+  pnh.param("replay_loop", p->replay_loop, p->replay_loop);
+  pnh.param("replay_delay_s", p->replay_delay_s, p->replay_delay_s);
+  pnh.param("reconnect_period_s", p->reconnect_period_s, p->reconnect_period_s);
+  pnh.param("data_timeout_s", p->data_timeout_s, p->data_timeout_s);
+  pnh.param("response_timeout_s", p->response_timeout_s, p->response_timeout_s);
+  pnh.param("publish_tf", p->publish_tf, p->publish_tf);
+
+  const bool replay = !p->replay_file.empty();
+  if (!replay && p->port.empty()) {
+    *error = "~port is empty and no ~replay_file is given";
+    return false;
+  }
+  if (p->baud <= 0 || !vn_baud_supported(static_cast<uint32_t>(p->baud)) || p->baud == 128000) {
+    *error = "~baud " + std::to_string(p->baud) +
+             " is not one of 9600, 19200, 38400, 57600, 115200, 230400, 460800, 921600";
+    return false;
+  }
+  if (p->sensor_baud != 0 &&
+      (p->sensor_baud < 0 || !vn_baud_supported(static_cast<uint32_t>(p->sensor_baud)) ||
+       p->sensor_baud == 128000)) {
+    *error = "~sensor_baud " + std::to_string(p->sensor_baud) +
+             " is not 0 (sensor already at ~baud) or a baud rate the node supports";
+    return false;
+  }
+  if (p->rate_hz <= 0 || !rateSupported(static_cast<unsigned>(p->rate_hz))) {
+    *error = "~rate_hz " + std::to_string(p->rate_hz) + " must divide 800 Hz evenly";
+    return false;
+  }
+  if (p->sensor_port != 1 && p->sensor_port != 2) {
+    *error = "~sensor_port must be 1 or 2";
+    return false;
+  }
+  const VnBinaryOutputConfig cfg = nodeOutputConfig(static_cast<unsigned>(p->rate_hz),
+                                                    static_cast<VnAsyncMode>(p->sensor_port));
+  if (!replay && streamBitsPerSecond(cfg, static_cast<unsigned>(p->rate_hz)) > p->baud) {
+    *error = "~rate_hz " + std::to_string(p->rate_hz) + " needs more than ~baud " +
+             std::to_string(p->baud) + " carries (the sensor would answer $VNERR 12)";
+    return false;
+  }
+  if (p->frame_id.empty() || p->frd_frame_id.empty() || p->world_frame_id.empty()) {
+    *error = "~frame_id, ~frd_frame_id and ~world_frame_id must not be empty";
+    return false;
+  }
+  if (!(p->replay_speed > 0.0) || !(p->reconnect_period_s > 0.0) || !(p->data_timeout_s > 0.0) ||
+      !(p->response_timeout_s > 0.0) || !(p->replay_delay_s >= 0.0)) {
+    *error = "~replay_speed, ~reconnect_period_s, ~data_timeout_s, ~response_timeout_s must be > 0 "
+             "and ~replay_delay_s >= 0";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace vn200

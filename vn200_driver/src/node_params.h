@@ -1,0 +1,34 @@
+// Every private parameter of the vn200 node, read and validated in one place.
+#pragma once
+
+#include <ros/node_handle.h>
+
+#include <cstdint>
+#include <string>
+
+namespace vn200 {
+
+struct NodeParams {
+  std::string port = "/dev/ttyUSB0";  // the HP's USB link to the VN-200 (its serial port 2)
+  int baud = 921600;
+  int sensor_baud = 0;                // the sensor's speed at power-up if not `baud` (factory:
+                                      // 115200): each connect switches it to `baud` (register 5)
+  int rate_hz = 100;                  // binary output rate: 800 Hz / integer divisor
+  int sensor_port = 2;                // which VN-200 serial port the HP is wired to (1 or 2)
+  std::string frame_id = "vn200";         // body frame, REP-103 (x forward, y left, z up)
+  std::string frd_frame_id = "vn200_frd"; // body frame as the sensor reports (x fwd, y right, z down)
+  std::string world_frame_id = "vn200_enu";  // local ENU frame anchored at the first INS fix
+  std::string replay_file;            // non-empty: read this capture instead of the port
+  double replay_speed = 1.0;          // replay pacing: 1 = sensor time, 2 = twice as fast
+  bool replay_loop = false;
+  double replay_delay_s = 0.0;        // wait before replaying, so subscribers can connect
+  double reconnect_period_s = 1.0;    // between attempts to reopen a lost port
+  double data_timeout_s = 1.0;        // silence after which the link is reported down
+  double response_timeout_s = 0.5;    // per configuration command
+  bool publish_tf = true;
+};
+
+// Reads ~parameters; returns false with a message naming the bad parameter.
+bool loadParams(const ros::NodeHandle& pnh, NodeParams* out, std::string* error);
+
+}  // namespace vn200

@@ -1,0 +1,402 @@
+#include "vn200_node.h"
+
+#include <drone_ros/ins.h>
+#include <geometry_msgs/Point.h>
+#include <geometry_msgs/TransformStamped.h>
+#include <geometry_msgs/Twist.h>
+#include <geometry_msgs/TwistStamped.h>
+#include <sensor_msgs/FluidPressure.h>
+#include <sensor_msgs/Imu.h>
+#include <sensor_msgs/MagneticField.h>
+#include <sensor_msgs/NavSatFix.h>
+#include <sensor_msgs/Temperature.h>
+
+#include <fstream>
+#include <thread>
+
+#include "conversions.h"
+#include "output_config.h"
+#include "vn_command.h"
+
+namespace vn200 {
+
+namespace {
+
+constexpr uint64_t kNsPerWeek = 604800ull * 1000000000ull;
+
+SensorSession::Options sessionOptions(const NodeParams& p) {
+  SensorSession::Options o;
+  o.output = nodeOutputConfig(static_cast<unsigned>(p.rate_hz),
+                              static_cast<VnAsyncMode>(p.sensor_port));
+  o.response_timeout_s = p.response_timeout_s;
+  return o;
+}
+
+double wallNow() { return ros::WallTime::now().toSec(); }
+
+void setQuat(geometry_msgs::Quaternion* m, const Quat& q) {
+  m->x = q[0];
+  m->y = q[1];
+  m->z = q[2];
+  m->w = q[3];
+}
+
+void setVec(geometry_msgs::Vector3* m, const Vec3& v) {
+  m->x = v[0];
+  m->y = v[1];
+  m->z = v[2];
+}
+
+Vec3 vec3(const float* f) { return {f[0], f[1], f[2]}; }
+
+}  // namespace
+
+Vn200Node::Vn200Node(ros::NodeHandle nh, ros::NodeHandle pnh, const NodeParams& params)
+    : nh_(nh), pnh_(pnh), params_(params), session_(sessionOptions(params)) {
+  // Original drone_ros interface (thesis): global names and types the controller subscribes to.
+  ins_pub_ = nh_.advertise<drone_ros::ins>("/ins", 10);
+  gps_position_pub_ = nh_.advertise<sensor_msgs::NavSatFix>("/gps_position", 10);
+  gps_velocity_pub_ = nh_.advertise<geometry_msgs::Twist>("/gps_velocity", 10);
+  imu_pqr_pub_ = nh_.advertise<sensor_msgs::Imu>("/imu_PQR_acceleration", 10);
+  attitude_pub_ = nh_.advertise<geometry_msgs::Point>("/attitude", 10);
+  // REP-103/105 topics under the node's private namespace.
+  imu_pub_ = pnh_.advertise<sensor_msgs::Imu>("imu/data", 10);
+  fix_pub_ = pnh_.advertise<sensor_msgs::NavSatFix>("fix", 10);
+  velocity_pub_ = pnh_.advertise<geometry_msgs::TwistStamped>("velocity", 10);
+  mag_pub_ = pnh_.advertise<sensor_msgs::MagneticField>("imu/mag", 10);
+  pressure_pub_ = pnh_.advertise<sensor_msgs::FluidPressure>("pressure", 10);
+  temperature_pub_ = pnh_.advertise<sensor_msgs::Temperature>("temperature", 10);
+
+  diag_.setHardwareID(params_.replay_file.empty() ? "VN-200 on " + params_.port
+                                                  : "VN-200 replay " + params_.replay_file);
+  diag_.add("VN-200 link", this, &Vn200Node::diagLink);
+
+  session_.on_binary = [this](const VnBinaryData& d, double) { publishPacket(d); };
+}
+
+int Vn200Node::run() { return params_.replay_file.empty() ? runPort() : runReplay(); }
+
+void Vn200Node::tryOpen(double now_s) {
+  std::string error;
+  if (params_.sensor_baud != 0 && params_.sensor_baud != params_.baud) {
+    // The sensor may be at its power-up speed: ask it, at that speed, to switch to ours. If it
+    // is already at ours (reconnect without a power cycle), these bytes are noise to it.
+    char cmd[VN_CMD_MAX];
+    const size_t n =
+        vn_cmd_set_baud(cmd, sizeof cmd, static_cast<uint32_t>(params_.baud), VN_CK_XOR8);
+    if (port_.open(params_.port, static_cast<uint32_t>(params_.sensor_baud), &error) && n > 0 &&
+        port_.write(cmd, n)) {
+      uint8_t sink[256];
+      const ros::WallTime until = ros::WallTime::now() + ros::WallDuration(0.1);
+      while (ros::WallTime::now() < until && port_.read(sink, sizeof sink, 20) >= 0) {
+      }  // let the reply (at the old speed) go by before changing ours
+    }
+    port_.close();
+  }
+  if (!port_.open(params_.port, static_cast<uint32_t>(params_.baud), &error)) {
+    if (last_problem_ != error) ROS_WARN("vn200: cannot open port: %s", error.c_str());
+    last_problem_ = error;
+    next_open_s_ = now_s + params_.reconnect_period_s;
+    return;
+  }
+  ROS_INFO("vn200: opened %s at %d baud, configuring", params_.port.c_str(), params_.baud);
+  ++reconnects_;
+  opened_at_s_ = now_s;
+  time_mapper_.reset();  // the sensor may have rebooted while away
+  session_.start(now_s);
+}
+
+void Vn200Node::linkLost(const std::string& why, double now_s) {
+  ROS_WARN("vn200: link lost (%s); reconnecting every %.1f s", why.c_str(),
+           params_.reconnect_period_s);
+  last_problem_ = why;
+  port_.close();
+  if (link_up_) ++link_losses_;
+  link_up_ = false;
+  next_open_s_ = now_s + params_.reconnect_period_s;
+  next_down_report_s_ = now_s;
+}
+
+void Vn200Node::publishLinkDown() {
+  drone_ros::ins msg;
+  msg.header.stamp = ros::Time::now();
+  msg.header.frame_id = params_.frame_id;
+  msg.usbstatus = 0;
+  ins_pub_.publish(msg);
+}
+
+int Vn200Node::runPort() {
+  uint8_t buf[4096];
+  next_down_report_s_ = wallNow();
+  while (ros::ok()) {
+    const double now = wallNow();
+    if (!port_.isOpen()) {
+      if (now >= next_open_s_) tryOpen(now);
+      if (!port_.isOpen()) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    } else {
+      const std::string cmd = session_.pollCommand(now);
+      if (!cmd.empty() && !port_.write(cmd.data(), cmd.size())) {
+        linkLost("write failed", now);
+      } else if (session_.state() == SensorSession::State::Failed) {
+        linkLost("sensor did not accept the configuration", now);
+      } else {
+        const long n = port_.read(buf, sizeof buf, 20);
+        if (n < 0) {
+          linkLost("device gone", now);
+        } else if (n > 0) {
+          session_.onBytes(buf, static_cast<size_t>(n), wallNow());
+        }
+        // A port that stays open but silent (sensor power-cycled, cable half-plugged): report it
+        // at once, and reopen/reconfigure if it persists.
+        const double last = std::max(session_.lastByteS(), opened_at_s_);
+        if (port_.isOpen() && now - last > params_.data_timeout_s) {
+          if (link_up_) {
+            ++link_losses_;
+            last_problem_ = "no data";
+          }
+          link_up_ = false;
+          if (now - last > 3 * params_.data_timeout_s) linkLost("no data", now);
+        }
+      }
+    }
+    if (!link_up_ && now >= next_down_report_s_) {
+      publishLinkDown();
+      next_down_report_s_ = now + 1.0;
+    }
+    ros::spinOnce();
+    diag_.update();
+  }
+  return 0;
+}
+
+int Vn200Node::runReplay() {
+  std::ifstream in(params_.replay_file, std::ios::binary);
+  if (!in) {
+    ROS_FATAL("vn200: cannot open replay file %s", params_.replay_file.c_str());
+    return 1;
+  }
+  ROS_INFO("vn200: replaying %s at %.2fx", params_.replay_file.c_str(), params_.replay_speed);
+  const ros::WallTime start_at = ros::WallTime::now() + ros::WallDuration(params_.replay_delay_s);
+  while (ros::ok() && ros::WallTime::now() < start_at) {
+    ros::spinOnce();
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  char buf[256];
+  while (ros::ok()) {
+    if (!replay_done_) {
+      in.read(buf, sizeof buf);
+      const std::streamsize n = in.gcount();
+      if (n > 0) session_.onBytes(reinterpret_cast<const uint8_t*>(buf), static_cast<size_t>(n),
+                                  wallNow());
+      if (!in) {
+        if (params_.replay_loop) {
+          in.clear();
+          in.seekg(0);
+          replay_started_ = false;
+          time_mapper_.reset();
+        } else {
+          replay_done_ = true;
+          link_up_ = false;
+          ROS_INFO("vn200: replay finished (%llu packets)",
+                   static_cast<unsigned long long>(session_.counters().packets_decoded));
+        }
+      }
+    } else {
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    ros::spinOnce();
+    diag_.update();
+  }
+  return 0;
+}
+
+void Vn200Node::publishPacket(const VnBinaryData& d) {
+  // Replay: hold each packet until its sensor time comes round again.
+  if (!params_.replay_file.empty() && (d.has & VN_HAS_TIME_STARTUP)) {
+    const double t = static_cast<double>(d.time_startup_ns) * 1e-9;
+    if (!replay_started_ || t < replay_t0_sensor_s_) {
+      replay_started_ = true;
+      replay_t0_sensor_s_ = t;
+      replay_t0_wall_s_ = wallNow();
+    }
+    const double due = replay_t0_wall_s_ + (t - replay_t0_sensor_s_) / params_.replay_speed;
+    const double wait = due - wallNow();
+    if (wait > 0) ros::WallDuration(std::min(wait, 10.0)).sleep();
+  }
+  link_up_ = true;
+
+  ros::Time stamp = ros::Time::now();
+  if (d.has & VN_HAS_TIME_STARTUP) {
+    const double mapped =
+        time_mapper_.map(static_cast<double>(d.time_startup_ns) * 1e-9, stamp.toSec());
+    if (mapped > 0 && mapped < 4.0e9) stamp = ros::Time(mapped);  // ros::Time throws outside
+  }
+
+  const double roll = d.ypr_deg[2] * kDegToRad, pitch = d.ypr_deg[1] * kDegToRad,
+               yaw = d.ypr_deg[0] * kDegToRad;
+  Quat q_ned{d.quat_xyzw[0], d.quat_xyzw[1], d.quat_xyzw[2], d.quat_xyzw[3]};
+  if (!(d.has & VN_HAS_QUATERNION)) q_ned = quatFromYprNed(yaw, pitch, roll);
+
+  // --- Original topics -----------------------------------------------------------------------
+  drone_ros::ins ins;
+  ins.header.stamp = stamp;
+  ins.header.frame_id = params_.frame_id;
+  if (d.has & VN_HAS_GPS_TOW) {
+    ins.time = static_cast<double>(d.gps_tow_ns) * 1e-9;
+  } else if (d.has & VN_HAS_TIME_GPS) {
+    ins.time = static_cast<double>(d.time_gps_ns % kNsPerWeek) * 1e-9;
+  }
+  if (d.has & VN_HAS_GPS_WEEK) {
+    ins.week = d.gps_week;
+  } else if (d.has & VN_HAS_TIME_GPS) {
+    ins.week = static_cast<uint16_t>(d.time_gps_ns / kNsPerWeek);
+  }
+  ins.usbstatus = 1;
+  ins.ins_status = d.ins_status;
+  ins.num_sats = d.num_sats;
+  ins.gps_fix = d.gps_fix;
+  ins_pub_.publish(ins);
+
+  if (d.has & VN_HAS_YPR) {
+    geometry_msgs::Point att;  // phi, theta, psi [rad] as the thesis's controller reads them
+    att.x = roll;
+    att.y = pitch;
+    att.z = yaw;
+    attitude_pub_.publish(att);
+  }
+
+  sensor_msgs::NavSatFix fix;
+  fix.header.stamp = stamp;
+  fix.header.frame_id = params_.frame_id;
+  fix.status.status = d.gps_fix >= 2 ? sensor_msgs::NavSatStatus::STATUS_FIX
+                                     : sensor_msgs::NavSatStatus::STATUS_NO_FIX;
+  fix.status.service = sensor_msgs::NavSatStatus::SERVICE_GPS;
+  fix.latitude = d.lat_deg;
+  fix.longitude = d.lon_deg;
+  fix.altitude = d.alt_m;
+  if (d.has & VN_HAS_INS_POS_UNC) {
+    const double var = static_cast<double>(d.ins_pos_unc_m) * d.ins_pos_unc_m;
+    fix.position_covariance = {var, 0, 0, 0, var, 0, 0, 0, var};
+    fix.position_covariance_type = sensor_msgs::NavSatFix::COVARIANCE_TYPE_APPROXIMATED;
+  } else if (d.has & VN_HAS_GPS_POS_UNC) {
+    const Vec3 u = nedToEnu(vec3(d.gps_pos_unc_ned_m));
+    fix.position_covariance = {u[0] * u[0], 0, 0, 0, u[1] * u[1], 0, 0, 0, u[2] * u[2]};
+    fix.position_covariance_type = sensor_msgs::NavSatFix::COVARIANCE_TYPE_DIAGONAL_KNOWN;
+  }
+  if (d.has & VN_HAS_POSITION_LLA) {
+    gps_position_pub_.publish(fix);
+    fix_pub_.publish(fix);
+  }
+
+  if (d.has & VN_HAS_VEL_NED) {
+    geometry_msgs::Twist v;  // north, east, down [m/s], the original convention
+    setVec(&v.linear, vec3(d.vel_ned_mps));
+    gps_velocity_pub_.publish(v);
+    geometry_msgs::TwistStamped ve;
+    ve.header.stamp = stamp;
+    ve.header.frame_id = params_.world_frame_id;
+    setVec(&ve.twist.linear, nedToEnu(vec3(d.vel_ned_mps)));
+    velocity_pub_.publish(ve);
+  }
+
+  sensor_msgs::Imu pqr;  // body rates P, Q, R and specific force, in the sensor's own axes
+  pqr.header.stamp = stamp;
+  pqr.header.frame_id = params_.frd_frame_id;
+  setQuat(&pqr.orientation, q_ned);  // body relative to NED
+  setVec(&pqr.angular_velocity, vec3(d.angular_rate_radps));
+  setVec(&pqr.linear_acceleration, vec3(d.accel_mps2));
+  if (d.has & VN_HAS_ANGULAR_RATE) imu_pqr_pub_.publish(pqr);
+
+  // --- REP-103 topics -------------------------------------------------------------------------
+  const Quat q_enu = nedFrdToEnuFlu(q_ned);
+  sensor_msgs::Imu imu;
+  imu.header.stamp = stamp;
+  imu.header.frame_id = params_.frame_id;
+  setQuat(&imu.orientation, q_enu);
+  if (d.has & VN_HAS_YPR_UNC) {
+    const double r = d.ypr_unc_deg[2] * kDegToRad, p = d.ypr_unc_deg[1] * kDegToRad,
+                 y = d.ypr_unc_deg[0] * kDegToRad;
+    imu.orientation_covariance = {r * r, 0, 0, 0, p * p, 0, 0, 0, y * y};
+  }
+  setVec(&imu.angular_velocity, frdToFlu(vec3(d.angular_rate_radps)));
+  setVec(&imu.linear_acceleration, frdToFlu(vec3(d.accel_mps2)));
+  if (d.has & (VN_HAS_QUATERNION | VN_HAS_YPR)) imu_pub_.publish(imu);
+
+  if (d.has & VN_HAS_MAG) {
+    sensor_msgs::MagneticField mag;
+    mag.header = imu.header;
+    const Vec3 m = frdToFlu(vec3(d.mag_gauss));
+    setVec(&mag.magnetic_field, {m[0] * kGaussToTesla, m[1] * kGaussToTesla, m[2] * kGaussToTesla});
+    mag_pub_.publish(mag);
+  }
+  if (d.has & VN_HAS_PRESSURE) {
+    sensor_msgs::FluidPressure pr;
+    pr.header = imu.header;
+    pr.fluid_pressure = d.pressure_kpa * kKpaToPa;
+    pressure_pub_.publish(pr);
+  }
+  if (d.has & VN_HAS_TEMP) {
+    sensor_msgs::Temperature t;
+    t.header = imu.header;
+    t.temperature = d.temp_c;
+    temperature_pub_.publish(t);
+  }
+
+  // tf: local ENU frame anchored where the INS first reported a tracking solution.
+  if (params_.publish_tf && (d.has & VN_HAS_POSITION_LLA) && VN_INS_STATUS_MODE(d.ins_status) >= 1) {
+    if (!have_ref_) {
+      have_ref_ = true;
+      ref_lat_deg_ = d.lat_deg;
+      ref_lon_deg_ = d.lon_deg;
+      ref_alt_m_ = d.alt_m;
+    }
+    geometry_msgs::TransformStamped tf;
+    tf.header.stamp = stamp;
+    tf.header.frame_id = params_.world_frame_id;
+    tf.child_frame_id = params_.frame_id;
+    const Vec3 p = llaToLocalEnu(d.lat_deg, d.lon_deg, d.alt_m, ref_lat_deg_, ref_lon_deg_,
+                                 ref_alt_m_);
+    tf.transform.translation.x = p[0];
+    tf.transform.translation.y = p[1];
+    tf.transform.translation.z = p[2];
+    setQuat(&tf.transform.rotation, q_enu);
+    tf_.sendTransform(tf);
+  }
+}
+
+void Vn200Node::diagLink(diagnostic_updater::DiagnosticStatusWrapper& stat) {
+  const VnFramerStats& f = session_.framerStats();
+  const SensorSession::Counters& c = session_.counters();
+  if (params_.replay_file.empty() && !port_.isOpen()) {
+    stat.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "port closed: " + last_problem_);
+  } else if (!link_up_ && !replay_done_) {
+    stat.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "no data from the sensor");
+  } else if (session_.state() == SensorSession::State::Configuring) {
+    stat.summary(diagnostic_msgs::DiagnosticStatus::WARN, "configuring the sensor");
+  } else {
+    stat.summary(diagnostic_msgs::DiagnosticStatus::OK,
+                 replay_done_ ? "replay finished" : "streaming");
+  }
+  stat.add("usbstatus", link_up_ ? 1 : 0);
+  stat.add("packets decoded", c.packets_decoded);
+  stat.add("bad packets", session_.badPackets());
+  stat.add("bad binary CRC", f.bad_binary_crc);
+  stat.add("bad binary groups", f.bad_binary_groups);
+  stat.add("bad binary field", f.bad_binary_field);
+  stat.add("bad ASCII checksum", f.bad_ascii_checksum);
+  stat.add("bad ASCII character", f.bad_ascii_char);
+  stat.add("ASCII too long", f.bad_ascii_too_long);
+  stat.add("binary decode errors", c.binary_decode_errors);
+  stat.add("ASCII decode errors", c.ascii_decode_errors);
+  stat.add("dropped bytes", f.dropped_bytes);
+  stat.add("bytes received", c.bytes);
+  stat.add("sensor errors", c.sensor_errors);
+  stat.add("last sensor error", sensorErrorText(c.last_sensor_error));
+  stat.add("configuration resends", c.config_resends);
+  stat.add("connections", reconnects_);
+  stat.add("link losses", link_losses_);
+  stat.add("time offset resets", time_mapper_.resets());
+  stat.add("last problem", last_problem_);
+}
+
+}  // namespace vn200

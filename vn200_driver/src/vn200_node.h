@@ -1,0 +1,60 @@
+// ROS node for the VectorNav VN-200: owns the port (or a replay file), runs a SensorSession,
+// and turns decoded packets into the original drone_ros topics and REP-103/105 ones.
+#pragma once
+
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <ros/ros.h>
+#include <tf2_ros/transform_broadcaster.h>
+
+#include <memory>
+#include <string>
+
+#include "node_params.h"
+#include "sensor_session.h"
+#include "serial_port.h"
+#include "time_mapper.h"
+
+namespace vn200 {
+
+class Vn200Node {
+ public:
+  Vn200Node(ros::NodeHandle nh, ros::NodeHandle pnh, const NodeParams& params);
+  // Runs until ROS shuts down. Returns a process exit code.
+  int run();
+
+ private:
+  int runPort();
+  int runReplay();
+  void tryOpen(double now_s);
+  void linkLost(const std::string& why, double now_s);
+  void publishPacket(const VnBinaryData& d);
+  void publishLinkDown();
+  void diagLink(diagnostic_updater::DiagnosticStatusWrapper& stat);
+
+  ros::NodeHandle nh_, pnh_;
+  NodeParams params_;
+  SensorSession session_;
+  SerialPort port_;
+  TimeMapper time_mapper_;
+  diagnostic_updater::Updater diag_;
+  tf2_ros::TransformBroadcaster tf_;
+
+  ros::Publisher ins_pub_, gps_position_pub_, gps_velocity_pub_, imu_pqr_pub_, attitude_pub_;
+  ros::Publisher imu_pub_, fix_pub_, velocity_pub_, mag_pub_, pressure_pub_, temperature_pub_;
+
+  bool link_up_ = false;        // decoded packets are arriving
+  double next_open_s_ = 0.0;
+  double next_down_report_s_ = 0.0;
+  double opened_at_s_ = 0.0;
+  unsigned reconnects_ = 0;
+  unsigned link_losses_ = 0;
+  std::string last_problem_;
+  bool have_ref_ = false;
+  double ref_lat_deg_ = 0, ref_lon_deg_ = 0, ref_alt_m_ = 0;
+  // Replay pacing.
+  bool replay_started_ = false;
+  double replay_t0_sensor_s_ = 0, replay_t0_wall_s_ = 0;
+  bool replay_done_ = false;
+};
+
+}  // namespace vn200

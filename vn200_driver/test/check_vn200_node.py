@@ -1,0 +1,166 @@
+#!/usr/bin/python3
+"""rostest checks for the vn200 node (not named test_*.py: pytest must not collect it).
+
+live:   against fake_vn200.py on a pty that unplugs itself 4 s after each connect.
+replay: against the recorded capture in test/data (100 packets of the fake's flight).
+The expected values are the fake sensor's simulated flight (see scripts/fake_vn200.py).
+"""
+import math
+import sys
+import threading
+import time
+import unittest
+
+import rospy
+import rostest
+from diagnostic_msgs.msg import DiagnosticArray
+from geometry_msgs.msg import Point, Twist, TwistStamped
+from sensor_msgs.msg import FluidPressure, Imu, MagneticField, NavSatFix, Temperature
+
+from drone_ros.msg import ins as Ins
+
+PITCH_RAD, ROLL_RAD = math.radians(2.0), math.radians(-3.0)
+LAT0_DEG, LON0_DEG, ALT0_M = 45.4642, 9.1900, 150.0
+
+
+class Recorder:
+    def __init__(self):
+        self.lock = threading.Lock()
+        self.msgs = {}
+        self.times = {}
+
+    def sub(self, topic, cls):
+        rospy.Subscriber(topic, cls, self._cb, callback_args=topic, queue_size=200)
+
+    def _cb(self, msg, topic):
+        with self.lock:
+            self.msgs.setdefault(topic, []).append(msg)
+            self.times.setdefault(topic, []).append(time.monotonic())
+
+    def get(self, topic):
+        with self.lock:
+            return list(self.msgs.get(topic, []))
+
+    def wait_for(self, pred, timeout_s):
+        deadline = time.monotonic() + timeout_s
+        while time.monotonic() < deadline and not rospy.is_shutdown():
+            if pred():
+                return True
+            time.sleep(0.05)
+        return pred()
+
+
+def make_recorder():
+    r = Recorder()
+    for topic, cls in [("/ins", Ins), ("/attitude", Point), ("/gps_position", NavSatFix),
+                       ("/gps_velocity", Twist), ("/imu_PQR_acceleration", Imu),
+                       ("/vn200/imu/data", Imu), ("/vn200/fix", NavSatFix),
+                       ("/vn200/velocity", TwistStamped), ("/vn200/imu/mag", MagneticField),
+                       ("/vn200/pressure", FluidPressure), ("/vn200/temperature", Temperature),
+                       ("/diagnostics", DiagnosticArray)]:
+        r.sub(topic, cls)
+    return r
+
+
+def diag_values(rec):
+    for arr in reversed(rec.get("/diagnostics")):
+        for st in arr.status:
+            if "VN-200 link" in st.name:
+                return {kv.key: kv.value for kv in st.values}, st
+    return None, None
+
+
+class ValueChecks:
+    """Assertions on what one packet of the fake's flight must look like on each topic."""
+
+    def check_values(self, rec):
+        att = rec.get("/attitude")[-1]
+        self.assertAlmostEqual(ROLL_RAD, att.x, places=4)
+        self.assertAlmostEqual(PITCH_RAD, att.y, places=4)
+        self.assertTrue(0 <= att.z < 2 * math.pi)
+        ins = rec.get("/ins")[-1]
+        self.assertEqual(1, ins.usbstatus)
+        self.assertEqual(9, ins.num_sats)
+        self.assertEqual(3, ins.gps_fix)
+        self.assertEqual(2170, ins.week)
+        self.assertEqual(2, ins.ins_status & 0x3)
+        self.assertTrue(345600 <= ins.time < 604800)
+        fix = rec.get("/gps_position")[-1]
+        self.assertAlmostEqual(LAT0_DEG, fix.latitude, places=2)
+        self.assertAlmostEqual(LON0_DEG, fix.longitude, places=6)
+        self.assertAlmostEqual(ALT0_M, fix.altitude, places=3)
+        rep_fix = rec.get("/vn200/fix")[-1]
+        self.assertAlmostEqual(4.0, rep_fix.position_covariance[0], places=4)  # INS PosU 2 m
+        self.assertEqual(NavSatFix.COVARIANCE_TYPE_APPROXIMATED, rep_fix.position_covariance_type)
+        vel = rec.get("/gps_velocity")[-1]
+        self.assertAlmostEqual(20.0, vel.linear.x, places=4)  # north
+        enu = rec.get("/vn200/velocity")[-1]
+        self.assertAlmostEqual(1.0, enu.twist.linear.x, places=4)  # east
+        self.assertAlmostEqual(20.0, enu.twist.linear.y, places=4)  # north
+        self.assertAlmostEqual(0.5, enu.twist.linear.z, places=4)  # up = -down
+        pqr = rec.get("/imu_PQR_acceleration")[-1]
+        self.assertAlmostEqual(-9.81, pqr.linear_acceleration.z, places=4)  # sensor axes, z down
+        self.assertAlmostEqual(math.radians(5.0), pqr.angular_velocity.z, places=5)
+        imu = rec.get("/vn200/imu/data")[-1]
+        self.assertAlmostEqual(9.81, imu.linear_acceleration.z, places=4)  # REP-103, z up
+        self.assertAlmostEqual(-math.radians(5.0), imu.angular_velocity.z, places=5)
+        q = imu.orientation
+        self.assertAlmostEqual(1.0, q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w, places=5)
+        self.assertGreater(imu.orientation_covariance[8], 0.0)
+        self.assertAlmostEqual(99800.0, rec.get("/vn200/pressure")[-1].fluid_pressure, delta=1.0)
+        self.assertAlmostEqual(24.5, rec.get("/vn200/temperature")[-1].temperature, places=4)
+        self.assertAlmostEqual(0.43e-4, -rec.get("/vn200/imu/mag")[-1].magnetic_field.z,
+                               places=8)
+
+
+class LiveSensor(unittest.TestCase, ValueChecks):
+    def test_configures_publishes_and_survives_unplug(self):
+        rec = make_recorder()
+        self.assertTrue(rec.wait_for(lambda: len(rec.get("/attitude")) >= 20, 15.0),
+                        "no attitude stream: the node did not configure the fake sensor")
+        self.assertTrue(rec.wait_for(lambda: all(rec.get(t) for t in [
+            "/vn200/imu/mag", "/vn200/pressure", "/vn200/temperature", "/vn200/velocity"]), 3.0))
+        self.check_values(rec)
+        # Stamps come from the sensor clock: evenly spaced at 20 ms, close to now.
+        stamps = [m.header.stamp.to_sec() for m in rec.get("/vn200/imu/data")[-15:]]
+        gaps = [b - a for a, b in zip(stamps, stamps[1:])]
+        self.assertTrue(all(abs(g - 0.02) < 0.005 for g in gaps), gaps)
+        self.assertLess(abs(rospy.Time.now().to_sec() - stamps[-1]), 0.5)
+
+        # The fake unplugs 4 s after connecting: the node must say so on /ins...
+        self.assertTrue(rec.wait_for(lambda: any(m.usbstatus == 0 for m in rec.get("/ins")), 10.0),
+                        "usbstatus 0 never reported after the port vanished")
+        lost_at = len(rec.get("/attitude"))
+        first_zero = next(i for i, m in enumerate(rec.get("/ins")) if m.usbstatus == 0)
+        # ...then reconnect and reconfigure (the new port streams binary only once configured).
+        self.assertTrue(rec.wait_for(
+            lambda: any(m.usbstatus == 1 for m in rec.get("/ins")[first_zero:]) and
+            len(rec.get("/attitude")) >= lost_at + 20, 10.0),
+            "no data after the port came back")
+        self.check_values(rec)
+        self.assertTrue(rec.wait_for(lambda: diag_values(rec)[0] is not None and
+                                     int(diag_values(rec)[0].get("connections", "0")) >= 2, 5.0))
+        values, _ = diag_values(rec)
+        self.assertGreater(int(values["bad packets"]), 0, "injected corrupt packets not counted")
+        self.assertGreater(int(values["bad binary CRC"]), 0)
+        self.assertGreaterEqual(int(values["link losses"]), 1)
+
+
+class Replay(unittest.TestCase, ValueChecks):
+    def test_replays_every_packet_of_the_capture(self):
+        rec = make_recorder()
+        # 100 packets, 2 s of flight at double speed: about 1 s, allow for startup.
+        self.assertTrue(rec.wait_for(lambda: len(rec.get("/attitude")) >= 100, 20.0),
+                        "got %d of 100 packets" % len(rec.get("/attitude")))
+        time.sleep(0.5)
+        self.assertEqual(100, len(rec.get("/attitude")))
+        self.check_values(rec)
+        t = rec.times["/attitude"]
+        self.assertGreater(t[-1] - t[0], 0.6, "replay was not paced by the sensor's clock")
+
+
+if __name__ == "__main__":
+    mode = next((a for a in sys.argv[1:] if a in ("live", "replay")), "live")
+    rospy.init_node("check_vn200_node", anonymous=True)
+    cls = LiveSensor if mode == "live" else Replay
+    rostest.rosrun("drone_ros", "vn200_" + mode, cls, sys.argv)
