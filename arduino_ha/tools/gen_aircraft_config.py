@@ -26,6 +26,9 @@ class ConfigError(Exception):
     pass
 
 
+STANDARD_GRAVITY_FTPS2 = 32.174  # physics, not aircraft data
+
+
 def need(section, key, low=None, high=None):
     if key not in section:
         raise ConfigError("missing key: %s" % key)
@@ -166,6 +169,12 @@ def build(doc):
     c["sc_stall_margin"] = need(sc, "stall_margin", 1.05, 3.0)
     if c["stall_speed_ftps"] * c["sc_stall_margin"] >= c["max_airspeed_ftps"]:
         raise ConfigError("target airspeed above max_airspeed_ftps")
+    target_ftps = c["stall_speed_ftps"] * c["sc_stall_margin"]
+    # Steady coordinated turn: tan(bank) = V^2 / (g R). Derived here once, not per period.
+    c["sc_circle_bank_ff_deg"] = math.degrees(
+        math.atan(target_ftps * target_ftps / (STANDARD_GRAVITY_FTPS2 * c["sc_circle_radius_ft"])))
+    if c["sc_circle_bank_ff_deg"] >= c["sc_bank_limit_deg"]:
+        raise ConfigError("circle_radius_ft too small: its turn needs more bank than bank_limit_deg")
     c["sc_throttle_trim"] = need(sc, "throttle_trim", c["throttle_min"], c["throttle_max"])
     c["sc_integrator_authority"] = need(sc, "integrator_authority", 0.0, 1.0)
 

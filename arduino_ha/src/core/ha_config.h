@@ -89,6 +89,9 @@ typedef struct {
   float sc_bank_limit_deg;
   float sc_circle_radius_ft;
   float sc_circle_direction; /* +1 clockwise seen from above (right turns), -1 counter-clockwise */
+  /* Bank of a steady turn of sc_circle_radius_ft at the target airspeed, derived by the generator:
+   * an atanf per period costs ~1,500 soft-float instructions on the Due. */
+  float sc_circle_bank_ff_deg;
   float sc_radial_gain_deg_per_ft;
   float sc_radial_correction_max_deg;
   float sc_heading_to_bank_gain;

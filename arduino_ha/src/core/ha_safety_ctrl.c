@@ -5,7 +5,6 @@
 #include "ha_num.h"
 #include "ha_surfaces.h"
 
-#define HA_G_FTPS2 32.174f /* standard gravity, physics not aircraft data */
 #define HA_RAD_PER_DEG 0.017453292f
 
 /* Wraps a finite angle in [-1080, 1080] deg into [-180, 180). */
@@ -35,7 +34,6 @@ static float pid(float *integ, float pd, float integ_step, float limit, float au
 /* Outer lateral loop: the bank that flies the circle around home. */
 static float bank_command_deg(const HaAircraftConfig *cfg, const HaStateView *s) {
   const float dir = cfg->sc_circle_direction;
-  const float target_ftps = cfg->stall_speed_ftps * cfg->sc_stall_margin;
   const float radius_ft = cfg->sc_circle_radius_ft;
   float distance_ft, bearing_deg, correction_deg, course_deg, bank_deg;
   if (!s->position_ok) {
@@ -49,7 +47,7 @@ static float bank_command_deg(const HaAircraftConfig *cfg, const HaStateView *s)
   /* Tangent to the circle, turned inwards when outside and outwards when inside. */
   course_deg = bearing_deg + dir * (90.0f + correction_deg);
   /* Feed-forward: the bank of a steady turn of this radius at the target speed. */
-  bank_deg = dir * atanf(target_ftps * target_ftps / (HA_G_FTPS2 * radius_ft)) / HA_RAD_PER_DEG;
+  bank_deg = dir * cfg->sc_circle_bank_ff_deg;
   bank_deg += cfg->sc_heading_to_bank_gain * wrap180(course_deg - s->heading_deg);
   return ha_clampf(bank_deg, -cfg->sc_bank_limit_deg, cfg->sc_bank_limit_deg);
 }

@@ -4,6 +4,10 @@
 
 #include "ha_core.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Into the actuator box; a non-finite value becomes the in-range value nearest neutral. */
 void ha_surfaces_saturate(const HaAircraftConfig *cfg, HaSurfaces *s);
 
@@ -16,5 +20,9 @@ int ha_surfaces_rate_limit(const HaAircraftConfig *cfg, const HaSurfaces *prev,
 void ha_surfaces_from_rc(const HaAircraftConfig *cfg, const HaRcInputs *rc, HaSurfaces *out);
 
 void ha_surfaces_from_cmd(const HaHpCommand *cmd, HaSurfaces *out);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* HA_SURFACES_H */

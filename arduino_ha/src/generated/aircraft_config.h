@@ -75,6 +75,7 @@
     .sc_alt_max_ft = 250.0f, \
     .sc_pitch_cmd_limit_deg = 10.0f, \
     .sc_stall_margin = 1.3f, \
+    .sc_circle_bank_ff_deg = 13.0421703f, \
     .sc_throttle_trim = 0.4f, \
     .sc_integrator_authority = 0.25f, \
     .self_test_throttle_max = 0.3f, \
