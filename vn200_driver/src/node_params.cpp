@@ -28,14 +28,15 @@ bool loadParams(const ros::NodeHandle& pnh, NodeParams* p, std::string* error) {
     *error = "~port is empty and no ~replay_file is given";
     return false;
   }
-  if (p->baud <= 0 || !vn_baud_supported(static_cast<uint32_t>(p->baud)) || p->baud == 128000) {
+  // Every rate the VN-200 offers, 128000 included: the shared serial port sets rates termios has
+  // no constant for through termios2.
+  if (p->baud <= 0 || !vn_baud_supported(static_cast<uint32_t>(p->baud))) {
     *error = "~baud " + std::to_string(p->baud) +
-             " is not one of 9600, 19200, 38400, 57600, 115200, 230400, 460800, 921600";
+             " is not one of 9600, 19200, 38400, 57600, 115200, 128000, 230400, 460800, 921600";
     return false;
   }
   if (p->sensor_baud != 0 &&
-      (p->sensor_baud < 0 || !vn_baud_supported(static_cast<uint32_t>(p->sensor_baud)) ||
-       p->sensor_baud == 128000)) {
+      (p->sensor_baud < 0 || !vn_baud_supported(static_cast<uint32_t>(p->sensor_baud)))) {
     *error = "~sensor_baud " + std::to_string(p->sensor_baud) +
              " is not 0 (sensor already at ~baud) or a baud rate the node supports";
     return false;

@@ -84,16 +84,19 @@ void Vn200Node::tryOpen(double now_s) {
     char cmd[VN_CMD_MAX];
     const size_t n =
         vn_cmd_set_baud(cmd, sizeof cmd, static_cast<uint32_t>(params_.baud), VN_CK_XOR8);
-    if (port_.open(params_.port, static_cast<uint32_t>(params_.sensor_baud), &error) && n > 0 &&
-        port_.write(cmd, n)) {
+    if (port_.open(params_.port, params_.sensor_baud, &error) && n > 0 &&
+        port_.write_all(cmd, n)) {
       uint8_t sink[256];
+      size_t got = 0;
       const ros::WallTime until = ros::WallTime::now() + ros::WallDuration(0.1);
-      while (ros::WallTime::now() < until && port_.read(sink, sizeof sink, 20) >= 0) {
+      using Read = drone_ros_common::SerialPort::ReadResult;
+      while (ros::WallTime::now() < until &&
+             port_.read(sink, sizeof sink, 20, &got) != Read::kGone) {
       }  // let the reply (at the old speed) go by before changing ours
     }
     port_.close();
   }
-  if (!port_.open(params_.port, static_cast<uint32_t>(params_.baud), &error)) {
+  if (!port_.open(params_.port, params_.baud, &error)) {
     if (last_problem_ != error) ROS_WARN("vn200: cannot open port: %s", error.c_str());
     last_problem_ = error;
     next_open_s_ = now_s + params_.reconnect_period_s;
@@ -130,26 +133,27 @@ int Vn200Node::runPort() {
   next_down_report_s_ = wallNow();
   while (ros::ok()) {
     const double now = wallNow();
-    if (!port_.isOpen()) {
+    if (!port_.is_open()) {
       if (now >= next_open_s_) tryOpen(now);
-      if (!port_.isOpen()) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      if (!port_.is_open()) std::this_thread::sleep_for(std::chrono::milliseconds(20));
     } else {
       const std::string cmd = session_.pollCommand(now);
-      if (!cmd.empty() && !port_.write(cmd.data(), cmd.size())) {
+      if (!cmd.empty() && !port_.write_all(cmd.data(), cmd.size())) {
         linkLost("write failed", now);
       } else if (session_.state() == SensorSession::State::Failed) {
         linkLost("sensor did not accept the configuration", now);
       } else {
-        const long n = port_.read(buf, sizeof buf, 20);
-        if (n < 0) {
+        size_t got = 0;
+        const auto r = port_.read(buf, sizeof buf, 20, &got);
+        if (r == drone_ros_common::SerialPort::ReadResult::kGone) {
           linkLost("device gone", now);
-        } else if (n > 0) {
-          session_.onBytes(buf, static_cast<size_t>(n), wallNow());
+        } else if (r == drone_ros_common::SerialPort::ReadResult::kData) {
+          session_.onBytes(buf, got, wallNow());
         }
         // A port that stays open but silent (sensor power-cycled, cable half-plugged): report it
         // at once, and reopen/reconfigure if it persists.
         const double last = std::max(session_.lastByteS(), opened_at_s_);
-        if (port_.isOpen() && now - last > params_.data_timeout_s) {
+        if (port_.is_open() && now - last > params_.data_timeout_s) {
           if (link_up_) {
             ++link_losses_;
             last_problem_ = "no data";
@@ -367,7 +371,7 @@ void Vn200Node::publishPacket(const VnBinaryData& d) {
 void Vn200Node::diagLink(diagnostic_updater::DiagnosticStatusWrapper& stat) {
   const VnFramerStats& f = session_.framerStats();
   const SensorSession::Counters& c = session_.counters();
-  if (params_.replay_file.empty() && !port_.isOpen()) {
+  if (params_.replay_file.empty() && !port_.is_open()) {
     stat.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "port closed: " + last_problem_);
   } else if (!link_up_ && !replay_done_) {
     stat.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "no data from the sensor");

@@ -9,9 +9,9 @@
 #include <memory>
 #include <string>
 
+#include "drone_ros_common/serial_port.h"
 #include "node_params.h"
 #include "sensor_session.h"
-#include "serial_port.h"
 #include "time_mapper.h"
 
 namespace vn200 {
@@ -34,7 +34,7 @@ class Vn200Node {
   ros::NodeHandle nh_, pnh_;
   NodeParams params_;
   SensorSession session_;
-  SerialPort port_;
+  drone_ros_common::SerialPort port_;
   TimeMapper time_mapper_;
   diagnostic_updater::Updater diag_;
   tf2_ros::TransformBroadcaster tf_;

@@ -58,7 +58,7 @@ void ArduinoLinkNode::run() {
       std::size_t got = 0;
       const auto r = port_.read(buf.data(), buf.size(), kReadTimeoutMs, &got);
       const ros::WallTime at = ros::WallTime::now();
-      if (r == SerialPort::ReadResult::kGone) {
+      if (r == drone_ros_common::SerialPort::ReadResult::kGone) {
         port_gone("port closed or device unplugged");
       } else {
         frames.clear();

@@ -18,8 +18,8 @@
 #include <vector>
 
 #include "link_params.h"
+#include "drone_ros_common/serial_port.h"
 #include "rosserial_framer.h"
-#include "serial_port.h"
 
 namespace arduino_link {
 
@@ -76,7 +76,7 @@ class ArduinoLinkNode {
   ros::Publisher pwm_pub_;  // typed: the node also publishes usbstatus 0 itself
 
   std::mutex port_mutex_;  // the port is written from subscriber callbacks too
-  SerialPort port_;
+  drone_ros_common::SerialPort port_;
   std::mutex endpoints_mutex_;  // subscriber callbacks look up the device's buffer size
   std::map<uint16_t, Endpoint> endpoints_;
 

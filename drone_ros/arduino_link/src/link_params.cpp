@@ -1,6 +1,6 @@
 #include "link_params.h"
 
-#include "serial_port.h"
+#include "drone_ros_common/serial_port.h"
 
 namespace arduino_link {
 
@@ -15,7 +15,7 @@ bool read_link_params(const ros::NodeHandle &pnh, LinkParams *p, std::string *er
   pnh.param("lost_pwm_rate_hz", p->lost_pwm_rate_hz, p->lost_pwm_rate_hz);
   if (p->port.empty()) {
     *error = "~port is empty";
-  } else if (!SerialPort::baud_supported(p->baud)) {
+  } else if (!drone_ros_common::SerialPort::baud_supported(p->baud)) {
     *error = "~baud " + std::to_string(p->baud) + " is not a supported rate";
   } else if (!(p->link_timeout_s > 0.0 && p->link_timeout_s < 60.0)) {
     *error = "~link_timeout_s must be in (0, 60)";
