@@ -1,0 +1,29 @@
+# arduino_ha targets (included by the root Makefile).
+#   make verify-ha   Frama-C EVA over the HA core (no alarms allowed), Cortex-M3 cross-compile
+#                    with flash/RAM/stack figures, and the Due sketch compiled against an Arduino
+#                    API shim (-Werror) and run on the host with a fake Arduino. Deterministic;
+#                    fails on any alarm, unproven assertion, warning or failed check.
+#   make bench-ha    instructions per control step on a Cortex-M3 under QEMU, ns per step on
+#                    the host.
+# Tools come from arduino_ha/apt-packages.txt through `make deps`.
+HA_DIR := $(ROOT)/arduino_ha
+HA_VERIFY_OUT := $(ROOT)/.build/arduino_ha_verify
+
+VERIFY_TARGETS += verify-ha
+BENCH_TARGETS += bench-ha
+
+.PHONY: verify-ha verify-ha-eva verify-ha-m3 verify-ha-board bench-ha
+
+verify-ha: verify-ha-eva verify-ha-m3 verify-ha-board
+
+verify-ha-eva: deps
+	@bash $(HA_DIR)/verify/run_eva.sh $(HA_VERIFY_OUT)/eva
+
+verify-ha-m3: deps
+	@bash $(HA_DIR)/verify/cross_size.sh $(HA_VERIFY_OUT)/m3
+
+verify-ha-board: deps
+	@bash $(HA_DIR)/verify/board_compile_check.sh $(HA_VERIFY_OUT)/board
+
+bench-ha: deps
+	@bash $(HA_DIR)/bench/run_bench.sh $(ROOT)/.build/arduino_ha_bench

@@ -1,0 +1,26 @@
+/* The Due's implementation of the core's Board interface (core/ha_board.h) with the Arduino API:
+ * Servo library outputs at 50 Hz, RC capture on pin-change interrupts, the AMS 5812 on I2C, the
+ * battery on an ADC pin, the HP reset line, status LEDs and the SAM3X hardware watchdog. Thin on
+ * purpose: every decision is the core's; this file only moves values in and out. */
+#ifndef DUE_BOARD_H
+#define DUE_BOARD_H
+
+#include <stdint.h>
+
+#include "../core/ha_board.h"
+#include "../core/ha_config.h"
+
+typedef struct {
+  const HaAircraftConfig *cfg;
+  uint8_t servos_attached;  /* servos are attached at the first command: nothing is driven before */
+  uint32_t airspeed_failures; /* I2C reads that returned no plausible reading */
+  HaBoard board;
+} DueBoard;
+
+/* Configures pins, I2C, ADC, RC capture; leaves the HP out of reset and the servos detached. */
+void due_board_begin(DueBoard *due, const HaAircraftConfig *cfg);
+
+/* The Board interface the core's ha_app_period() calls. */
+const HaBoard *due_board_interface(DueBoard *due);
+
+#endif /* DUE_BOARD_H */

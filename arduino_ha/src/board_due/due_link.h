@@ -1,0 +1,20 @@
+/* The HP link on the Due: the rosserial device end (src/link/ha_link.h) over the native USB port.
+ * Received HP commands and operator requests go straight into the core's inputs; each period
+ * the decision and the RC/airspeed readings are published back. */
+#ifndef DUE_LINK_H
+#define DUE_LINK_H
+
+#include <stdint.h>
+
+#include "../core/ha_core.h"
+
+void due_link_begin(HaInputs *inputs);
+
+/* Every loop: feeds received bytes to the link and keeps its time sync going. */
+void due_link_poll(uint32_t now_us);
+
+/* Once per period, after ha_app_period(): DecisionStatus and pwm to the HP. */
+void due_link_publish(const HaAircraftConfig *cfg, const HaInputs *inputs, const HaOutputs *out,
+                      uint32_t now_us);
+
+#endif /* DUE_LINK_H */

@@ -1,0 +1,122 @@
+/* Host implementation of the shim's Arduino, Servo and Wire declarations: records what the board
+ * layer does and lets board_host_test.cpp drive time, pins, the ADC and I2C replies. Test-only;
+ * the Due build uses the real SAM core. */
+#include <Arduino.h>
+#include <Servo.h>
+#include <Wire.h>
+
+#include "fake_arduino.h"
+
+namespace fake {
+State state;
+void reset() { state = State(); }
+void set_pin(uint32_t pin, int level) {
+  state.pin_level[pin] = level;
+  if (state.isr[pin] != nullptr) {
+    state.isr[pin]();
+  }
+}
+}  // namespace fake
+
+extern "C" {
+uint32_t millis(void) { return fake::state.now_us / 1000u; }
+uint32_t micros(void) { return fake::state.now_us; }
+void delay(uint32_t ms) { fake::state.now_us += ms * 1000u; }
+void delayMicroseconds(uint32_t us) { fake::state.now_us += us; }
+void pinMode(uint32_t pin, uint32_t mode) { fake::state.pin_mode[pin] = static_cast<int>(mode); }
+void digitalWrite(uint32_t pin, uint32_t val) { fake::state.written[pin] = static_cast<int>(val); }
+int digitalRead(uint32_t pin) { return fake::state.pin_level[pin]; }
+void analogReadResolution(int res) { fake::state.adc_bits = res; }
+uint32_t analogRead(uint32_t pin) {
+  (void)pin;
+  return fake::state.adc_counts;
+}
+void attachInterrupt(uint32_t pin, void (*callback)(void), uint32_t mode) {
+  (void)mode;
+  fake::state.isr[pin] = callback;
+}
+void detachInterrupt(uint32_t pin) { fake::state.isr[pin] = nullptr; }
+void __enable_irq(void) { fake::state.irq_disabled = 0; }
+void __disable_irq(void) { fake::state.irq_disabled = 1; }
+}
+
+void watchdogEnable(uint32_t timeout) { fake::state.watchdog_timeout_ms = timeout; }
+void watchdogDisable(void) { fake::state.watchdog_timeout_ms = 0u; }
+void watchdogReset(void) { fake::state.watchdog_kicks++; }
+
+/* Serial ports carry nothing in these tests: the link and the VN-200 seam see silence. */
+void UARTClass::begin(unsigned long baud) { (void)baud; }
+int UARTClass::available(void) { return 0; }
+int UARTClass::read(void) { return -1; }
+size_t UARTClass::write(uint8_t c) {
+  (void)c;
+  return 1u;
+}
+size_t UARTClass::write(const uint8_t *buffer, size_t size) {
+  (void)buffer;
+  return size;
+}
+void Serial_::begin(unsigned long baud) { (void)baud; }
+int Serial_::available(void) { return 0; }
+int Serial_::read(void) { return -1; }
+size_t Serial_::write(uint8_t c) {
+  (void)c;
+  return 1u;
+}
+size_t Serial_::write(const uint8_t *buffer, size_t size) {
+  (void)buffer;
+  return size;
+}
+UARTClass Serial;
+USARTClass Serial1;
+USARTClass Serial2;
+USARTClass Serial3;
+Serial_ SerialUSB;
+
+Servo::Servo() : servoIndex(255u), min(0), max(0) {}
+uint8_t Servo::attach(int pin) { return attach(pin, MIN_PULSE_WIDTH, MAX_PULSE_WIDTH); }
+uint8_t Servo::attach(int pin, int min_us, int max_us) {
+  servoIndex = static_cast<uint8_t>(fake::state.servo_count++);
+  fake::ServoRecord &r = fake::state.servos[servoIndex];
+  r.pin = pin;
+  r.min_us = min_us;
+  r.max_us = max_us;
+  r.pulse_us = DEFAULT_PULSE_WIDTH;
+  return servoIndex;
+}
+void Servo::detach() {}
+void Servo::write(int value) { writeMicroseconds(value); }
+void Servo::writeMicroseconds(int value) {
+  fake::ServoRecord &r = fake::state.servos[servoIndex];
+  /* The real library clamps to the attach() range; so does the fake. */
+  r.pulse_us = value < r.min_us ? r.min_us : (value > r.max_us ? r.max_us : value);
+  r.writes++;
+}
+int Servo::read() { return 0; }
+int Servo::readMicroseconds() { return fake::state.servos[servoIndex].pulse_us; }
+bool Servo::attached() { return servoIndex != 255u; }
+
+void TwoWire::begin() {}
+void TwoWire::begin(uint8_t address) { (void)address; }
+void TwoWire::setClock(uint32_t frequency) { fake::state.i2c_clock_hz = frequency; }
+void TwoWire::beginTransmission(uint8_t address) { (void)address; }
+uint8_t TwoWire::endTransmission(void) { return 0u; }
+uint8_t TwoWire::requestFrom(uint8_t address, uint8_t quantity) {
+  fake::state.i2c_last_address = address;
+  fake::state.i2c_pos = 0u;
+  return quantity < fake::state.i2c_reply_len ? quantity : fake::state.i2c_reply_len;
+}
+uint8_t TwoWire::requestFrom(int address, int quantity) {
+  return requestFrom(static_cast<uint8_t>(address), static_cast<uint8_t>(quantity));
+}
+size_t TwoWire::write(uint8_t data) {
+  (void)data;
+  return 1u;
+}
+int TwoWire::available(void) { return fake::state.i2c_reply_len - fake::state.i2c_pos; }
+int TwoWire::read(void) {
+  return fake::state.i2c_pos < fake::state.i2c_reply_len ? fake::state.i2c_reply[fake::state.i2c_pos++]
+                                                        : -1;
+}
+TwoWire Wire;
+TwoWire Wire1;

@@ -1,0 +1,49 @@
+/* Controls and records of fake_arduino.cpp, the host implementation of the shim headers used by
+ * board_host_test.cpp to run the real board layer and sketch on the host. Test-only. */
+#ifndef HA_FAKE_ARDUINO_H
+#define HA_FAKE_ARDUINO_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+namespace fake {
+
+const uint32_t kPins = 70u;
+
+struct ServoRecord {
+  int pin = -1;
+  int min_us = 0;
+  int max_us = 0;
+  int pulse_us = 0;
+  uint32_t writes = 0u;
+};
+
+struct State {
+  uint32_t now_us = 0u;
+  int pin_level[kPins] = {};
+  int pin_mode[kPins] = {};
+  int written[kPins] = {};
+  void (*isr[kPins])(void) = {};
+  uint32_t watchdog_kicks = 0u;
+  uint32_t watchdog_timeout_ms = 0u;
+  int irq_disabled = 0;
+  uint32_t adc_counts = 0u;
+  int adc_bits = 10;
+  ServoRecord servos[8];
+  uint32_t servo_count = 0u;
+  uint8_t i2c_reply[8] = {};
+  uint8_t i2c_reply_len = 0u;
+  uint8_t i2c_pos = 0u;
+  uint8_t i2c_last_address = 0u;
+  uint32_t i2c_clock_hz = 0u;
+};
+
+extern State state;
+
+void reset();
+/* Drives an input pin and runs its interrupt handler (CHANGE), as the SAM core would. */
+void set_pin(uint32_t pin, int level);
+
+}  // namespace fake
+
+#endif

@@ -1,0 +1,62 @@
+#!/usr/bin/env bash
+# Cross-compiles every .c in arduino_ha/src/core for the Due's Cortex-M3 with the flags of the
+# issue, links it with verify/size_main.c into an image laid out for the SAM3X8E's flash and
+# SRAM, and reports flash (text+data), RAM (data+bss) and stack figures as metric lines.
+# -Werror: a warning on the target compiler fails the check.
+# usage: cross_size.sh [out_dir]
+set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+ha=$(cd "$here/.." && pwd)
+root=$(cd "$ha/.." && pwd)
+out=${1:-$root/.build/arduino_ha_verify/m3}
+core=${HA_CORE_DIR:-$ha/src/core}  # override only to try a patched copy of the core
+cc=arm-none-eabi-gcc
+
+if ! command -v "$cc" > /dev/null; then
+  echo "cross_size: $cc not found; run 'make deps' (arduino_ha/apt-packages.txt)" >&2
+  exit 2
+fi
+rm -rf "$out"
+mkdir -p "$out/core" "$out/image"
+
+cflags=(-mcpu=cortex-m3 -mthumb -Os -std=c99 -ffunction-sections -fdata-sections -fstack-usage
+  -Wall -Wextra -Werror -I"$core")
+
+mapfile -t core_sources < <(find "$core" -maxdepth 1 -name '*.c' | LC_ALL=C sort)
+objects=()
+for src in "${core_sources[@]}"; do
+  obj=$out/core/$(basename "${src%.c}").o
+  (cd "$out/core" && "$cc" "${cflags[@]}" -fcallgraph-info=su -c "$src" -o "$obj")
+  objects+=("$obj")
+done
+for src in "$here/size_main.c" "$ha/bench/startup_m3.c" "$ha/bench/semihost.c"; do
+  obj=$out/image/$(basename "${src%.c}").o
+  (cd "$out/image" && "$cc" "${cflags[@]}" -I"$ha/bench" -c "$src" -o "$obj")
+  objects+=("$obj")
+done
+
+elf=$out/ha_core_m3.elf
+"$cc" -mcpu=cortex-m3 -mthumb -nostartfiles --specs=nano.specs -Wl,--gc-sections \
+  -Wl,-Map="$out/ha_core_m3.map" -T "$here/due_sam3x8e.ld" "${objects[@]}" -lm -lc -lgcc -o "$elf"
+
+read -r text data bss < <(arm-none-eabi-size -A "$elf" | awk '
+  $1 == ".text" || $1 == ".ARM.exidx" { t += $2 } $1 == ".data" { d += $2 } $1 == ".bss" { b += $2 }
+  END { print t + 0, d + 0, b + 0 }')
+# The core's own share: its input sections kept in the image (the map lists them after the
+# garbage collection; the "Discarded input sections" part before it is skipped).
+core_code=$(/usr/bin/python3 - "$out/ha_core_m3.map" "$out/core/" <<'PY'
+import re, sys
+text = open(sys.argv[1], encoding="utf-8").read()
+text = text[text.index("Linker script and memory map"):]
+pat = re.compile(r"^ \.(?:text|rodata|data)\S*\s+0x[0-9a-f]+\s+0x([0-9a-f]+)\s+(\S+\.o)$", re.M)
+print(sum(int(m.group(1), 16) for m in pat.finditer(text) if m.group(2).startswith(sys.argv[2])))
+PY
+)
+lines=$(cat "$core"/*.c "$core"/*.h | wc -l)
+
+echo "metric: m3_image_flash $((text + data)) bytes"
+echo "metric: m3_image_ram $((data + bss)) bytes"
+echo "metric: m3_core_code_and_const ${core_code} bytes"
+echo "metric: core_source_lines ${lines} lines"
+/usr/bin/python3 "$here/stack_report.py" "$out/core" ha_app_period ha_core_step
+echo "cross_size: ok ($elf; flash = text+data of the linked image incl. startup and libgcc soft-float)"

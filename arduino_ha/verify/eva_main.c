@@ -1,0 +1,223 @@
+/* Frama-C EVA analysis driver for the HA core (arduino_ha/src/core). Not compiled into anything:
+ * verify/run_eva.sh hands it to frama-c together with every .c of the core.
+ *
+ * Each period it draws every input from the whole range of its type and calls the core exactly
+ * as the firmware does, through ha_app_period (the board functions below return unknown values)
+ * and directly through ha_core_step. Two input modes, selected by run_eva.sh:
+ *   default            every float input any finite value in [-FLT_MAX, FLT_MAX], every integer
+ *                      any value of its type; EVA's default -warn-special-float non-finite then
+ *                      raises an alarm for any operation in the core that could produce inf/NaN
+ *                      (overflow of huge inputs, division by zero);
+ *   HA_EVA_ANY_BITS    every input byte unknown (floats include NaN, +/-inf, denormals), analysed
+ *                      with -warn-special-float none: the assertions below then prove that no
+ *                      NaN or inf, and nothing outside S_u, ever reaches the servos.
+ * HA_EVA_STEPS periods are unrolled (precise); HA_EVA_STEPS 0 instead loops an unknown number of
+ * times, so the result holds after any number of periods. */
+#include <float.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "__fc_builtin.h"
+#include "ha_aircraft.h"
+#include "ha_app.h"
+#include "ha_core.h"
+
+#ifndef HA_EVA_STEPS
+#define HA_EVA_STEPS 4
+#endif
+
+static float any_float(void) {
+#ifdef HA_EVA_ANY_BITS
+  float f;
+  Frama_C_make_unknown((char *)&f, sizeof f);
+  return f;
+#else
+  return Frama_C_float_interval(-FLT_MAX, FLT_MAX);
+#endif
+}
+
+static uint32_t any_u32(void) { return Frama_C_unsigned_int_interval(0u, UINT32_MAX); }
+
+static uint8_t any_u8(void) { return (uint8_t)Frama_C_interval(0, 255); }
+
+static void any_rc(HaRcInputs *rc) {
+  size_t i;
+  for (i = 0u; i < (size_t)HA_RC_CHANNELS; ++i) {
+    rc->pulse_us[i] = Frama_C_unsigned_short_interval(0u, 65535u);
+  }
+  rc->valid = any_u8();
+}
+
+static void any_hp_command(HaHpCommand *cmd) {
+  cmd->seq = any_u32();
+  cmd->stamp_sec = any_u32();
+  cmd->stamp_nsec = any_u32();
+  cmd->throttle = any_float();
+  cmd->elevator_deg = any_float();
+  cmd->aileron_deg = any_float();
+  cmd->rudder_deg = any_float();
+  cmd->alpha_est_deg = any_float();
+  cmd->beta_est_deg = any_float();
+  cmd->estimator_converged = any_u8();
+  cmd->sensor_links_healthy = any_u8();
+  cmd->crc32 = any_u32();
+}
+
+/* Everything the link and the INS side may have written between two periods. */
+static void any_link_inputs(HaInputs *in) {
+  HaHpCommand cmd;
+  in->roll_deg = any_float();
+  in->pitch_deg = any_float();
+  in->heading_deg = any_float();
+  in->p_deg_s = any_float();
+  in->q_deg_s = any_float();
+  in->r_deg_s = any_float();
+  in->altitude_agl_ft = any_float();
+  in->north_ft = any_float();
+  in->east_ft = any_float();
+  in->on_ground = any_u8();
+  in->state_valid = any_u8();
+  in->state_rx_us = any_u32();
+  if (Frama_C_nondet(0, 1)) {
+    any_hp_command(&cmd);
+    ha_inputs_put_hp_command(in, &cmd, any_u32());
+  } else {
+    /* A link that corrupts its own bookkeeping must not matter either. */
+    any_hp_command(&in->hp_cmd);
+    in->hp_cmd_count = any_u32();
+    in->hp_cmd_rx_us = any_u32();
+  }
+  if (Frama_C_nondet(0, 1)) {
+    ha_inputs_put_operator(in, any_u8(), any_u32());
+  } else {
+    in->operator_command = any_u8();
+    in->operator_request_id = any_u32();
+    in->operator_count = any_u32();
+  }
+}
+
+static void any_inputs(HaInputs *in) {
+  any_link_inputs(in);
+  in->airspeed_ftps = any_float();
+  in->battery_v = any_float();
+  any_rc(&in->rc);
+}
+
+/* What must hold for anything that reaches a servo: finite and inside the actuator box S_u is
+ * built from (the configuration's limits). */
+static void check_servo_command(const HaSurfaces *s) {
+  const HaAircraftConfig *cfg = &ha_aircraft_config;
+  /*@ assert servo_throttle_finite: \is_finite(s->throttle); */
+  /*@ assert servo_elevator_finite: \is_finite(s->elevator_deg); */
+  /*@ assert servo_aileron_finite: \is_finite(s->aileron_deg); */
+  /*@ assert servo_rudder_finite: \is_finite(s->rudder_deg); */
+  /*@ assert servo_elevator_in_su:
+        -cfg->elevator_limit_deg <= s->elevator_deg <= cfg->elevator_limit_deg; */
+  /*@ assert servo_aileron_in_su:
+        -cfg->aileron_limit_deg <= s->aileron_deg <= cfg->aileron_limit_deg; */
+  /*@ assert servo_rudder_in_su:
+        -cfg->rudder_limit_deg <= s->rudder_deg <= cfg->rudder_limit_deg; */
+  /*@ assert servo_throttle_in_su: cfg->throttle_min <= s->throttle <= cfg->throttle_max; */
+  {
+    uint16_t pulses_us[HA_U_DIM];
+    ha_surfaces_to_pulses_us(cfg, s, pulses_us);
+  }
+}
+
+/* ---- A board whose every reading is unknown. ---- */
+static uint32_t eva_micros(void *ctx) {
+  (void)ctx;
+  return any_u32();
+}
+static void eva_write_servos(void *ctx, const HaSurfaces *surfaces) {
+  (void)ctx;
+  check_servo_command(surfaces);
+}
+static void eva_read_rc(void *ctx, HaRcInputs *rc) {
+  (void)ctx;
+  any_rc(rc);
+}
+/* A failed reading: ha_app passes it on as NaN, which only the any-bits mode admits (the finite
+ * mode flags any NaN, including one made on purpose). */
+static int any_reading_ok(void) {
+#ifdef HA_EVA_ANY_BITS
+  return Frama_C_nondet(0, 1);
+#else
+  return 1;
+#endif
+}
+static int eva_read_airspeed_ftps(void *ctx, float *airspeed_ftps) {
+  (void)ctx;
+  *airspeed_ftps = any_float();
+  return any_reading_ok();
+}
+static int eva_read_battery_v(void *ctx, float *battery_v) {
+  (void)ctx;
+  *battery_v = any_float();
+  return any_reading_ok();
+}
+static void eva_set_hp_reset(void *ctx, int asserted) {
+  (void)ctx;
+  (void)asserted;
+}
+static void eva_set_leds(void *ctx, uint8_t leds) {
+  (void)ctx;
+  (void)leds;
+}
+static void eva_kick_watchdog(void *ctx) { (void)ctx; }
+
+/* The decision reported to the HP side is always one of the defined values. */
+static void check_decision(const HaOutputs *out) {
+  /*@ assert controller_defined: out->controller <= HA_CONTROLLER_MANUAL; */
+  /*@ assert reasons_defined: (out->reasons & ~(uint32_t)0x1FFFu) == 0; */
+  /*@ assert leds_defined: (out->leds & ~(uint8_t)0x0Fu) == 0; */
+}
+
+static HaApp app;
+static HaCore core;
+static HaInputs inputs;
+static HaOutputs outputs;
+
+static void one_period(const HaBoard *board) {
+  /* Through the app exactly as the firmware runs it ... */
+  any_link_inputs(&app.inputs);
+  ha_app_period(&app, board);
+  check_servo_command(&app.outputs.surfaces);
+  check_decision(&app.outputs);
+  /* ... and the core alone, with every input (incl. its own sensor fields) unknown. */
+  any_inputs(&inputs);
+  ha_core_step(&core, &inputs, any_u32(), &outputs);
+  check_servo_command(&outputs.surfaces);
+  check_decision(&outputs);
+}
+
+int main(void) {
+  static const HaBoard board = {
+      .ctx = NULL,
+      .micros = eva_micros,
+      .write_servos = eva_write_servos,
+      .read_rc = eva_read_rc,
+      .read_airspeed_ftps = eva_read_airspeed_ftps,
+      .read_battery_v = eva_read_battery_v,
+      .set_hp_reset = eva_set_hp_reset,
+      .set_leds = eva_set_leds,
+      .kick_watchdog = eva_kick_watchdog,
+  };
+  ha_app_init(&app, &ha_aircraft_config);
+  ha_core_init(&core, &ha_aircraft_config);
+  /* The first period starts from init with unknown inputs ... */
+#if HA_EVA_STEPS > 0
+  {
+    int i;
+    for (i = 0; i < HA_EVA_STEPS; ++i) {
+      one_period(&board);
+    }
+  }
+#else
+  /* ... and this loop runs an unknown number of periods: EVA's loop invariant covers them all. */
+  while (Frama_C_nondet(0, 1)) {
+    one_period(&board);
+  }
+#endif
+  return 0;
+}
