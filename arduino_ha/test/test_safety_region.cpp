@@ -2,11 +2,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <vector>
 
 #include "ha_aircraft.h"
 #include "ha_core.h"
 
 extern "C" {
+#include "ha_num.h"
 #include "ha_region.h"
 }
 
@@ -75,3 +78,33 @@ TEST(HaServoPulses, LimitsMapToTheConfiguredPulseRangeAndNanToNeutral) {
 }
 
 }  // namespace
+
+// The state view's plausibility checks decide |v| <= span on the float's bits (integer work on
+// the FPU-less Due). They must agree with the float comparison for every bit pattern.
+TEST(HaNumbers, BitwiseSpanCheckAgreesWithFloatCompareForEveryKindOfValue) {
+  const float spans[] = {0.0f, 1e-40f, 90.0f, 180.0f, 2000.0f, 1.0e5f, 1.0e6f};
+  std::vector<uint32_t> patterns = {0x00000000u, 0x80000000u, 0x00000001u, 0x807FFFFFu,
+                                    0x7F800000u, 0xFF800000u, 0x7FC00000u, 0xFFC00001u,
+                                    0x7F7FFFFFu, 0xFF7FFFFFu};
+  uint32_t state = 0x12345678u;
+  for (int i = 0; i < 2000000; ++i) {
+    state = state * 1664525u + 1013904223u;  // reproducible LCG over all 2^32 patterns
+    patterns.push_back(state);
+  }
+  for (float span : spans) {
+    uint32_t span_bits;
+    std::memcpy(&span_bits, &span, sizeof span_bits);
+    patterns.push_back(span_bits);
+    patterns.push_back(span_bits + 1u);
+    patterns.push_back(span_bits | 0x80000000u);
+    patterns.push_back((span_bits + 1u) | 0x80000000u);
+  }
+  for (float span : spans) {
+    for (uint32_t bits : patterns) {
+      float v;
+      std::memcpy(&v, &bits, sizeof v);
+      ASSERT_EQ(ha_in_range(v, -span, span), ha_within_span(v, span))
+          << std::hex << "bits 0x" << bits << " span " << span;
+    }
+  }
+}

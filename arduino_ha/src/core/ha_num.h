@@ -15,6 +15,17 @@ static inline int ha_finite(float v) {
 /* Finite and within [lo, hi] (finite bounds): NaN fails every comparison, inf fails one. */
 static inline int ha_in_range(float v, float lo, float hi) { return v >= lo && v <= hi; }
 
+/* Same verdict as ha_in_range(v, -span, span) for a finite span >= 0, decided on the IEEE-754
+ * bits: for non-negative floats the bit patterns order like the values, and NaN and inf lie
+ * above every finite span. Integer work only: on the FPU-less Due each float compare is a
+ * library call of some 40 instructions. */
+static inline int ha_within_span(float v, float span) {
+  uint32_t v_bits, span_bits;
+  memcpy(&v_bits, &v, sizeof v_bits);
+  memcpy(&span_bits, &span, sizeof span_bits);
+  return (v_bits & 0x7FFFFFFFu) <= (span_bits & 0x7FFFFFFFu);
+}
+
 /* Into [lo, hi]; NaN becomes the in-range value nearest zero, +/-inf the nearer bound. The
  * explicit NaN test first lets static analysis (Frama-C EVA) prove the result finite whatever
  * bits v holds; never build this with -ffast-math. */

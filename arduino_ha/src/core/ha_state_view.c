@@ -10,17 +10,17 @@
 #define HA_POSITION_SPAN_FT 1.0e6f
 
 static int attitude_plausible(const HaInputs *in) {
-  return ha_in_range(in->roll_deg, -HA_ROLL_SPAN_DEG, HA_ROLL_SPAN_DEG) &&
-         ha_in_range(in->pitch_deg, -HA_PITCH_SPAN_DEG, HA_PITCH_SPAN_DEG) &&
-         ha_in_range(in->p_deg_s, -HA_RATE_SPAN_DEG_S, HA_RATE_SPAN_DEG_S) &&
-         ha_in_range(in->q_deg_s, -HA_RATE_SPAN_DEG_S, HA_RATE_SPAN_DEG_S) &&
-         ha_in_range(in->r_deg_s, -HA_RATE_SPAN_DEG_S, HA_RATE_SPAN_DEG_S);
+  return ha_within_span(in->roll_deg, HA_ROLL_SPAN_DEG) &&
+         ha_within_span(in->pitch_deg, HA_PITCH_SPAN_DEG) &&
+         ha_within_span(in->p_deg_s, HA_RATE_SPAN_DEG_S) &&
+         ha_within_span(in->q_deg_s, HA_RATE_SPAN_DEG_S) &&
+         ha_within_span(in->r_deg_s, HA_RATE_SPAN_DEG_S);
 }
 
 static int position_plausible(const HaInputs *in) {
-  return ha_in_range(in->north_ft, -HA_POSITION_SPAN_FT, HA_POSITION_SPAN_FT) &&
-         ha_in_range(in->east_ft, -HA_POSITION_SPAN_FT, HA_POSITION_SPAN_FT) &&
-         ha_in_range(in->heading_deg, -HA_HEADING_SPAN_DEG, HA_HEADING_SPAN_DEG);
+  return ha_within_span(in->north_ft, HA_POSITION_SPAN_FT) &&
+         ha_within_span(in->east_ft, HA_POSITION_SPAN_FT) &&
+         ha_within_span(in->heading_deg, HA_HEADING_SPAN_DEG);
 }
 
 /* Every stored value is clamped to its plausible span even when its ok flag is set: the flag
@@ -35,7 +35,7 @@ void ha_state_view(const HaAircraftConfig *cfg, const HaInputs *in, const HaHpCo
   }
   out->attitude_ok = (uint8_t)(fresh && attitude_plausible(in));
   out->altitude_ok =
-      (uint8_t)(fresh && ha_in_range(in->altitude_agl_ft, -HA_ALT_SPAN_FT, HA_ALT_SPAN_FT));
+      (uint8_t)(fresh && ha_within_span(in->altitude_agl_ft, HA_ALT_SPAN_FT));
   out->position_ok = (uint8_t)(fresh && position_plausible(in));
   out->airspeed_ok = (uint8_t)ha_in_range(in->airspeed_ftps, 0.0f, cfg->max_airspeed_ftps);
   out->alpha_beta_ok = (uint8_t)(have_cmd && ha_finite(cmd->alpha_est_deg) &&
