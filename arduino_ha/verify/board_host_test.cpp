@@ -7,11 +7,14 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
 #include "../src/board_due/due_board.h"
 #include "../src/board_due/due_config.h"
+#include "../src/board_due/due_ins_seam.h"
 #include "../src/board_due/due_main.h"
 #include "../src/core/ha_aircraft.h"
+#include "../src/vn200/vn_checksum.h"
 #include "arduino_shim/fake_arduino.h"
 
 namespace {
@@ -67,6 +70,57 @@ void run_ms(uint32_t ms, const uint16_t widths_us[5], bool rc_on) {
   for (uint32_t t = 0u; t < ms; t += 20u) {
     run_frame(widths_us, rc_on);
   }
+}
+
+// One VN-200 solution and its binary output packet as the sensor sends it (manual, "Binary
+// Output Messages"): Common group with yaw/pitch/roll, angular rate, LLA position, NED velocity
+// and INS status; GPS group with the fix type; little-endian fields, big-endian CRC-16.
+struct Vn200Solution {
+  float ypr_deg[3];
+  float rate_radps[3];
+  double lla[3];
+  float vel_ned_mps[3];
+  uint16_t ins_status;
+  uint8_t gps_fix;
+};
+
+const Vn200Solution kParkedAtHome = {
+    {10.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}, {45.0, -122.0, 100.0}, {0.0f, 0.0f, 0.0f},
+    0x0006u /* tracking, GNSS fix */, 3u};
+const Vn200Solution kFlying50mUp = {
+    {90.0f, 4.0f, -15.0f}, {0.1f, 0.0f, -0.2f}, {45.0, -122.0, 150.0}, {0.0f, 25.0f, 0.0f},
+    0x0006u, 3u};
+
+size_t put(uint8_t *out, size_t n, const void *value, size_t size) {
+  std::memcpy(out + n, value, size);  // the host is little-endian like the sensor's fields
+  return n + size;
+}
+
+size_t vn200_packet(const Vn200Solution &s, uint8_t *out) {
+  const uint16_t common = VN_COMMON_YPR | VN_COMMON_ANGULAR_RATE | VN_COMMON_POSITION |
+                          VN_COMMON_VELOCITY | VN_COMMON_INS_STATUS;
+  const uint16_t gps = VN_GPS_FIX;
+  size_t n = 0u;
+  out[n++] = VN_BIN_SYNC;
+  out[n++] = VN_GROUP_COMMON | VN_GROUP_GPS;
+  n = put(out, n, &common, 2u);
+  n = put(out, n, &gps, 2u);
+  n = put(out, n, s.ypr_deg, 12u);
+  n = put(out, n, s.rate_radps, 12u);
+  n = put(out, n, s.lla, 24u);
+  n = put(out, n, s.vel_ned_mps, 12u);
+  n = put(out, n, &s.ins_status, 2u);
+  n = put(out, n, &s.gps_fix, 1u);
+  const uint16_t crc = vn_crc16(out + 1, n - 1u);
+  out[n++] = static_cast<uint8_t>(crc >> 8);
+  out[n++] = static_cast<uint8_t>(crc & 0xFFu);
+  return n;
+}
+
+void send_vn200(const Vn200Solution &s) {
+  uint8_t pkt[VN_BIN_MAX_PACKET];
+  const size_t len = vn200_packet(s, pkt);
+  (void)fake::serial1_feed(pkt, len);
 }
 
 }  // namespace
@@ -133,6 +187,48 @@ int main() {
   due_main_loop();
   check(fake::state.watchdog_kicks - kicks_at_stall == 1u, "StalledLoopRunsOnePeriodNotABurst",
         "catch-up burst after a stall");
+
+  // The VN-200 talks to the Due on Serial1: parked at home first (home latched), then flying;
+  // a packet corrupted on the wire in between is counted and dropped.
+  const DueInsStats ins_before = due_ins_stats();
+  send_vn200(kParkedAtHome);
+  run_ms(20u, cic, true);
+  {
+    uint8_t pkt[VN_BIN_MAX_PACKET];
+    const size_t len = vn200_packet(kFlying50mUp, pkt);
+    pkt[20] ^= 0x40u;
+    (void)fake::serial1_feed(pkt, len);
+  }
+  send_vn200(kFlying50mUp);
+  // Split across loop passes as the UART delivers it: a 64-byte read never holds a whole packet.
+  run_ms(40u, cic, true);
+  const DueInsStats ins_after = due_ins_stats();
+  check(ins_after.bytes_read > ins_before.bytes_read && ins_after.binary_packets == 2u &&
+            ins_after.solutions_used == 2u,
+        "Vn200PacketsOnSerial1BecomeHaState", "two intact packets did not give two solutions");
+  check(ins_after.bad_packets == 1u && ins_after.solutions_rejected == 0u,
+        "CorruptedVn200PacketCountedAndDropped", "the corrupted packet was not counted as bad");
+  {
+    // The same bytes through the seam into a state the test can read: HA units, from home.
+    uint8_t pkt[VN_BIN_MAX_PACKET];
+    const size_t len = vn200_packet(kFlying50mUp, pkt);
+    HaInputs in;
+    std::memset(&in, 0, sizeof in);
+    due_ins_feed(pkt, len, &in, 123456u);
+    check(in.state_valid == 1u && in.state_rx_us == 123456u &&
+              std::fabs(in.altitude_agl_ft - 164.04f) < 0.01f &&
+              std::fabs(in.heading_deg - 90.0f) < 1e-4f &&
+              std::fabs(in.roll_deg + 15.0f) < 1e-4f &&
+              std::fabs(in.r_deg_s + 11.459f) < 0.01f && std::fabs(in.north_ft) < 0.01f &&
+              in.on_ground == 0u,
+          "Vn200SolutionInHaUnitsFromHome", "decoded state not in ft, deg, deg/s from home");
+    Vn200Solution no_fix = kFlying50mUp;
+    no_fix.ins_status = 0x0002u;  // tracking but the GNSS fix bit clear
+    const size_t no_fix_len = vn200_packet(no_fix, pkt);
+    due_ins_feed(pkt, no_fix_len, &in, 223456u);
+    check(in.state_valid == 0u && in.state_rx_us == 123456u, "Vn200WithoutFixIsNotValid",
+          "a solution without GNSS fix kept the state valid");
+  }
 
   // The board's own readings, through the HaBoard interface of a second board instance.
   DueBoard board;

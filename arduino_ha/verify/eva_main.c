@@ -21,6 +21,7 @@
 #include "ha_aircraft.h"
 #include "ha_app.h"
 #include "ha_core.h"
+#include "ha_ins.h"
 
 #ifndef HA_EVA_STEPS
 #define HA_EVA_STEPS 4
@@ -39,6 +40,16 @@ static float any_float(void) {
 static uint32_t any_u32(void) { return Frama_C_unsigned_int_interval(0u, UINT32_MAX); }
 
 static uint8_t any_u8(void) { return (uint8_t)Frama_C_interval(0, 255); }
+
+static double any_double(void) {
+#ifdef HA_EVA_ANY_BITS
+  double d;
+  Frama_C_make_unknown((char *)&d, sizeof d);
+  return d;
+#else
+  return Frama_C_double_interval(-DBL_MAX, DBL_MAX);
+#endif
+}
 
 static void any_rc(HaRcInputs *rc) {
   size_t i;
@@ -173,14 +184,37 @@ static void check_decision(const HaOutputs *out) {
   /*@ assert leds_defined: (out->leds & ~(uint8_t)0x0Fu) == 0; */
 }
 
+/* One VN-200 solution with every field unknown, as the Due's seam hands it to the adapter. */
+static void any_ins_sample(HaInsSample *s) {
+  size_t i;
+  s->has = any_u8();
+  for (i = 0u; i < 3u; ++i) {
+    s->ypr_deg[i] = any_float();
+    s->angular_rate_radps[i] = any_float();
+    s->vel_ned_mps[i] = any_float();
+  }
+  s->lat_deg = any_double();
+  s->lon_deg = any_double();
+  s->alt_m = any_double();
+  s->ins_status = Frama_C_unsigned_short_interval(0u, 65535u);
+  s->gps_fix = any_u8();
+}
+
 static HaApp app;
 static HaCore core;
+static HaIns ins;
 static HaInputs inputs;
 static HaOutputs outputs;
 
 static void one_period(const HaBoard *board) {
-  /* Through the app exactly as the firmware runs it ... */
+  HaInsSample sample;
+  /* Through the app exactly as the firmware runs it: the link's fields unknown, then (or not) an
+   * INS solution through the adapter, as the Due's seam applies it ... */
   any_link_inputs(&app.inputs);
+  if (Frama_C_nondet(0, 1)) {
+    any_ins_sample(&sample);
+    (void)ha_ins_update(&ins, &ha_aircraft_config, &sample, any_u32(), &app.inputs);
+  }
   ha_app_period(&app, board);
   check_servo_command(&app.outputs.surfaces);
   check_decision(&app.outputs);
@@ -205,6 +239,7 @@ int main(void) {
   };
   ha_app_init(&app, &ha_aircraft_config);
   ha_core_init(&core, &ha_aircraft_config);
+  ha_ins_init(&ins);
   /* The first period starts from init with unknown inputs ... */
 #if HA_EVA_STEPS > 0
   {

@@ -6,20 +6,86 @@
 
 namespace {
 
-DueInsDecodeFn g_decode = nullptr;
-void *g_decode_ctx = nullptr;
-uint32_t g_bytes_dropped = 0u;
+const HaAircraftConfig *g_cfg = nullptr;
+VnFramer g_framer;
+HaIns g_ins;
+DueInsStats g_stats;
 
 /* At 115200 baud about 115 bytes arrive per 10 ms period; reading at most this many per loop
  * keeps one call short while the loop (far faster than the period) still keeps up. */
 const size_t kMaxBytesPerPoll = 64u;
 
+void apply_packet(const VnFrame &frame, HaInputs *inputs, uint32_t now_us) {
+  /* Static: a VnBinaryData is some 200 bytes, kept off the loop's stack. */
+  static VnBinaryData vn;
+  HaInsSample sample;
+  const VnBinResult result = vn_bin_decode(frame.data, frame.len, &vn);
+  if (result != VN_BIN_OK) {
+    g_stats.decode_errors++;
+    if (result == VN_BIN_ERR_NONFINITE) {
+      /* The sensor sent NaN/inf: its solution cannot be trusted until a clean one arrives. */
+      inputs->state_valid = 0u;
+    }
+    return;
+  }
+  due_ins_sample_from_vn(&vn, &sample);
+  (void)ha_ins_update(&g_ins, g_cfg, &sample, now_us, inputs);
+}
+
 }  // namespace
 
-void due_ins_begin(DueInsDecodeFn decode, void *ctx) {
-  g_decode = decode;
-  g_decode_ctx = ctx;
+void due_ins_sample_from_vn(const VnBinaryData *vn, HaInsSample *s) {
+  const uint32_t has = vn->has;
+  s->has = 0u;
+  if ((has & VN_HAS_YPR) != 0u) s->has |= HA_INS_HAS_YPR;
+  if ((has & VN_HAS_ANGULAR_RATE) != 0u) s->has |= HA_INS_HAS_RATE;
+  if ((has & VN_HAS_POSITION_LLA) != 0u) s->has |= HA_INS_HAS_POSITION;
+  if ((has & VN_HAS_VEL_NED) != 0u) s->has |= HA_INS_HAS_VEL_NED;
+  if ((has & VN_HAS_INS_STATUS) != 0u) s->has |= HA_INS_HAS_STATUS;
+  if ((has & VN_HAS_GPS_FIX) != 0u) s->has |= HA_INS_HAS_GPS_FIX;
+  for (size_t i = 0u; i < 3u; ++i) {
+    s->ypr_deg[i] = vn->ypr_deg[i];
+    s->angular_rate_radps[i] = vn->angular_rate_radps[i];
+    s->vel_ned_mps[i] = vn->vel_ned_mps[i];
+  }
+  s->lat_deg = vn->lat_deg;
+  s->lon_deg = vn->lon_deg;
+  s->alt_m = vn->alt_m;
+  s->ins_status = vn->ins_status;
+  s->gps_fix = vn->gps_fix;
+}
+
+void due_ins_begin(const HaAircraftConfig *cfg) {
+  g_cfg = cfg;
+  vn_framer_init(&g_framer);
+  ha_ins_init(&g_ins);
+  g_stats = DueInsStats();
   Serial1.begin(DUE_VN200_BAUD);
+}
+
+void due_ins_feed(const uint8_t *bytes, size_t len, HaInputs *inputs, uint32_t now_us) {
+  if (g_cfg == nullptr) {
+    return; /* not begun */
+  }
+  g_stats.bytes_read += static_cast<uint32_t>(len);
+  size_t offset = 0u;
+  /* Each pass consumes input or hands out a frame from the framer's bounded buffer, so the
+   * loop ends; the cap only makes that obvious. */
+  for (size_t pass = 0u; pass < len + VN_FRAME_MAX + 1u; ++pass) {
+    size_t used = 0u;
+    VnFrame frame;
+    const int got = vn_framer_next(&g_framer, bytes + offset, len - offset, &used, &frame);
+    offset += used;
+    if (got == 0) {
+      break;
+    }
+    if (frame.kind == VN_FRAME_BINARY) {
+      g_stats.binary_packets++;
+      apply_packet(frame, inputs, now_us);
+    } else {
+      g_stats.ascii_frames++;
+    }
+  }
 }
 
 void due_ins_poll(HaInputs *inputs, uint32_t now_us) {
@@ -28,32 +94,15 @@ void due_ins_poll(HaInputs *inputs, uint32_t now_us) {
   while (len < kMaxBytesPerPoll && Serial1.available() > 0) {
     bytes[len++] = static_cast<uint8_t>(Serial1.read());
   }
-  if (len == 0u) {
-    return;
-  }
-  if (g_decode == nullptr) {
-    g_bytes_dropped += static_cast<uint32_t>(len);
-    return;
-  }
-  DueInsState state;
-  if (g_decode(g_decode_ctx, bytes, len, &state) != 0) {
-    due_ins_apply(&state, inputs, now_us);
+  if (len > 0u) {
+    due_ins_feed(bytes, len, inputs, now_us);
   }
 }
 
-void due_ins_apply(const DueInsState *state, HaInputs *inputs, uint32_t now_us) {
-  inputs->roll_deg = state->roll_deg;
-  inputs->pitch_deg = state->pitch_deg;
-  inputs->heading_deg = state->heading_deg;
-  inputs->p_deg_s = state->p_deg_s;
-  inputs->q_deg_s = state->q_deg_s;
-  inputs->r_deg_s = state->r_deg_s;
-  inputs->altitude_agl_ft = state->altitude_agl_ft;
-  inputs->north_ft = state->north_ft;
-  inputs->east_ft = state->east_ft;
-  inputs->on_ground = state->on_ground;
-  inputs->state_valid = 1u;
-  inputs->state_rx_us = now_us;
+DueInsStats due_ins_stats(void) {
+  DueInsStats stats = g_stats;
+  stats.bad_packets = vn_framer_bad_packets(&g_framer.stats);
+  stats.solutions_used = g_ins.solutions_used;
+  stats.solutions_rejected = g_ins.solutions_rejected;
+  return stats;
 }
-
-uint32_t due_ins_bytes_dropped(void) { return g_bytes_dropped; }

@@ -1,49 +1,49 @@
-/* THE VN-200 SEAM: where the decoded INS state enters the HA.
+/* THE VN-200 SEAM: where the INS solution enters the HA.
  *
- * The VN-200's port 1 is wired to the Due's Serial1. Its bytes are read here every loop and
- * handed to a decoder; a decoded state is written into the core's inputs by due_ins_apply(),
- * which is the only place INS data enters HaInputs. The decoder is the VN-200 protocol core
- * (vn200_driver/core: vn_framer + vn_bin_decode) plus a conversion to the units below; it is
- * plugged in with due_ins_begin(). Until one is plugged in, bytes are counted and dropped,
- * state_valid stays 0, and the core treats the attitude/altitude/position as unknown (its state
- * checks fail, so the HA keeps control). README.md, "VN-200", says how to wire it. */
+ * The VN-200's port 1 is wired to the Due's Serial1, so the HA senses attitude, rates, altitude
+ * and position without the HP. Its bytes are read here every loop, split into packets by the
+ * VN-200 protocol core (src/vn200/, a checked-in copy of vn200_driver/core made by
+ * `make due-sketch-vn200`: vn_framer + vn_bin_decode), each decoded binary packet is copied into
+ * the core's plain HaInsSample, and the core's INS adapter (core/ha_ins.c) turns it into the
+ * state fields of HaInputs: the only place INS data enters them. ASCII sentences (register
+ * responses) are counted and ignored; bad packets are counted by the framer and dropped.
+ * README.md, "VN-200", says how to wire and configure the sensor. */
 #ifndef DUE_INS_SEAM_H
 #define DUE_INS_SEAM_H
 
 #include <stddef.h>
 #include <stdint.h>
 
+#include "../core/ha_config.h"
 #include "../core/ha_core.h"
+#include "../core/ha_ins.h"
+#include "../vn200/vn_binary.h"
+#include "../vn200/vn_framer.h"
 
-/* One INS solution in the core's units and frames (see HaInputs in core/ha_core.h). */
 typedef struct {
-  float roll_deg;    /* right wing down positive */
-  float pitch_deg;   /* nose up positive */
-  float heading_deg; /* true, clockwise from north */
-  float p_deg_s;
-  float q_deg_s;
-  float r_deg_s;
-  float altitude_agl_ft;
-  float north_ft; /* from the home/rally point */
-  float east_ft;
-  uint8_t on_ground;
-} DueInsState;
+  uint32_t bytes_read;
+  uint32_t binary_packets;  /* intact binary packets (CRC good) */
+  uint32_t ascii_frames;    /* ignored */
+  uint32_t decode_errors;   /* intact packets vn_bin_decode refused (incl. non-finite values) */
+  uint32_t bad_packets;     /* framer: corrupt or truncated packets */
+  uint32_t solutions_used;  /* solutions that made the state valid */
+  uint32_t solutions_rejected;
+} DueInsStats;
 
-/* Consumes bytes from the VN-200 stream; returns 1 and fills *state when those bytes completed a
- * solution, 0 otherwise (the decoder keeps partial packets between calls). */
-typedef int (*DueInsDecodeFn)(void *ctx, const uint8_t *bytes, size_t len, DueInsState *state);
+/* Opens Serial1 at DUE_VN200_BAUD and resets the framer and the adapter (home not latched).
+ * cfg is the aircraft configuration the adapter reads (stall speed, airborne altitude). */
+void due_ins_begin(const HaAircraftConfig *cfg);
 
-/* Opens Serial1 at DUE_VN200_BAUD. decode may be NULL (not wired yet: bytes are dropped). */
-void due_ins_begin(DueInsDecodeFn decode, void *ctx);
-
-/* Reads what Serial1 has buffered (bounded per call), decodes, applies the newest state. */
+/* Reads what Serial1 has buffered (bounded per call) and applies it with due_ins_feed(). */
 void due_ins_poll(HaInputs *inputs, uint32_t now_us);
 
-/* The seam itself: copies one decoded state into the core's inputs, stamped with its arrival.
- * No checks here: the core checks every field (finite, plausible, fresh) before use. */
-void due_ins_apply(const DueInsState *state, HaInputs *inputs, uint32_t now_us);
+/* Frames, decodes and applies bytes from the VN-200 stream, received at now_us. Partial packets
+ * are kept for the next call. A packet with a non-finite value makes the state invalid. */
+void due_ins_feed(const uint8_t *bytes, size_t len, HaInputs *inputs, uint32_t now_us);
 
-/* Bytes read while no decoder was plugged in. */
-uint32_t due_ins_bytes_dropped(void);
+/* The copy from the VN-200 decoder's struct into the core's (units unchanged). */
+void due_ins_sample_from_vn(const VnBinaryData *vn, HaInsSample *sample);
+
+DueInsStats due_ins_stats(void);
 
 #endif /* DUE_INS_SEAM_H */

@@ -20,8 +20,8 @@ void due_main_setup(void) {
   const HaAircraftConfig *cfg = &ha_aircraft_config;
   due_board_begin(&g_board, cfg);
   ha_app_init(&g_app, cfg);
-  /* VN-200 decoder: see due_ins_seam.h and README.md ("VN-200"). */
-  due_ins_begin(nullptr, nullptr);
+  /* The VN-200 on Serial1 feeds the core's state directly: see due_ins_seam.h. */
+  due_ins_begin(cfg);
   due_link_begin(&g_app.inputs);
   g_next_period_us = micros();
 }

@@ -4,12 +4,25 @@
 #include <Arduino.h>
 #include <Servo.h>
 #include <Wire.h>
+#include <string.h>
 
 #include "fake_arduino.h"
 
 namespace fake {
 State state;
 void reset() { state = State(); }
+int serial1_feed(const uint8_t *bytes, size_t len) {
+  const size_t unread = state.serial1_len - state.serial1_pos;
+  memmove(state.serial1_rx, state.serial1_rx + state.serial1_pos, unread);
+  state.serial1_pos = 0u;
+  state.serial1_len = unread;
+  if (len > sizeof state.serial1_rx - unread) {
+    return 0;
+  }
+  memcpy(state.serial1_rx + unread, bytes, len);
+  state.serial1_len += len;
+  return 1;
+}
 void set_pin(uint32_t pin, int level) {
   state.pin_level[pin] = level;
   if (state.isr[pin] != nullptr) {
@@ -44,10 +57,19 @@ void watchdogEnable(uint32_t timeout) { fake::state.watchdog_timeout_ms = timeou
 void watchdogDisable(void) { fake::state.watchdog_timeout_ms = 0u; }
 void watchdogReset(void) { fake::state.watchdog_kicks++; }
 
-/* Serial ports carry nothing in these tests: the link and the VN-200 seam see silence. */
+/* Serial1 (the VN-200) delivers what fake::serial1_feed() queued; every other port carries
+ * nothing in these tests (the HP link sees silence). */
 void UARTClass::begin(unsigned long baud) { (void)baud; }
-int UARTClass::available(void) { return 0; }
-int UARTClass::read(void) { return -1; }
+int UARTClass::available(void) {
+  return this == &Serial1 ? static_cast<int>(fake::state.serial1_len - fake::state.serial1_pos)
+                          : 0;
+}
+int UARTClass::read(void) {
+  if (this != &Serial1 || fake::state.serial1_pos >= fake::state.serial1_len) {
+    return -1;
+  }
+  return fake::state.serial1_rx[fake::state.serial1_pos++];
+}
 size_t UARTClass::write(uint8_t c) {
   (void)c;
   return 1u;

@@ -36,6 +36,10 @@ struct State {
   uint8_t i2c_pos = 0u;
   uint8_t i2c_last_address = 0u;
   uint32_t i2c_clock_hz = 0u;
+  /* Bytes waiting on Serial1 (the VN-200's port), read from serial1_pos on. */
+  uint8_t serial1_rx[4096] = {};
+  size_t serial1_len = 0u;
+  size_t serial1_pos = 0u;
 };
 
 extern State state;
@@ -43,6 +47,9 @@ extern State state;
 void reset();
 /* Drives an input pin and runs its interrupt handler (CHANGE), as the SAM core would. */
 void set_pin(uint32_t pin, int level);
+/* Queues bytes on Serial1's receive side, as the VN-200 sends them; returns 0 if they do not fit
+ * (the unread bytes are kept at the front first). */
+int serial1_feed(const uint8_t *bytes, size_t len);
 
 }  // namespace fake
 

@@ -1,0 +1,164 @@
+#include "ha_ins.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "ha_num.h"
+
+/* Units. */
+#define HA_INS_FT_PER_M (1.0 / 0.3048) /* international foot, exact */
+#define HA_INS_DEG_PER_RAD 57.295779513082320876f
+#define HA_INS_RAD_PER_DEG 0.017453292519943295769
+
+/* WGS84 ellipsoid (NIMA TR8350.2): semi-major axis and first eccentricity squared. */
+#define HA_INS_WGS84_A_M 6378137.0
+#define HA_INS_WGS84_E2 0.00669437999014
+
+/* What the VN-200 can report at all (datasheet ranges); a value outside is a corrupt packet,
+ * and the bounds keep every conversion below finite. */
+#define HA_INS_MAX_RATE_RADPS 35.0f /* gyro range +/-2000 deg/s */
+#define HA_INS_MAX_SPEED_MPS 515.0f /* GNSS velocity limit, 500 m/s, plus margin */
+#define HA_INS_MIN_ALT_M (-1000.0)  /* below the lowest ellipsoid height on earth */
+#define HA_INS_MAX_ALT_M 18000.0    /* GNSS altitude limit */
+/* Parked: vertical speed within the INS's noise on the ground. A sensor property, not the
+ * aircraft's. */
+#define HA_INS_PARKED_VDOWN_MPS 1.0f
+
+/* INS status error flags, bits 3-6. */
+#define HA_INS_STATUS_ERRORS 0x0078u
+
+void ha_ins_init(HaIns *ins) { memset(ins, 0, sizeof *ins); }
+
+static int in_range_d(double v, double lo, double hi) { return v >= lo && v <= hi; }
+
+/* Into [lo, hi]; NaN becomes lo. Used only on values already found in range, where it changes
+ * nothing: it lets static analysis (Frama-C EVA) see the bounds the arithmetic relies on. */
+static double clamp_d(double v, double lo, double hi) {
+  if (v != v || v < lo) {
+    return lo;
+  }
+  return v > hi ? hi : v;
+}
+
+/* A solution whose every field passed sample_in_range(), bounds made explicit. */
+typedef struct {
+  float yaw_deg, pitch_deg, roll_deg;
+  float rate_radps[3];
+  float vel_ned_mps[3];
+  double lat_deg, lon_deg, alt_m;
+} Checked;
+
+static void checked_from(const HaInsSample *s, Checked *c) {
+  size_t i;
+  c->yaw_deg = ha_clampf(s->ypr_deg[0], -180.0f, 180.0f);
+  c->pitch_deg = ha_clampf(s->ypr_deg[1], -90.0f, 90.0f);
+  c->roll_deg = ha_clampf(s->ypr_deg[2], -180.0f, 180.0f);
+  for (i = 0u; i < 3u; ++i) {
+    c->rate_radps[i] =
+        ha_clampf(s->angular_rate_radps[i], -HA_INS_MAX_RATE_RADPS, HA_INS_MAX_RATE_RADPS);
+    c->vel_ned_mps[i] = ha_clampf(s->vel_ned_mps[i], -HA_INS_MAX_SPEED_MPS, HA_INS_MAX_SPEED_MPS);
+  }
+  c->lat_deg = clamp_d(s->lat_deg, -90.0, 90.0);
+  c->lon_deg = clamp_d(s->lon_deg, -180.0, 180.0);
+  c->alt_m = clamp_d(s->alt_m, HA_INS_MIN_ALT_M, HA_INS_MAX_ALT_M);
+}
+
+/* Every field the state is made of is present, finite and inside what the sensor can report.
+ * The comparisons reject NaN and inf before any arithmetic touches them. */
+static int sample_in_range(const HaInsSample *s) {
+  int ok = (s->has & HA_INS_HAS_REQUIRED) == HA_INS_HAS_REQUIRED;
+  size_t i;
+  ok = ok && ha_in_range(s->ypr_deg[0], -180.0f, 180.0f);
+  ok = ok && ha_in_range(s->ypr_deg[1], -90.0f, 90.0f);
+  ok = ok && ha_in_range(s->ypr_deg[2], -180.0f, 180.0f);
+  for (i = 0u; i < 3u; ++i) {
+    ok = ok && ha_in_range(s->angular_rate_radps[i], -HA_INS_MAX_RATE_RADPS, HA_INS_MAX_RATE_RADPS);
+    ok = ok && ha_in_range(s->vel_ned_mps[i], -HA_INS_MAX_SPEED_MPS, HA_INS_MAX_SPEED_MPS);
+  }
+  ok = ok && in_range_d(s->lat_deg, -90.0, 90.0);
+  ok = ok && in_range_d(s->lon_deg, -180.0, 180.0);
+  ok = ok && in_range_d(s->alt_m, HA_INS_MIN_ALT_M, HA_INS_MAX_ALT_M);
+  return ok;
+}
+
+/* The INS says its solution is good: tracking, GNSS fix, no error flag. */
+static int ins_tracking(uint16_t status) {
+  return (status & 0x3u) == HA_INS_MODE_TRACKING && (status & 0x4u) != 0u &&
+         (status & HA_INS_STATUS_ERRORS) == 0u;
+}
+
+/* Ground speed below the stall speed and hardly any vertical speed: the aircraft cannot be
+ * flying. Only called on an in-range sample. */
+static int parked(const HaAircraftConfig *cfg, const Checked *c) {
+  const float stall_mps = cfg->stall_speed_ftps / (float)HA_INS_FT_PER_M;
+  const float vn = c->vel_ned_mps[0];
+  const float ve = c->vel_ned_mps[1];
+  return vn * vn + ve * ve < stall_mps * stall_mps &&
+         ha_in_range(c->vel_ned_mps[2], -HA_INS_PARKED_VDOWN_MPS, HA_INS_PARKED_VDOWN_MPS);
+}
+
+/* THE FLAT-EARTH CONVERSION (the only one): north/east from home are the latitude/longitude
+ * differences times the WGS84 meridian radius M and the parallel radius N cos(lat) at the home
+ * latitude. Within the few miles the HA circles, the error against the ellipsoid is far below
+ * the INS's own position uncertainty. */
+static void latch_home(HaIns *ins, const Checked *s) {
+  const double lat_rad = s->lat_deg * HA_INS_RAD_PER_DEG;
+  const double sin_lat = sin(lat_rad);
+  const double w = 1.0 - HA_INS_WGS84_E2 * sin_lat * sin_lat;
+  const double sqrt_w = sqrt(w);
+  const double meridian_m = HA_INS_WGS84_A_M * (1.0 - HA_INS_WGS84_E2) / (w * sqrt_w);
+  const double normal_m = HA_INS_WGS84_A_M / sqrt_w;
+  ins->home_lat_deg = s->lat_deg;
+  ins->home_lon_deg = s->lon_deg;
+  ins->home_alt_m = s->alt_m;
+  ins->north_ft_per_deg = meridian_m * HA_INS_RAD_PER_DEG * HA_INS_FT_PER_M;
+  ins->east_ft_per_deg = normal_m * cos(lat_rad) * HA_INS_RAD_PER_DEG * HA_INS_FT_PER_M;
+  ins->home_latched = 1u;
+}
+
+int ha_ins_update(HaIns *ins, const HaAircraftConfig *cfg, const HaInsSample *s,
+                  uint32_t now_us, HaInputs *in) {
+  Checked c;
+  double dlon_deg;
+  float agl_ft;
+  if (!sample_in_range(s) || !ins_tracking(s->ins_status)) {
+    in->state_valid = 0u;
+    ins->solutions_rejected += 1u;
+    return 0;
+  }
+  checked_from(s, &c);
+  if (!ins->home_latched && (s->has & HA_INS_HAS_GPS_FIX) != 0u &&
+      s->gps_fix >= HA_INS_GPS_FIX_3D && parked(cfg, &c)) {
+    latch_home(ins, &c);
+  }
+  if (!ins->home_latched) {
+    in->state_valid = 0u;
+    ins->solutions_rejected += 1u;
+    return 0;
+  }
+  /* Shortest way round across the antimeridian. */
+  dlon_deg = c.lon_deg - ins->home_lon_deg;
+  if (dlon_deg > 180.0) {
+    dlon_deg -= 360.0;
+  } else if (dlon_deg < -180.0) {
+    dlon_deg += 360.0;
+  }
+  in->heading_deg = c.yaw_deg;
+  in->pitch_deg = c.pitch_deg;
+  in->roll_deg = c.roll_deg;
+  /* Body x, y, z rates are p, q, r in the core's sign conventions. */
+  in->p_deg_s = c.rate_radps[0] * HA_INS_DEG_PER_RAD;
+  in->q_deg_s = c.rate_radps[1] * HA_INS_DEG_PER_RAD;
+  in->r_deg_s = c.rate_radps[2] * HA_INS_DEG_PER_RAD;
+  agl_ft = (float)((c.alt_m - ins->home_alt_m) * HA_INS_FT_PER_M);
+  in->altitude_agl_ft = agl_ft;
+  in->north_ft = (float)((c.lat_deg - ins->home_lat_deg) * ins->north_ft_per_deg);
+  in->east_ft = (float)(dlon_deg * ins->east_ft_per_deg);
+  /* The INS has no weight-on-wheels: parked and no higher than the airborne altitude. The core
+   * adds its own airspeed check before it trusts this. */
+  in->on_ground = (uint8_t)(parked(cfg, &c) && agl_ft <= cfg->airborne_agl_ft);
+  in->state_valid = 1u;
+  in->state_rx_us = now_us;
+  ins->solutions_used += 1u;
+  return 1;
+}

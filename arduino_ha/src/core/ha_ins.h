@@ -1,0 +1,80 @@
+/* The INS adapter: one VN-200 solution in, the aircraft-state fields of HaInputs out, in the
+ * core's units and frames. Portable C99, no heap, no recursion, time passed in; independent of
+ * the VN-200 headers (the board layer copies the decoded packet into HaInsSample).
+ *
+ * Frames: the VN-200 reports yaw/pitch/roll of the body relative to local NED and body rates in
+ * its own body frame (x forward, y right, z down), which are exactly the core's conventions
+ * (roll right wing down positive, pitch nose up positive, heading clockwise from true north,
+ * r nose right positive); only units change (rad/s -> deg/s, m -> ft).
+ *
+ * Home: the position origin the HA circles and the zero of altitude AGL. It is latched once, at
+ * the first valid solution with a 3D GNSS fix taken while parked (ground speed below the stall
+ * speed and no vertical speed to speak of), and never moved afterwards: re-latching in flight
+ * would shift the circle. Until home is latched the state stays invalid (no altitude AGL, no
+ * position), so the core keeps the HA in control. */
+#ifndef HA_INS_H
+#define HA_INS_H
+
+#include <stdint.h>
+
+#include "ha_config.h"
+#include "ha_core.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* HaInsSample.has bits: which fields the packet carried. */
+#define HA_INS_HAS_YPR 0x01u
+#define HA_INS_HAS_RATE 0x02u
+#define HA_INS_HAS_POSITION 0x04u
+#define HA_INS_HAS_VEL_NED 0x08u
+#define HA_INS_HAS_STATUS 0x10u
+#define HA_INS_HAS_GPS_FIX 0x20u
+#define HA_INS_HAS_REQUIRED                                                                   \
+  (HA_INS_HAS_YPR | HA_INS_HAS_RATE | HA_INS_HAS_POSITION | HA_INS_HAS_VEL_NED |              \
+   HA_INS_HAS_STATUS)
+
+/* INS status word (VN-200 manual, "INS Status"): mode in bits 0-1 (2 = tracking, the solution is
+ * good), GNSS fix in bit 2, error flags in bits 3-6. */
+#define HA_INS_MODE_TRACKING 2u
+#define HA_INS_GPS_FIX_3D 3u
+
+/* One INS solution, as the sensor sends it (units in the names). */
+typedef struct {
+  uint8_t has;                  /* HA_INS_HAS_* */
+  float ypr_deg[3];             /* yaw, pitch, roll */
+  float angular_rate_radps[3];  /* body x, y, z */
+  double lat_deg, lon_deg, alt_m; /* WGS84, ellipsoid height */
+  float vel_ned_mps[3];
+  uint16_t ins_status;
+  uint8_t gps_fix;              /* 0 none, 1 time only, 2 2D, 3 3D */
+} HaInsSample;
+
+typedef struct {
+  uint8_t home_latched;
+  double home_lat_deg;
+  double home_lon_deg;
+  double home_alt_m;
+  /* Flat-earth scale at the home latitude (see ha_ins.c), fixed when home is latched. */
+  double north_ft_per_deg;
+  double east_ft_per_deg;
+  uint32_t solutions_used;     /* solutions that made the state valid */
+  uint32_t solutions_rejected; /* solutions that left it invalid (status, range, no home yet) */
+} HaIns;
+
+void ha_ins_init(HaIns *ins);
+
+/* Applies one solution received at now_us. Returns 1 and writes every state field of *inputs
+ * with state_valid = 1 and state_rx_us = now_us when the INS is tracking with a GNSS fix and no
+ * error flag, every field it needs is present, finite and inside the sensor's range, and home is
+ * latched; otherwise sets state_valid = 0, leaves the other fields alone and returns 0.
+ * cfg supplies the aircraft's stall speed and airborne altitude (on_ground, parked). */
+int ha_ins_update(HaIns *ins, const HaAircraftConfig *cfg, const HaInsSample *sample,
+                  uint32_t now_us, HaInputs *inputs);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* HA_INS_H */
