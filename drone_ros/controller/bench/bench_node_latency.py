@@ -1,10 +1,14 @@
 #!/usr/bin/env python3
 """controller_DG808 end-to-end latency: from the publish of the latest sensor sample to the
 arrival of the next /servo_op, at 20 Hz and 100 Hz. Sensors are fed at 100 Hz (the HA's rate)
-from this process; each rate gets its own roslaunch and ROS master on a free loopback port.
-The figure includes the wait for the controller's next timer tick (it steps on its own clock,
-not on message arrival), so it is bounded by one control period plus processing and transport.
-Prints `metric: value unit` lines."""
+from this process; each rate gets its own roslaunch of the flight launch file (ground station on
+UDP loopback, no radio needed) and its own ROS master on a free loopback port.
+Two figures per rate:
+- sensor-to-command: includes the wait for the controller's next timer tick (it steps on its own
+  clock, not on message arrival), so it is bounded by one feed period plus processing and transport;
+- step-to-receipt: from the stamp the controller puts on the command (taken as its step starts
+  publishing) to its arrival here: the node's own processing and ROS transport alone.
+Prints `name: value unit` lines."""
 import os
 import socket
 import subprocess
@@ -34,11 +38,12 @@ def measure(dt_s):
     log = open(os.path.join("/tmp", "bench_controller_roslaunch_%d.log" % port), "w")
     launch = subprocess.Popen(
         ["roslaunch", "-p", str(port), os.path.join(ROOT, "launch", "DG808_flight.launch"),
-         "dt:=%g" % dt_s], env=env, stdout=log, stderr=subprocess.STDOUT)
+         "dt:=%g" % dt_s, "gs_transport:=udp", "gs_udp_remote_address:=127.0.0.1"], env=env, stdout=log, stderr=subprocess.STDOUT)
     try:
         out = subprocess.run([sys.executable, os.path.abspath(__file__), "--client", str(dt_s)],
                              env=env, stdout=subprocess.PIPE, check=True, timeout=90)
-        return [float(x) for x in out.stdout.split()]
+        pairs = [line.split() for line in out.stdout.decode().splitlines() if line.strip()]
+        return (sorted(float(a) for a, _ in pairs), sorted(float(b) for _, b in pairs))
     finally:
         log.close()
         launch.terminate()
@@ -65,12 +70,13 @@ def run_client(dt_s):
                 raise RuntimeError("no ROS master")
             time.sleep(0.2)
     rospy.init_node("bench_controller_latency", anonymous=True, disable_signals=True)
-    state = {"last_pub": None, "lat": [], "recording": False}
+    state = {"last_pub": None, "lat": [], "transport": [], "recording": False}
 
-    def on_cmd(_msg):
+    def on_cmd(msg):
         now = time.monotonic()
         if state["recording"] and state["last_pub"] is not None:
             state["lat"].append(now - state["last_pub"])
+            state["transport"].append((rospy.Time.now() - msg.stamp).to_sec())
 
     sub = rospy.Subscriber("/servo_op", ServoCommand, on_cmd, queue_size=100, tcp_nodelay=True)
     feeder = SensorFeeder()
@@ -88,11 +94,10 @@ def run_client(dt_s):
     for p in feeder.pubs.values():
         p.unregister()
     feeder.way_pub.unregister()
-    lat = sorted(state["lat"])
-    if not lat:
+    if not state["lat"]:
         raise RuntimeError("no /servo_op received at dt=%g" % dt_s)
     rospy.signal_shutdown("done")
-    return lat
+    return state["lat"], state["transport"]
 
 
 def pct(sorted_values, q):
@@ -101,14 +106,17 @@ def pct(sorted_values, q):
 
 def main():
     if len(sys.argv) == 3 and sys.argv[1] == "--client":
-        print("\n".join("%.9f" % x for x in run_client(float(sys.argv[2]))))
+        lat, transport = run_client(float(sys.argv[2]))
+        print("\n".join("%.9f %.9f" % pair for pair in zip(lat, transport)))
         return
     results = {}
     for hz in (20, 100):
         results[hz] = measure(1.0 / hz)
-    for hz, lat in results.items():
-        print("node_latency_%dhz_p50: %.2f ms" % (hz, 1000.0 * pct(lat, 0.50)))
-        print("node_latency_%dhz_p99: %.2f ms" % (hz, 1000.0 * pct(lat, 0.99)))
+    for hz, (lat, transport) in results.items():
+        print("node_sensor_to_command_%dhz_p50: %.2f ms" % (hz, 1000.0 * pct(lat, 0.50)))
+        print("node_sensor_to_command_%dhz_p99: %.2f ms" % (hz, 1000.0 * pct(lat, 0.99)))
+        print("node_step_to_receipt_%dhz_p50: %.3f ms" % (hz, 1000.0 * pct(transport, 0.50)))
+        print("node_step_to_receipt_%dhz_p99: %.3f ms" % (hz, 1000.0 * pct(transport, 0.99)))
         print("node_servo_op_%dhz_count: %d messages" % (hz, len(lat)))
 
 
