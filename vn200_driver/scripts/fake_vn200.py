@@ -145,6 +145,13 @@ class FakeSensor:
     def reset_config(self):
         self.baud = self.args.baud
         self.ascii_async = True
+        # Registers 75-77 are global to the sensor; each output's AsyncMode routes it to port 1,
+        # port 2 or both. This fake is the port named by --port: it streams the outputs routed
+        # to it. With --ha-owns-output-1, register 75 was set up for the HA on port 1 (as on the
+        # aircraft) and a write to it is refused, so a driver that would take it over fails here.
+        self.outputs = {}  # register -> (mode, divisor, groups, masks)
+        if self.args.ha_owns_output_1:
+            self.outputs[75] = (1, 8, 0x01, [0x0008, 0, 0, 0, 0, 0])
         self.groups = 0
         self.masks = [0] * 6
         self.divisor = 0
@@ -210,7 +217,11 @@ class FakeSensor:
                 if self.baud:
                     self.baud = new_baud
                     log("baud rate now %d" % new_baud)
-            elif cmd == "VNWRG" and int(parts[1]) == 75:
+            elif cmd == "VNWRG" and int(parts[1]) == 75 and self.args.ha_owns_output_1:
+                log("refused: register 75 is the HA's binary output (port 1)")
+                self.send(sentence("VNERR,09"))
+            elif cmd == "VNWRG" and int(parts[1]) in (75, 76, 77):
+                reg = int(parts[1])
                 mode, divisor, groups = int(parts[2]), int(parts[3]), int(parts[4], 16)
                 masks, i = [0] * 6, 5
                 for g in range(6):
@@ -221,13 +232,20 @@ class FakeSensor:
                             raise ValueError("undocumented field")
                 if i != len(parts) or groups & ~0x3F or divisor < 1 or mode not in (0, 1, 2, 3):
                     raise ValueError("bad binary output")
-                self.groups, self.masks, self.divisor = groups, masks, divisor
+                self.outputs[reg] = (mode, divisor, groups, masks)
+                routed = [(d, g, m) for (md, d, g, m) in
+                          (self.outputs[r] for r in sorted(self.outputs))
+                          if md & self.args.port]
+                # One stream per port is all the node asks for; the first routed output feeds it.
+                self.divisor, self.groups, self.masks = routed[0] if routed else (0, 0, [0] * 6)
                 self.configured_count += 1
                 self.next_packet = self.now_s()
                 self.sent = 0
                 self.send(sentence(body))
-                log("binary output configured: groups %02X masks %s divisor %d" %
-                    (groups, " ".join("%04X" % m for m in masks), divisor))
+                log("binary output %d (register %d) configured: mode %d groups %02X masks %s "
+                    "divisor %d%s" % (reg - 74, reg, mode, groups, " ".join("%04X" % m for m in masks),
+                                      divisor, "" if mode & self.args.port else
+                                      " (not routed to this port %d)" % self.args.port))
             else:
                 self.send(sentence("VNERR,04"))
         except (ValueError, IndexError):
@@ -296,6 +314,10 @@ def main(argv):
                    help="after every Nth packet inject noise and a corrupt packet (0: never)")
     p.add_argument("--baud", type=int, default=0,
                    help="the sensor's serial speed at power-up (0: ignore speeds)")
+    p.add_argument("--port", type=int, default=2, choices=(1, 2),
+                   help="which of the sensor's serial ports this pty is (the HP's: 2)")
+    p.add_argument("--ha-owns-output-1", action="store_true",
+                   help="register 75 is set up for the HA on port 1 and refuses writes")
     p.add_argument("--capture", help="write a binary capture to this file and exit")
     p.add_argument("--packets", type=int, default=100)
     p.add_argument("--rate-hz", type=float, default=50.0)

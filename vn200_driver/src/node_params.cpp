@@ -11,6 +11,7 @@ bool loadParams(const ros::NodeHandle& pnh, NodeParams* p, std::string* error) {
   pnh.param("sensor_baud", p->sensor_baud, p->sensor_baud);
   pnh.param("rate_hz", p->rate_hz, p->rate_hz);
   pnh.param("sensor_port", p->sensor_port, p->sensor_port);
+  pnh.param("binary_output", p->binary_output, p->binary_output);
   pnh.param("frame_id", p->frame_id, p->frame_id);
   pnh.param("frd_frame_id", p->frd_frame_id, p->frd_frame_id);
   pnh.param("world_frame_id", p->world_frame_id, p->world_frame_id);
@@ -49,8 +50,18 @@ bool loadParams(const ros::NodeHandle& pnh, NodeParams* p, std::string* error) {
     *error = "~sensor_port must be 1 or 2";
     return false;
   }
+  if (p->binary_output < 1 || p->binary_output > 3) {
+    *error = "~binary_output must be 1, 2 or 3 (registers 75-77)";
+    return false;
+  }
+  if (p->binary_output == 1 && p->sensor_port != 1) {
+    *error = "~binary_output 1 (register 75) is the HA's, on the sensor's port 1; the HP on port " +
+             std::to_string(p->sensor_port) + " uses 2 or 3";
+    return false;
+  }
   const VnBinaryOutputConfig cfg = nodeOutputConfig(static_cast<unsigned>(p->rate_hz),
-                                                    static_cast<VnAsyncMode>(p->sensor_port));
+                                                    static_cast<VnAsyncMode>(p->sensor_port),
+                                                    static_cast<unsigned>(p->binary_output));
   if (!replay && streamBitsPerSecond(cfg, static_cast<unsigned>(p->rate_hz)) > p->baud) {
     *error = "~rate_hz " + std::to_string(p->rate_hz) + " needs more than ~baud " +
              std::to_string(p->baud) + " carries (the sensor would answer $VNERR 12)";

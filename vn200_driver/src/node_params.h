@@ -15,6 +15,10 @@ struct NodeParams {
                                       // 115200): each connect switches it to `baud` (register 5)
   int rate_hz = 100;                  // binary output rate: 800 Hz / integer divisor
   int sensor_port = 2;                // which VN-200 serial port the HP is wired to (1 or 2)
+  // Which of the sensor's three binary outputs (registers 75-77) the node writes. They are
+  // global to the sensor, each routed to a port by its AsyncMode: Binary Output 1 belongs to the
+  // HA on port 1, so the HP must never rewrite it, or it could silence the trusted side's INS.
+  int binary_output = 2;
   std::string frame_id = "vn200";         // body frame, REP-103 (x forward, y left, z up)
   std::string frd_frame_id = "vn200_frd"; // body frame as the sensor reports (x fwd, y right, z down)
   std::string world_frame_id = "vn200_enu";  // local ENU frame anchored at the first INS fix

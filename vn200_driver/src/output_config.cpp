@@ -2,9 +2,9 @@
 
 namespace vn200 {
 
-VnBinaryOutputConfig nodeOutputConfig(unsigned rate_hz, VnAsyncMode port) {
+VnBinaryOutputConfig nodeOutputConfig(unsigned rate_hz, VnAsyncMode port, unsigned output) {
   VnBinaryOutputConfig cfg{};
-  cfg.output = 1;
+  cfg.output = static_cast<uint8_t>(output);
   cfg.async_mode = static_cast<uint8_t>(port);
   cfg.rate_divisor =
       static_cast<uint16_t>(rateSupported(rate_hz) ? VN_BINARY_BASE_RATE_HZ / rate_hz : 0u);

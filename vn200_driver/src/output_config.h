@@ -9,10 +9,11 @@
 
 namespace vn200 {
 
-// Binary Output 1 (register 75): Common (times, attitude, rates, INS position/velocity,
-// acceleration, mag/temperature/pressure, INS status), GPS (satellites, fix, uncertainties),
-// Attitude (YPR uncertainty), INS (position/velocity uncertainty).
-VnBinaryOutputConfig nodeOutputConfig(unsigned rate_hz, VnAsyncMode port);
+// Binary Output `output` (1..3: register 74 + output), routed to `port` only: Common (times,
+// attitude, rates, INS position/velocity, acceleration, mag/temperature/pressure, INS status),
+// GPS (satellites, fix, uncertainties), Attitude (YPR uncertainty), INS (position/velocity
+// uncertainty).
+VnBinaryOutputConfig nodeOutputConfig(unsigned rate_hz, VnAsyncMode port, unsigned output);
 
 // Whether `rate_hz` is an output rate the sensor can produce (800 Hz / integer divisor).
 bool rateSupported(unsigned rate_hz);

@@ -27,7 +27,8 @@ constexpr uint64_t kNsPerWeek = 604800ull * 1000000000ull;
 SensorSession::Options sessionOptions(const NodeParams& p) {
   SensorSession::Options o;
   o.output = nodeOutputConfig(static_cast<unsigned>(p.rate_hz),
-                              static_cast<VnAsyncMode>(p.sensor_port));
+                              static_cast<VnAsyncMode>(p.sensor_port),
+                              static_cast<unsigned>(p.binary_output));
   o.response_timeout_s = p.response_timeout_s;
   return o;
 }

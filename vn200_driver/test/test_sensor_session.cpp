@@ -13,7 +13,7 @@ using vn200::SensorSession;
 
 SensorSession::Options options() {
   SensorSession::Options o;
-  o.output = vn200::nodeOutputConfig(100, VN_ASYNC_PORT2);
+  o.output = vn200::nodeOutputConfig(100, VN_ASYNC_PORT2, 2);
   return o;
 }
 
@@ -39,7 +39,7 @@ TEST(SensorSession, ConfiguresAsyncOffThenBinaryOutputAndThenStreams) {
   EXPECT_EQ("", s.pollCommand(0.1));  // waiting for the echo
   feed(s, echo(c1), 0.1);
   std::string c2 = s.pollCommand(0.1);
-  EXPECT_EQ(0u, c2.rfind("$VNWRG,75,2,8,39,", 0));
+  EXPECT_EQ(0u, c2.rfind("$VNWRG,76,2,8,39,", 0));
   feed(s, echo(c2), 0.2);
   EXPECT_EQ(SensorSession::State::Configured, s.state());
   std::vector<uint8_t> p = makeNodePacket(42.0f);

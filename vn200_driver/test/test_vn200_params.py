@@ -49,6 +49,8 @@ def ros_env():
     ("_rate_hz:=300", "~rate_hz"),             # 800 Hz / 300 is not an integer divisor
     ("_baud:=100000", "~baud"),                # not a rate the VN-200 offers
     ("_sensor_port:=3", "~sensor_port"),       # the VN-200 has ports 1 and 2
+    ("_binary_output:=4", "~binary_output"),   # the VN-200 has binary outputs 1..3
+    ("_binary_output:=1", "the HA's"),         # register 75 feeds the HA's port 1: not the HP's
     ("_rate_hz:=800", "needs more than ~baud"),  # 800 x 176-byte packets exceed 921600 baud
     ("_data_timeout_s:=0", "~data_timeout_s"),
     ("_sensor_baud:=1234", "~sensor_baud"),

@@ -33,16 +33,18 @@ TEST(VnCommand, BaudChangeOnlyForRatesTheSensorSupports) {
   EXPECT_EQ(0u, vn_cmd_set_baud(buf, sizeof buf, 100000, VN_CK_XOR8));
 }
 
-TEST(VnCommand, NodeBinaryOutputSentence) {
+// The HP's default: Binary Output 2 (register 76) routed to port 2 only, so Binary Output 1,
+// which feeds the HA on port 1, is never rewritten by the untrusted side.
+TEST(VnCommand, NodeWritesBinaryOutputTwoRoutedToItsOwnPortOnly) {
   char buf[VN_CMD_MAX];
-  VnBinaryOutputConfig cfg = vn200::nodeOutputConfig(100, VN_ASYNC_PORT2);
+  VnBinaryOutputConfig cfg = vn200::nodeOutputConfig(100, VN_ASYNC_PORT2, 2);
   size_t n = vn_cmd_binary_output(buf, sizeof buf, &cfg, VN_CK_XOR8);
   std::string s = build(n, buf);
-  EXPECT_EQ("$VNWRG,75,2,8,39,15FB,0618,0100,0600*", s.substr(0, 37));
+  EXPECT_EQ("$VNWRG,76,2,8,39,15FB,0618,0100,0600*", s.substr(0, 37));
   EXPECT_TRUE(vn_ascii_checksum_ok(buf, n));
   VnAsciiMsg m;
   ASSERT_EQ(VN_ASCII_OK, vn_ascii_parse(buf, n, &m));
-  EXPECT_EQ(75, m.reg_id);
+  EXPECT_EQ(76, m.reg_id);
 }
 
 TEST(VnCommand, BinaryOutputRegistersSeventySixAndSeventySeven) {
@@ -62,7 +64,7 @@ TEST(VnCommand, BinaryOutputRegistersSeventySixAndSeventySeven) {
 
 TEST(VnCommand, ConfigurationsTheSensorWouldRefuseAreNotBuilt) {
   char buf[VN_CMD_MAX];
-  VnBinaryOutputConfig good = vn200::nodeOutputConfig(50, VN_ASYNC_PORT1);
+  VnBinaryOutputConfig good = vn200::nodeOutputConfig(50, VN_ASYNC_PORT1, 1);
   ASSERT_GT(vn_cmd_binary_output(buf, sizeof buf, &good, VN_CK_XOR8), 0u);
   VnBinaryOutputConfig c = good;
   c.output = 4;
