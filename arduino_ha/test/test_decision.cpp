@@ -329,6 +329,33 @@ TEST(HaDecision, CorruptCrcSwitches) {
   EXPECT_NE(t.servos().aileron_deg, 14.0f);
 }
 
+TEST(HaDecision, CorruptSequenceNumberDoesNotPoisonTheNextValidCommand) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  const uint32_t good_seq = t.seq;
+  // A bit flipped on the wire in seq: a forward jump of 2^30 with a CRC that no longer fits.
+  HaHpCommand corrupt = MakeCommand(t.NextSeq(), 0.5f, 0.0f, 1.0f, 0.0f);
+  corrupt.seq ^= 0x40000000u;
+  t.StepWith(corrupt);
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HA);
+  EXPECT_EQ(t.out().reasons, HA_REASON_INTEGRITY);  // the CRC, nothing else
+  EXPECT_EQ(t.out().reasons_at_switch, HA_REASON_INTEGRITY);
+  EXPECT_EQ(t.out().last_seq, good_seq);  // the corrupt frame's seq is not believed
+  // The HP's next command is in order relative to the last intact one: no frozen/replay fault.
+  t.StepWithGood();
+  EXPECT_EQ(t.out().reasons, 0u);
+  EXPECT_EQ(t.out().last_seq, t.seq);
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_RECOVERING);
+  // And the same with the top bit flipped, which also looks like a step back.
+  HaHpCommand flipped = MakeCommand(t.NextSeq(), 0.5f, 0.0f, 1.0f, 0.0f);
+  flipped.seq ^= 0x80000000u;
+  t.StepWith(flipped);
+  EXPECT_EQ(t.out().reasons, HA_REASON_INTEGRITY);
+  t.StepWithGood();
+  EXPECT_EQ(t.out().reasons, 0u);
+  EXPECT_GT(t.ReachHp(), 0);
+}
+
 TEST(HaDecision, EstimatorDivergenceAndNonConvergenceSwitch) {
   Timeline t;
   ASSERT_GT(t.ReachHp(), 0);

@@ -2,7 +2,6 @@
 
 #include "ha_num.h"
 #include "ha_region.h"
-#include "hp_command.h"
 
 static uint32_t flag(int failed, uint32_t reason) { return failed ? reason : 0u; }
 
@@ -62,8 +61,8 @@ static uint32_t check_estimator(const HaHpCommand *c) {
 
 static uint32_t check_frozen(const HaCmdFacts *f) { return flag(f->frozen, HA_REASON_FROZEN); }
 
-static uint32_t check_integrity(const HaHpCommand *c) {
-  return flag(ha_hp_command_compute_crc(c) != c->crc32, HA_REASON_INTEGRITY);
+static uint32_t check_integrity(const HaCmdFacts *f) {
+  return flag(!f->intact, HA_REASON_INTEGRITY);
 }
 
 /* Airborne with an airspeed at or below stall, or unknown. */
@@ -94,7 +93,7 @@ uint32_t ha_checks_evaluate(const HaAircraftConfig *cfg, const HaCmdFacts *facts
   if (facts->have_cmd) {
     const HaHpCommand *c = facts->cmd;
     reasons |= check_finite(c) | check_alpha_beta(cfg, c) | check_sensor_link(c) |
-               check_estimator(c) | check_frozen(facts) | check_integrity(c);
+               check_estimator(c) | check_frozen(facts) | check_integrity(facts);
     /* A non-finite surface cannot be shown inside S_u: it fails the region too. */
     reasons |= surfaces_finite(c) ? check_actuator_region(cfg, c, actuator_region_max)
                                   : HA_REASON_ACTUATOR_REGION;

@@ -33,6 +33,7 @@ typedef struct {
 /* What the core's bookkeeping knows about the HP command this period. */
 typedef struct {
   uint8_t have_cmd;     /* a command has ever arrived */
+  uint8_t intact;       /* the latest command's CRC matches its fields */
   uint32_t age_us;      /* since the latest arrived */
   uint32_t late_periods; /* consecutive periods without a new command */
   uint8_t frozen;       /* the latest command repeated its predecessor's seq */

@@ -36,21 +36,32 @@ static uint32_t period_dt_us(const HaCore *core, uint32_t now_us) {
 /* Arrival bookkeeping: new command, consecutive late periods, repeated sequence number. */
 static void track_command(HaCore *core, const HaInputs *in, uint32_t now_us, uint32_t dt_us,
                           HaCmdFacts *f) {
+  /* Checked every period, not only on arrival: the checks below judge whatever in->hp_cmd
+   * holds now, so its integrity must be judged on the same bytes. */
+  const uint8_t intact =
+      (uint8_t)(ha_hp_command_compute_crc(&in->hp_cmd) == in->hp_cmd.crc32);
   if (in->hp_cmd_count != core->seen_cmd_count) {
-    /* A command must be ahead of the last one, modulo 2^32: a repeat is a frozen HP, a step
-     * back is a stale or replayed command. Forward jumps are lost frames, not faults. */
-    const uint32_t advance = in->hp_cmd.seq - core->last_seq;
-    core->frozen = (uint8_t)(core->have_seq && (advance == 0u || advance > 0x7FFFFFFFu));
-    core->last_seq = in->hp_cmd.seq;
-    core->have_seq = 1u;
     core->seen_cmd_count = in->hp_cmd_count;
+    core->have_cmd = 1u;
     core->late_periods = 0u;
     core->cmd_age_us = ha_elapsed_us(now_us, in->hp_cmd_rx_us);
+    /* Only a frame that passed its CRC says anything about the HP's sequence: a bit flip in
+     * seq of a corrupt frame would otherwise make the next good command look replayed. */
+    core->frozen = 0u;
+    if (intact) {
+      /* Ahead of the last good one, modulo 2^32: a repeat is a frozen HP, a step back a stale
+       * or replayed command. Forward jumps are lost frames, not faults. */
+      const uint32_t advance = in->hp_cmd.seq - core->last_seq;
+      core->frozen = (uint8_t)(core->have_seq && (advance == 0u || advance > 0x7FFFFFFFu));
+      core->last_seq = in->hp_cmd.seq;
+      core->have_seq = 1u;
+    }
   } else {
     core->late_periods = add_sat(core->late_periods, 1u);
     core->cmd_age_us = add_sat(core->cmd_age_us, dt_us);
   }
-  f->have_cmd = core->have_seq;
+  f->have_cmd = core->have_cmd;
+  f->intact = intact;
   f->age_us = core->cmd_age_us;
   f->late_periods = core->late_periods;
   f->frozen = core->frozen;

@@ -130,7 +130,8 @@ typedef struct {
   uint32_t last_step_us;
   /* HP command bookkeeping */
   uint32_t seen_cmd_count;
-  uint8_t have_seq;
+  uint8_t have_cmd;         /* some command arrived, intact or not */
+  uint8_t have_seq;         /* last_seq is that of an intact command */
   uint8_t frozen;
   uint32_t last_seq;
   uint32_t late_periods;
