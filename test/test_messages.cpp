@@ -197,6 +197,20 @@ TEST(Messages, DecisionStatusRoundTripKeepsReasonsAndCheckedValues) {
   EXPECT_FLOAT_EQ(399.0f, back.altitude_agl_ft);
 }
 
+// The Due decodes this from the wire by position (its generated code), so the layout is part of
+// the contract: stamp, command, request id, 13 bytes.
+TEST(Messages, OperatorCommandRoundTripKeepsTheRequestAndItsId) {
+  drone_ros::OperatorCommand cmd;
+  cmd.stamp = ros::Time(1700000000, 5);
+  cmd.command = drone_ros::OperatorCommand::SELF_TEST;
+  cmd.request_id = 4000000001u;
+  EXPECT_EQ(13u, serialize(cmd).size());
+  const auto back = roundTrip(cmd);
+  EXPECT_EQ(ros::Time(1700000000, 5), back.stamp);
+  EXPECT_EQ(drone_ros::OperatorCommand::SELF_TEST, back.command);
+  EXPECT_EQ(4000000001u, back.request_id);
+}
+
 TEST(Messages, ReasonBitsAreDistinctSingleBits) {
   using S = drone_ros::DecisionStatus;
   const uint32_t bits[] = {S::REASON_NO_COMMAND, S::REASON_DEADLINE_MISS, S::REASON_NOT_FINITE,

@@ -17,6 +17,7 @@ def pinned_md5sums():
     for line in PINNED.read_text().splitlines():
         if line and not line.startswith("#"):
             name, md5 = line.split()
+            assert name not in sums, "%s pinned twice in %s" % (name, PINNED.name)
             sums[name] = md5
     return sums
 
@@ -60,6 +61,17 @@ def test_decision_status_round_trip_keeps_reasons():
     assert back.reasons == 4 | 512
     assert back.restart_count == 3 and back.restart_requested
     assert back.altitude_agl_ft == pytest.approx(401.0)
+
+
+def test_operator_command_round_trip_keeps_the_request_and_its_id():
+    cmd = drone_msgs.OperatorCommand(command=drone_msgs.OperatorCommand.RESTART_HP,
+                                     request_id=4000000001)
+    cmd.stamp.secs, cmd.stamp.nsecs = 1700000000, 5
+    raw, back = round_trip(cmd)
+    assert len(raw) == 13  # the Due decodes it by position
+    assert back.command == drone_msgs.OperatorCommand.RESTART_HP
+    assert back.request_id == 4000000001
+    assert (back.stamp.secs, back.stamp.nsecs) == (1700000000, 5)
 
 
 def test_way_carries_32_waypoints():

@@ -15,7 +15,7 @@ export DRONE_ROS_WS=$ws
 (cd "$ws" && catkin_make run_tests -j2 > "$ws/../run_tests.log" 2>&1) || status=1
 grep -E '^\[ *(FAILED|  PASSED|  OK) *\]|FAILURE|ERROR:' "$ws/../run_tests.log" | grep -vE '^\[ +OK \]' | tail -n 40
 
-mapfile -t pytest_dirs < <(cd "$root" && for d in test */test; do [ -d "$d" ] && ls "$d"/test_*.py >/dev/null 2>&1 && echo "$root/$d"; done)
+mapfile -t pytest_dirs < <(cd "$root" && for d in test */test */*/test; do [ -d "$d" ] && ls "$d"/test_*.py >/dev/null 2>&1 && echo "$root/$d"; done)
 if [ ${#pytest_dirs[@]} -gt 0 ]; then
   "$venv/bin/python" -m pytest -q -p no:cacheprovider --junitxml="$results/drone_ros/pytest.xml" "${pytest_dirs[@]}" || status=1
 fi

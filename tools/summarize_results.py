@@ -24,7 +24,8 @@ def count(results_dir):
             failures.append(f"{path.name}: unreadable result file ({err})")
             continue
         cases = list(root.iter("testcase"))
-        if not cases and root.get("failures", "0") != "0":
+        # A suite that crashed before its first case reports it only on the suite element.
+        if not cases and (root.get("failures", "0") != "0" or root.get("errors", "0") != "0"):
             failed += 1
             failures.append(f"{path.name}: {root.get('name', 'suite')} failed without test cases")
         for case in cases:
