@@ -16,6 +16,7 @@ import rostest
 from diagnostic_msgs.msg import DiagnosticArray
 from geometry_msgs.msg import Point, Twist, TwistStamped
 from sensor_msgs.msg import FluidPressure, Imu, MagneticField, NavSatFix, Temperature
+from tf2_msgs.msg import TFMessage
 
 from drone_ros.msg import ins as Ins
 
@@ -57,7 +58,7 @@ def make_recorder():
                        ("/vn200/imu/data", Imu), ("/vn200/fix", NavSatFix),
                        ("/vn200/velocity", TwistStamped), ("/vn200/imu/mag", MagneticField),
                        ("/vn200/pressure", FluidPressure), ("/vn200/temperature", Temperature),
-                       ("/diagnostics", DiagnosticArray)]:
+                       ("/diagnostics", DiagnosticArray), ("/tf", TFMessage)]:
         r.sub(topic, cls)
     return r
 
@@ -111,6 +112,24 @@ class ValueChecks:
         self.assertAlmostEqual(24.5, rec.get("/vn200/temperature")[-1].temperature, places=4)
         self.assertAlmostEqual(0.43e-4, -rec.get("/vn200/imu/mag")[-1].magnetic_field.z,
                                places=8)
+        self.check_tf(rec)
+
+    def check_tf(self, rec):
+        """tf world -> body: the fake flies north (latitude rising) at constant height, so the
+        body moves along +y of the local ENU frame anchored at the first solution, and the
+        rotation is the REP-103 orientation published on ~imu/data at the same stamp."""
+        tfs = [t for m in rec.get("/tf") for t in m.transforms if t.child_frame_id == "vn200"]
+        self.assertTrue(tfs, "no tf vn200_enu -> vn200")
+        last = tfs[-1]
+        self.assertEqual("vn200_enu", last.header.frame_id)
+        self.assertAlmostEqual(0.0, last.transform.translation.x, places=2)
+        self.assertAlmostEqual(0.0, last.transform.translation.z, places=2)
+        self.assertGreater(last.transform.translation.y, 0.1)
+        same = [m for m in rec.get("/vn200/imu/data") if m.header.stamp == last.header.stamp]
+        self.assertTrue(same, "no ~imu/data sample with the tf's stamp")
+        q, r = same[-1].orientation, last.transform.rotation
+        for a, b in ((q.x, r.x), (q.y, r.y), (q.z, r.z), (q.w, r.w)):
+            self.assertAlmostEqual(a, b, places=6)
 
 
 class LiveSensor(unittest.TestCase, ValueChecks):
