@@ -33,6 +33,8 @@ build: deps $(WS)/src/drone_ros
 	  || { tail -n 60 $(ROOT)/.build/build.log; echo "build failed: full log in .build/build.log"; exit 1; }
 	@echo "build: ok (log in .build/build.log)"
 
+# uninstalled_script is ignored on purpose: the executables it names are developer tools
+# (verify, bench, install and test-summary scripts) that have no place in an install space.
 lint: deps $(WS)/src/drone_ros
 	@cd $(WS)/src && ROS_PACKAGE_PATH=$(WS)/src $(VENV)/bin/catkin_lint --strict -W2 --offline --ignore uninstalled_script drone_ros 2>&1 | grep -v rosdep; exit $${PIPESTATUS[0]}
 
