@@ -11,3 +11,6 @@ target_include_directories(${GNC_TARGET} PUBLIC ${GNC_DIR})
 target_link_libraries(${GNC_TARGET} PUBLIC Eigen3::Eigen)
 set_target_properties(${GNC_TARGET} PROPERTIES POSITION_INDEPENDENT_CODE ON)
 strict_warnings(${GNC_TARGET})
+# The gains header design/design_gains.py writes; the controller's test reruns the script and
+# compares, so each aircraft names its own.
+set(GNC_GENERATED_HEADER ${GNC_DIR}/dg808_gnc_data.h)
