@@ -1,9 +1,11 @@
-// The serial transport against a pseudo-terminal standing in for the Microhard modem.
+// The links against stand-ins: a pseudo-terminal for the Microhard modem (reached through a
+// symlink, as udev's by-id name reaches the real one), a loopback socket for UDP.
 #include <gtest/gtest.h>
 #include <poll.h>
 #include <pty.h>
 #include <unistd.h>
 
+#include <cstdio>
 #include <cstring>
 #include <string>
 
@@ -12,38 +14,142 @@
 
 using namespace microhard_gs;
 
-TEST(SerialTransport, BytesCrossThePseudoTerminalBothWays) {
-  int master = -1, slave = -1;
-  char name[128] = {};
-  ASSERT_EQ(openpty(&master, &slave, name, nullptr, nullptr), 0);
-  std::string error;
-  auto link = SerialTransport::open(name, 57600, &error);
-  ASSERT_TRUE(link) << error;
+namespace {
+
+// A pty whose slave is reachable at `link`, like the modem at /dev/serial/by-id/...
+struct Modem {
+  int master = -1;
+  int slave = -1;
+  std::string slave_name;
+  void plug(const std::string& link) {
+    char name[128] = {};
+    ASSERT_EQ(openpty(&master, &slave, name, nullptr, nullptr), 0);
+    slave_name = name;
+    ::unlink(link.c_str());
+    ASSERT_EQ(::symlink(name, link.c_str()), 0);
+  }
+  // The USB device vanishing: the master side goes, the slave reads EIO / hang-up.
+  void unplug() {
+    ::close(master);
+    ::close(slave);
+    master = slave = -1;
+  }
+  ~Modem() {
+    if (master >= 0) ::close(master);
+    if (slave >= 0) ::close(slave);
+  }
+};
+
+// A fresh directory for the modem's name, removed with it.
+struct TempLink {
+  std::string dir;
+  std::string path;
+  TempLink() {
+    char tmpl[] = "/tmp/gs_transport_XXXXXX";
+    EXPECT_NE(mkdtemp(tmpl), nullptr);
+    dir = tmpl;
+    path = dir + "/modem";
+  }
+  ~TempLink() {
+    ::unlink(path.c_str());
+    ::rmdir(dir.c_str());
+  }
+};
+
+// Sends from the vehicle and reads what reached the modem.
+bool vehicle_to_modem(SerialTransport* link, int master) {
   const uint8_t out[] = {0xFD, 0x01, 0x02, 0x03};
-  ASSERT_TRUE(link->send(out, sizeof out));
+  if (!link->send(out, sizeof out)) return false;
   uint8_t got[16] = {};
   pollfd p{master, POLLIN, 0};
-  ASSERT_EQ(poll(&p, 1, 2000), 1);
-  ASSERT_EQ(read(master, got, sizeof got), 4);
-  EXPECT_EQ(std::memcmp(got, out, 4), 0);
-  const uint8_t in[] = {0xFE, 0x09};
-  ASSERT_EQ(write(master, in, sizeof in), 2);
-  pollfd q{link->fd(), POLLIN, 0};
-  ASSERT_EQ(poll(&q, 1, 2000), 1);
-  EXPECT_EQ(link->receive(got, sizeof got), 2);
-  EXPECT_EQ(got[1], 0x09);
-  EXPECT_EQ(link->receive(got, sizeof got), 0);  // nothing more: non-blocking
-  link.reset();
-  close(slave);
-  close(master);
+  if (poll(&p, 1, 2000) != 1) return false;
+  return read(master, got, sizeof got) == 4 && std::memcmp(got, out, 4) == 0;
 }
 
-TEST(SerialTransport, UnsupportedBaudAndMissingPortAreReported) {
-  std::string error;
-  EXPECT_FALSE(SerialTransport::open("/dev/null", 12345, &error));
-  EXPECT_NE(error.find("baud"), std::string::npos);
-  EXPECT_FALSE(SerialTransport::open("/nonexistent/tty", 57600, &error));
-  EXPECT_NE(error.find("/nonexistent/tty"), std::string::npos);
+// Bytes from the modem reach receive() within a few loops.
+bool modem_to_vehicle(SerialTransport* link, int master) {
+  const uint8_t in[] = {0xFE, 0x09};
+  if (write(master, in, sizeof in) != 2) return false;
+  uint8_t got[16] = {};
+  long total = 0;
+  for (int i = 0; i < 100 && total < 2; ++i) total += link->receive(got + total, sizeof got - total, 20);
+  return total == 2 && got[1] == 0x09;
+}
+
+}  // namespace
+
+TEST(SerialTransport, BytesCrossThePseudoTerminalBothWays) {
+  const TempLink tmp;
+  const std::string& path = tmp.path;
+  Modem modem;
+  modem.plug(path);
+  SerialTransport link(path, 57600, 1000);
+  link.maintain(0);
+  ASSERT_TRUE(link.health().up) << link.health().last_error;
+  EXPECT_TRUE(vehicle_to_modem(&link, modem.master));
+  EXPECT_TRUE(modem_to_vehicle(&link, modem.master));
+  uint8_t got[16];
+  EXPECT_EQ(link.receive(got, sizeof got, 0), 0);  // nothing more: silence is not an outage
+  EXPECT_TRUE(link.health().up);
+}
+
+TEST(SerialTransport, ModemMissingAtStartIsAnOutageAndTheLinkComesUpWhenItAppears) {
+  const TempLink tmp;
+  const std::string& path = tmp.path;
+  SerialTransport link(path, 57600, 1000);
+  link.maintain(0);
+  EXPECT_FALSE(link.health().up);
+  EXPECT_EQ(link.health().open_failures, 1u);
+  EXPECT_NE(link.health().last_error.find(path), std::string::npos) << link.health().last_error;
+  uint8_t got[16];
+  EXPECT_EQ(link.receive(got, sizeof got, 1), 0);  // down: waits, reads nothing
+  const uint8_t frame[] = {0xFD};
+  EXPECT_FALSE(link.send(frame, sizeof frame));
+
+  Modem modem;
+  modem.plug(path);
+  link.maintain(500);  // inside the reopen period: not retried yet
+  EXPECT_FALSE(link.health().up);
+  EXPECT_EQ(link.health().open_failures, 1u);
+  link.maintain(1000);
+  ASSERT_TRUE(link.health().up) << link.health().last_error;
+  EXPECT_EQ(link.health().opens, 1u);
+  EXPECT_EQ(link.health().outages, 0u);
+  EXPECT_TRUE(vehicle_to_modem(&link, modem.master));
+  EXPECT_TRUE(modem_to_vehicle(&link, modem.master));
+}
+
+TEST(SerialTransport, UnplugIsReportedAndTheRepluggedModemIsReopened) {
+  const TempLink tmp;
+  const std::string& path = tmp.path;
+  Modem first;
+  first.plug(path);
+  SerialTransport link(path, 57600, 1000);
+  link.maintain(0);
+  ASSERT_TRUE(link.health().up);
+  first.unplug();
+  uint8_t got[16];
+  for (int i = 0; i < 10 && link.health().up; ++i) EXPECT_EQ(link.receive(got, sizeof got, 20), 0);
+  EXPECT_FALSE(link.health().up);
+  EXPECT_EQ(link.health().outages, 1u);
+  EXPECT_NE(link.health().last_error.find("unplugged"), std::string::npos);
+  link.maintain(2000);
+  EXPECT_EQ(link.health().down_since_ms, 2000u);
+
+  Modem second;  // the modem back, on another pts, behind the same name
+  second.plug(path);
+  link.maintain(2500);
+  EXPECT_FALSE(link.health().up);  // the reopen period counts from the outage
+  link.maintain(3000);
+  ASSERT_TRUE(link.health().up) << link.health().last_error;
+  EXPECT_EQ(link.health().opens, 2u);
+  EXPECT_TRUE(vehicle_to_modem(&link, second.master));
+  EXPECT_TRUE(modem_to_vehicle(&link, second.master));
+}
+
+TEST(SerialTransport, AbsurdBaudIsNotSupported) {
+  EXPECT_FALSE(SerialTransport::is_supported_baud(12));
+  EXPECT_TRUE(SerialTransport::is_supported_baud(57600));
 }
 
 TEST(UdpTransport, BadAddressIsReported) {

@@ -1,8 +1,11 @@
 """The Microhard modem's side: microhard_gs on a serial port (a pseudo-terminal standing in for
-the modem) is the same vehicle to a ground station as over UDP."""
+the modem, reached through a symlink as udev's by-id name reaches the real one) is the same
+vehicle to a ground station as over UDP, and a modem missing at start or unplugged in flight is
+an outage the node waits out, never its end."""
 import os
 import select
 import sys
+import tempfile
 import time
 import tty
 
@@ -18,17 +21,46 @@ class Sink:
         pass
 
 
+class Modem:
+    """A pty behind a fixed name; plug() makes a new one (a re-plugged modem gets a new pts)."""
+
+    def __init__(self, link):
+        self.link = link
+        self.master = self.slave = None
+
+    def plug(self):
+        self.master, self.slave = os.openpty()
+        tty.setraw(self.master)
+        tmp = self.link + ".new"
+        os.symlink(os.ttyname(self.slave), tmp)
+        os.replace(tmp, self.link)  # atomic: the node never sees a half-made name
+
+    def unplug(self):
+        for fd in (self.master, self.slave):
+            if fd is not None:
+                os.close(fd)
+        self.master = self.slave = None
+
+    def close(self):
+        self.unplug()
+        if os.path.lexists(self.link):
+            os.unlink(self.link)
+
+
 @pytest.fixture(scope="module")
 def modem():
-    master, slave = os.openpty()
-    tty.setraw(master)
-    name = os.ttyname(slave)
-    system = gh.GsSystem(launch_args={"transport": "serial", "serial_port": name, "serial_baud": 57600},
+    tmpdir = tempfile.mkdtemp(prefix="gs_modem_")
+    device = Modem(os.path.join(tmpdir, "microhard"))
+    # The node starts before the modem exists, as when the radio enumerates late.
+    system = gh.GsSystem(launch_args={"transport": "serial", "serial_port": device.link, "serial_baud": 57600,
+                                      "reopen_period_s": 0.2},
                          udp_client=False)
-    yield system, master
-    system.stop()
-    os.close(slave)
-    os.close(master)
+    try:
+        yield system, device
+    finally:
+        system.stop()
+        device.close()
+        os.rmdir(tmpdir)
 
 
 def read_messages(fd, parser, seconds, wanted=None):
@@ -38,19 +70,61 @@ def read_messages(fd, parser, seconds, wanted=None):
         ready, _, _ = select.select([fd], [], [], 0.1)
         if not ready:
             continue
-        for m in parser.parse_buffer(os.read(fd, 4096)) or []:
+        try:
+            chunk = os.read(fd, 4096)
+        except OSError:  # EIO until the node has the slave open
+            time.sleep(0.05)
+            continue
+        for m in parser.parse_buffer(chunk) or []:
             out.append(m)
             if wanted is not None and m.get_type() == wanted:
                 return out
     return out
 
 
-def test_vehicle_heartbeat_and_parameters_over_the_serial_link(modem):
-    system, fd = modem
+def wait_diagnostic(system, key, predicate, timeout=10.0):
+    deadline = time.time() + timeout
+    value = None
+    while time.time() < deadline:
+        value = system.diagnostic(key, timeout=max(0.1, deadline - time.time()))
+        if value is not None and predicate(value):
+            return value
+    return value
+
+
+def heartbeats(fd, seconds=10):
     gcs = mavlink.MAVLink(Sink(), srcSystem=255, srcComponent=190)
-    msgs = read_messages(fd, gcs, 10, wanted="HEARTBEAT")
-    heartbeats = [m for m in msgs if m.get_type() == "HEARTBEAT"]
-    assert heartbeats and heartbeats[0].type == mavlink.MAV_TYPE_FIXED_WING
-    os.write(fd, gcs.param_request_read_encode(1, 1, b"VTtrim", -1).pack(gcs))
-    values = [m for m in read_messages(fd, gcs, 5, wanted="PARAM_VALUE") if m.get_type() == "PARAM_VALUE"]
+    return [m for m in read_messages(fd, gcs, seconds, wanted="HEARTBEAT") if m.get_type() == "HEARTBEAT"]
+
+
+def test_modem_missing_at_start_is_reported_and_the_node_keeps_running(modem):
+    system, _ = modem
+    assert wait_diagnostic(system, "link_up", lambda v: v == "false") == "false"
+    assert int(system.diagnostic("link_open_failures")) >= 1
+    assert int(system.diagnostic("frames_not_sent_link_down")) > 0  # telemetry dropped and counted
+    assert system.launch.poll() is None
+
+
+def test_modem_appearing_later_gets_the_heartbeat_and_the_parameters(modem):
+    system, device = modem
+    device.plug()
+    hb = heartbeats(device.master)
+    assert hb and hb[0].type == mavlink.MAV_TYPE_FIXED_WING
+    gcs = mavlink.MAVLink(Sink(), srcSystem=255, srcComponent=190)
+    os.write(device.master, gcs.param_request_read_encode(1, 1, b"VTtrim", -1).pack(gcs))
+    values = [m for m in read_messages(device.master, gcs, 5, wanted="PARAM_VALUE") if m.get_type() == "PARAM_VALUE"]
     assert values and values[0].param_id == "VTtrim" and values[0].param_value == pytest.approx(60.0)
+    assert wait_diagnostic(system, "link_up", lambda v: v == "true") == "true"
+
+
+def test_unplugged_modem_is_an_outage_and_the_replugged_one_resumes_in_the_same_process(modem):
+    system, device = modem
+    device.unplug()
+    assert wait_diagnostic(system, "link_up", lambda v: v == "false") == "false"
+    assert int(system.diagnostic("link_outages")) == 1
+    device.plug()
+    assert heartbeats(device.master), "no HEARTBEAT after the modem came back"
+    # Counters carried across the outage: the same process reopened, nothing respawned it.
+    assert wait_diagnostic(system, "link_opens", lambda v: int(v) == 2) == "2"
+    assert int(system.diagnostic("link_outages")) == 1
+    assert system.launch.poll() is None

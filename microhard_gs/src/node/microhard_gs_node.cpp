@@ -5,10 +5,10 @@
 #include <drone_ros/OperatorCommand.h>
 #include <drone_ros/data.h>
 #include <drone_ros/way.h>
-#include <poll.h>
 #include <ros/ros.h>
 
 #include <chrono>
+#include <cmath>
 #include <memory>
 
 #include "gs_core.h"
@@ -66,18 +66,17 @@ class Node {
   void run() {
     uint8_t buf[2048];
     while (ros::ok()) {
-      pollfd p{link_->fd(), POLLIN, 0};
-      poll(&p, 1, 5);  // 5 ms: well inside a 50 Hz telemetry period
-      const Clock now = now_clock();
-      if (p.revents & POLLIN) {
-        for (int i = 0; i < 64; ++i) {  // drain, but keep ROS callbacks flowing under a flood
-          const long n = link_->receive(buf, sizeof buf);
-          if (n <= 0) {
-            if (n < 0) ++link_errors_;
-            break;
-          }
-          core_.handle_bytes(buf, static_cast<size_t>(n), now);
+      link_->maintain(now_clock().mono_ms);
+      report_link_change();
+      // The receive is the loop's wait: 5 ms, well inside a 50 Hz telemetry period.
+      long n = link_->receive(buf, sizeof buf, 5);
+      for (int i = 0; i < 64 && n != 0; ++i) {  // drain, but keep ROS callbacks flowing under a flood
+        if (n < 0) {
+          ++link_errors_;
+          break;
         }
+        core_.handle_bytes(buf, static_cast<size_t>(n), now_clock());
+        n = link_->receive(buf, sizeof buf, 0);
       }
       ros::spinOnce();
       core_.tick(now_clock());
@@ -98,9 +97,31 @@ class Node {
     core_.set_decision(d);
   }
 
+  // Logs each change of the link's state once: the modem missing at start, unplugged, back.
+  void report_link_change() {
+    const LinkHealth h = link_->health();
+    if (h.up == link_was_up_ && h.last_error == last_link_error_) return;
+    if (h.up) {
+      ROS_INFO("microhard_gs: %s up (open %llu, %llu outages so far)", link_->describe().c_str(),
+               static_cast<unsigned long long>(h.opens), static_cast<unsigned long long>(h.outages));
+    } else {
+      ROS_WARN("microhard_gs: %s down: %s; retrying every %.2f s, telemetry not sent meanwhile",
+               link_->describe().c_str(), h.last_error.c_str(), config_.reopen_period_s);
+    }
+    link_was_up_ = h.up;
+    last_link_error_ = h.last_error;
+  }
+
   void flush() {
+    // With the link down the core still runs (mission timeouts, announcements); what it would
+    // have sent is dropped and counted, as a radio out of range would lose it.
+    const bool up = link_->health().up;
     for (const auto& frame : core_.take_frames()) {
-      if (!link_->send(frame.data(), frame.size())) ++send_failures_;
+      if (!up) {
+        ++frames_not_sent_link_down_;
+      } else if (!link_->send(frame.data(), frame.size())) {
+        ++send_failures_;
+      }
     }
     for (const WayPlan& plan : core_.take_way_plans()) {
       drone_ros::way w;
@@ -129,7 +150,10 @@ class Node {
 
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& s) {
     const Counters& c = core_.counters();
-    if (!core_.home_known()) {
+    const LinkHealth h = link_->health();
+    if (!h.up) {
+      s.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "ground link down: " + h.last_error);
+    } else if (!core_.home_known()) {
       s.summary(diagnostic_msgs::DiagnosticStatus::WARN, "no home position yet");
     } else if (core_.params().size() == 0) {
       // Some thesis tunables are absent from today's controller (listed below, not a fault);
@@ -139,6 +163,13 @@ class Node {
       s.summary(diagnostic_msgs::DiagnosticStatus::OK, "ok");
     }
     s.add("link", link_->describe());
+    s.add("link_up", h.up ? "true" : "false");
+    s.add("link_opens", h.opens);
+    s.add("link_outages", h.outages);
+    s.add("link_open_failures", h.open_failures);
+    s.add("link_down_s", h.up ? 0.0 : (now_clock().mono_ms - h.down_since_ms) / 1000.0);
+    s.add("link_last_error", h.last_error);
+    s.add("frames_not_sent_link_down", frames_not_sent_link_down_);
     s.add("signing", config_.core.signing ? "on" : "off");
     s.add("frames_ok", c.frames_ok);
     s.add("frames_bad_crc", c.frames_bad_crc);
@@ -171,6 +202,9 @@ class Node {
   uint32_t request_id_ = 0;
   uint64_t send_failures_ = 0;
   uint64_t link_errors_ = 0;
+  uint64_t frames_not_sent_link_down_ = 0;
+  bool link_was_up_ = true;  // so that a port missing at start is logged
+  std::string last_link_error_;
 };
 
 }  // namespace
@@ -194,7 +228,10 @@ int main(int argc, char** argv) {
   if (config.transport == "udp") {
     link = microhard_gs::UdpTransport::open(config.udp, &error);
   } else {
-    link = microhard_gs::SerialTransport::open(config.serial_port, config.serial_baud, &error);
+    // Never fails: a modem missing at start is an outage the node reports and waits out.
+    link = std::make_unique<microhard_gs::SerialTransport>(
+        config.serial_port, config.serial_baud,
+        static_cast<uint64_t>(std::llround(config.reopen_period_s * 1000.0)));
   }
   if (!link) {
     ROS_FATAL("microhard_gs: %s", error.c_str());

@@ -20,7 +20,7 @@ bool need(const ros::NodeHandle& nh, const std::string& name, double* out, std::
 }
 
 bool in_range(const std::string& name, double v, double lo, double hi, std::string* error) {
-  if (v < lo || v > hi) {
+  if (!(v >= lo && v <= hi)) {  // written so that NaN fails too
     std::ostringstream s;
     s << name << " = " << v << " outside [" << lo << ", " << hi << "]";
     *error = s.str();
@@ -40,6 +40,7 @@ bool read_node_config(const ros::NodeHandle& nh, NodeConfig* c, std::string* err
   nh.param("udp_follow_sender", c->udp.follow_sender, true);
   nh.param<std::string>("serial_port", c->serial_port, "/dev/ttyUSB0");
   nh.param("serial_baud", c->serial_baud, 57600);
+  nh.param("reopen_period_s", c->reopen_period_s, 1.0);
   nh.param<std::string>("signing_key_file", c->signing_key_file, "");
   // The controller loads its tunables (aircraft/<name>/controller_param.yaml) into its private
   // namespace; the thesis kept them in /controller_param.
@@ -55,6 +56,9 @@ bool read_node_config(const ros::NodeHandle& nh, NodeConfig* c, std::string* err
     *error = "serial_baud " + std::to_string(c->serial_baud) + " not supported";
     return false;
   }
+  // Fast enough that telemetry resumes soon after the modem is back, slow enough that a missing
+  // port costs nothing; the HA and INS links retry at the same order.
+  if (!in_range("reopen_period_s", c->reopen_period_s, 0.05, 60.0, error)) return false;
   if (!in_range("system_id", system_id, 1, 254, error)) return false;
   c->core.system_id = static_cast<uint8_t>(system_id);
 

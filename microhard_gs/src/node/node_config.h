@@ -17,6 +17,7 @@ struct NodeConfig {
   UdpConfig udp;
   std::string serial_port;
   int serial_baud = 0;
+  double reopen_period_s = 1.0;  // serial: how often a missing or unplugged modem port is retried
   std::string signing_key_file;
   std::string controller_param_ns;
   GsConfig core;

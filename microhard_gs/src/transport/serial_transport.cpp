@@ -1,89 +1,66 @@
 #include "serial_transport.h"
 
-#include <fcntl.h>
 #include <poll.h>
-#include <termios.h>
-#include <unistd.h>
-
-#include <cerrno>
-#include <cstring>
 
 namespace microhard_gs {
-namespace {
-speed_t to_speed(int baud) {
-  switch (baud) {
-    case 9600: return B9600;
-    case 19200: return B19200;
-    case 38400: return B38400;
-    case 57600: return B57600;
-    case 115200: return B115200;
-    case 230400: return B230400;
-    case 460800: return B460800;
-    case 921600: return B921600;
-    default: return B0;
-  }
-}
-}  // namespace
 
-bool SerialTransport::is_supported_baud(int baud) { return to_speed(baud) != B0; }
-
-std::unique_ptr<SerialTransport> SerialTransport::open(const std::string& port, int baud, std::string* error) {
-  const speed_t speed = to_speed(baud);
-  if (speed == B0) {
-    *error = "unsupported baud " + std::to_string(baud);
-    return nullptr;
-  }
-  const int fd = ::open(port.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
-  if (fd < 0) {
-    *error = "open " + port + ": " + std::strerror(errno);
-    return nullptr;
-  }
-  termios tio;
-  if (tcgetattr(fd, &tio) != 0) {
-    *error = "tcgetattr " + port + ": " + std::strerror(errno);
-    ::close(fd);
-    return nullptr;
-  }
-  cfmakeraw(&tio);
-  tio.c_cflag |= CLOCAL | CREAD;
-  tio.c_cflag &= ~(CRTSCTS | CSTOPB);
-  tio.c_cc[VMIN] = 0;
-  tio.c_cc[VTIME] = 0;
-  cfsetispeed(&tio, speed);
-  cfsetospeed(&tio, speed);
-  if (tcsetattr(fd, TCSANOW, &tio) != 0) {
-    *error = "tcsetattr " + port + ": " + std::strerror(errno);
-    ::close(fd);
-    return nullptr;
-  }
-  return std::unique_ptr<SerialTransport>(new SerialTransport(fd, port, baud));
+SerialTransport::SerialTransport(const std::string& port, int baud, uint64_t reopen_period_ms)
+    : path_(port), baud_(baud), reopen_period_ms_(reopen_period_ms) {
+  health_.up = false;
+  health_.last_error = "not opened yet";
 }
 
-SerialTransport::~SerialTransport() { ::close(fd_); }
+void SerialTransport::maintain(uint64_t now_ms) {
+  if (lost_) {
+    lost_ = false;
+    health_.down_since_ms = now_ms;
+    last_attempt_ms_ = now_ms;  // a device that just vanished is not back within the same loop
+    return;
+  }
+  if (port_.is_open()) return;
+  if (tried_ && now_ms - last_attempt_ms_ < reopen_period_ms_) return;
+  if (!tried_) health_.down_since_ms = now_ms;
+  tried_ = true;
+  last_attempt_ms_ = now_ms;
+  std::string error;
+  if (!port_.open(path_, baud_, &error)) {
+    ++health_.open_failures;
+    health_.last_error = error;
+    return;
+  }
+  ++health_.opens;
+  health_.up = true;
+}
 
-long SerialTransport::receive(uint8_t* buf, size_t cap) {
-  const ssize_t n = ::read(fd_, buf, cap);
-  if (n < 0) return (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR) ? 0 : -1;
-  return n;
+long SerialTransport::receive(uint8_t* buf, size_t cap, int timeout_ms) {
+  if (!port_.is_open()) {
+    // Down: still wait, so the node's loop keeps its pace instead of spinning.
+    if (timeout_ms > 0) poll(nullptr, 0, timeout_ms);
+    return 0;
+  }
+  size_t got = 0;
+  switch (port_.read(buf, cap, timeout_ms, &got)) {
+    case drone_ros_common::SerialPort::ReadResult::kData:
+      return static_cast<long>(got);
+    case drone_ros_common::SerialPort::ReadResult::kTimeout:
+      return 0;
+    case drone_ros_common::SerialPort::ReadResult::kGone:
+      break;
+  }
+  port_.close();
+  health_.up = false;
+  ++health_.outages;
+  health_.last_error = path_ + ": port closed or device unplugged";
+  lost_ = true;
+  return 0;
 }
 
 bool SerialTransport::send(const uint8_t* data, size_t len) {
-  size_t done = 0;
-  int stalls = 0;
-  while (done < len) {
-    const ssize_t n = ::write(fd_, data + done, len - done);
-    if (n > 0) {
-      done += static_cast<size_t>(n);
-      continue;
-    }
-    if (n < 0 && errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR) return false;
-    // The modem's buffer is full: wait a little, but never block the node for long.
-    pollfd p{fd_, POLLOUT, 0};
-    if (++stalls > 5 || poll(&p, 1, 10) < 0) return false;
-  }
-  return true;
+  // write_all gives up after SerialPort::kWriteStallMs without progress: a modem that stopped
+  // draining costs one frame, never the node's loop. An unplug is noticed by receive().
+  return port_.is_open() && port_.write_all(data, len);
 }
 
-std::string SerialTransport::describe() const { return "serial " + port_ + " @" + std::to_string(baud_); }
+std::string SerialTransport::describe() const { return "serial " + path_ + " @" + std::to_string(baud_); }
 
 }  // namespace microhard_gs

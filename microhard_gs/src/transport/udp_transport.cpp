@@ -2,6 +2,7 @@
 
 #include <arpa/inet.h>
 #include <fcntl.h>
+#include <poll.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
@@ -48,7 +49,9 @@ UdpTransport::UdpTransport(int fd, const UdpConfig& config, const sockaddr_in& r
 
 UdpTransport::~UdpTransport() { close(fd_); }
 
-long UdpTransport::receive(uint8_t* buf, size_t cap) {
+long UdpTransport::receive(uint8_t* buf, size_t cap, int timeout_ms) {
+  pollfd p{fd_, POLLIN, 0};
+  if (poll(&p, 1, timeout_ms) <= 0) return 0;  // nothing yet, or a signal: ask again next loop
   sockaddr_in from;
   socklen_t from_len = sizeof from;
   const ssize_t n = recvfrom(fd_, buf, cap, 0, reinterpret_cast<sockaddr*>(&from), &from_len);

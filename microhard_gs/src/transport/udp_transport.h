@@ -22,8 +22,7 @@ class UdpTransport : public Transport {
   // nullptr and `error` set when the socket cannot be opened or bound.
   static std::unique_ptr<UdpTransport> open(const UdpConfig& config, std::string* error);
   ~UdpTransport() override;
-  int fd() const override { return fd_; }
-  long receive(uint8_t* buf, size_t cap) override;
+  long receive(uint8_t* buf, size_t cap, int timeout_ms) override;
   bool send(const uint8_t* data, size_t len) override;
   std::string describe() const override;
 
