@@ -2,7 +2,8 @@
 #   make due-sketch-msgs   write the Due's generated message code into arduino_ha/src/link/generated/
 #                          (arduino-cli cannot run the generator; run this after any msg/ change,
 #                          before compiling the sketch; CMake builds regenerate it on their own)
-#   make fuzz-link         libFuzzer (clang, ASan + UBSan) on the device link and the host framer,
+#   make fuzz-link         libFuzzer (clang, ASan + UBSan) on the device link, the host framer and
+#                          the host's handling of announcements, logs and parameters,
 #                          FUZZ_LINK_SECONDS each (default 120)
 #   make fuzz-link-smoke   the same, 10 s each (CI)
 #   make verify-link       the device link and its generated code: Frama-C EVA over any input
@@ -41,6 +42,14 @@ fuzz-link-build:
 	@$(LINK_CLANGXX) -std=c++17 $(LINK_FUZZ_FLAGS) -I$(ROOT)/drone_ros/arduino_link/src \
 	  $(ROOT)/drone_ros/arduino_link/fuzz/fuzz_host_framer.cpp \
 	  $(ROOT)/drone_ros/arduino_link/src/rosserial_framer.cpp -o $(LINK_FUZZ_OUT)/fuzz_host_framer
+	@$(LINK_CLANG) -std=c99 $(LINK_FUZZ_FLAGS) -I$(ROOT)/arduino_ha/src/link \
+	  -DHA_LINK_GENERATED_HEADER=\"$(LINK_FUZZ_OUT)/gen/generated/ha_msgs.h\" \
+	  -c $(LINK_FUZZ_OUT)/gen/generated/ha_msgs.c -o $(LINK_FUZZ_OUT)/ha_msgs_host.o
+	@$(LINK_CLANGXX) -std=c++17 $(LINK_FUZZ_FLAGS) -I$(ROOT)/drone_ros/arduino_link/src \
+	  -I$(ROOT)/arduino_ha/src/link -DHA_LINK_GENERATED_HEADER=\"$(LINK_FUZZ_OUT)/gen/generated/ha_msgs.h\" \
+	  $(ROOT)/drone_ros/arduino_link/fuzz/fuzz_host_payloads.cpp \
+	  $(ROOT)/drone_ros/arduino_link/src/device_payloads.cpp $(LINK_FUZZ_OUT)/ha_msgs_host.o \
+	  -o $(LINK_FUZZ_OUT)/fuzz_host_payloads
 
 # The seed corpus in the repo is copied, so findings land in .build and the repo stays clean.
 define link_fuzz_run
@@ -54,10 +63,12 @@ endef
 fuzz-link: fuzz-link-build
 	$(call link_fuzz_run,device_link,$(LINK_DIR)/fuzz/corpus_device_link,$(FUZZ_LINK_SECONDS))
 	$(call link_fuzz_run,host_framer,$(ROOT)/drone_ros/arduino_link/fuzz/corpus_host_framer,$(FUZZ_LINK_SECONDS))
+	$(call link_fuzz_run,host_payloads,$(ROOT)/drone_ros/arduino_link/fuzz/corpus_host_payloads,$(FUZZ_LINK_SECONDS))
 
 fuzz-link-smoke: fuzz-link-build
 	$(call link_fuzz_run,device_link,$(LINK_DIR)/fuzz/corpus_device_link,10)
 	$(call link_fuzz_run,host_framer,$(ROOT)/drone_ros/arduino_link/fuzz/corpus_host_framer,10)
+	$(call link_fuzz_run,host_payloads,$(ROOT)/drone_ros/arduino_link/fuzz/corpus_host_payloads,10)
 
 LINK_M3_OUT ?= $(ROOT)/.build/link_m3
 LINK_M3_SOURCES := $(ROOT)/arduino_ha/src/link/ha_link.c $(ROOT)/arduino_ha/src/link/ha_link_frame.c \

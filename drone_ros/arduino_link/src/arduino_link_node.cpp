@@ -1,6 +1,7 @@
 #include "arduino_link_node.h"
 
 #include <drone_ros/pwm.h>
+#include <ros/names.h>
 #include <ros/serialization.h>
 #include <std_msgs/Time.h>
 #include <xmlrpcpp/XmlRpcValue.h>
@@ -8,7 +9,6 @@
 #include <boost/function.hpp>
 
 #include "ha_link_msgs.h"
-#include "message_definitions.h"
 
 namespace arduino_link {
 
@@ -20,8 +20,6 @@ constexpr uint16_t kIdParameterRequest = ROSSERIAL_MSGS_TOPICINFO_ID_PARAMETER_R
 constexpr uint16_t kIdLog = ROSSERIAL_MSGS_TOPICINFO_ID_LOG;
 constexpr uint16_t kIdTime = ROSSERIAL_MSGS_TOPICINFO_ID_TIME;
 constexpr int kReadTimeoutMs = 20;
-
-std::string to_string(const HaRosString &s) { return std::string(s.data, s.len); }
 }  // namespace
 
 ArduinoLinkNode::ArduinoLinkNode(ros::NodeHandle nh, ros::NodeHandle pnh, const LinkParams &params)
@@ -131,68 +129,98 @@ void ArduinoLinkNode::handle_frame(const Frame &f) {
   on_device_data(it->second, f);
 }
 
-void ArduinoLinkNode::on_publisher_info(const Frame &f) {
-  rosserial_msgs_TopicInfo info;
-  std::size_t used = 0;
-  if (!rosserial_msgs_TopicInfo_deserialize(&info, f.payload.data(), f.payload.size(), &used) ||
-      used != f.payload.size()) {
-    ++counters_.bad_payload;
-    return;
+void ArduinoLinkNode::refuse(const char *what, const std::string &why) {
+  ++counters_.bad_payload;
+  // Throttled: a device stuck repeating a bad frame must not flood rosout; the counter has all.
+  ROS_WARN_THROTTLE(5.0, "arduino: dropped the device's %s: %s (counted as bad_payload)", what, why.c_str());
+}
+
+bool ArduinoLinkNode::accept_announcement(const Frame &f, TopicAnnouncement *a) {
+  std::string why;
+  if (!decode_topic_announcement(f.payload, a, &why)) {
+    refuse("topic announcement", why);
+    return false;
   }
+  // roscpp throws on a name it cannot resolve; ask it first rather than abort the node.
+  if (!ros::names::validate(a->name, why)) {
+    refuse("topic announcement", "topic name '" + a->name + "': " + why);
+    return false;
+  }
+  return true;
+}
+
+void ArduinoLinkNode::on_publisher_info(const Frame &f) {
+  TopicAnnouncement info;
+  if (!accept_announcement(f, &info)) return;
   negotiated_ = true;
   Endpoint ep;
-  ep.name = to_string(info.topic_name);
-  ep.type = to_string(info.message_type);
-  ep.md5 = to_string(info.md5sum);
+  ep.name = info.name;
+  ep.type = info.type;
+  ep.md5 = info.md5;
   ep.buffer_size = info.buffer_size;
+  ep.known = find_known_type(ep.type, ep.md5);
   std::lock_guard<std::mutex> lock(endpoints_mutex_);
   auto it = endpoints_.find(info.topic_id);
   if (it != endpoints_.end() && it->second.pub && it->second.name == ep.name && it->second.md5 == ep.md5) {
     return;  // the same device came back: keep the publisher, subscribers see no gap in topology
   }
-  if (ep.type == ros::message_traits::DataType<drone_ros::pwm>::value() && nh_.resolveName(ep.name) == pwm_pub_.getTopic()) {
-    if (ep.md5 != ros::message_traits::MD5Sum<drone_ros::pwm>::value()) {
-      ++counters_.md5_mismatch;
-      ROS_ERROR("arduino: device's drone_ros/pwm md5 %s differs from ours; not publishing it", ep.md5.c_str());
-      return;
+  try {
+    if (ep.type == ros::message_traits::DataType<drone_ros::pwm>::value() &&
+        nh_.resolveName(ep.name) == pwm_pub_.getTopic()) {
+      if (ep.md5 != ros::message_traits::MD5Sum<drone_ros::pwm>::value()) {
+        ++counters_.md5_mismatch;
+        ROS_ERROR("arduino: device's drone_ros/pwm md5 %s differs from ours; not publishing it", ep.md5.c_str());
+        return;
+      }
+      ep.is_pwm = true;
+      ep.pub = pwm_pub_;
+    } else {
+      topic_tools::ShapeShifter shape;
+      shape.morph(ep.md5, ep.type, ep.known != nullptr ? ep.known->definition : std::string(), "false");
+      ep.pub = shape.advertise(nh_, ep.name, 10);
     }
-    ep.is_pwm = true;
-    ep.pub = pwm_pub_;
-  } else {
-    topic_tools::ShapeShifter shape;
-    ep.definition = known_definition(ep.type, ep.md5);
-    shape.morph(ep.md5, ep.type, ep.definition, "false");
-    ep.pub = shape.advertise(nh_, ep.name, 10);
+  } catch (const ros::Exception &e) {
+    // Whatever else roscpp refuses (validated names can still clash with remappings, say).
+    refuse("publisher", ep.name + ": " + e.what());
+    return;
+  }
+  if (!ep.pub) {  // roscpp logs why without throwing, e.g. the topic is taken by another type
+    refuse("publisher", ep.name + ": ROS did not advertise it");
+    return;
   }
   ROS_INFO("arduino: device publishes %s [%s] as id %u", ep.name.c_str(), ep.type.c_str(), info.topic_id);
   endpoints_[info.topic_id] = ep;
 }
 
 void ArduinoLinkNode::on_subscriber_info(const Frame &f) {
-  rosserial_msgs_TopicInfo info;
-  std::size_t used = 0;
-  if (!rosserial_msgs_TopicInfo_deserialize(&info, f.payload.data(), f.payload.size(), &used) ||
-      used != f.payload.size()) {
-    ++counters_.bad_payload;
-    return;
-  }
+  TopicAnnouncement info;
+  if (!accept_announcement(f, &info)) return;
   negotiated_ = true;
   const uint16_t id = info.topic_id;
   std::lock_guard<std::mutex> lock(endpoints_mutex_);
-  Endpoint &ep = endpoints_[id];
-  const std::string name = to_string(info.topic_name);
-  const std::string md5 = to_string(info.md5sum);
+  auto existing = endpoints_.find(id);
+  if (existing != endpoints_.end() && existing->second.sub && existing->second.name == info.name &&
+      existing->second.md5 == info.md5) {
+    existing->second.buffer_size = info.buffer_size;
+    return;
+  }
+  Endpoint ep;
+  ep.name = info.name;
+  ep.type = info.type;
+  ep.md5 = info.md5;
   ep.buffer_size = info.buffer_size;
-  if (ep.sub && ep.name == name && ep.md5 == md5) return;
-  ep.name = name;
-  ep.type = to_string(info.message_type);
-  ep.md5 = md5;
   boost::function<void(const topic_tools::ShapeShifter::ConstPtr &)> cb =
       [this, id](const topic_tools::ShapeShifter::ConstPtr &msg) { on_ros_message(id, msg); };
-  // TCP_NODELAY: a servo command must not wait for Nagle.
-  ep.sub = nh_.subscribe<topic_tools::ShapeShifter>(ep.name, 10, cb, ros::VoidConstPtr(),
-                                                   ros::TransportHints().tcpNoDelay());
+  try {
+    // TCP_NODELAY: a servo command must not wait for Nagle.
+    ep.sub = nh_.subscribe<topic_tools::ShapeShifter>(ep.name, 10, cb, ros::VoidConstPtr(),
+                                                     ros::TransportHints().tcpNoDelay());
+  } catch (const ros::Exception &e) {
+    refuse("subscriber", ep.name + ": " + e.what());
+    return;
+  }
   ROS_INFO("arduino: device subscribes to %s [%s] as id %u", ep.name.c_str(), ep.type.c_str(), id);
+  endpoints_[id] = ep;  // replaces (and so unsubscribes) an older subscriber on this id
 }
 
 void ArduinoLinkNode::on_ros_message(uint16_t topic_id, const topic_tools::ShapeShifter::ConstPtr &msg) {
@@ -227,15 +255,21 @@ void ArduinoLinkNode::on_device_data(Endpoint &ep, const Frame &f) {
       ros::serialization::deserialize(in, pwm);
       if (in.getLength() != 0) throw ros::serialization::StreamOverrunException("trailing bytes");
     } catch (const ros::Exception &) {
-      ++counters_.bad_payload;
+      refuse("message", "not one drone_ros/pwm on " + ep.name);
       return;
     }
     pwm.usbstatus = 1;  // this field is the node's to set: the frame just arrived over the link
     ep.pub.publish(pwm);
     return;
   }
+  // A type the node knows is checked before ROS subscribers see it: they would fail to
+  // deserialize it one by one, each in its own way.
+  if (ep.known != nullptr && !ep.known->decodes(f.payload.data(), f.payload.size())) {
+    refuse("message", "not one " + ep.type + " on " + ep.name);
+    return;
+  }
   topic_tools::ShapeShifter shape;
-  shape.morph(ep.md5, ep.type, ep.definition, "false");
+  shape.morph(ep.md5, ep.type, ep.known != nullptr ? ep.known->definition : std::string(), "false");
   ros::serialization::IStream in(const_cast<uint8_t *>(f.payload.data()), static_cast<uint32_t>(f.payload.size()));
   shape.read(in);
   ep.pub.publish(shape);
@@ -252,20 +286,26 @@ void ArduinoLinkNode::on_time_request() {
 }
 
 void ArduinoLinkNode::on_param_request(const Frame &f) {
-  rosserial_msgs_RequestParamRequest req;
-  std::size_t used = 0;
-  if (!rosserial_msgs_RequestParamRequest_deserialize(&req, f.payload.data(), f.payload.size(), &used) ||
-      used != f.payload.size()) {
-    ++counters_.bad_payload;
+  std::string name;
+  if (!decode_param_request(f.payload, &name)) {
+    refuse("parameter request", "not a rosserial_msgs/RequestParam request");
     return;
   }
-  const std::string name = to_string(req.name);
-  rosserial_msgs_RequestParamResponse resp{};
-  std::vector<std::string> strings;  // owns the text resp.strings point to
+  ParamValues values;  // stays empty, rosserial's "not set", unless the parameter can be sent
   XmlRpc::XmlRpcValue value;
-  if (!nh_.getParam(name, value)) {
-    ROS_WARN("arduino: device asked for parameter %s, which is not set", name.c_str());
+  std::string why;
+  bool have = false;
+  if (!ros::names::validate(name, why)) {  // getParam would throw on it
+    refuse("parameter request", "name '" + name + "': " + why);
   } else {
+    try {
+      have = nh_.getParam(name, value);
+    } catch (const ros::Exception &e) {
+      why = e.what();
+    }
+    if (!have) ROS_WARN("arduino: device asked for parameter %s, which is not set %s", name.c_str(), why.c_str());
+  }
+  if (have) {
     std::vector<XmlRpc::XmlRpcValue> items;
     if (value.getType() == XmlRpc::XmlRpcValue::TypeArray) {
       for (int i = 0; i < value.size(); ++i) items.push_back(value[i]);
@@ -273,52 +313,30 @@ void ArduinoLinkNode::on_param_request(const Frame &f) {
       items.push_back(value);
     }
     for (auto &v : items) {
-      if (v.getType() == XmlRpc::XmlRpcValue::TypeString) strings.push_back(static_cast<std::string>(v));
-    }
-    bool fits = true;
-    for (auto &v : items) {
       switch (v.getType()) {
-        case XmlRpc::XmlRpcValue::TypeInt:
-          fits = fits && resp.ints_count < HA_MSGS_VAR_ARRAY_CAP;
-          if (fits) resp.ints[resp.ints_count++] = static_cast<int>(v);
-          break;
-        case XmlRpc::XmlRpcValue::TypeBoolean:
-          fits = fits && resp.ints_count < HA_MSGS_VAR_ARRAY_CAP;
-          if (fits) resp.ints[resp.ints_count++] = static_cast<bool>(v) ? 1 : 0;
-          break;
-        case XmlRpc::XmlRpcValue::TypeDouble:
-          fits = fits && resp.floats_count < HA_MSGS_VAR_ARRAY_CAP;
-          if (fits) resp.floats[resp.floats_count++] = static_cast<float>(static_cast<double>(v));
-          break;
-        default:
-          break;
+        case XmlRpc::XmlRpcValue::TypeInt: values.ints.push_back(static_cast<int>(v)); break;
+        case XmlRpc::XmlRpcValue::TypeBoolean: values.ints.push_back(static_cast<bool>(v) ? 1 : 0); break;
+        case XmlRpc::XmlRpcValue::TypeDouble: values.floats.push_back(static_cast<float>(static_cast<double>(v))); break;
+        case XmlRpc::XmlRpcValue::TypeString: values.strings.push_back(static_cast<std::string>(v)); break;
+        default: break;  // structs, dates, binary: rosserial has no way to carry them
       }
     }
-    fits = fits && strings.size() <= HA_MSGS_VAR_ARRAY_CAP;
-    if (!fits) {
-      ROS_WARN("arduino: parameter %s has more than %u values per type; the device cannot hold it", name.c_str(),
-               HA_MSGS_VAR_ARRAY_CAP);
-      resp = rosserial_msgs_RequestParamResponse{};
-      strings.clear();
-    }
-    for (const auto &s : strings) resp.strings[resp.strings_count++] = HaRosString{s.data(), static_cast<uint32_t>(s.size())};
   }
-  std::vector<uint8_t> payload(static_cast<std::size_t>(params_.max_payload));
-  std::size_t n = 0;
-  if (rosserial_msgs_RequestParamResponse_serialize(&resp, payload.data(), payload.size(), &n)) {
-    payload.resize(n);
-    (void)send(kIdParameterRequest, payload);
+  std::vector<uint8_t> payload;
+  if (!encode_param_reply(values, static_cast<std::size_t>(params_.max_payload), &payload, &why)) {
+    ROS_WARN("arduino: parameter %s cannot go to the device (%s); answering not set", name.c_str(), why.c_str());
+    (void)encode_param_reply(ParamValues{}, static_cast<std::size_t>(params_.max_payload), &payload, &why);
   }
+  (void)send(kIdParameterRequest, payload);  // always answer: ros_lib waits for a reply
 }
 
 void ArduinoLinkNode::on_log(const Frame &f) {
-  rosserial_msgs_Log log;
-  std::size_t used = 0;
-  if (!rosserial_msgs_Log_deserialize(&log, f.payload.data(), f.payload.size(), &used) || used != f.payload.size()) {
-    ++counters_.bad_payload;
+  DeviceLog log;
+  if (!decode_device_log(f.payload, &log)) {
+    refuse("log", "not a rosserial_msgs/Log");
     return;
   }
-  const std::string text = "[HA] " + to_string(log.msg);
+  const std::string text = "[HA] " + log.text;
   switch (log.level) {
     case ROSSERIAL_MSGS_LOG_ROSDEBUG: ROS_DEBUG("%s", text.c_str()); break;
     case ROSSERIAL_MSGS_LOG_INFO: ROS_INFO("%s", text.c_str()); break;

@@ -17,8 +17,10 @@
 #include <string>
 #include <vector>
 
-#include "link_params.h"
+#include "device_payloads.h"
 #include "drone_ros_common/serial_port.h"
+#include "link_params.h"
+#include "message_definitions.h"
 #include "rosserial_framer.h"
 
 namespace arduino_link {
@@ -26,7 +28,8 @@ namespace arduino_link {
 // Atomics: subscriber callbacks (spinner thread) count too.
 struct LinkCounters {
   std::atomic<uint64_t> unknown_topic{0};   // data on an id the device never announced
-  std::atomic<uint64_t> bad_payload{0};     // a valid frame whose payload does not decode
+  std::atomic<uint64_t> bad_payload{0};     // a valid frame whose payload does not decode, or
+                                            // announces a topic ROS would refuse
   std::atomic<uint64_t> md5_mismatch{0};    // device and ROS disagree on a type
   std::atomic<uint64_t> tx_failed{0};       // a frame that could not be written
   std::atomic<uint64_t> tx_too_big{0};      // a ROS message larger than the device's buffer
@@ -45,7 +48,7 @@ class ArduinoLinkNode {
  private:
   struct Endpoint {
     std::string name, type, md5;
-    std::string definition;  // for rosbag; empty when the type is not compiled in
+    const KnownType *known = nullptr;  // null when the type is not compiled in
     int32_t buffer_size = 0;
     bool is_pwm = false;
     ros::Publisher pub;
@@ -61,6 +64,8 @@ class ArduinoLinkNode {
   void on_param_request(const Frame &frame);
   void on_log(const Frame &frame);
   void on_device_data(Endpoint &ep, const Frame &frame);
+  bool accept_announcement(const Frame &frame, TopicAnnouncement *a);
+  void refuse(const char *what, const std::string &why);
   void on_ros_message(uint16_t topic_id, const topic_tools::ShapeShifter::ConstPtr &msg);
   bool send(uint16_t topic_id, const std::vector<uint8_t> &payload);
   bool send_raw(const std::vector<uint8_t> &bytes);

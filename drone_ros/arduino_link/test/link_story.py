@@ -17,6 +17,7 @@ import rospy
 import rostest
 from diagnostic_msgs.msg import DiagnosticArray
 from rosgraph_msgs.msg import Log
+from std_msgs.msg import String
 
 try:
     from drone_ros.msg import DecisionStatus, ServoCommand, pwm
@@ -30,7 +31,7 @@ except ImportError:
     from drone_ros.msg import DecisionStatus, ServoCommand, pwm
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from wire_tap import WireTap, frame  # noqa: E402
+from wire_tap import WireTap, frame, topic_info  # noqa: E402
 
 WS = os.environ.get("DRONE_ROS_WS", "")
 
@@ -212,6 +213,34 @@ class LinkStories(unittest.TestCase):
         wait_for(lambda: self.status().last_seq == self.seq, 3.0, "commands still reach the HA")
         self.assertTrue(self.link_up())
         self.assertIsNone(self.sil.poll(), "the SIL must not have died")
+
+    def test_06b_announcements_and_payloads_the_node_cannot_take_are_counted_not_fatal(self):
+        # Well-formed frames (right checksums) whose content ROS refuses: each of these used to
+        # throw out of advertise/subscribe and abort the node. A flaky or foreign device must
+        # not take the HP's end of the link down with it.
+        wait_for(self.link_up, 10.0, "link up")
+        bad_before = self.watch.counter("bad_payload")
+        md5 = String._md5sum
+        refused = [
+            frame(0, topic_info(140, "bad name!", "std_msgs/String", md5)),   # not a ROS name
+            frame(1, topic_info(141, "also bad!", "std_msgs/String", md5)),
+            frame(0, topic_info(142, "", "std_msgs/String", md5)),            # no name at all
+            frame(0, topic_info(143, "garbage_type", "*", "*")),              # roscpp refuses '*'
+            frame(0, topic_info(144, "empty_type", "", "")),
+            frame(0, topic_info(145, "odd_type", "no slash \x01", md5)),
+            frame(1, topic_info(146, "odd_md5", "std_msgs/String", "not-an-md5")),
+            frame(0, topic_info(7, "reserved_id", "std_msgs/String", md5)),   # rosserial's log id
+            frame(126, bytes(10)),  # /decision_status cut short: must not reach ROS subscribers
+        ]
+        for f in refused:
+            self.tap.inject_to_node(f)
+            time.sleep(0.02)
+        wait_for(lambda: self.watch.counter("bad_payload") >= bad_before + len(refused), 5.0,
+                 "every refused frame counted as a bad payload")
+        # The same node carries on both ways.
+        self.send_commands(20)
+        wait_for(lambda: self.status().last_seq == self.seq, 3.0, "commands still reach the HA")
+        self.assertTrue(self.link_up())
 
     def test_07_unplug_and_replug_is_survived_with_the_gap_reported(self):
         wait_for(self.link_up, 10.0, "link up")

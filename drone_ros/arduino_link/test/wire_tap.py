@@ -26,6 +26,19 @@ def frame(topic, payload):
     return head + body + bytes([255 - (sum(body) % 256)])
 
 
+def ros_string(text):
+    """A ROS string on the wire: uint32 length (little endian), then the bytes."""
+    data = text.encode() if isinstance(text, str) else bytes(text)
+    return len(data).to_bytes(4, "little") + data
+
+
+def topic_info(topic_id, name, msg_type, md5, buffer_size=256):
+    """rosserial_msgs/TopicInfo's serialization: uint16 topic_id, string topic_name, string
+    message_type, string md5sum, int32 buffer_size."""
+    return (topic_id.to_bytes(2, "little") + ros_string(name) + ros_string(msg_type) + ros_string(md5)
+            + buffer_size.to_bytes(4, "little", signed=True))
+
+
 def split_frames(buf):
     """Cuts whole frames off the front of buf (a well-formed stream from the node or the SIL), so
     injected bytes land between frames, never inside one. Returns the frames; buf keeps the rest."""
