@@ -280,6 +280,28 @@ TEST(GncClosedLoop, EstimatorConvergesFromWrongInitialAlphaBeta) {
   }
 }
 
+// Waypoints come from the ground station and the HA judges position, both with WGS84 radii of
+// curvature: the GNC must put a latitude/longitude at the same north/east. Reference: one
+// degree at 45 deg latitude spans 111,132.95 m of latitude and 78,846.80 m of longitude (WGS84);
+// a sphere of the equatorial radius would be 0.6 ft and 0.4 ft off over these 0.001 deg.
+TEST(GncFrame, NorthAndEastFromLatLonUseTheWgs84RadiiAtHome) {
+  Flight f;
+  f.step();
+  DG808_GNC_Input in = f.in();
+  in.home_valid = 1;
+  in.home_lat_deg = 45.0;
+  in.home_lon_deg = 7.0;
+  in.home_alt_m = 300.0;
+  in.lat_deg = 45.001;
+  in.lon_deg = 7.001;
+  in.alt_m = 330.48;
+  DG808_GNC_Output out{};
+  DG808_GNC_step(&in, &out);
+  EXPECT_NEAR(111.13295 / 0.3048, out.north_ft, 0.05);
+  EXPECT_NEAR(78.84680 / 0.3048, out.east_ft, 0.05);
+  EXPECT_NEAR(100.0, out.height_ft, 1e-6);
+}
+
 // Standing on the ground the pitot reads zero: the thesis's EKF produced NaN here. The command
 // stays finite and is flagged invalid, step after step.
 TEST(GncClosedLoop, ZeroAirspeedOnTheGroundGivesFiniteCommandFlaggedInvalid) {
