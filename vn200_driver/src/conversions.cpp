@@ -45,10 +45,17 @@ Vec3 nedToEnu(const Vec3& v) { return {v[1], v[0], -v[2]}; }
 
 Vec3 llaToLocalEnu(double lat_deg, double lon_deg, double alt_m, double ref_lat_deg,
                    double ref_lon_deg, double ref_alt_m) {
-  constexpr double kEarthRadiusM = 6378137.0;  // WGS84 equatorial radius
-  const double north = (lat_deg - ref_lat_deg) * kDegToRad * kEarthRadiusM;
+  // WGS84 radii of curvature at the reference: the same flat earth the HA, the controller and
+  // the ground station use, so the tf puts the aircraft where they do.
+  constexpr double kWgs84AM = 6378137.0;
+  constexpr double kWgs84E2 = 6.69437999014e-3;
+  const double s = std::sin(ref_lat_deg * kDegToRad);
+  const double w2 = 1.0 - kWgs84E2 * s * s;
+  const double meridian_m = kWgs84AM * (1.0 - kWgs84E2) / (w2 * std::sqrt(w2));
+  const double prime_vertical_m = kWgs84AM / std::sqrt(w2);
+  const double north = (lat_deg - ref_lat_deg) * kDegToRad * meridian_m;
   const double east =
-      (lon_deg - ref_lon_deg) * kDegToRad * kEarthRadiusM * std::cos(ref_lat_deg * kDegToRad);
+      (lon_deg - ref_lon_deg) * kDegToRad * prime_vertical_m * std::cos(ref_lat_deg * kDegToRad);
   return {east, north, alt_m - ref_alt_m};
 }
 

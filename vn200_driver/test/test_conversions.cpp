@@ -51,8 +51,9 @@ TEST(Conversions, VectorsAndPositions) {
   expectVec({1, -2, -3}, vn200::frdToFlu({1, 2, 3}));
   expectVec({2, 1, -3}, vn200::nedToEnu({1, 2, 3}));
   Vec3 enu = vn200::llaToLocalEnu(45.001, 7.001, 110, 45.0, 7.0, 100);
-  EXPECT_NEAR(111.3, enu[1], 0.1);
-  EXPECT_NEAR(111.3 * std::cos(45.0 * kPi / 180), enu[0], 0.1);
+  // WGS84 at 45 deg: 111,132.95 m per degree of latitude, 78,846.80 m per degree of longitude.
+  EXPECT_NEAR(111.133, enu[1], 0.002);
+  EXPECT_NEAR(78.847, enu[0], 0.002);
   EXPECT_NEAR(10.0, enu[2], 1e-9);
 }
 
