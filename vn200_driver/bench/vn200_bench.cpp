@@ -111,6 +111,15 @@ int main() {
               100.0 * imu_800hz_Bps / (imu_big.mb_per_s * 1e6));
   std::printf("vn200_cpu_share_saturated_921600_baud: %.4f %%\n",
               100.0 * link_Bps / (node_small.mb_per_s * 1e6));
+  // The node's own packet is larger than 115 bytes, so it cannot stream at 800 Hz: the fastest
+  // rate that is 800 Hz / integer and fits the link is what node_params.cpp lets through.
+  unsigned node_max_hz = 0;
+  for (unsigned divisor = 1; divisor <= 800 && node_max_hz == 0; ++divisor) {
+    if (800 % divisor == 0 && (800.0 / divisor) * static_cast<double>(node_len) <= link_Bps) {
+      node_max_hz = 800 / divisor;
+    }
+  }
+  std::printf("vn200_node_packet_max_rate_at_921600_baud: %u Hz\n", node_max_hz);
   std::printf("machine: %s\n", machine().c_str());
   return 0;
 }
