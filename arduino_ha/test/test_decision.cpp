@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "ha_test_util.h"
 
@@ -265,6 +266,103 @@ TEST(HaDecision, RestartCapLatchesHa) {
   for (int i = 0; i < 1000; ++i) t.StepWithGood();
   EXPECT_EQ(t.controller(), HA_CONTROLLER_HA_LATCHED);
   EXPECT_EQ(t.out().operator_ack_accepted, 0u);
+}
+
+TEST(HaDecision, HpThatNeverReturnsIsRestartedUntilTheCapThenLatched) {
+  Timeline t;
+  const uint32_t k = t.cfg.max_restarts;
+  const uint32_t spacing_us = t.cfg.hp_reset_pulse_us + t.cfg.hp_boot_timeout_us;
+  ASSERT_GT(t.ReachHp(), 0);
+  for (int i = 0; i < 300; ++i) t.StepWithGood();  // three seconds of good flight
+  ASSERT_EQ(t.controller(), HA_CONTROLLER_HP);
+  // The HP dies and never produces another command, however often it is reset.
+  std::vector<uint32_t> pulse_starts_us;
+  uint32_t latched_at_us = 0;
+  bool reset_before = t.board.hp_reset;
+  const int periods = static_cast<int>((k + 2u) * spacing_us / t.cfg.period_us);
+  for (int i = 0; i < periods; ++i) {
+    t.Step();
+    if (t.board.hp_reset && !reset_before) pulse_starts_us.push_back(t.board.now_us);
+    reset_before = t.board.hp_reset;
+    if (latched_at_us == 0u && t.controller() == HA_CONTROLLER_HA_LATCHED) {
+      latched_at_us = t.board.now_us;
+      EXPECT_TRUE(t.out().reasons_at_switch & HA_REASON_NO_COMMAND);  // why: the HP is silent
+    }
+    if (i >= static_cast<int>(t.cfg.late_periods_tolerated)) {
+      ASSERT_NE(t.controller(), HA_CONTROLLER_HP) << "period " << i;
+    }
+  }
+  // K resets, each one boot timeout after the previous one was released...
+  ASSERT_EQ(pulse_starts_us.size(), k);
+  for (size_t i = 1; i < pulse_starts_us.size(); ++i) {
+    const uint32_t gap_us = pulse_starts_us[i] - pulse_starts_us[i - 1];
+    EXPECT_GE(gap_us, spacing_us) << "reset " << i + 1;
+    EXPECT_LE(gap_us, spacing_us + t.cfg.period_us) << "reset " << i + 1;
+  }
+  // ...then, one more boot timeout later, the latch instead of a reset K+1.
+  ASSERT_NE(latched_at_us, 0u);
+  EXPECT_GE(latched_at_us - pulse_starts_us.back(), spacing_us);
+  EXPECT_LE(latched_at_us - pulse_starts_us.back(), spacing_us + t.cfg.period_us);
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HA_LATCHED);
+  EXPECT_EQ(t.out().restart_count, k);
+  EXPECT_EQ(t.board.hp_reset_assertions, static_cast<int>(k));
+  EXPECT_FALSE(t.board.hp_reset);
+  EXPECT_EQ(t.board.leds, HA_LED_HA | HA_LED_FAULT);
+}
+
+TEST(HaDecision, HpThatBootsWithinTheTimeoutIsNotResetAgain) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  t.Step();
+  t.Step();  // crash: reset 1
+  ASSERT_EQ(t.out().restart_count, 1u);
+  // A slow boot, just inside the timeout, then a healthy HP.
+  const int boot_periods =
+      static_cast<int>((t.cfg.hp_reset_pulse_us + t.cfg.hp_boot_timeout_us) / t.cfg.period_us);
+  for (int i = 0; i < boot_periods - 2; ++i) t.Step();
+  EXPECT_GT(t.ReachHp(), 0);
+  EXPECT_EQ(t.out().restart_count, 1u);
+  EXPECT_EQ(t.board.hp_reset_assertions, 1);
+  // The operator's choice of the HA is no HP failure: a silent HP then is not reset.
+  t.Operator(HA_OP_SELECT_HA);
+  t.StepWithGood();
+  ASSERT_EQ(t.controller(), HA_CONTROLLER_HA);
+  for (int i = 0; i < 4 * boot_periods; ++i) t.Step();
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HA);
+  EXPECT_EQ(t.out().restart_count, 1u);
+}
+
+TEST(HaDecision, HpThatKeepsFailingWhileRecoveringIsLatchedAtTheCap) {
+  Timeline t;
+  const uint32_t k = t.cfg.max_restarts;
+  const int half_window = static_cast<int>(t.cfg.stable_window_us / t.cfg.period_us / 2u);
+  ASSERT_GT(t.ReachHp(), 0);
+  t.Step();
+  t.Step();  // crash: reset 1
+  ASSERT_EQ(t.out().restart_count, 1u);
+  for (uint32_t attempt = 1; attempt <= k; ++attempt) {
+    // The HP reboots and sends good commands for half the stable window: watched, not used...
+    for (int i = 0; i < 50; ++i) t.Step();
+    for (int i = 0; i < half_window; ++i) {
+      t.StepWithGood();
+      ASSERT_EQ(t.controller(), HA_CONTROLLER_RECOVERING) << "attempt " << attempt;
+    }
+    // ...then a command outside S_u before the window is over.
+    t.StepWithGood(0.0f, 2.0f * t.cfg.elevator_limit_deg);
+    if (attempt < k) {
+      ASSERT_EQ(t.controller(), HA_CONTROLLER_HA) << "attempt " << attempt;
+      ASSERT_EQ(t.out().restart_count, attempt + 1u);
+    }
+  }
+  // The K-th reset did not help either: latched, and said why.
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HA_LATCHED);
+  EXPECT_EQ(t.out().reasons_at_switch, HA_REASON_ACTUATOR_REGION);
+  EXPECT_EQ(t.out().restart_count, k);
+  EXPECT_EQ(t.board.hp_reset_assertions, static_cast<int>(k));
+  // A good HP afterwards changes nothing, and nothing resets it any more.
+  for (int i = 0; i < 100 * 60; ++i) t.StepWithGood();
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HA_LATCHED);
+  EXPECT_EQ(t.board.hp_reset_assertions, static_cast<int>(k));
 }
 
 TEST(HaDecision, RestartsSpreadBeyondWindowDoNotLatch) {

@@ -54,22 +54,34 @@ TEST(HaGeneratedConfig, CarriesTheYamlLimits) {
   EXPECT_EQ(ha_aircraft_config.su_rows, 8u);
 }
 
-TEST(HaGeneratedConfig, GeneratorRefusesBandAboveCeiling) {
+// The generator's exit status for limits.yaml with one key's value replaced.
+int GenerateWith(const std::string& key, const std::string& value) {
   const std::string yaml = Slurp(HA_LIMITS_YAML);
-  const std::string key = "alt_max_ft: ";
-  const size_t at = yaml.find(key);
-  ASSERT_NE(at, std::string::npos);
+  const size_t at = yaml.find(key + ": ");
+  EXPECT_NE(at, std::string::npos) << key;
+  if (at == std::string::npos) return 0;
   const size_t end = yaml.find('\n', at);
-  const std::string bad = yaml.substr(0, at) + key + "399.0" + yaml.substr(end);
+  const std::string bad = yaml.substr(0, at) + key + ": " + value + yaml.substr(end);
   char name[] = "/tmp/ha_limits_XXXXXX";
   const int fd = mkstemp(name);
-  ASSERT_GE(fd, 0);
+  EXPECT_GE(fd, 0);
   close(fd);
   std::ofstream(name) << bad;
   int status = 0;
   Generate(name, &status);
   std::remove(name);
-  EXPECT_NE(status, 0);
+  return status;
+}
+
+TEST(HaGeneratedConfig, GeneratorRefusesBandAboveCeiling) {
+  EXPECT_NE(GenerateWith("alt_max_ft", "399.0"), 0);
+}
+
+TEST(HaGeneratedConfig, GeneratorRefusesABootTimeoutThatKeepsADeadHpFromTheLatch) {
+  // 3 x (0.1 + 20) s > 60 s: the first reset leaves the window before the cap is reached.
+  EXPECT_NE(GenerateWith("hp_boot_timeout_s", "20.0"), 0);
+  EXPECT_EQ(GenerateWith("hp_boot_timeout_s", "19.0"), 0);
+  EXPECT_EQ(ha_aircraft_config.hp_boot_timeout_us, 15000000u);
 }
 
 }  // namespace

@@ -131,8 +131,18 @@ def build(doc):
     c["max_restarts"] = int(need(dec, "max_restarts", 1.0, MAX_RESTARTS_CAP))
     c["restart_window_us"] = us(positive(dec, "restart_window_s"))
     c["hp_reset_pulse_us"] = us(positive(dec, "hp_reset_pulse_s"))
+    c["hp_boot_timeout_us"] = us(positive(dec, "hp_boot_timeout_s"))
+    if c["hp_boot_timeout_us"] <= c["no_command_timeout_us"]:
+        raise ConfigError("hp_boot_timeout_s must exceed no_command_timeout_s")
+    # An HP that never comes back is reset every pulse + boot timeout; the K-th reset must fall
+    # inside the window for the cap to be reached and the HA to latch.
+    if c["max_restarts"] * (c["hp_reset_pulse_us"] + c["hp_boot_timeout_us"]) >= \
+            c["restart_window_us"]:
+        raise ConfigError("max_restarts x (hp_reset_pulse_s + hp_boot_timeout_s) must be shorter "
+                          "than restart_window_s, or a dead HP is reset forever and never latched")
     # The microsecond clock wraps after 2^32 us; longer windows could not be measured.
-    for key in ("stable_window_us", "restart_window_us", "no_command_timeout_us"):
+    for key in ("stable_window_us", "restart_window_us", "no_command_timeout_us",
+                "hp_boot_timeout_us"):
         if c[key] >= 2 ** 31:
             raise ConfigError("%s too long for a 32-bit microsecond clock" % key)
 

@@ -76,6 +76,9 @@ typedef struct {
   uint32_t max_restarts;
   uint32_t restart_window_us;
   uint32_t hp_reset_pulse_us;
+  /* From releasing the reset line to the HP's first valid command; past it the HP is reset
+   * again (counting towards max_restarts), and at the cap the HA latches. */
+  uint32_t hp_boot_timeout_us;
 
   /* RC receiver and servo pulse calibration: [min, max] maps linearly onto [-limit, +limit]
    * (throttle onto [throttle_min, throttle_max]). */

@@ -92,7 +92,14 @@ static void request_restart(HaCore *core, uint32_t now_us, HaOutputs *out) {
   }
   core->reset_active = 1u;
   core->reset_started_us = now_us;
+  core->awaiting_boot = 1u;
   out->restart_requested = 1u;
+}
+
+/* The boot timeout runs from the release of the reset line: the HP cannot boot while held. */
+static int boot_overdue(const HaCore *core, uint32_t now_us) {
+  return core->awaiting_boot && !core->reset_active &&
+         ha_elapsed_us(now_us, core->reset_released_us) >= core->cfg->hp_boot_timeout_us;
 }
 
 /* Operator requests never bypass a check: they only move the HA's own intent. */
@@ -129,14 +136,15 @@ static void on_switch(HaCore *core, uint8_t next, uint32_t reasons, uint32_t now
       core->controller == HA_CONTROLLER_HP || core->controller == HA_CONTROLLER_RECOVERING;
   const int to_ha = next == HA_CONTROLLER_HA || next == HA_CONTROLLER_HA_LATCHED;
   const int hp_fault = !core->ground_command && !core->self_test.active;
-  if (from_hp_side && to_ha) {
-    core->reasons_at_switch = reasons;
+  const int latching = next == HA_CONTROLLER_HA_LATCHED && !core->latched;
+  if ((from_hp_side && to_ha) || latching) {
+    core->reasons_at_switch = reasons; /* why the HP lost control, or why it lost it for good */
     core->stable_for_us = 0u;
     if (next == HA_CONTROLLER_HA && hp_fault) {
       request_restart(core, now_us, out);
     }
   }
-  if (next == HA_CONTROLLER_HA_LATCHED) {
+  if (latching) {
     core->latched = 1u;
   }
   core->controller = next;
@@ -193,6 +201,9 @@ void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *
   reasons = ha_checks_evaluate(cfg, &facts, &view, &sx_max, &su_max) |
             (core->ground_command ? HA_REASON_GROUND_COMMAND : 0u);
   core->stable_for_us = (reasons & HA_REASONS_COMMAND) ? 0u : add_sat(core->stable_for_us, dt_us);
+  if (!(reasons & HA_REASONS_COMMAND)) {
+    core->awaiting_boot = 0u; /* the HP is back */
+  }
   prune_restarts(core, now_us);
 
   policy.controller = core->controller;
@@ -207,10 +218,14 @@ void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *
   policy.stable = (uint8_t)(core->stable_for_us >= cfg->stable_window_us);
   policy.inner = (uint8_t)(!(reasons & HA_REASONS_STATE) && sx_max <= cfg->inner_region_fraction);
   policy.restart_cap_reached = (uint8_t)restart_cap_reached(core);
+  policy.boot_overdue = (uint8_t)boot_overdue(core, now_us);
   {
     const uint8_t next = ha_policy_decide(&policy);
     if (next != core->controller) {
       on_switch(core, next, reasons, now_us, out);
+    }
+    if (!out->restart_requested && ha_policy_reset_again(&policy, next)) {
+      request_restart(core, now_us, out);
     }
   }
 
@@ -246,6 +261,7 @@ void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *
   if (core->reset_active &&
       ha_elapsed_us(now_us, core->reset_started_us) >= cfg->hp_reset_pulse_us) {
     core->reset_active = 0u;
+    core->reset_released_us = now_us;
   }
   core->have_step = 1u;
   core->last_step_us = now_us;

@@ -143,6 +143,8 @@ typedef struct {
   uint32_t restart_history_len;
   uint8_t reset_active;
   uint32_t reset_started_us;
+  uint32_t reset_released_us;
+  uint8_t awaiting_boot;    /* reset, and no valid command since */
   /* operator */
   uint32_t seen_operator_count;
   uint32_t operator_ack_id;

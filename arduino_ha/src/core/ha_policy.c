@@ -14,6 +14,7 @@ uint8_t ha_policy_decide(const HaPolicyIn *p) {
   if (p->latched) return HA_CONTROLLER_HA_LATCHED;                /* cap reached: for good */
   if (p->self_test) return HA_CONTROLLER_HA;                      /* on the ground, asked for */
   if (p->ground_command) return HA_CONTROLLER_HA;                 /* operator chose the HA */
+  if (p->boot_overdue && cap) return HA_CONTROLLER_HA_LATCHED;    /* reset K times, never back */
   if (on_hp && any_bad && cap) return HA_CONTROLLER_HA_LATCHED;   /* one failure too many */
   if (on_hp && any_bad) return HA_CONTROLLER_HA;                  /* any failed check */
   if (on_hp) return HA_CONTROLLER_HP;                             /* every check holds */
@@ -21,4 +22,11 @@ uint8_t ha_policy_decide(const HaPolicyIn *p) {
   if (cmd_bad) return HA_CONTROLLER_HA;                           /* HP not valid (yet) */
   if (p->stable && p->inner) return HA_CONTROLLER_HP;             /* stable, well inside */
   return HA_CONTROLLER_RECOVERING;                                /* watched, not used */
+}
+
+/* An HP reset for a failure that has not come back gets another reset; the operator's HA and the
+ * self-test are no HP failure, and at the cap ha_policy_decide has latched instead. */
+uint8_t ha_policy_reset_again(const HaPolicyIn *p, uint8_t next) {
+  return (uint8_t)(next == HA_CONTROLLER_HA && p->boot_overdue && !p->ground_command &&
+                   !p->self_test);
 }

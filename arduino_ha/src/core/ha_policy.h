@@ -14,8 +14,12 @@ typedef struct {
   uint8_t stable;              /* the HP command has been valid for the stable window */
   uint8_t inner;               /* the state is inside the inner region, no stall, no ceiling */
   uint8_t restart_cap_reached; /* K restarts already within T */
+  uint8_t boot_overdue;        /* reset, released, and no valid command within the boot timeout */
 } HaPolicyIn;
 
 uint8_t ha_policy_decide(const HaPolicyIn *p);
+
+/* Whether to reset the HP again this period, given the controller ha_policy_decide chose. */
+uint8_t ha_policy_reset_again(const HaPolicyIn *p, uint8_t next);
 
 #endif /* HA_POLICY_H */

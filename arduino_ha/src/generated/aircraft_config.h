@@ -87,6 +87,7 @@
     .max_restarts = 3u, \
     .restart_window_us = 60000000u, \
     .hp_reset_pulse_us = 100000u, \
+    .hp_boot_timeout_us = 15000000u, \
     .rc_pulse_min_us = 1000u, \
     .rc_pulse_max_us = 2000u, \
     .servo_pulse_min_us = 1000u, \
