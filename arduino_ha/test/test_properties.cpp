@@ -2,11 +2,15 @@
 // denormal, limit-hugging and plain garbage), seeded so every failure reproduces:
 //   1. what goes to the servos is always finite and inside S_u;
 //   2. an HP command outside S_u never reaches a servo (the HP is not in control with it);
-//   3. every reported value is finite.
+//   3. every reported value is finite;
+//   4. whenever the servos change hands (HP, HA incl. recovering and latched, pilot, self-test),
+//      no surface moves faster than its configured rate limit until the new source's command is
+//      reached: |delta| <= rate limit x period, in every period of the transition.
 // Episodes alternate between mostly sane and fully hostile inputs so that the HP really is in
 // control often enough for property 2 to be exercised.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -55,12 +59,38 @@ class Hostile {
   std::mt19937_64 rng_;
 };
 
+// Who drives the servos this period, as the core's choose_source() decides it.
+enum class Source { kHa, kHp, kManual, kSelfTest };
+Source SourceOf(const HaOutputs& out) {
+  if (out.controller == HA_CONTROLLER_MANUAL) return Source::kManual;
+  if (out.self_test_active) return Source::kSelfTest;
+  if (out.controller == HA_CONTROLLER_HP) return Source::kHp;
+  return Source::kHa;
+}
+
+// The rate limit is the bumpless-transfer limit (limits.yaml: "fastest a servo may be driven
+// across a controller switch"), so property 4 is checked in every period of a transition, for
+// every source on either side of it. Within one source's steady run it does not hold by design:
+// the HP's accepted command passes bit for bit (property 2), the pilot's sticks pass straight
+// through, and the safety controller's PID output is only saturated.
+bool WithinRateLimit(const HaAircraftConfig& cfg, const HaSurfaces& before,
+                     const HaSurfaces& after, uint32_t dt_us) {
+  const double dt_s = dt_us * 1e-6;
+  const double surface_step = cfg.surface_rate_limit_deg_per_s * dt_s + 1e-4;
+  const double throttle_step = cfg.throttle_rate_limit_per_s * dt_s + 1e-6;
+  return std::fabs(double{after.elevator_deg} - before.elevator_deg) <= surface_step &&
+         std::fabs(double{after.aileron_deg} - before.aileron_deg) <= surface_step &&
+         std::fabs(double{after.rudder_deg} - before.rudder_deg) <= surface_step &&
+         std::fabs(double{after.throttle} - before.throttle) <= throttle_step;
+}
+
 TEST(HaProperties, ServosAlwaysFiniteInsideSuAndOutsideCommandsNeverReachThem) {
   const HaAircraftConfig& cfg = ha_aircraft_config;
   Hostile h(0x5eed1234u);
   const int kEpisodes = 1000;
   const int kStepsPerEpisode = 3000;  // 30 s of flight each: long enough to hand over to the HP
-  uint64_t steps = 0, hp_steps = 0, outside_rejected = 0;
+  uint64_t steps = 0, hp_steps = 0, outside_rejected = 0, rate_limited = 0;
+  uint64_t handovers[4][4] = {};  // [from][to] source changes seen
   HaCore core;
   HaInputs in;
   HaOutputs out;
@@ -68,25 +98,33 @@ TEST(HaProperties, ServosAlwaysFiniteInsideSuAndOutsideCommandsNeverReachThem) {
     // Probability that any one input is hostile in this episode.
     const double kHostility[] = {1.0, 0.05, 0.002, 0.0002};
     const double p = kHostility[episode % 4];
+    // Some mildly hostile episodes start parked, where the operator runs the self-test.
+    const bool parked = episode % 8 == 6;
     ha_core_init(&core, &cfg);
     std::memset(&in, 0, sizeof in);
     std::memset(&out, 0, sizeof out);
     uint32_t now = h.U32();
     uint32_t seq = h.U32();
+    Source source = Source::kHa;  // an initialized core holds the HA's idle surfaces
     for (int i = 0; i < kStepsPerEpisode; ++i, ++steps) {
+      const uint32_t before_us = now;
       now += h.Chance(p) ? h.U32() % (10u * cfg.period_us) : cfg.period_us;
+      // The period the core slews over: nominal at first, and bounded by the no-command timeout.
+      const uint32_t dt_us =
+          i == 0 ? cfg.period_us : std::min(now - before_us, cfg.no_command_timeout_us);
       // Aircraft state: cruise with noise, or garbage.
-      in.airspeed_ftps = h.Maybe(p, h.Uniform(50.0f, 70.0f));
+      in.airspeed_ftps = h.Maybe(p, parked ? h.Uniform(0.0f, 5.0f) : h.Uniform(50.0f, 70.0f));
       in.roll_deg = h.Maybe(p, h.Uniform(-10.0f, 10.0f));
       in.pitch_deg = h.Maybe(p, h.Uniform(-5.0f, 5.0f));
       in.heading_deg = h.Maybe(p, h.Uniform(-720.0f, 720.0f));
       in.p_deg_s = h.Maybe(p, h.Uniform(-5.0f, 5.0f));
       in.q_deg_s = h.Maybe(p, h.Uniform(-5.0f, 5.0f));
       in.r_deg_s = h.Maybe(p, h.Uniform(-5.0f, 5.0f));
-      in.altitude_agl_ft = h.Maybe(p, h.Uniform(100.0f, 250.0f));
+      in.altitude_agl_ft =
+          h.Maybe(p, parked ? h.Uniform(0.0f, 10.0f) : h.Uniform(100.0f, 250.0f));
       in.north_ft = h.Maybe(p, h.Uniform(-1000.0f, 1000.0f));
       in.east_ft = h.Maybe(p, h.Uniform(-1000.0f, 1000.0f));
-      in.on_ground = h.Chance(p) ? static_cast<uint8_t>(h.U32()) : 0u;
+      in.on_ground = h.Chance(p) ? static_cast<uint8_t>(h.U32()) : (parked ? 1u : 0u);
       in.state_valid = h.Chance(p) ? static_cast<uint8_t>(h.U32()) : 1u;
       in.state_rx_us = h.Chance(p) ? h.U32() : now;
       in.battery_v = h.Maybe(p, 12.0f);
@@ -94,7 +132,9 @@ TEST(HaProperties, ServosAlwaysFiniteInsideSuAndOutsideCommandsNeverReachThem) {
         in.rc.pulse_us[c] = static_cast<uint16_t>(h.Chance(p) ? h.U32() : 1000u + h.U32() % 400u);
       }
       in.rc.valid = h.Chance(p) ? static_cast<uint8_t>(h.U32()) : 1u;
-      if (h.Chance(p * 0.1)) {
+      if (parked && i == 100) {  // before the HP has earned control: the self-test may run
+        ha_inputs_put_operator(&in, HA_OP_SELF_TEST, h.U32());
+      } else if (h.Chance(p * 0.1)) {
         ha_inputs_put_operator(&in, static_cast<uint8_t>(h.U32() % 6u), h.U32());
       }
       // The HP command: mostly valid and fresh; sometimes late, stale, corrupt or hostile.
@@ -121,8 +161,23 @@ TEST(HaProperties, ServosAlwaysFiniteInsideSuAndOutsideCommandsNeverReachThem) {
         ha_inputs_put_hp_command(&in, &c, h.Chance(p) ? h.U32() : now - cfg.period_us / 2u);
       }
 
+      const HaSurfaces applied_before = core.applied;
+      const bool was_in_transition = core.transition_active != 0u;
       ha_core_step(&core, &in, now, &out);
 
+      const Source source_now = SourceOf(out);
+      if (source_now != source || was_in_transition) {
+        ASSERT_TRUE(WithinRateLimit(cfg, applied_before, out.surfaces, dt_us))
+            << "episode " << episode << " step " << i << " from source "
+            << static_cast<int>(source) << " to " << static_cast<int>(source_now)
+            << " dt_us " << dt_us << " aileron " << applied_before.aileron_deg << " -> "
+            << out.surfaces.aileron_deg << " elevator " << applied_before.elevator_deg << " -> "
+            << out.surfaces.elevator_deg << " throttle " << applied_before.throttle << " -> "
+            << out.surfaces.throttle;
+        ++rate_limited;
+        ++handovers[static_cast<int>(source)][static_cast<int>(source_now)];
+      }
+      source = source_now;
       ASSERT_TRUE(SurfacesInside(cfg, out.surfaces)) << "episode " << episode << " step " << i;
       const HaSurfaces cmd{in.hp_cmd.throttle, in.hp_cmd.elevator_deg, in.hp_cmd.aileron_deg,
                            in.hp_cmd.rudder_deg};
@@ -151,13 +206,25 @@ TEST(HaProperties, ServosAlwaysFiniteInsideSuAndOutsideCommandsNeverReachThem) {
     }
   }
   RecordProperty("steps", static_cast<int>(steps));
-  std::printf("steps: %llu, HP in control: %llu, outside-S_u commands rejected: %llu\n",
+  std::printf("steps: %llu, HP in control: %llu, outside-S_u commands rejected: %llu, "
+              "rate-limited transition periods: %llu\n",
               static_cast<unsigned long long>(steps), static_cast<unsigned long long>(hp_steps),
-              static_cast<unsigned long long>(outside_rejected));
+              static_cast<unsigned long long>(outside_rejected),
+              static_cast<unsigned long long>(rate_limited));
   // The property must have been exercised, not vacuously true.
   EXPECT_EQ(steps, static_cast<uint64_t>(kEpisodes) * kStepsPerEpisode);
   EXPECT_GT(hp_steps, steps / 10);
   EXPECT_GT(outside_rejected, 10000u);
+  // Property 4 met every kind of handover, not just one.
+  const int ha = static_cast<int>(Source::kHa), hp = static_cast<int>(Source::kHp),
+            manual = static_cast<int>(Source::kManual);
+  EXPECT_GT(rate_limited, steps / 100);
+  EXPECT_GT(handovers[ha][hp], 100u);
+  EXPECT_GT(handovers[hp][ha], 100u);
+  EXPECT_GT(handovers[ha][manual] + handovers[hp][manual], 100u);
+  EXPECT_GT(handovers[manual][ha] + handovers[manual][hp], 100u);
+  const int self_test = static_cast<int>(Source::kSelfTest);
+  EXPECT_GT(handovers[self_test][self_test], 5000u);  // every self-test period is a slew
 }
 
 TEST(HaProperties, HostileBoardReadingsNeverReachServosAndWatchdogIsKicked) {
