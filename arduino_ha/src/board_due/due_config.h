@@ -58,8 +58,21 @@
  * this rate and for the binary output the HA decodes. */
 #define DUE_VN200_BAUD 115200u
 
-/* HP link (rosserial) on the native USB port. */
-#define DUE_HP_LINK_BAUD 115200u
+/* HP link (rosserial): which of the Due's two USB connectors carries it, chosen at compile time
+ * (e.g. arduino-cli --build-property "compiler.cpp.extra_flags=-DDUE_HP_LINK_PORT=2"):
+ *  - DUE_HP_LINK_PORT_PROGRAMMING (default): `Serial`, the SAM3X's UART0 behind the ATmega16U2
+ *    USB-serial bridge, at DUE_HP_LINK_BAUD. The link budget (drone_ros/arduino_link/README.md)
+ *    and the flight launch (arduino_baud 250000) assume this port. 250000 is exact on both chips
+ *    (84 MHz / (16 x 21), 16 MHz / (8 x 8)); 115200 cannot carry the HA's two status messages at
+ *    100 Hz.
+ *  - DUE_HP_LINK_PORT_NATIVE: `SerialUSB`, the SAM3X's own full-speed USB (CDC); no UART in
+ *    between, so the baud rate is ignored on both ends. */
+#define DUE_HP_LINK_PORT_PROGRAMMING 1
+#define DUE_HP_LINK_PORT_NATIVE 2
+#ifndef DUE_HP_LINK_PORT
+#define DUE_HP_LINK_PORT DUE_HP_LINK_PORT_PROGRAMMING
+#endif
+#define DUE_HP_LINK_BAUD 250000u
 
 /* Hardware watchdog: reset if the loop has not completed a period for this long. The SAM3X
  * watchdog mode register can be written once per reset, so it is set in watchdogSetup(). */

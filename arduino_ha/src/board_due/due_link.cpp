@@ -11,16 +11,27 @@ extern "C" {
 
 namespace {
 
+#if DUE_HP_LINK_PORT == DUE_HP_LINK_PORT_PROGRAMMING
+/* UART0 through the 16U2. Its receive ring holds 128 bytes, about 5 ms at 250000 baud; loop()
+ * drains it every pass, far more often. Its 128-byte transmit ring makes write() wait out the
+ * rest of a period's 150-byte burst (about 0.9 ms), which the budget's margin covers. */
+UARTClass &g_port = Serial;
+#elif DUE_HP_LINK_PORT == DUE_HP_LINK_PORT_NATIVE
+Serial_ &g_port = SerialUSB;
+#else
+#error "DUE_HP_LINK_PORT must be DUE_HP_LINK_PORT_PROGRAMMING or DUE_HP_LINK_PORT_NATIVE (due_config.h)"
+#endif
+
 HaLink g_link;
 HaInputs *g_inputs = nullptr;
 
-/* Bytes handed to the link per loop; the USB CDC buffer holds more, the next loop takes them. */
+/* Bytes handed to the link per loop; the port's buffer holds more, the next loop takes them. */
 const size_t kMaxBytesPerPoll = 64u;
 const double kRadPerDeg = 0.017453292519943295;
 
 void link_write(void *ctx, const uint8_t *bytes, size_t len) {
   (void)ctx;
-  (void)SerialUSB.write(bytes, len);
+  (void)g_port.write(bytes, len);
 }
 
 void link_command(void *ctx, const HaHpCommand *cmd, uint32_t arrival_us) {
@@ -38,7 +49,7 @@ void link_operator(void *ctx, const drone_ros_OperatorCommand *cmd, uint32_t arr
 
 void due_link_begin(HaInputs *inputs) {
   g_inputs = inputs;
-  SerialUSB.begin(DUE_HP_LINK_BAUD);
+  g_port.begin(DUE_HP_LINK_BAUD); /* the native port ignores the rate */
   HaLinkCallbacks cb;
   cb.write = link_write;
   cb.on_command = link_command;
@@ -51,8 +62,8 @@ void due_link_begin(HaInputs *inputs) {
 void due_link_poll(uint32_t now_us) {
   uint8_t bytes[kMaxBytesPerPoll];
   size_t len = 0u;
-  while (len < kMaxBytesPerPoll && SerialUSB.available() > 0) {
-    bytes[len++] = static_cast<uint8_t>(SerialUSB.read());
+  while (len < kMaxBytesPerPoll && g_port.available() > 0) {
+    bytes[len++] = static_cast<uint8_t>(g_port.read());
   }
   if (len > 0u) {
     ha_link_receive(&g_link, bytes, len, now_us);

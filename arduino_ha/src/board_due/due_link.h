@@ -1,6 +1,7 @@
-/* The HP link on the Due: the rosserial device end (src/link/ha_link.h) over the native USB port.
- * Received HP commands and operator requests go straight into the core's inputs; each period
- * the decision and the RC/airspeed readings are published back. */
+/* The HP link on the Due: the rosserial device end (src/link/ha_link.h) over the USB port chosen
+ * by DUE_HP_LINK_PORT (due_config.h: the programming port at 250000 baud by default, or the native
+ * port). Received HP commands and operator requests go straight into the core's inputs; each
+ * period the decision and the RC/airspeed readings are published back. */
 #ifndef DUE_LINK_H
 #define DUE_LINK_H
 

@@ -4,6 +4,10 @@
 
 namespace arduino_link {
 
+namespace {
+constexpr int kDueEraseBaud = 1200;
+}  // namespace
+
 bool read_link_params(const ros::NodeHandle &pnh, LinkParams *p, std::string *error) {
   pnh.param("port", p->port, p->port);
   pnh.param("baud", p->baud, p->baud);
@@ -17,6 +21,9 @@ bool read_link_params(const ros::NodeHandle &pnh, LinkParams *p, std::string *er
     *error = "~port is empty";
   } else if (!drone_ros_common::SerialPort::baud_supported(p->baud)) {
     *error = "~baud " + std::to_string(p->baud) + " is not a supported rate";
+  } else if (p->baud == kDueEraseBaud) {
+    // Opening and closing either Due port at 1200 baud erases the sketch: never the HA's.
+    *error = "~baud 1200 would erase the Due's sketch (its bootloader's erase signal)";
   } else if (!(p->link_timeout_s > 0.0 && p->link_timeout_s < 60.0)) {
     *error = "~link_timeout_s must be in (0, 60)";
   } else if (!(p->reopen_period_s > 0.0 && p->reopen_period_s < 60.0)) {
