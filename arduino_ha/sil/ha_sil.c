@@ -10,7 +10,8 @@
  * path. SIGINT/SIGTERM stop it cleanly. --latency-log writes "seq latency_us" per command
  * received, from the command's stamp (ROS wall time) to its arrival at the core. --param asks
  * the host for a parameter at every link-up and logs the answer back through the link, so the
- * parameter path can be seen end to end on rosout. */
+ * parameter path can be seen end to end on rosout. Whenever the device drops bad input it logs
+ * its decoder's counters the same way ("link errors: ..."), so the host side can see them. */
 #define _DEFAULT_SOURCE
 #include <errno.h>
 #include <fcntl.h>
@@ -55,6 +56,8 @@ typedef struct {
   uint32_t commands;
   uint32_t negotiations_seen;
   const char *param_name;
+  uint32_t errors_logged;     /* sum of the drop counters last reported */
+  uint32_t errors_logged_us;  /* when */
 } Sil;
 
 /* --- the board: a host clock, a healthy RC receiver in computer-in-command, a pitot --- */
@@ -140,6 +143,36 @@ static void link_on_param(void *ctx, const rosserial_msgs_RequestParamResponse *
     used += snprintf(text + used, sizeof text - (size_t)used, " %ld", (long)reply->ints[k]);
   }
   (void)ha_link_log(&sil->link, ROSSERIAL_MSGS_LOG_INFO, text);
+}
+
+/* --- the device's own view of bad input, sent to the host as a log --- */
+static uint32_t link_errors(const HaLink *link) {
+  const HaLinkFrameCounters *f = &link->decoder.counters;
+  return f->bytes_skipped + f->bad_protocol + f->bad_length_checksum + f->oversized + f->bad_checksum +
+         f->timeouts + link->counters.unknown_topic + link->counters.bad_payload;
+}
+
+/* Whenever the device has dropped something new, it says what, at most every 200 ms: the host
+ * cannot see what the device threw away, and tests compare these counts before and after they
+ * inject bad bytes. Nothing is sent while input is clean. */
+static void report_link_errors(Sil *sil, uint32_t now_us) {
+  const HaLinkFrameCounters *f = &sil->link.decoder.counters;
+  const uint32_t errors = link_errors(&sil->link);
+  char text[200];
+  if ((errors == sil->errors_logged) || ((uint32_t)(now_us - sil->errors_logged_us) < 200000u) ||
+      !ha_link_connected(&sil->link)) {
+    return;
+  }
+  snprintf(text, sizeof text,
+           "link errors: bytes_skipped %u bad_protocol %u bad_length_checksum %u oversized %u "
+           "bad_checksum %u timeouts %u unknown_topic %u bad_payload %u",
+           (unsigned)f->bytes_skipped, (unsigned)f->bad_protocol, (unsigned)f->bad_length_checksum,
+           (unsigned)f->oversized, (unsigned)f->bad_checksum, (unsigned)f->timeouts,
+           (unsigned)sil->link.counters.unknown_topic, (unsigned)sil->link.counters.bad_payload);
+  if (ha_link_log(&sil->link, ROSSERIAL_MSGS_LOG_WARN, text)) {
+    sil->errors_logged = errors;
+    sil->errors_logged_us = now_us;
+  }
 }
 
 /* --- the pseudo-terminal standing in for the USB cable --- */
@@ -303,6 +336,7 @@ int main(int argc, char **argv) {
         (void)ha_link_request_param(&sil.link, sil.param_name);
       }
     }
+    report_link_errors(&sil, now_us);
     if ((int32_t)(now_us - next_period_us) >= 0) {
       next_period_us += (uint32_t)(1e6 / rate_hz);
       if ((int32_t)(now_us - next_period_us) > 100000) {

@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """Stories of the HA-HP link, end to end: the SIL HA (real core, real link device side) on a
 pseudo-terminal, the real `arduino` node, and a wire tap between them. Run by link_sil.test."""
+import collections
 import os
+import re
 import shutil
 import signal
 import struct
@@ -94,6 +96,15 @@ class Watch:
         with self.lock:
             return float(self.diag.get(key, "0"))
 
+    def device_errors(self):
+        """The HA's own drop counters from its latest "[HA] link errors: name N ..." log (the SIL
+        sends one whenever it drops something new); all zero before the first."""
+        with self.lock:
+            reports = [m for m in self.logs if m.startswith("[HA] link errors:")]
+        if not reports:
+            return collections.defaultdict(int)
+        return collections.defaultdict(int, {k: int(v) for k, v in re.findall(r"(\w+) (\d+)", reports[-1])})
+
 
 def wait_for(predicate, timeout_s, what):
     deadline = time.time() + timeout_s
@@ -184,10 +195,11 @@ class LinkStories(unittest.TestCase):
         wait_for(lambda: self.status().reasons & DecisionStatus.REASON_FROZEN, 3.0,
                  "REASON_FROZEN for a sequence number that went backwards")
 
-    def test_06_bad_bytes_both_ways_are_counted_and_the_link_carries_on(self):
+    def test_06_bad_bytes_both_ways_are_counted_on_both_ends_and_the_link_carries_on(self):
         wait_for(self.link_up, 10.0, "link up")
         before = {k: self.watch.counter(k) for k in
                   ("bytes_skipped", "bad_checksum", "oversized", "unknown_topic", "bad_length_checksum")}
+        device_before = self.watch.device_errors()
         good = frame(125, bytes(66))
         bad_sum = bytearray(frame(126, bytes(68)))
         bad_sum[-1] ^= 0x5A
@@ -208,6 +220,14 @@ class LinkStories(unittest.TestCase):
                  "unknown topics counted, including the split frame")
         wait_for(lambda: self.watch.counter("bad_length_checksum") > before["bad_length_checksum"], 5.0,
                  "bad length checksum counted")
+        # The HA dropped the same kinds of bad input on its side, and says so.
+        expected = {"bytes_skipped": 1, "bad_checksum": 2, "oversized": 1, "unknown_topic": 1, "bad_length_checksum": 1}
+
+        def device_counted():
+            now = self.watch.device_errors()
+            return all(now[k] - device_before[k] >= n for k, n in expected.items())
+
+        wait_for(device_counted, 5.0, "the HA's own counters to show every kind of injected bad frame")
         # And the link carries on both ways.
         self.send_commands(20)
         wait_for(lambda: self.status().last_seq == self.seq, 3.0, "commands still reach the HA")
