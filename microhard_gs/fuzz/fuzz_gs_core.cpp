@@ -84,7 +84,27 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     check_frames_parse(core.take_frames());
     core.take_way_plans();
     core.take_operator_requests();
-    core.take_param_changes();
+    // The controller's answers: accepted, refused, or none at all (the timeout), sometimes
+    // after the timeout already answered for it.
+    for (const ParamSetRequest& r : core.take_param_set_requests()) {
+      lcg = lcg * 1664525u + 1013904223u;
+      if ((lcg >> 28) % 4 == 3) continue;
+      ParamSetAnswer a;
+      a.accepted = (lcg >> 28) % 4 == 0;
+      a.value_in_force = r.value;
+      a.reason = std::string((lcg >> 8) % 120, 'x');
+      core.param_set_answered(r, a);
+    }
+    if ((lcg >> 20) % 8 == 0) {
+      ParamSetRequest late;
+      late.id = lcg;
+      late.ros_name = controller_param_specs()[lcg % controller_param_specs().size()].ros_name;
+      late.value = static_cast<double>(lcg % 1000);
+      ParamSetAnswer a;
+      a.accepted = true;
+      a.value_in_force = late.value;
+      core.param_set_answered(late, a);
+    }
   }
   return 0;
 }

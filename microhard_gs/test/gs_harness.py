@@ -1,9 +1,11 @@
 """Shared machinery of the microhard_gs Python tests and benchmark (a helper, not a test).
 
-Starts a private ROS master on a free port, loads the controller parameter fixture, launches
-microhard_gs with its launch file, runs gs_ros_probe.py as the controller stand-in, and gives the
-test a pymavlink connection: the real ground-station client, over UDP on 127.0.0.1 only. Every
-process started here is stopped by stop().
+Starts a private ROS master on a free port, loads the aircraft's own controller parameters
+(aircraft/DG808/controller_param.yaml and limits.yaml, where DG808_flight.launch puts them),
+launches microhard_gs with its launch file, optionally the real controller_DG808 (which answers
+PARAM_SETs through its ~set_tunable), runs gs_ros_probe.py as the stand-in for the rest of the
+aircraft, and gives the test a pymavlink connection: the real ground-station client, over UDP on
+127.0.0.1 only. Every process started here is stopped by stop().
 """
 import json
 import os
@@ -11,6 +13,7 @@ import queue
 import random
 import signal
 import socket
+import struct
 import subprocess
 import threading
 import time
@@ -19,6 +22,8 @@ os.environ.setdefault("MAVLINK20", "1")
 from pymavlink import mavutil  # noqa: E402  (MAVLINK20 must be set first)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+AIRCRAFT_DIR = os.path.join(HERE, "..", "..", "aircraft", "DG808")
+CONTROLLER_NS = "/controller_DG808"
 HOME = (40.1100, -88.2200, 220.0)  # where the probe says the aircraft is: becomes home
 ROS_PYTHON = "/usr/bin/python3"
 FT_PER_M = 1.0 / 0.3048
@@ -72,7 +77,7 @@ class LossyRelay:
 
 
 class GsSystem:
-    def __init__(self, launch_args=None, relay_loss=None, probe_rate_hz=20.0, udp_client=True):
+    def __init__(self, launch_args=None, relay_loss=None, probe_rate_hz=20.0, udp_client=True, controller=False):
         self.procs = []
         self.events = queue.Queue()
         self.diagnostics = {}
@@ -96,8 +101,14 @@ class GsSystem:
                 remote_port = self.relay.port
             self._start(["rosmaster", "--core", "-p", str(self.master_port)])
             self._wait_for_master()
-            subprocess.run(["rosparam", "load", os.path.join(HERE, "controller_params_fixture.yaml"),
-                            "/controller_DG808"], env=self.env, check=True, timeout=30)
+            subprocess.run(["rosparam", "load", os.path.join(AIRCRAFT_DIR, "controller_param.yaml"),
+                            CONTROLLER_NS], env=self.env, check=True, timeout=30)
+            subprocess.run(["rosparam", "load", os.path.join(AIRCRAFT_DIR, "limits.yaml"),
+                            CONTROLLER_NS + "/limits"], env=self.env, check=True, timeout=30)
+            if controller:
+                self._start([os.path.join(ws, "devel", "lib", "drone_ros", "controller_DG808"),
+                             "__name:=controller_DG808"])
+                self._wait_for_service(CONTROLLER_NS + "/set_tunable")
             args = {"udp_bind_address": "127.0.0.1", "udp_bind_port": self.node_port,
                     "udp_remote_address": "127.0.0.1", "udp_remote_port": remote_port}
             args.update(launch_args or {})
@@ -139,6 +150,19 @@ class GsSystem:
             except OSError:
                 time.sleep(0.1)
         raise RuntimeError("rosmaster did not start")
+
+    def _wait_for_service(self, name, timeout=30.0):
+        deadline = time.time() + timeout
+        while time.time() < deadline:
+            out = subprocess.run(["rosservice", "list"], env=self.env, capture_output=True, text=True, timeout=30)
+            if name in out.stdout.split():
+                return
+            time.sleep(0.2)
+        raise RuntimeError("%s never appeared" % name)
+
+    def rosparam(self, name):
+        out = subprocess.run(["rosparam", "get", name], env=self.env, capture_output=True, text=True, timeout=30)
+        return out.stdout.strip()
 
     def _read_probe(self):
         for line in self.probe.stdout:
@@ -298,6 +322,22 @@ def wait_command_ack(conn, command, timeout_s=5.0):
         if ack is not None and ack.command == command:
             return ack
     return None
+
+
+def wait_param_value(conn, param_id, timeout_s=5.0):
+    """The next PARAM_VALUE for param_id (the echo of a PARAM_SET), decoded byte-wise if INT32."""
+    deadline = time.time() + timeout_s
+    while time.time() < deadline:
+        m = conn.recv_match(type="PARAM_VALUE", blocking=True, timeout=0.2)
+        if m is not None and m.param_id == param_id:
+            return m
+    return None
+
+
+def param_value(m):
+    if m.param_type == mavlink.MAV_PARAM_TYPE_INT32:
+        return struct.unpack("<i", struct.pack("<f", m.param_value))[0]
+    return m.param_value
 
 
 def wait_statustext(conn, needle, timeout_s=5.0):

@@ -3,7 +3,8 @@
 
 Plays the controller: publishes /data at a fixed rate with a position, and /decision_status
 when told on stdin ("decision <controller> <reasons_at_switch> <altitude_agl_ft>"). Reports what
-microhard_gs publishes (/way, /operator_command, its /diagnostics) as JSON lines on stdout, so the
+microhard_gs publishes (/way, /operator_command, its /diagnostics, and the controller's when a
+test runs the real one) as JSON lines on stdout, so the
 test process itself never has to be a ROS node.
 """
 import argparse
@@ -43,9 +44,12 @@ def main():
 
     def on_diagnostics(msg):
         for status in msg.status:
+            level = ord(status.level) if isinstance(status.level, bytes) else status.level
+            values = {kv.key: kv.value for kv in status.values}
             if "microhard_gs" in status.name:
-                emit({"topic": "diagnostics", "level": ord(status.level) if isinstance(status.level, bytes) else status.level,
-                      "values": {kv.key: kv.value for kv in status.values}})
+                emit({"topic": "diagnostics", "level": level, "values": values})
+            elif "performance controller" in status.name:  # the real controller, when a test runs it
+                emit({"topic": "controller_diagnostics", "level": level, "values": values})
 
     subscribers = [rospy.Subscriber("/way", way, on_way),
                    rospy.Subscriber("/operator_command", OperatorCommand, on_command),

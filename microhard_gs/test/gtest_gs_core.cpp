@@ -3,6 +3,7 @@
 // (timeouts, retries, lost ACK), parameters, commands, signing, corrupt input.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <vector>
@@ -270,31 +271,111 @@ TEST(MissionUpload, NoHomeMeansDenied) {
   EXPECT_EQ(ack_of(acks[0]), MAV_MISSION_DENIED);
 }
 
-TEST(Parameters, SetIsEchoedAndReportedAsAChangeForTheController) {
-  Bench b;
-  Gcs gcs;
-  const auto out = b.feed(gcs.frame([&](mavlink_message_t* m) {
-    const char id[16] = "mpf_radius";  // the packer copies all 16 bytes
-    mavlink_msg_param_set_pack(255, 190, m, 1, 1, id, 321.0f, MAV_PARAM_TYPE_REAL32);
-  }));
-  const auto values = of_type(out, MAVLINK_MSG_ID_PARAM_VALUE);
-  ASSERT_EQ(values.size(), 1u);
-  EXPECT_FLOAT_EQ(mavlink_msg_param_value_get_param_value(&values[0]), 321.0f);
-  const auto changes = b.core.take_param_changes();
-  ASSERT_EQ(changes.size(), 1u);
-  EXPECT_EQ(changes[0].ros_name, "mpf_radius");
-  EXPECT_DOUBLE_EQ(changes[0].value, 321.0);
+std::vector<uint8_t> param_set(const char* name, float value, uint8_t type = MAV_PARAM_TYPE_REAL32) {
+  return Gcs().frame([&](mavlink_message_t* m) {
+    char id[16] = {};  // the packer copies all 16 bytes; ids of 16 have no terminator
+    std::memcpy(id, name, std::min(sizeof id, std::strlen(name)));
+    mavlink_msg_param_set_pack(255, 190, m, 1, 1, id, value, type);
+  });
 }
 
-TEST(Parameters, NonIntegerForAnIntegerParameterIsRefusedButEchoed) {
+float echoed_value(const std::vector<mavlink_message_t>& out, const char* name) {
+  const auto values = of_type(out, MAVLINK_MSG_ID_PARAM_VALUE);
+  EXPECT_EQ(values.size(), 1u);
+  if (values.empty()) return NAN;
+  char id[17] = {};
+  mavlink_msg_param_value_get_param_id(&values[0], id);
+  EXPECT_STREQ(id, name);
+  return mavlink_msg_param_value_get_param_value(&values[0]);
+}
+
+std::string statustexts(const std::vector<mavlink_message_t>& out) {
+  std::string joined;
+  for (const auto& t : of_type(out, MAVLINK_MSG_ID_STATUSTEXT)) {
+    char text[51] = {};
+    mavlink_msg_statustext_get_text(&t, text);
+    joined += text;
+  }
+  return joined;
+}
+
+constexpr double kMpfRadiusAtStart = 31.0;  // some_params(): its index in the table
+
+TEST(Parameters, SetIsAskedOfTheControllerAndEchoedWithTheValueItPutInForce) {
   Bench b;
-  Gcs gcs;
-  const auto out = b.feed(gcs.frame([&](mavlink_message_t* m) {
-    const char id[16] = "path_select";
-    mavlink_msg_param_set_pack(255, 190, m, 1, 1, id, 2.5f, MAV_PARAM_TYPE_REAL32);
-  }));
+  EXPECT_TRUE(of_type(b.feed(param_set("mpf_radius", 321.0f)), MAVLINK_MSG_ID_PARAM_VALUE).empty())
+      << "no echo before the controller has answered";
+  const auto requests = b.core.take_param_set_requests();
+  ASSERT_EQ(requests.size(), 1u);
+  EXPECT_EQ(requests[0].ros_name, "mpf_radius");
+  EXPECT_DOUBLE_EQ(requests[0].value, 321.0);
+  b.core.param_set_answered(requests[0], ParamSetAnswer{true, 321.0, ""});
+  const auto out = decode_all(b.core.take_frames());
+  EXPECT_FLOAT_EQ(echoed_value(out, "mpf_radius"), 321.0f);
+  EXPECT_TRUE(of_type(out, MAVLINK_MSG_ID_STATUSTEXT).empty());
+  EXPECT_DOUBLE_EQ(b.core.params().at(b.core.params().find("mpf_radius", 10)).value, 321.0);
+  EXPECT_EQ(b.core.counters().param_sets_accepted, 1u);
+}
+
+TEST(Parameters, RefusedSetIsEchoedWithTheOldValueAndTheReasonAsStatustext) {
+  Bench b;
+  b.feed(param_set("mpf_radius", -5.0f));
+  const auto requests = b.core.take_param_set_requests();
+  ASSERT_EQ(requests.size(), 1u);
+  b.core.param_set_answered(requests[0], ParamSetAnswer{false, 0.0, "mpf_radius = -5 is outside [20, 5000]"});
+  const auto out = decode_all(b.core.take_frames());
+  EXPECT_FLOAT_EQ(echoed_value(out, "mpf_radius"), kMpfRadiusAtStart);
+  EXPECT_EQ(statustexts(out), "Param mpf_radius refused: mpf_radius = -5 is outside [20, 5000]");
+  EXPECT_EQ(mavlink_msg_statustext_get_severity(&of_type(out, MAVLINK_MSG_ID_STATUSTEXT)[0]), MAV_SEVERITY_WARNING);
+  EXPECT_EQ(b.core.counters().param_sets_refused, 1u);
+}
+
+TEST(Parameters, SilentControllerMeansRefusedAfterTheTimeoutAndALateAcceptanceIsStillAnnounced) {
+  Bench b;
+  b.feed(param_set("KpLon", 0.125f));
+  const auto requests = b.core.take_param_set_requests();
+  ASSERT_EQ(requests.size(), 1u);
+  EXPECT_TRUE(of_type(b.run_for(400), MAVLINK_MSG_ID_PARAM_VALUE).empty());
+  const auto out = b.run_for(200);  // past the 500 ms default
+  const double old_value = b.core.params().at(b.core.params().find("KpLon", 5)).value;
+  EXPECT_FLOAT_EQ(echoed_value(out, "KpLon"), static_cast<float>(old_value));
+  EXPECT_NE(statustexts(out).find("no answer from the controller"), std::string::npos) << statustexts(out);
+  EXPECT_EQ(b.core.counters().param_sets_timed_out, 1u);
+
+  // The controller did take it after all: the GCS must learn the value it now flies with.
+  b.core.param_set_answered(requests[0], ParamSetAnswer{true, 0.125, ""});
+  const auto late = decode_all(b.core.take_frames());
+  EXPECT_FLOAT_EQ(echoed_value(late, "KpLon"), 0.125f);
+  EXPECT_NE(statustexts(late).find("late"), std::string::npos);
+}
+
+TEST(Parameters, IntegerSetTravelsByteWiseAndAFloatTypedOneGoesToTheControllerAsItIs) {
+  Bench b;
+  const int32_t two = 1;
+  float f;
+  std::memcpy(&f, &two, sizeof f);
+  b.feed(param_set("path_select", f, MAV_PARAM_TYPE_INT32));
+  b.feed(param_set("path_select", 2.5f));
+  const auto requests = b.core.take_param_set_requests();
+  ASSERT_EQ(requests.size(), 2u);
+  EXPECT_DOUBLE_EQ(requests[0].value, 1.0);
+  EXPECT_DOUBLE_EQ(requests[1].value, 2.5);  // the controller refuses it: not whole
+}
+
+TEST(Parameters, FloodOfSetsIsRefusedOnceSixteenWaitForTheController) {
+  Bench b;
+  for (int i = 0; i < 16; ++i) b.feed(param_set("dist2b", static_cast<float>(100 + i)));
+  EXPECT_EQ(b.core.take_param_set_requests().size(), 16u);
+  const auto out = b.feed(param_set("dist2b", 200.0f));
+  EXPECT_TRUE(b.core.take_param_set_requests().empty());
   EXPECT_EQ(of_type(out, MAVLINK_MSG_ID_PARAM_VALUE).size(), 1u);
-  EXPECT_TRUE(b.core.take_param_changes().empty());
+  EXPECT_NE(statustexts(out).find("busy"), std::string::npos);
+}
+
+TEST(Parameters, UnknownNameIsIgnoredAsTheProtocolHasNoNegativeAnswer) {
+  Bench b;
+  EXPECT_TRUE(b.feed(param_set("NO_SUCH_PARAM", 1.0f)).empty());
+  EXPECT_TRUE(b.core.take_param_set_requests().empty());
 }
 
 TEST(Parameters, ListSendsEveryParameterWithItsIndex) {
@@ -409,16 +490,4 @@ TEST(SigningKeyFile, HexKeyParsesAndGarbageIsRefused) {
   EXPECT_FALSE(parse_signing_key(std::string(63, 'a'), &key, &error));
   EXPECT_FALSE(parse_signing_key(std::string(62, 'a') + "zz", &key, &error));
   EXPECT_FALSE(parse_signing_key(std::string(64, '0'), &key, &error));
-}
-
-TEST(Parameters, LqrWeightIsReadOnlyFromTheGround) {
-  Bench b;
-  const auto out = b.feed(Gcs().frame([&](mavlink_message_t* m) {
-    const char id[16] = "Q_weight";
-    mavlink_msg_param_set_pack(255, 190, m, 1, 1, id, 99.0f, MAV_PARAM_TYPE_REAL32);
-  }));
-  const auto values = of_type(out, MAVLINK_MSG_ID_PARAM_VALUE);
-  ASSERT_EQ(values.size(), 1u);
-  EXPECT_NE(mavlink_msg_param_value_get_param_value(&values[0]), 99.0f);  // echoes the value in force
-  EXPECT_TRUE(b.core.take_param_changes().empty());
 }

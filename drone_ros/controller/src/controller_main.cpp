@@ -8,13 +8,14 @@ int main(int argc, char **argv) {
   ros::NodeHandle nh;
   ros::NodeHandle pnh("~");
   controller::ControllerParams params;
+  controller::ParamValues values;
   std::string frame_id;
   std::string error;
-  if (!controller::load_params(pnh, &params, &frame_id, &error)) {
+  if (!controller::load_params(pnh, &params, &values, &frame_id, &error)) {
     ROS_FATAL("controller_%s: bad parameter: %s", GNC_AIRCRAFT_NAME, error.c_str());
     return 1;
   }
-  controller::ControllerNode node(nh, params, frame_id);
+  controller::ControllerNode node(nh, pnh, params, values, frame_id);
   ros::spin();
   return 0;
 }

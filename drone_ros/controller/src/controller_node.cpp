@@ -8,8 +8,8 @@
 
 namespace controller {
 
-bool load_params(const ros::NodeHandle &pnh, ControllerParams *params, std::string *frame_id,
-                 std::string *error) {
+bool load_params(const ros::NodeHandle &pnh, ControllerParams *params, ParamValues *values,
+                 std::string *frame_id, std::string *error) {
   const ParamLookup lookup = [&pnh](const std::string &key, double *value) {
     XmlRpc::XmlRpcValue v;
     if (!pnh.getParam(key, v)) {
@@ -22,7 +22,7 @@ bool load_params(const ros::NodeHandle &pnh, ControllerParams *params, std::stri
       default: return false;
     }
   };
-  if (!build_controller_params(lookup, params, error)) {
+  if (!build_controller_params(lookup, params, error, values)) {
     return false;
   }
   if (!pnh.getParam("frame_id", *frame_id) || frame_id->empty()) {
@@ -32,9 +32,9 @@ bool load_params(const ros::NodeHandle &pnh, ControllerParams *params, std::stri
   return true;
 }
 
-ControllerNode::ControllerNode(ros::NodeHandle &nh, const ControllerParams &params,
-                               const std::string &frame_id)
-    : params_(params), frame_id_(frame_id), board_(params) {
+ControllerNode::ControllerNode(ros::NodeHandle &nh, ros::NodeHandle &pnh, const ControllerParams &params,
+                               const ParamValues &values, const std::string &frame_id)
+    : pnh_(pnh), params_(params), values_(values), frame_id_(frame_id), board_(params) {
   if (gnc_initialize(&params_.gnc) != 0) {
     throw std::runtime_error("the GNC refused its parameters");
   }
@@ -69,6 +69,8 @@ ControllerNode::ControllerNode(ros::NodeHandle &nh, const ControllerParams &para
   data_pub_ = nh.advertise<drone_ros::data>("/data", 10);
   hil_pub_ = nh.advertise<drone_ros::hil_data>("/to_hil", 10);
 
+  set_tunable_srv_ = pnh_.advertiseService("set_tunable", &ControllerNode::on_set_tunable, this);
+
   diag_.setHardwareID(std::string("controller_") + GNC_AIRCRAFT_NAME);
   diag_.add("performance controller", this, &ControllerNode::diagnose);
   timer_ = nh.createSteadyTimer(ros::WallDuration(params_.gnc.dt_s), &ControllerNode::on_timer, this);
@@ -86,6 +88,50 @@ void ControllerNode::restart_gnc() {
   }
   ++restarts_;
   ROS_WARN("HP restart requested by the HA: GNC re-initialized (%u restarts)", restarts_);
+}
+
+bool ControllerNode::on_set_tunable(drone_ros::SetTunable::Request &req, drone_ros::SetTunable::Response &res) {
+  ControllerParams next;
+  ParamValues next_values;
+  const TunableResult r = change_tunable(values_, req.name, req.value, hp_in_control_, &next, &next_values);
+  if (r.accepted && r.restart_gnc) {
+    gnc_terminate();
+    if (gnc_initialize(&next.gnc) != 0) {
+      // build_controller_params' ranges lie inside the GNC's own, so this is a defect; fly on
+      // with the old set rather than with none.
+      (void)gnc_initialize(&params_.gnc);
+      res.accepted = false;
+      res.value_in_force = values_.count(req.name) != 0 ? values_.at(req.name) : 0.0;
+      res.reason = "the GNC refused the new set";
+      ++tunables_refused_;
+      ROS_ERROR("tunable %s = %g: %s", req.name.c_str(), req.value, res.reason.c_str());
+      return true;
+    }
+  }
+  res.accepted = r.accepted;
+  res.value_in_force = r.value_in_force;
+  res.reason = r.reason;
+  if (!r.accepted) {
+    ++tunables_refused_;
+    ROS_WARN("tunable %s = %g refused: %s", req.name.c_str(), req.value, r.reason.c_str());
+    return true;
+  }
+  if (!r.changed) {
+    return true;
+  }
+  params_ = next;
+  values_ = next_values;
+  board_.apply_params(params_);
+  ++tunables_changed_;
+  // The parameter server shows what is in force, so a later HP restart or a reader sees it.
+  if (tunable_is_integer(req.name)) {
+    pnh_.setParam(req.name, static_cast<int>(r.value_in_force));
+  } else {
+    pnh_.setParam(req.name, r.value_in_force);
+  }
+  ROS_INFO("tunable %s = %g in force%s", req.name.c_str(), r.value_in_force,
+           r.restart_gnc ? " (GNC re-initialized)" : "");
+  return true;
 }
 
 void ControllerNode::on_decision(const drone_ros::DecisionStatus::ConstPtr &msg) {
@@ -149,6 +195,8 @@ void ControllerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper &stat)
   stat.add("late_steps", late_steps_);
   stat.add("invalid_steps", invalid_steps_);
   stat.add("restarts", restarts_);
+  stat.add("tunables_changed", tunables_changed_);
+  stat.add("tunables_refused", tunables_refused_);
   stat.add("dropped_messages", board_.dropped_messages());
   stat.add("rejected_gnc_inputs", out_.rejected_inputs);
   stat.add("estimator_converged", static_cast<int>(out_.estimator_converged));

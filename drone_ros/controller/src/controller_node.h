@@ -6,6 +6,7 @@
 
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <drone_ros/DecisionStatus.h>
+#include <drone_ros/SetTunable.h>
 #include <ros/ros.h>
 #include <sensor_msgs/BatteryState.h>
 #include <sensor_msgs/FluidPressure.h>
@@ -19,12 +20,14 @@
 namespace controller {
 
 // Reads and validates the node's private parameters (the one place); false with *error set.
-bool load_params(const ros::NodeHandle &pnh, ControllerParams *params, std::string *frame_id,
-                 std::string *error);
+// *values receives the raw values read, the base later tunable changes are checked against.
+bool load_params(const ros::NodeHandle &pnh, ControllerParams *params, ParamValues *values,
+                 std::string *frame_id, std::string *error);
 
 class ControllerNode {
  public:
-  ControllerNode(ros::NodeHandle &nh, const ControllerParams &params, const std::string &frame_id);
+  ControllerNode(ros::NodeHandle &nh, ros::NodeHandle &pnh, const ControllerParams &params,
+                 const ParamValues &values, const std::string &frame_id);
   ~ControllerNode();
 
  private:
@@ -32,14 +35,19 @@ class ControllerNode {
   void on_timer(const ros::SteadyTimerEvent &event);
   void on_decision(const drone_ros::DecisionStatus::ConstPtr &msg);
   void restart_gnc();
+  // ~set_tunable: one tunable changed while running (the ground station's PARAM_SET).
+  bool on_set_tunable(drone_ros::SetTunable::Request &req, drone_ros::SetTunable::Response &res);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper &stat);
 
+  ros::NodeHandle pnh_;
   ControllerParams params_;
+  ParamValues values_;  // the raw values of params_, by key
   std::string frame_id_;
   SensorBoard board_;
   std::vector<ros::Subscriber> subs_;
   ros::Publisher servo_pub_, data_pub_, hil_pub_;
   ros::SteadyTimer timer_;
+  ros::ServiceServer set_tunable_srv_;
   diagnostic_updater::Updater diag_;
   GncInput in_{};
   GncOutput out_{};
@@ -48,6 +56,8 @@ class ControllerNode {
   uint64_t late_steps_ = 0;
   uint64_t invalid_steps_ = 0;
   uint32_t restarts_ = 0;
+  uint32_t tunables_changed_ = 0;
+  uint32_t tunables_refused_ = 0;
   uint32_t unhealthy_mask_ = 0;
   bool restart_requested_ = false;
   bool hp_in_control_ = false;

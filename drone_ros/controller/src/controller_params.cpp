@@ -59,11 +59,20 @@ constexpr double kPi = 3.14159265358979323846;
 
 }  // namespace
 
-bool build_controller_params(const ParamLookup &lookup, ControllerParams *params, std::string *error) {
+bool build_controller_params(const ParamLookup &lookup, ControllerParams *params, std::string *error,
+                             ParamValues *used) {
   if (params == nullptr) {
     return false;
   }
-  Reader r(lookup, error);
+  ParamValues read;
+  const ParamLookup recording = [&lookup, &read](const std::string &key, double *value) {
+    if (!lookup(key, value)) {
+      return false;
+    }
+    read[key] = *value;
+    return true;
+  };
+  Reader r(recording, error);
   ControllerParams p;
   GncParams &g = p.gnc;
   // The thesis ran at 20 Hz; the HA decides at up to 100 Hz, so the HP may not step faster.
@@ -118,7 +127,121 @@ bool build_controller_params(const ParamLookup &lookup, ControllerParams *params
     return false;
   }
   *params = p;
+  if (used != nullptr) {
+    *used = read;
+  }
   return true;
+}
+
+namespace {
+
+struct Tunable {
+  const char *name;
+  TunableKind kind;
+  bool integer;
+};
+
+// Every key of controller_param.yaml the ground may ask to change, and how. Left out (kNone):
+// hmcmd (a start-up command; return home in flight is guidance_selection) and frame_id (a
+// string), and everything under limits/, which is the aircraft's envelope, not a tuning.
+const Tunable kTunables[] = {
+    {"dt", TunableKind::kFixed, false},
+    {"Q_weight", TunableKind::kFixed, false},
+    {"throttle_trim", TunableKind::kLive, false},
+    {"elevator_trim", TunableKind::kLive, false},
+    {"aileron_trim", TunableKind::kLive, false},
+    {"rudder_trim", TunableKind::kLive, false},
+    {"sensor_timeout_s", TunableKind::kLive, false},
+    {"VTtrim", TunableKind::kGncRestart, false},
+    {"alpha", TunableKind::kGncRestart, false},
+    {"beta", TunableKind::kGncRestart, false},
+    {"guidance_selection", TunableKind::kGncRestart, true},
+    {"mpf_switch", TunableKind::kGncRestart, true},
+    {"mpf_radius", TunableKind::kGncRestart, false},
+    {"path_select", TunableKind::kGncRestart, true},
+    {"max_allow_error", TunableKind::kGncRestart, false},
+    {"dist2b", TunableKind::kGncRestart, false},
+    {"KpLon", TunableKind::kGncRestart, false},
+    {"KiLon", TunableKind::kGncRestart, false},
+    {"max_bank_deg", TunableKind::kGncRestart, false},
+    {"max_pitch_cmd_deg", TunableKind::kGncRestart, false},
+    {"min_airspeed_cmd_ftps", TunableKind::kGncRestart, false},
+    {"airspeed_valid_min_ftps", TunableKind::kGncRestart, false},
+    {"converged_sigma_deg", TunableKind::kGncRestart, false},
+};
+
+const Tunable *find_tunable(const std::string &name) {
+  for (const Tunable &t : kTunables) {
+    if (name == t.name) {
+      return &t;
+    }
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+TunableKind tunable_kind(const std::string &name) {
+  const Tunable *t = find_tunable(name);
+  return t == nullptr ? TunableKind::kNone : t->kind;
+}
+
+bool tunable_is_integer(const std::string &name) {
+  const Tunable *t = find_tunable(name);
+  return t != nullptr && t->integer;
+}
+
+TunableResult change_tunable(const ParamValues &in_force, const std::string &name, double value,
+                             bool hp_in_command, ControllerParams *params, ParamValues *values) {
+  TunableResult result;
+  const auto current = in_force.find(name);
+  if (current != in_force.end()) {
+    result.value_in_force = current->second;
+  }
+  const TunableKind kind = tunable_kind(name);
+  if (kind == TunableKind::kNone || current == in_force.end()) {
+    result.reason = name + " is not a tunable of controller_" GNC_AIRCRAFT_NAME;
+    return result;
+  }
+  if (value == current->second) {  // a GCS repeating a set: nothing to change, nothing to restart
+    result.accepted = true;
+    return result;
+  }
+  if (kind == TunableKind::kFixed) {
+    // dt: the step timer is made once, and the HA's no_command_timeout_s (limits.yaml) is sized
+    // for the period; a new rate is a launch-time choice (DG808_flight.launch dt:=...).
+    // Q_weight: the gains are generated offline for one weight (design_gains.py).
+    result.reason = name == "dt" ? "dt is set at launch only: the step timer and the HA's command timeout"
+                                 : "Q_weight is fixed: the LQR gains are designed offline for it";
+    return result;
+  }
+  ParamValues next = in_force;
+  next[name] = value;
+  ControllerParams built;
+  std::string error;
+  const ParamLookup lookup = [&next](const std::string &key, double *v) {
+    const auto it = next.find(key);
+    if (it == next.end()) {
+      return false;
+    }
+    *v = it->second;
+    return true;
+  };
+  if (!build_controller_params(lookup, &built, &error)) {
+    result.reason = error;
+    return result;
+  }
+  if (kind == TunableKind::kGncRestart && hp_in_command) {
+    result.reason = name + " re-initializes the GNC: select the HA first";
+    return result;
+  }
+  result.accepted = true;
+  result.changed = true;
+  result.restart_gnc = kind == TunableKind::kGncRestart;
+  result.value_in_force = value;
+  *params = built;
+  *values = next;
+  return result;
 }
 
 }  // namespace controller

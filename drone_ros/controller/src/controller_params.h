@@ -6,6 +6,7 @@
 #define CONTROLLER_PARAMS_H
 
 #include <functional>
+#include <map>
 #include <string>
 
 #include "gnc_binding.h"
@@ -29,8 +30,41 @@ struct ControllerParams {
   bool home_cmd = false;
 };
 
+// The raw values a ControllerParams was built from, by key: the set in force.
+using ParamValues = std::map<std::string, double>;
+
 // Fills params; on any missing or out-of-range value returns false and names it in *error.
-bool build_controller_params(const ParamLookup &lookup, ControllerParams *params, std::string *error);
+// With `used`, also records every value it read (the base a later change is checked against).
+bool build_controller_params(const ParamLookup &lookup, ControllerParams *params, std::string *error,
+                             ParamValues *used = nullptr);
+
+// How a tunable can change while the controller runs (set from the ground: PARAM_SET ->
+// microhard_gs -> ~set_tunable).
+enum class TunableKind {
+  kNone,        // not a tunable: limits.yaml (the aircraft's envelope), frame_id, hmcmd, unknown keys
+  kFixed,       // read at start-up only (dt, Q_weight): refused with the reason
+  kLive,        // used afresh every step (start trims, sensor_timeout_s): applied at once
+  kGncRestart,  // taken by the GNC only when it initializes: applied by re-initializing it
+};
+TunableKind tunable_kind(const std::string &name);
+bool tunable_is_integer(const std::string &name);  // a switch or selection (written back as int)
+
+struct TunableResult {
+  bool accepted = false;
+  bool changed = false;       // accepted and different from the value in force
+  bool restart_gnc = false;   // the change needs the GNC re-initialized
+  double value_in_force = 0.0;
+  std::string reason;         // why refused
+};
+
+// Checks setting `name` to `value` against the set in force: the whole set is rebuilt with the
+// change through build_controller_params, so a remote change meets exactly the checks a file
+// value meets. A change the GNC takes only at initialize is refused while the HP is in command
+// (`hp_in_command`): re-initializing restarts the estimator and the guidance, which would hand
+// the aircraft to the HA mid-flight. On acceptance *params and *values are the new set; on
+// refusal they are untouched and value_in_force is the old value.
+TunableResult change_tunable(const ParamValues &in_force, const std::string &name, double value,
+                             bool hp_in_command, ControllerParams *params, ParamValues *values);
 
 }  // namespace controller
 

@@ -36,6 +36,16 @@ SensorBoard::SensorBoard(const ControllerParams &params)
       aileron_trim_rad_(params.aileron_trim_rad),
       rudder_trim_rad_(params.rudder_trim_rad) {}
 
+void SensorBoard::apply_params(const ControllerParams &params) {
+  // A trim set from the ground is the trim flown from now on (until the pilot next flies and
+  // the RC positions are captured again); trims not touched keep whatever is in use.
+  if (params.throttle_trim != params_.throttle_trim) throttle_trim_ = params.throttle_trim;
+  if (params.elevator_trim_rad != params_.elevator_trim_rad) elevator_trim_rad_ = params.elevator_trim_rad;
+  if (params.aileron_trim_rad != params_.aileron_trim_rad) aileron_trim_rad_ = params.aileron_trim_rad;
+  if (params.rudder_trim_rad != params_.rudder_trim_rad) rudder_trim_rad_ = params.rudder_trim_rad;
+  params_ = params;
+}
+
 void SensorBoard::arrived(Link link, double now_s) {
   arrival_s_[link] = now_s;
   seen_[link] = true;

@@ -36,6 +36,8 @@ const char *link_name(Link link);
 class SensorBoard {
  public:
   explicit SensorBoard(const ControllerParams &params);
+  // A new parameter set while running (a tunable changed from the ground).
+  void apply_params(const ControllerParams &params);
 
   // Each returns false if the message was dropped (not finite).
   bool on_pwm(const drone_ros::pwm &msg, double now_s);

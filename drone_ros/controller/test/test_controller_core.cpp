@@ -72,6 +72,95 @@ TEST(ControllerParams, OutOfRangeOrMissingValuesAreRefusedByName) {
   EXPECT_NE(refusal({{"max_bank_deg", 70.0}}).find("max_bank_deg"), std::string::npos);
 }
 
+// The set in force after loading the aircraft's files, as the node holds it.
+struct InForce {
+  controller::ControllerParams params;
+  controller::ParamValues values;
+  InForce() {
+    const auto files = controller_test::aircraft_params(AIRCRAFT_DIR);
+    std::string error;
+    EXPECT_TRUE(controller::build_controller_params(controller_test::lookup_in(files), &params, &error, &values))
+        << error;
+  }
+  controller::TunableResult set(const std::string &name, double value, bool hp_in_command = false) {
+    return controller::change_tunable(values, name, value, hp_in_command, &params, &values);
+  }
+};
+
+TEST(Tunables, ValidGainFromTheGroundIsInForceAndReInitializesTheGnc) {
+  InForce f;
+  const auto r = f.set("mpf_radius", 300.0);
+  EXPECT_TRUE(r.accepted) << r.reason;
+  EXPECT_TRUE(r.changed);
+  EXPECT_TRUE(r.restart_gnc);
+  EXPECT_DOUBLE_EQ(r.value_in_force, 300.0);
+  EXPECT_DOUBLE_EQ(f.params.gnc.mpf_radius_ft, 300.0);
+  EXPECT_DOUBLE_EQ(f.values.at("mpf_radius"), 300.0);
+}
+
+TEST(Tunables, OutOfRangeValueIsRefusedWithTheFileCheckAndTheOldSetStays) {
+  InForce f;
+  const double before = f.params.gnc.mpf_radius_ft;
+  const auto r = f.set("mpf_radius", -5.0);
+  EXPECT_FALSE(r.accepted);
+  EXPECT_DOUBLE_EQ(r.value_in_force, before);
+  EXPECT_NE(r.reason.find("mpf_radius = -5 is outside"), std::string::npos) << r.reason;
+  EXPECT_DOUBLE_EQ(f.params.gnc.mpf_radius_ft, before);
+  EXPECT_DOUBLE_EQ(f.values.at("mpf_radius"), before);
+  // Cross-checks hold too: the commanded airspeed may not drop to the stall speed.
+  EXPECT_FALSE(f.set("min_airspeed_cmd_ftps", 40.0).accepted);
+  EXPECT_FALSE(f.set("path_select", 0.5).accepted);
+  EXPECT_FALSE(f.set("KpLon", std::numeric_limits<double>::quiet_NaN()).accepted);
+}
+
+TEST(Tunables, RateAndLqrWeightAreFixedWhileRunningAndSaySo) {
+  InForce f;
+  auto r = f.set("dt", 0.02);
+  EXPECT_FALSE(r.accepted);
+  EXPECT_NE(r.reason.find("launch"), std::string::npos) << r.reason;
+  EXPECT_DOUBLE_EQ(f.params.gnc.dt_s, 0.05);
+  r = f.set("Q_weight", 99.0);
+  EXPECT_FALSE(r.accepted);
+  EXPECT_NE(r.reason.find("LQR"), std::string::npos) << r.reason;
+  EXPECT_TRUE(f.set("dt", 0.05).accepted);  // the value in force again: a GCS repeating itself
+}
+
+TEST(Tunables, LimitsAndCommandsAreNotTunables) {
+  InForce f;
+  auto r = f.set("limits/state/stall_speed_ftps", 30.0);
+  EXPECT_FALSE(r.accepted);
+  EXPECT_NE(r.reason.find("not a tunable"), std::string::npos);
+  EXPECT_FALSE(f.set("hmcmd", 1.0).accepted);
+  EXPECT_FALSE(f.set("gamma_flag", 1.0).accepted);  // a thesis name today's controller does not use
+}
+
+TEST(Tunables, GncChangeWaitsForTheHaToFlyButATrimGoesLive) {
+  InForce f;
+  auto r = f.set("KpLon", 0.005, /*hp_in_command=*/true);
+  EXPECT_FALSE(r.accepted);
+  EXPECT_NE(r.reason.find("select the HA"), std::string::npos) << r.reason;
+  r = f.set("elevator_trim", 0.01, /*hp_in_command=*/true);
+  EXPECT_TRUE(r.accepted) << r.reason;
+  EXPECT_FALSE(r.restart_gnc);
+  controller::SensorBoard board(InForce().params);
+  feed_all(board, 1.0, /*piccic=*/1);  // the computer flies: RC positions are not trims
+  board.apply_params(f.params);
+  EXPECT_DOUBLE_EQ(board.elevator_trim_rad(), 0.01);
+  EXPECT_DOUBLE_EQ(board.throttle_trim(), f.params.throttle_trim);  // untouched
+}
+
+TEST(Tunables, EveryTunableIsAValueTheControllerReads) {
+  InForce f;
+  for (const char *name : {"dt", "Q_weight", "throttle_trim", "elevator_trim", "aileron_trim", "rudder_trim",
+                           "sensor_timeout_s", "VTtrim", "alpha", "beta", "guidance_selection", "mpf_switch",
+                           "mpf_radius", "path_select", "max_allow_error", "dist2b", "KpLon", "KiLon",
+                           "max_bank_deg", "max_pitch_cmd_deg", "min_airspeed_cmd_ftps",
+                           "airspeed_valid_min_ftps", "converged_sigma_deg"}) {
+    EXPECT_NE(controller::tunable_kind(name), controller::TunableKind::kNone) << name;
+    EXPECT_TRUE(f.set(name, f.values.at(name)).accepted) << name;
+  }
+}
+
 TEST(SensorBoard, MissingSensorsAreReportedUnhealthyUntilTheyArrive) {
   controller::SensorBoard board(aircraft());
   EXPECT_EQ(board.unhealthy_links(0.0), (1u << controller::kLinkCount) - 1);

@@ -14,6 +14,9 @@ constexpr uint64_t kTelemetryStaleMs = 2000;  // stop claiming a position after 
 constexpr uint64_t kReAckWindowMs = 10000;
 // MAVLink 2 signing timestamps count 10 us units since 2015-01-01T00:00:00Z.
 constexpr uint64_t kSigningEpochUnixUs = 1420070400ULL * 1000000ULL;
+// A GCS (or a flood) can ask faster than the controller answers; more than this many waiting
+// are refused at once rather than queued without bound.
+constexpr size_t kMaxPendingParamSets = 16;
 
 // Messages that only read: accepted unsigned even when signing is on, so a GCS can still see
 // the vehicle, its parameters and its mission. Everything else changes something and must be
@@ -210,7 +213,7 @@ void GsCore::dispatch(const mavlink_message_t& msg, const Clock& now) {
       break;
     }
     case MAVLINK_MSG_ID_PARAM_REQUEST_READ: on_param_request_read(msg); break;
-    case MAVLINK_MSG_ID_PARAM_SET: on_param_set(msg); break;
+    case MAVLINK_MSG_ID_PARAM_SET: on_param_set(msg, now); break;
     case MAVLINK_MSG_ID_MISSION_COUNT: on_mission_count(msg, now); break;
     case MAVLINK_MSG_ID_MISSION_ITEM_INT: {
       mavlink_mission_item_int_t m;
@@ -293,7 +296,7 @@ void GsCore::on_param_request_read(const mavlink_message_t& msg) {
   if (index >= 0 && static_cast<size_t>(index) < params_.size()) send_param(static_cast<size_t>(index));
 }
 
-void GsCore::on_param_set(const mavlink_message_t& msg) {
+void GsCore::on_param_set(const mavlink_message_t& msg, const Clock& now) {
   mavlink_param_set_t m;
   mavlink_msg_param_set_decode(&msg, &m);
   if (!addressed_to_us(m.target_system, m.target_component)) return;
@@ -303,23 +306,57 @@ void GsCore::on_param_set(const mavlink_message_t& msg) {
   if (index < 0) return;  // the protocol has no negative answer: the GCS times out
   const size_t i = static_cast<size_t>(index);
   double value = m.param_value;
-  if (params_.at(i).is_integer) {
-    if (m.param_type == MAV_PARAM_TYPE_REAL32) {
-      value = m.param_value;  // a float-typed set of an integer: must be whole, checked by set()
-    } else {
-      int32_t v;
-      const float f = m.param_value;
-      std::memcpy(&v, &f, sizeof v);
-      value = v;
-    }
+  if (params_.at(i).is_integer && m.param_type != MAV_PARAM_TYPE_REAL32) {
+    // Byte-wise encoding: the int32's bytes travel in the float. A REAL32-typed set of an
+    // integer goes as it is; the controller refuses it unless whole.
+    int32_t v;
+    const float f = m.param_value;
+    std::memcpy(&v, &f, sizeof v);
+    value = v;
   }
-  if (params_.set(i, value)) {
-    ParamChange change;
-    change.ros_name = params_.at(i).ros_name;
-    change.value = params_.at(i).value;
-    param_changes_.push_back(change);
+  if (pending_param_sets_.size() >= kMaxPendingParamSets) {
+    refuse_param_set(i, "busy, too many sets waiting for the controller");
+    return;
   }
-  send_param(i);  // echo the value now in force, changed or not
+  // No echo yet: the echo is the value in force, and only the controller knows it. Its range
+  // checks are the ones its parameter files meet (one limit, one place).
+  ParamSetRequest r;
+  r.id = ++next_param_set_id_;
+  r.ros_name = params_.at(i).ros_name;
+  r.value = value;
+  param_set_requests_.push_back(r);
+  pending_param_sets_.push_back(PendingParamSet{r.id, i, now.mono_ms});
+}
+
+void GsCore::refuse_param_set(size_t index, const std::string& reason) {
+  ++counters_.param_sets_refused;
+  send_param(index);  // the old value: how MAVLink tells a GCS that the set did not happen
+  send_statustext(MAV_SEVERITY_WARNING, "Param " + params_.at(index).mav_id + " refused: " + reason);
+}
+
+void GsCore::param_set_answered(const ParamSetRequest& request, const ParamSetAnswer& answer) {
+  const auto it = std::find_if(pending_param_sets_.begin(), pending_param_sets_.end(),
+                               [&](const PendingParamSet& p) { return p.id == request.id; });
+  if (it == pending_param_sets_.end()) {
+    // Too late: the GCS was told the set failed. Only a change that did happen needs telling.
+    const int index = params_.find_ros_name(request.ros_name);
+    if (!answer.accepted || index < 0) return;
+    const size_t i = static_cast<size_t>(index);
+    params_.store(i, answer.value_in_force);
+    ++counters_.param_sets_accepted;
+    send_param(i);
+    send_statustext(MAV_SEVERITY_NOTICE, "Param " + params_.at(i).mav_id + " set after all (late answer)");
+    return;
+  }
+  const size_t i = it->index;
+  pending_param_sets_.erase(it);
+  if (!answer.accepted) {
+    refuse_param_set(i, answer.reason.empty() ? std::string("no reason given") : answer.reason);
+    return;
+  }
+  params_.store(i, answer.value_in_force);
+  ++counters_.param_sets_accepted;
+  send_param(i);
 }
 
 // ---------------------------------------------------------------- missions
@@ -872,6 +909,16 @@ void GsCore::tick(const Clock& now) {
     next_telemetry_ms_ += std::max<uint64_t>(1, period_ms);
     if (next_telemetry_ms_ <= now.mono_ms) next_telemetry_ms_ = now.mono_ms + period_ms;
   }
+  for (auto it = pending_param_sets_.begin(); it != pending_param_sets_.end();) {
+    if (now.mono_ms - it->sent_ms < config_.param_set_timeout_ms) {
+      ++it;
+      continue;
+    }
+    const size_t index = it->index;
+    it = pending_param_sets_.erase(it);
+    ++counters_.param_sets_timed_out;
+    refuse_param_set(index, "no answer from the controller");
+  }
   if (upload_.active && now.mono_ms - upload_.last_request_ms >= config_.mission_item_timeout_ms) {
     if (upload_.retries < config_.mission_max_retries) {
       ++upload_.retries;
@@ -899,6 +946,6 @@ std::vector<T> take(std::vector<T>* v) {
 std::vector<std::vector<uint8_t>> GsCore::take_frames() { return take(&frames_); }
 std::vector<WayPlan> GsCore::take_way_plans() { return take(&way_plans_); }
 std::vector<OperatorRequest> GsCore::take_operator_requests() { return take(&operator_requests_); }
-std::vector<ParamChange> GsCore::take_param_changes() { return take(&param_changes_); }
+std::vector<ParamSetRequest> GsCore::take_param_set_requests() { return take(&param_set_requests_); }
 
 }  // namespace microhard_gs

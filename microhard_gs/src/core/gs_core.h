@@ -30,6 +30,9 @@ struct GsConfig {
   GeoPoint home;
   uint32_t mission_item_timeout_ms = 1500;
   uint32_t mission_max_retries = 5;
+  // How long a PARAM_SET waits for the controller's answer before the GCS is told it failed;
+  // under QGroundControl's own wait for the echo, so it does not resend meanwhile.
+  uint32_t param_set_timeout_ms = 500;
   bool signing = false;
   SigningKey signing_key{};
   uint8_t signing_link_id = 0;
@@ -60,9 +63,18 @@ struct DecisionInfo {
 // Operator requests; values match drone_ros/OperatorCommand's constants.
 enum class OperatorRequest : uint8_t { kSelectHp = 1, kSelectHa = 2, kRestartHp = 3, kSelfTest = 4 };
 
-struct ParamChange {
+// A PARAM_SET for the controller to decide (the node calls its ~set_tunable), answered with
+// param_set_answered().
+struct ParamSetRequest {
+  uint32_t id = 0;
   std::string ros_name;
   double value = 0.0;
+};
+
+struct ParamSetAnswer {
+  bool accepted = false;
+  double value_in_force = 0.0;  // meaningful when accepted
+  std::string reason;           // why refused
 };
 
 struct Counters {
@@ -78,6 +90,9 @@ struct Counters {
   uint64_t commands_accepted = 0;
   uint64_t commands_refused = 0;
   uint64_t telemetry_sets_sent = 0;
+  uint64_t param_sets_accepted = 0;
+  uint64_t param_sets_refused = 0;     // by the controller, or because it did not answer
+  uint64_t param_sets_timed_out = 0;
 };
 
 class GsCore {
@@ -99,7 +114,12 @@ class GsCore {
   std::vector<std::vector<uint8_t>> take_frames();
   std::vector<WayPlan> take_way_plans();
   std::vector<OperatorRequest> take_operator_requests();
-  std::vector<ParamChange> take_param_changes();
+  std::vector<ParamSetRequest> take_param_set_requests();
+  // The controller's answer to a request: PARAM_VALUE with the value now in force, plus a
+  // STATUSTEXT naming the reason when refused. An answer after the timeout (the GCS has already
+  // been told the set failed) that accepted the change still updates the table and announces
+  // the new value, since that is what the controller flies with.
+  void param_set_answered(const ParamSetRequest& request, const ParamSetAnswer& answer);
 
   const Counters& counters() const { return counters_; }
   bool home_known() const { return home_known_; }
@@ -135,8 +155,9 @@ class GsCore {
 
   void on_param_request_list();
   void on_param_request_read(const mavlink_message_t& msg);
-  void on_param_set(const mavlink_message_t& msg);
+  void on_param_set(const mavlink_message_t& msg, const Clock& now);
   void send_param(size_t index);
+  void refuse_param_set(size_t index, const std::string& reason);
 
   void on_mission_count(const mavlink_message_t& msg, const Clock& now);
   void on_mission_item(const mavlink_message_t& msg, const MissionItem& item, uint8_t target_sys,
@@ -197,7 +218,14 @@ class GsCore {
   std::vector<std::vector<uint8_t>> frames_;
   std::vector<WayPlan> way_plans_;
   std::vector<OperatorRequest> operator_requests_;
-  std::vector<ParamChange> param_changes_;
+  struct PendingParamSet {
+    uint32_t id = 0;
+    size_t index = 0;
+    uint64_t sent_ms = 0;
+  };
+  std::vector<PendingParamSet> pending_param_sets_;
+  uint32_t next_param_set_id_ = 0;
+  std::vector<ParamSetRequest> param_set_requests_;
 };
 
 // Names of the DecisionStatus REASON_* bits set in `reasons`, comma separated ("NO_COMMAND,STALL").

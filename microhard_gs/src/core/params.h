@@ -13,7 +13,6 @@ struct ParamSpec {
   const char* ros_name;  // key under the controller's parameter namespace
   const char* mav_id;    // MAVLink param_id: at most 16 characters
   bool is_integer;       // switches and selections are integers, gains and trims reals
-  bool read_only;        // shown but never set from the ground (see the table for why)
 };
 
 // The tunable set of controller_DG808: the thesis's read_parameter() list plus the ones today's
@@ -28,8 +27,7 @@ class ParamTable {
     std::string mav_id;
     std::string ros_name;
     bool is_integer = false;
-    bool read_only = false;
-    double value = 0.0;
+    double value = 0.0;  // the value in force in the controller, as far as we know
   };
 
   void add(const ParamSpec& spec, double value);
@@ -38,8 +36,11 @@ class ParamTable {
   // Index of the parameter with this MAVLink id, or -1. `id` may lack a terminator when it is
   // exactly 16 characters, as on the wire.
   int find(const char* id, size_t id_len) const;
-  // False (and unchanged) when read-only, not finite, or not an integer for an integer one.
-  bool set(size_t index, double value);
+  // Index of the parameter with this ROS name, or -1.
+  int find_ros_name(const std::string& ros_name) const;
+  // Records the value the controller says is in force. Whether a value may be set at all, and
+  // to what, is the controller's decision (its ~set_tunable), never this table's.
+  void store(size_t index, double value);
 
  private:
   std::vector<Entry> entries_;

@@ -3,13 +3,20 @@
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <drone_ros/DecisionStatus.h>
 #include <drone_ros/OperatorCommand.h>
+#include <drone_ros/SetTunable.h>
 #include <drone_ros/data.h>
 #include <drone_ros/way.h>
 #include <ros/ros.h>
 
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
+#include <deque>
 #include <memory>
+#include <mutex>
+#include <thread>
+#include <utility>
+#include <vector>
 
 #include "gs_core.h"
 #include "node_config.h"
@@ -51,10 +58,83 @@ Telemetry to_telemetry(const drone_ros::data& d) {
   return t;
 }
 
+// Calls the controller's ~set_tunable off the link loop: a service call waits on another
+// process, and the loop must keep the link and the telemetry going meanwhile. The core times a
+// request out on its own clock; an answer arriving later is still passed on.
+class TunableClient {
+ public:
+  explicit TunableClient(std::string service) : service_(std::move(service)), worker_([this] { run(); }) {}
+  ~TunableClient() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    wake_.notify_all();
+    worker_.join();
+  }
+  void submit(const ParamSetRequest& r) {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      requests_.push_back(r);
+    }
+    wake_.notify_all();
+  }
+  std::vector<std::pair<ParamSetRequest, ParamSetAnswer>> take_answers() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::vector<std::pair<ParamSetRequest, ParamSetAnswer>> out;
+    out.swap(answers_);
+    return out;
+  }
+  const std::string& service() const { return service_; }
+
+ private:
+  void run() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    while (true) {
+      wake_.wait(lock, [this] { return stop_ || !requests_.empty(); });
+      if (stop_) return;
+      const ParamSetRequest r = requests_.front();
+      requests_.pop_front();
+      lock.unlock();
+      const ParamSetAnswer a = call(r);
+      lock.lock();
+      answers_.emplace_back(r, a);
+    }
+  }
+
+  ParamSetAnswer call(const ParamSetRequest& r) const {
+    drone_ros::SetTunable srv;
+    srv.request.name = r.ros_name;
+    srv.request.value = r.value;
+    ParamSetAnswer a;
+    if (!ros::service::call(service_, srv)) {
+      // Not running (or just restarting): nobody can vouch for a new value, so none is claimed.
+      a.reason = ros::service::exists(service_, false) ? "the controller's " + service_ + " call failed"
+                                                       : "controller not running (no " + service_ + ")";
+      return a;
+    }
+    a.accepted = srv.response.accepted;
+    a.value_in_force = srv.response.value_in_force;
+    a.reason = srv.response.reason;
+    return a;
+  }
+
+  const std::string service_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::deque<ParamSetRequest> requests_;
+  std::vector<std::pair<ParamSetRequest, ParamSetAnswer>> answers_;
+  bool stop_ = false;
+  std::thread worker_;  // last: starts once everything it uses exists
+};
+
 class Node {
  public:
   Node(ros::NodeHandle& nh, NodeConfig config, std::unique_ptr<Transport> link)
-      : config_(std::move(config)), link_(std::move(link)), core_(config_.core, config_.params) {
+      : config_(std::move(config)),
+        link_(std::move(link)),
+        core_(config_.core, config_.params),
+        tunables_(config_.controller_param_ns + "/set_tunable") {
     way_pub_ = nh.advertise<drone_ros::way>("/way", 1, true);  // latched: a late controller gets it
     command_pub_ = nh.advertise<drone_ros::OperatorCommand>("/operator_command", 10);
     data_sub_ = nh.subscribe("/data", 10, &Node::on_data, this);
@@ -113,6 +193,15 @@ class Node {
   }
 
   void flush() {
+    // Answers first, so their PARAM_VALUE goes out in this round.
+    for (const ParamSetRequest& r : core_.take_param_set_requests()) tunables_.submit(r);
+    for (const auto& answered : tunables_.take_answers()) {
+      if (!answered.second.accepted) {
+        ROS_WARN("microhard_gs: %s = %g refused: %s", answered.first.ros_name.c_str(), answered.first.value,
+                 answered.second.reason.c_str());
+      }
+      core_.param_set_answered(answered.first, answered.second);
+    }
     // With the link down the core still runs (mission timeouts, announcements); what it would
     // have sent is dropped and counted, as a radio out of range would lose it.
     const bool up = link_->health().up;
@@ -141,10 +230,6 @@ class Node {
       c.command = static_cast<uint8_t>(r);
       c.request_id = ++request_id_;
       command_pub_.publish(c);
-    }
-    for (const ParamChange& change : core_.take_param_changes()) {
-      // The controller reads its tunables from this namespace.
-      ros::param::set(config_.controller_param_ns + "/" + change.ros_name, change.value);
     }
   }
 
@@ -185,6 +270,9 @@ class Node {
     s.add("telemetry_sets_sent", c.telemetry_sets_sent);
     s.add("send_failures", send_failures_);
     s.add("link_errors", link_errors_);
+    s.add("param_sets_accepted", c.param_sets_accepted);
+    s.add("param_sets_refused", c.param_sets_refused);
+    s.add("param_sets_timed_out", c.param_sets_timed_out);
     s.add("parameters_served", core_.params().size());
     std::string missing;
     for (const auto& m : config_.missing_params) missing += (missing.empty() ? "" : ",") + m;
@@ -194,6 +282,7 @@ class Node {
   NodeConfig config_;
   std::unique_ptr<Transport> link_;
   GsCore core_;
+  TunableClient tunables_;
   ros::Publisher way_pub_;
   ros::Publisher command_pub_;
   ros::Subscriber data_sub_;

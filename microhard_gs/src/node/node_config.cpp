@@ -41,6 +41,8 @@ bool read_node_config(const ros::NodeHandle& nh, NodeConfig* c, std::string* err
   nh.param<std::string>("serial_port", c->serial_port, "/dev/ttyUSB0");
   nh.param("serial_baud", c->serial_baud, 57600);
   nh.param("reopen_period_s", c->reopen_period_s, 1.0);
+  double param_set_timeout_s = 0.5;
+  nh.param("param_set_timeout_s", param_set_timeout_s, 0.5);
   nh.param<std::string>("signing_key_file", c->signing_key_file, "");
   // The controller loads its tunables (aircraft/<name>/controller_param.yaml) into its private
   // namespace; the thesis kept them in /controller_param.
@@ -60,6 +62,10 @@ bool read_node_config(const ros::NodeHandle& nh, NodeConfig* c, std::string* err
   // port costs nothing; the HA and INS links retry at the same order.
   if (!in_range("reopen_period_s", c->reopen_period_s, 0.05, 60.0, error)) return false;
   if (!in_range("system_id", system_id, 1, 254, error)) return false;
+  // The controller answers in milliseconds; the ceiling stays under the second or so a GCS
+  // waits for the echo (QGroundControl then resends the PARAM_SET).
+  if (!in_range("param_set_timeout_s", param_set_timeout_s, 0.05, 1.0, error)) return false;
+  c->core.param_set_timeout_ms = static_cast<uint32_t>(std::lround(param_set_timeout_s * 1000.0));
   c->core.system_id = static_cast<uint8_t>(system_id);
 
   double rate_hz = 0, floor_ft = 0, radius_ft = 0, speed_ftps = 0, timeout_s = 0, retries = 0;
