@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <utility>
 #include <vector>
 
 #include "gs_core.h"
@@ -405,26 +406,86 @@ TEST(Commands, UnknownCommandIsUnsupported) {
   EXPECT_TRUE(b.core.take_operator_requests().empty());
 }
 
+// The text a decision status produced (its chunks joined), and its severity.
+std::pair<std::string, uint8_t> announced(Bench& b, uint8_t controller, uint32_t reasons_at_switch = 0) {
+  DecisionInfo d;
+  d.controller = controller;
+  d.reasons_at_switch = reasons_at_switch;
+  d.reasons = reasons_at_switch;
+  b.core.set_decision(d);
+  const auto out = decode_all(b.core.take_frames());
+  const auto texts = of_type(out, MAVLINK_MSG_ID_STATUSTEXT);
+  EXPECT_FALSE(texts.empty());
+  if (texts.empty()) return {"", 0};
+  return {statustexts(out), mavlink_msg_statustext_get_severity(&texts[0])};
+}
+
 TEST(Decision, SwitchToHaIsAnnouncedWithItsReasons) {
   Bench b;
-  DecisionInfo d;
-  d.controller = 0;
-  b.core.set_decision(d);
-  EXPECT_TRUE(decode_all(b.core.take_frames()).empty());  // the first status is no switch
-  d.controller = 1;
-  d.reasons_at_switch = 2 | 128;  // DEADLINE_MISS, CEILING
-  b.core.set_decision(d);
-  const auto texts = of_type(decode_all(b.core.take_frames()), MAVLINK_MSG_ID_STATUSTEXT);
-  ASSERT_EQ(texts.size(), 1u);
-  char text[51] = {};
-  mavlink_msg_statustext_get_text(&texts[0], text);
-  EXPECT_STREQ(text, "Controller HP->HA: DEADLINE_MISS,CEILING");
+  announced(b, 0);
+  const auto t = announced(b, 1, 2 | 128);  // DEADLINE_MISS, CEILING
+  EXPECT_EQ(t.first, "Controller HP->HA: DEADLINE_MISS,CEILING");
+  EXPECT_EQ(t.second, MAV_SEVERITY_WARNING);
+}
+
+TEST(Decision, FirstStatusSeenIsAnnouncedWithWhoFliesAndWhy) {
+  Bench b;
+  const auto t = announced(b, 1, 1);  // booting already on the HA: the HP sent nothing yet
+  EXPECT_EQ(t.first, "Controller HA (first report): NO_COMMAND");
+  EXPECT_EQ(t.second, MAV_SEVERITY_WARNING);
+  DecisionInfo same;
+  same.controller = 1;
+  same.reasons = 1;
+  b.core.set_decision(same);
+  EXPECT_TRUE(b.core.take_frames().empty());  // no change, no text
+}
+
+TEST(Decision, FirstStatusOnTheHpIsAnnouncedToo) {
+  Bench b;
+  EXPECT_EQ(announced(b, 0).first, "Controller HP (first report): HP command stable");
+}
+
+TEST(Decision, EveryStepOfARecoveryNamesItsReason) {
+  Bench b;
+  announced(b, 0);
+  EXPECT_EQ(announced(b, 1, 2048).first, "Controller HP->HA: ESTIMATOR");
+  const auto recovering = announced(b, 2);
+  EXPECT_EQ(recovering.first, "Controller HA->RECOVERING: HP command valid, watching its stability");
+  EXPECT_EQ(recovering.second, MAV_SEVERITY_NOTICE);
+  EXPECT_EQ(announced(b, 1, 1).first, "Controller RECOVERING->HA: NO_COMMAND");
+  EXPECT_EQ(announced(b, 2).first, "Controller HA->RECOVERING: HP command valid, watching its stability");
+  EXPECT_EQ(announced(b, 0).first, "Controller RECOVERING->HP: HP command stable");
+}
+
+TEST(Decision, LatchingNamesTheRestartCapAndTheReasons) {
+  Bench b;
+  announced(b, 1, 1);
+  const auto t = announced(b, 3, 1);
+  EXPECT_EQ(t.first, "Controller HA->HA_LATCHED: restart cap reached; NO_COMMAND");
+  EXPECT_EQ(t.second, MAV_SEVERITY_CRITICAL);
+}
+
+TEST(Decision, PilotTakingAndHandingBackCommandIsAnnouncedAsThePicSwitch) {
+  Bench b;
+  announced(b, 0);
+  EXPECT_EQ(announced(b, 4).first, "Controller HP->MANUAL: pilot in command (PIC switch)");
+  EXPECT_EQ(announced(b, 1, 4096).first, "Controller MANUAL->HA: PIC switch to computer; GROUND_COMMAND");
+  announced(b, 4);
+  EXPECT_EQ(announced(b, 1).first, "Controller MANUAL->HA: PIC switch to computer; no reason reported");
+}
+
+TEST(Decision, UnknownControllerValueIsStillAnnounced) {
+  Bench b;
+  announced(b, 0);
+  const auto t = announced(b, 9, 64);
+  EXPECT_EQ(t.first, "Controller HP->UNKNOWN: STALL");
 }
 
 TEST(Decision, LongReasonListIsSentInChunks) {
   Bench b;
   DecisionInfo d;
   b.core.set_decision(d);
+  b.core.take_frames();  // the first report
   d.controller = 3;
   d.reasons_at_switch = 0x1FFF;  // every reason
   b.core.set_decision(d);

@@ -702,18 +702,52 @@ void GsCore::set_telemetry(const Telemetry& t, const Clock& now) {
   }
 }
 
+std::string decision_announcement(const DecisionInfo* previous, const DecisionInfo& now, uint8_t* severity) {
+  const uint32_t why = now.reasons_at_switch != 0 ? now.reasons_at_switch : now.reasons;
+  const std::string reasons = why != 0 ? reason_names(why) : std::string();
+  std::string reason;
+  switch (now.controller) {
+    case 0:  // HP: the HA hands control back only once its command stayed valid long enough
+      *severity = MAV_SEVERITY_NOTICE;
+      reason = "HP command stable";
+      break;
+    case 1:
+      *severity = MAV_SEVERITY_WARNING;
+      reason = reasons.empty() ? "no reason reported" : reasons;
+      break;
+    case 2:  // RECOVERING: the HA still flies, the HP's command is valid again and on probation
+      *severity = MAV_SEVERITY_NOTICE;
+      reason = "HP command valid, watching its stability";
+      break;
+    case 3:  // the HA for good: the HP was restarted as often as allowed
+      *severity = MAV_SEVERITY_CRITICAL;
+      reason = "restart cap reached" + (reasons.empty() ? std::string() : "; " + reasons);
+      break;
+    case 4:
+      *severity = MAV_SEVERITY_NOTICE;
+      reason = "pilot in command (PIC switch)";
+      break;
+    default:
+      *severity = MAV_SEVERITY_WARNING;
+      reason = reasons.empty() ? "no reason reported" : reasons;
+      break;
+  }
+  if (previous != nullptr && previous->controller == 4 && now.controller != 4) {
+    reason = "PIC switch to computer; " + reason;
+  }
+  if (previous == nullptr) {
+    // The first status this node sees: at boot, or mid-flight after a respawn. Either way the
+    // operator has not been told who flies, nor why.
+    return std::string("Controller ") + controller_name(now.controller) + " (first report): " + reason;
+  }
+  return std::string("Controller ") + controller_name(previous->controller) + "->" +
+         controller_name(now.controller) + ": " + reason;
+}
+
 void GsCore::set_decision(const DecisionInfo& d) {
-  if (have_decision_ && d.controller != decision_.controller) {
-    const uint32_t why = d.reasons_at_switch != 0 ? d.reasons_at_switch : d.reasons;
-    std::string text = std::string("Controller ") + controller_name(decision_.controller) + "->" +
-                       controller_name(d.controller);
+  if (!have_decision_ || d.controller != decision_.controller) {
     uint8_t severity = MAV_SEVERITY_NOTICE;
-    if (d.controller == 1 || d.controller == 3) {
-      severity = d.controller == 3 ? MAV_SEVERITY_CRITICAL : MAV_SEVERITY_WARNING;
-      text += ": " + (why != 0 ? reason_names(why) : std::string("no reason reported"));
-    } else if (d.controller == 0) {
-      text += ": HP command stable";
-    }
+    const std::string text = decision_announcement(have_decision_ ? &decision_ : nullptr, d, &severity);
     send_statustext(severity, text);
   }
   decision_ = d;

@@ -108,6 +108,8 @@ class GsCore {
   void tick(const Clock& now);
 
   void set_telemetry(const Telemetry& t, const Clock& now);
+  // Announces every change of the controller in charge, and the first status seen, as a
+  // STATUSTEXT naming the reason.
   void set_decision(const DecisionInfo& d);
 
   // Outputs, drained by the caller.
@@ -230,6 +232,9 @@ class GsCore {
 
 // Names of the DecisionStatus REASON_* bits set in `reasons`, comma separated ("NO_COMMAND,STALL").
 std::string reason_names(uint32_t reasons);
+// The STATUSTEXT for a decision status that changes who flies, naming why ("Controller HP->HA:
+// NO_COMMAND,STALL"); `previous` is null for the first status seen. Sets *severity.
+std::string decision_announcement(const DecisionInfo* previous, const DecisionInfo& now, uint8_t* severity);
 const char* controller_name(uint8_t controller);
 
 }  // namespace microhard_gs
