@@ -12,6 +12,10 @@
 #include "semihost.h"
 
 #define STEPS 4000u
+/* The step's budget: 2 % of the 10 ms period at the Due's 84 MHz. A hard real-time loop must meet
+ * it in its worst period, so the verdict below is on the max, not the median. QEMU counts
+ * instructions; the Due's flash wait states add cycles this does not see. */
+#define BUDGET_INSNS 16800u
 #define PAINT_BYTES 8192u
 #define PAINT 0xA5A5A5A5u
 
@@ -100,7 +104,7 @@ int main(void) {
   }
   metric("m3_stack_high_water_below_main", stack_used_bytes(painted_top), "bytes");
   for (i = 0u; i < STEPS; ++i) {
-    if (insns[i] >= 16800u) {
+    if (insns[i] >= BUDGET_INSNS) {
       ++over_budget;
     }
   }
@@ -109,6 +113,7 @@ int main(void) {
   metric("m3_insns_per_step_p99", insns[(STEPS * 99u) / 100u], "instructions");
   metric("m3_insns_per_step_max", insns[STEPS - 1u], "instructions");
   metric("m3_insns_per_step_min", insns[0], "instructions");
+  metric("m3_insns_per_step_budget", BUDGET_INSNS, "instructions");
   metric("m3_insns_per_step_mean", (uint32_t)(sum / STEPS), "instructions");
   metric("m3_steps_measured", STEPS, "steps");
   metric("m3_steps_over_16800_insns", over_budget, "steps");
@@ -123,5 +128,16 @@ int main(void) {
   metric("m3_insns_max_recovering", controller_max_insns[HA_CONTROLLER_RECOVERING], "instructions");
   metric("m3_insns_max_ha_latched", controller_max_insns[HA_CONTROLLER_HA_LATCHED], "instructions");
   metric("m3_insns_max_manual", controller_max_insns[HA_CONTROLLER_MANUAL], "instructions");
+  {
+    char line[160] = "budget: worst case ";
+    const uint32_t worst = insns[STEPS - 1u];
+    ha_append_u32(line, sizeof line, worst);
+    ha_append_str(line, sizeof line, " of ");
+    ha_append_u32(line, sizeof line, BUDGET_INSNS);
+    ha_append_str(line, sizeof line, " instructions per step: ");
+    ha_append_str(line, sizeof line, worst < BUDGET_INSNS ? "MET" : "NOT MET");
+    ha_append_str(line, sizeof line, " (2% of a 10 ms period at 84 MHz; timing is reported, never asserted)\n");
+    ha_semihost_write0(line);
+  }
   return 0;
 }

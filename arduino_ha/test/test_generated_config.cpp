@@ -52,6 +52,13 @@ TEST(HaGeneratedConfig, CarriesTheYamlLimits) {
   EXPECT_FLOAT_EQ(ha_aircraft_config.ceiling_agl_ft, 400.0f);
   EXPECT_EQ(ha_aircraft_config.period_us, 10000u);
   EXPECT_EQ(ha_aircraft_config.su_rows, 8u);
+  // Slopes the generator derives for the pilot's sticks: the full pulse range spans S_u.
+  const HaAircraftConfig& c = ha_aircraft_config;
+  const float span_us = static_cast<float>(c.rc_pulse_max_us - c.rc_pulse_min_us);
+  EXPECT_FLOAT_EQ(c.rc_elevator_deg_per_us * span_us, 2.0f * c.elevator_limit_deg);
+  EXPECT_FLOAT_EQ(c.rc_aileron_deg_per_us * span_us, 2.0f * c.aileron_limit_deg);
+  EXPECT_FLOAT_EQ(c.rc_rudder_deg_per_us * span_us, 2.0f * c.rudder_limit_deg);
+  EXPECT_FLOAT_EQ(c.rc_throttle_per_us * span_us, c.throttle_max - c.throttle_min);
 }
 
 // The generator's exit status for limits.yaml with one key's value replaced.

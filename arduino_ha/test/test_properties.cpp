@@ -17,6 +17,8 @@
 #include <limits>
 #include <random>
 
+#include "ha_num.h"
+#include "ha_surfaces.h"
 #include "ha_test_util.h"
 
 namespace {
@@ -225,6 +227,56 @@ TEST(HaProperties, ServosAlwaysFiniteInsideSuAndOutsideCommandsNeverReachThem) {
   EXPECT_GT(handovers[manual][ha] + handovers[manual][hp], 100u);
   const int self_test = static_cast<int>(Source::kSelfTest);
   EXPECT_GT(handovers[self_test][self_test], 5000u);  // every self-test period is a slew
+}
+
+TEST(HaProperties, BitComparisonsGiveTheFloatComparisonsVerdicts) {
+  // ha_in_range and ha_greater decide on the IEEE-754 bits; they must agree with the float
+  // comparisons they replace, for every kind of value incl. +/-0, denormals, inf and NaN.
+  Hostile h(0xc0ffeeu);
+  const float kSpecial[] = {0.0f, -0.0f, 1e-45f, -1e-45f, 1.0f, -1.0f, 3.4e38f, -3.4e38f,
+                            std::numeric_limits<float>::infinity(),
+                            -std::numeric_limits<float>::infinity()};
+  for (int i = 0; i < 2000000; ++i) {
+    const float a = i < 100 ? kSpecial[i % 10] : h.AnyFloat();
+    const float b = i < 100 ? kSpecial[i / 10] : (h.Chance(0.3) ? a : h.AnyFloat());
+    float lo = h.Chance(0.5) ? h.Uniform(-100.0f, 100.0f) : (i % 2 ? -0.0f : 0.0f);
+    float hi = h.Chance(0.1) ? lo : lo + h.Uniform(0.0f, 100.0f);
+    if (h.Chance(0.05)) { lo = a; hi = a; }  // a bound exactly on the value
+    if (!std::isnan(a) && !std::isnan(b)) {
+      ASSERT_EQ(ha_greater(a, b) != 0, a > b) << a << " > " << b;
+    }
+    if (std::isfinite(lo) && std::isfinite(hi)) {
+      ASSERT_EQ(ha_in_range(a, lo, hi) != 0, a >= lo && a <= hi)
+          << lo << " <= " << a << " <= " << hi;
+    }
+  }
+}
+
+TEST(HaProperties, EveryRcPulseMapsLinearlyOntoSuAndClampsOutsideTheRange) {
+  // All 65536 pulse widths against the mapping's definition: [min, max] us linearly onto
+  // [-limit, +limit] (throttle onto [min, max]), clamped outside, exact at both ends.
+  const HaAircraftConfig& cfg = ha_aircraft_config;
+  const double span_us = cfg.rc_pulse_max_us - cfg.rc_pulse_min_us;
+  for (uint32_t pulse = 0; pulse <= 0xFFFFu; ++pulse) {
+    HaRcInputs rc{};
+    for (int c = 0; c < HA_RC_CHANNELS; ++c) rc.pulse_us[c] = static_cast<uint16_t>(pulse);
+    rc.valid = 1;
+    HaSurfaces s;
+    ha_surfaces_from_rc(&cfg, &rc, &s);
+    const double above_min_us = static_cast<double>(pulse) - cfg.rc_pulse_min_us;
+    const double f = std::min(1.0, std::max(0.0, above_min_us / span_us));
+    ASSERT_TRUE(SurfacesInside(cfg, s)) << pulse;
+    ASSERT_NEAR(s.elevator_deg, (2.0 * f - 1.0) * cfg.elevator_limit_deg, 1e-5) << pulse;
+    ASSERT_NEAR(s.aileron_deg, (2.0 * f - 1.0) * cfg.aileron_limit_deg, 1e-5) << pulse;
+    ASSERT_NEAR(s.rudder_deg, (2.0 * f - 1.0) * cfg.rudder_limit_deg, 1e-5) << pulse;
+    ASSERT_NEAR(s.throttle, cfg.throttle_min + f * (cfg.throttle_max - cfg.throttle_min), 1e-6)
+        << pulse;
+    if (pulse <= cfg.rc_pulse_min_us || pulse >= cfg.rc_pulse_max_us) {
+      const float sign = pulse <= cfg.rc_pulse_min_us ? -1.0f : 1.0f;
+      ASSERT_EQ(s.aileron_deg, sign * cfg.aileron_limit_deg) << pulse;
+      ASSERT_EQ(s.throttle, sign < 0 ? cfg.throttle_min : cfg.throttle_max) << pulse;
+    }
+  }
 }
 
 TEST(HaProperties, HostileBoardReadingsNeverReachServosAndWatchdogIsKicked) {

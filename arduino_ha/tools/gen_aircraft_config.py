@@ -155,6 +155,12 @@ def build(doc):
         c[prefix + "_pulse_max_us"] = hi
     c["pic_threshold_us"] = int(need(rc, "pic_threshold_us", c["rc_pulse_min_us"],
                                      c["rc_pulse_max_us"]))
+    # Stick slopes: [min, max] us onto [-limit, +limit] (throttle onto [min, max]), derived here
+    # so the HA divides nothing per period.
+    rc_span_us = float(c["rc_pulse_max_us"] - c["rc_pulse_min_us"])
+    for surface in ("elevator", "aileron", "rudder"):
+        c["rc_%s_deg_per_us" % surface] = 2.0 * c["%s_limit_deg" % surface] / rc_span_us
+    c["rc_throttle_per_us"] = (c["throttle_max"] - c["throttle_min"]) / rc_span_us
 
     c["sc_bank_limit_deg"] = need(sc, "bank_limit_deg", 1.0, roll * c["inner_region_fraction"])
     c["sc_circle_radius_ft"] = positive(sc, "circle_radius_ft")

@@ -41,7 +41,7 @@ static uint32_t check_actuator_region(const HaAircraftConfig *cfg, const HaHpCom
       ha_in_range(c->aileron_deg, -cfg->aileron_limit_deg, cfg->aileron_limit_deg) &&
       ha_in_range(c->rudder_deg, -cfg->rudder_limit_deg, cfg->rudder_limit_deg) &&
       ha_in_range(c->throttle, cfg->throttle_min, cfg->throttle_max);
-  return flag(*region_max > 1.0f || !in_box, HA_REASON_ACTUATOR_REGION);
+  return flag(ha_greater(*region_max, 1.0f) || !in_box, HA_REASON_ACTUATOR_REGION);
 }
 
 /* Estimator divergence: the HP's own alpha/beta beyond their limits. */
@@ -67,19 +67,20 @@ static uint32_t check_integrity(const HaCmdFacts *f) {
 
 /* Airborne with an airspeed at or below stall, or unknown. */
 static uint32_t check_stall(const HaAircraftConfig *cfg, const HaStateView *s) {
-  return flag(s->airborne && (!s->airspeed_ok || s->airspeed_ftps <= cfg->stall_speed_ftps),
-              HA_REASON_STALL);
+  const int above_stall = s->airspeed_ok && ha_greater(s->airspeed_ftps, cfg->stall_speed_ftps);
+  return flag(s->airborne && !above_stall, HA_REASON_STALL);
 }
 
 /* Above the ceiling, or altitude unknown. */
 static uint32_t check_ceiling(const HaAircraftConfig *cfg, const HaStateView *s) {
-  return flag(!s->altitude_ok || s->x[HA_X_ALT_AGL_FT] > cfg->ceiling_agl_ft, HA_REASON_CEILING);
+  return flag(!s->altitude_ok || ha_greater(s->x[HA_X_ALT_AGL_FT], cfg->ceiling_agl_ft),
+              HA_REASON_CEILING);
 }
 
 static uint32_t check_state_region(const HaAircraftConfig *cfg, const HaStateView *s,
                                    float *region_max) {
   *region_max = ha_state_region_max(cfg, s->x);
-  return flag(!s->attitude_ok || !s->altitude_ok || *region_max > 1.0f,
+  return flag(!s->attitude_ok || !s->altitude_ok || ha_greater(*region_max, 1.0f),
               HA_REASON_STATE_REGION);
 }
 

@@ -87,6 +87,12 @@ typedef struct {
   uint32_t pic_threshold_us; /* PIC channel pulse >= this: pilot in command */
   uint32_t servo_pulse_min_us;
   uint32_t servo_pulse_max_us;
+  /* The same mapping's slopes per microsecond above rc_pulse_min_us, derived by the generator:
+   * a division per channel costs ~150 soft-float instructions on the Due. */
+  float rc_elevator_deg_per_us;
+  float rc_aileron_deg_per_us;
+  float rc_rudder_deg_per_us;
+  float rc_throttle_per_us;
 
   /* Safety controller (cascaded PID). */
   float sc_bank_limit_deg;

@@ -216,7 +216,8 @@ void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *
   policy.ground_command = core->ground_command;
   policy.reasons = reasons;
   policy.stable = (uint8_t)(core->stable_for_us >= cfg->stable_window_us);
-  policy.inner = (uint8_t)(!(reasons & HA_REASONS_STATE) && sx_max <= cfg->inner_region_fraction);
+  policy.inner = (uint8_t)(!(reasons & HA_REASONS_STATE) &&
+                           !ha_greater(sx_max, cfg->inner_region_fraction));
   policy.restart_cap_reached = (uint8_t)restart_cap_reached(core);
   policy.boot_overdue = (uint8_t)boot_overdue(core, now_us);
   {

@@ -12,8 +12,26 @@ static inline int ha_finite(float v) {
   return (bits & 0x7F800000u) != 0x7F800000u;
 }
 
-/* Finite and within [lo, hi] (finite bounds): NaN fails every comparison, inf fails one. */
-static inline int ha_in_range(float v, float lo, float hi) { return v >= lo && v <= hi; }
+/* The IEEE-754 bits as an integer that orders like the value: -0 and +0 meet at 0, infinities
+ * lie beyond every finite value and NaNs beyond the infinities. */
+static inline int32_t ha_order_key(float v) {
+  uint32_t bits;
+  memcpy(&bits, &v, sizeof bits);
+  return (bits & 0x80000000u) != 0u ? -(int32_t)(bits & 0x7FFFFFFFu) : (int32_t)bits;
+}
+
+/* Same verdict as a > b for operands that are not NaN (a verdict only, as for ha_in_range).
+ * Used on values already checked or clamped, where the core compares most. */
+static inline int ha_greater(float a, float b) { return ha_order_key(a) > ha_order_key(b); }
+
+/* Same verdict as lo <= v <= hi for finite bounds lo <= hi, so NaN and inf fail; decided on the
+ * bits, since on the FPU-less Due each float compare is a library call of some 35 instructions.
+ * A verdict only: static analysis cannot carry it over to v, so a value that goes on into
+ * arithmetic is passed through ha_clampf. */
+static inline int ha_in_range(float v, float lo, float hi) {
+  const int32_t key = ha_order_key(v);
+  return key >= ha_order_key(lo) && key <= ha_order_key(hi);
+}
 
 /* Same verdict as ha_in_range(v, -span, span) for a finite span >= 0, decided on the IEEE-754
  * bits: for non-negative floats the bit patterns order like the values, and NaN and inf lie

@@ -4,7 +4,8 @@
 
 #include "ha_config.h"
 
-/* x must be finite (the caller checks). */
+/* x as ha_state_view leaves it: every component clamped to its plausibility span, which keeps
+ * the arithmetic finite. u may be anything (its components are clamped here). */
 float ha_state_region_max(const HaAircraftConfig *cfg, const float x[HA_X_DIM]);
 float ha_actuator_region_max(const HaAircraftConfig *cfg, const float u[HA_U_DIM]);
 

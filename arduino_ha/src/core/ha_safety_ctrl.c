@@ -5,7 +5,7 @@
 #include "ha_num.h"
 #include "ha_surfaces.h"
 
-#define HA_RAD_PER_DEG 0.017453292f
+#define HA_DEG_PER_RAD 57.29578f
 
 /* Wraps a finite angle in [-1080, 1080] deg into [-180, 180). */
 static float wrap180(float deg) {
@@ -40,7 +40,7 @@ static float bank_command_deg(const HaAircraftConfig *cfg, const HaStateView *s)
     return 0.0f; /* without a position: wings level */
   }
   distance_ft = sqrtf(s->north_ft * s->north_ft + s->east_ft * s->east_ft);
-  bearing_deg = atan2f(s->east_ft, s->north_ft) / HA_RAD_PER_DEG;
+  bearing_deg = atan2f(s->east_ft, s->north_ft) * HA_DEG_PER_RAD;
   correction_deg = ha_clampf(cfg->sc_radial_gain_deg_per_ft * (distance_ft - radius_ft),
                              -cfg->sc_radial_correction_max_deg,
                              cfg->sc_radial_correction_max_deg);

@@ -68,8 +68,9 @@ void ha_state_view(const HaAircraftConfig *cfg, const HaInputs *in, const HaHpCo
       out->position_ok ? ha_clampf(in->east_ft, -HA_POSITION_SPAN_FT, HA_POSITION_SPAN_FT) : 0.0f;
   /* The thesis's rule (airborne above alt0); an unknown altitude counts as airborne, so the
    * stall check is never skipped on missing data. */
-  out->airborne = (uint8_t)!(out->altitude_ok && in->altitude_agl_ft <= cfg->airborne_agl_ft);
+  out->airborne = (uint8_t)!(out->altitude_ok &&
+                             !ha_greater(in->altitude_agl_ft, cfg->airborne_agl_ft));
   /* The self-test moves every surface and spins the motor: only when everything says parked. */
   out->on_ground = (uint8_t)(in->on_ground != 0u && !out->airborne && out->airspeed_ok &&
-                             in->airspeed_ftps < cfg->stall_speed_ftps);
+                             ha_greater(cfg->stall_speed_ftps, in->airspeed_ftps));
 }

@@ -36,25 +36,25 @@ int ha_surfaces_rate_limit(const HaAircraftConfig *cfg, const HaSurfaces *prev,
   return reached;
 }
 
-/* Fraction [0, 1] of the pulse within the configured range. */
-static float pulse_fraction(const HaAircraftConfig *cfg, uint16_t pulse_us) {
-  const float span = (float)(cfg->rc_pulse_max_us - cfg->rc_pulse_min_us);
-  const float f = ((float)pulse_us - (float)cfg->rc_pulse_min_us) / span;
-  return ha_clampf(f, 0.0f, 1.0f);
+/* Microseconds above the range's minimum, the pulse clamped to the range first: integer work,
+ * and the value is exact in a float. */
+static float pulse_above_min_us(const HaAircraftConfig *cfg, uint16_t pulse_us) {
+  uint32_t p = pulse_us;
+  p = p < cfg->rc_pulse_min_us ? cfg->rc_pulse_min_us : p;
+  p = p > cfg->rc_pulse_max_us ? cfg->rc_pulse_max_us : p;
+  return (float)(p - cfg->rc_pulse_min_us);
 }
 
-static float symmetric(float fraction, float limit) { return (2.0f * fraction - 1.0f) * limit; }
-
 void ha_surfaces_from_rc(const HaAircraftConfig *cfg, const HaRcInputs *rc, HaSurfaces *out) {
-  out->elevator_deg = symmetric(pulse_fraction(cfg, rc->pulse_us[HA_RC_ELEVATOR]),
-                                cfg->elevator_limit_deg);
-  out->aileron_deg = symmetric(pulse_fraction(cfg, rc->pulse_us[HA_RC_AILERON]),
-                               cfg->aileron_limit_deg);
-  out->rudder_deg = symmetric(pulse_fraction(cfg, rc->pulse_us[HA_RC_RUDDER]),
-                              cfg->rudder_limit_deg);
-  out->throttle = cfg->throttle_min + pulse_fraction(cfg, rc->pulse_us[HA_RC_THROTTLE]) *
-                                          (cfg->throttle_max - cfg->throttle_min);
-  ha_surfaces_saturate(cfg, out);
+  out->elevator_deg = pulse_above_min_us(cfg, rc->pulse_us[HA_RC_ELEVATOR]) *
+                          cfg->rc_elevator_deg_per_us - cfg->elevator_limit_deg;
+  out->aileron_deg = pulse_above_min_us(cfg, rc->pulse_us[HA_RC_AILERON]) *
+                         cfg->rc_aileron_deg_per_us - cfg->aileron_limit_deg;
+  out->rudder_deg = pulse_above_min_us(cfg, rc->pulse_us[HA_RC_RUDDER]) *
+                        cfg->rc_rudder_deg_per_us - cfg->rudder_limit_deg;
+  out->throttle = pulse_above_min_us(cfg, rc->pulse_us[HA_RC_THROTTLE]) * cfg->rc_throttle_per_us +
+                  cfg->throttle_min;
+  ha_surfaces_saturate(cfg, out); /* a rounding at either end stays inside S_u */
 }
 
 void ha_surfaces_from_cmd(const HaHpCommand *cmd, HaSurfaces *out) {

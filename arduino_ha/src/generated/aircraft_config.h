@@ -54,6 +54,10 @@
     .airborne_agl_ft = 30.0f, \
     .inner_region_fraction = 0.7f, \
     .max_airspeed_ftps = 200.0f, \
+    .rc_elevator_deg_per_us = 0.04f, \
+    .rc_aileron_deg_per_us = 0.03f, \
+    .rc_rudder_deg_per_us = 0.03f, \
+    .rc_throttle_per_us = 0.001f, \
     .sc_bank_limit_deg = 25.0f, \
     .sc_circle_radius_ft = 400.0f, \
     .sc_circle_direction = 1.0f, \
