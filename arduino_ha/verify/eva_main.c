@@ -148,15 +148,9 @@ static void eva_read_rc(void *ctx, HaRcInputs *rc) {
   (void)ctx;
   any_rc(rc);
 }
-/* A failed reading: ha_app passes it on as NaN, which only the any-bits mode admits (the finite
- * mode flags any NaN, including one made on purpose). */
-static int any_reading_ok(void) {
-#ifdef HA_EVA_ANY_BITS
-  return Frama_C_nondet(0, 1);
-#else
-  return 1;
-#endif
-}
+/* A reading may fail in either mode: ha_app then passes it on as -1, which the core's range checks
+ * reject. */
+static int any_reading_ok(void) { return Frama_C_nondet(0, 1); }
 static int eva_read_airspeed_ftps(void *ctx, float *airspeed_ftps) {
   (void)ctx;
   *airspeed_ftps = any_float();
