@@ -28,10 +28,16 @@ $(GS_FUZZ_BIN): $(GS_FUZZ_SOURCES) $(wildcard $(GS_DIR)/src/core/*.h) $(GS_FUZZ_
 	$(GS_CLANGXX) -std=c++17 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
 	  -Wall -Wextra -Werror -I$(GS_DIR)/src/core -isystem $(GS_FUZZ_DIR)/mavlink $(GS_FUZZ_SOURCES) -o $@
 
+# The full log goes to a file; the console gets the verdict and the run count, and on a crash the
+# log's tail with the reproducer's path.
 fuzz-gs: $(GS_FUZZ_BIN)
 	@mkdir -p $(GS_FUZZ_DIR)/corpus
-	$(GS_FUZZ_BIN) -max_total_time=$(GS_FUZZ_SECONDS) -print_final_stats=1 -artifact_prefix=$(GS_FUZZ_DIR)/ \
-	  $(GS_FUZZ_DIR)/corpus $(GS_DIR)/fuzz/corpus
+	@echo "fuzz-gs: gs_core for $(GS_FUZZ_SECONDS) s (log: $(GS_FUZZ_DIR)/fuzz.log)"
+	@$(GS_FUZZ_BIN) -max_total_time=$(GS_FUZZ_SECONDS) -print_final_stats=1 -artifact_prefix=$(GS_FUZZ_DIR)/ \
+	  $(GS_FUZZ_DIR)/corpus $(GS_DIR)/fuzz/corpus > $(GS_FUZZ_DIR)/fuzz.log 2>&1 \
+	  || { tail -n 40 $(GS_FUZZ_DIR)/fuzz.log; echo "fuzz-gs: crash, see $(GS_FUZZ_DIR)/fuzz.log"; exit 1; }
+	@grep -E 'stat::(number_of_executed_units|average_exec_per_sec)' $(GS_FUZZ_DIR)/fuzz.log | sed 's/^/  /'
+	@echo "fuzz-gs: no crash in $(GS_FUZZ_SECONDS) s"
 
 fuzz-gs-smoke:
 	@$(MAKE) --no-print-directory -f $(ROOT)/Makefile fuzz-gs GS_FUZZ_SECONDS=20
