@@ -26,7 +26,7 @@ $(GS_FUZZ_DIR)/mavlink/common/mavlink.h:
 $(GS_FUZZ_BIN): $(GS_FUZZ_SOURCES) $(wildcard $(GS_DIR)/src/core/*.h) $(GS_FUZZ_DIR)/mavlink/common/mavlink.h
 	@test -n "$(GS_CLANGXX)" || { echo "fuzz-gs: clang++ not found (microhard_gs/apt-packages.txt)"; exit 1; }
 	$(GS_CLANGXX) -std=c++17 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
-	  -Wall -Wextra -Werror -I$(GS_DIR)/src/core -isystem $(GS_FUZZ_DIR)/mavlink $(GS_FUZZ_SOURCES) -o $@
+	  -Wall -Wextra -Werror -I$(GS_DIR)/src/core -I$(ROOT)/drone_ros/common/include -isystem $(GS_FUZZ_DIR)/mavlink $(GS_FUZZ_SOURCES) -o $@
 
 # The full log goes to a file; the console gets the verdict and the run count, and on a crash the
 # log's tail with the reproducer's path.

@@ -1,5 +1,7 @@
 #include "conversions.h"
 
+#include <drone_ros_common/wgs84.h>
+
 #include <cmath>
 
 namespace vn200 {
@@ -45,17 +47,12 @@ Vec3 nedToEnu(const Vec3& v) { return {v[1], v[0], -v[2]}; }
 
 Vec3 llaToLocalEnu(double lat_deg, double lon_deg, double alt_m, double ref_lat_deg,
                    double ref_lon_deg, double ref_alt_m) {
-  // WGS84 radii of curvature at the reference: the same flat earth the HA, the controller and
-  // the ground station use, so the tf puts the aircraft where they do.
-  constexpr double kWgs84AM = 6378137.0;
-  constexpr double kWgs84E2 = 6.69437999014e-3;
-  const double s = std::sin(ref_lat_deg * kDegToRad);
-  const double w2 = 1.0 - kWgs84E2 * s * s;
-  const double meridian_m = kWgs84AM * (1.0 - kWgs84E2) / (w2 * std::sqrt(w2));
-  const double prime_vertical_m = kWgs84AM / std::sqrt(w2);
-  const double north = (lat_deg - ref_lat_deg) * kDegToRad * meridian_m;
+  // The same flat earth the HA, the controller and the ground station use, so the tf puts the
+  // aircraft where they do.
+  const drone_ros_common::Wgs84Radii r = drone_ros_common::wgs84_radii_at(ref_lat_deg);
+  const double north = (lat_deg - ref_lat_deg) * kDegToRad * r.meridian_m;
   const double east =
-      (lon_deg - ref_lon_deg) * kDegToRad * prime_vertical_m * std::cos(ref_lat_deg * kDegToRad);
+      (lon_deg - ref_lon_deg) * kDegToRad * r.prime_vertical_m * std::cos(ref_lat_deg * kDegToRad);
   return {east, north, alt_m - ref_alt_m};
 }
 

@@ -17,7 +17,9 @@ constexpr double kDegToRad = kPi / 180.0;
 constexpr double kFtPerM = 1.0 / 0.3048;
 constexpr double kMPerFt = 0.3048;
 // WGS84, as the HA and the ground station use: waypoints the operator places, the HA's safety
-// region and this guidance must agree on where a latitude/longitude is relative to home.
+// region and this guidance must agree on where a latitude/longitude is relative to home. Stated
+// here rather than taken from drone_ros_common/wgs84.h: generated GNC code stands alone, so a lab
+// can drop its own in without the project's headers.
 constexpr double kWgs84AM = 6378137.0;
 constexpr double kWgs84E2 = 6.69437999014e-3;  // first eccentricity squared
 // Beyond what the sensors can report (VN-200: +/-2000 deg/s, +/-16 g, 515 m/s; a pitot on this

@@ -11,7 +11,7 @@
 /* Exactly +/-0 (integer test on its bits: no soft-float call on the Cortex-M3). A zero
  * coefficient adds +/-0 to the row and a zero centre subtracts nothing, so skipping either
  * changes no result. */
-static int coefficient_is_zero(float c) {
+static int is_exact_zero(float c) {
   uint32_t bits;
   memcpy(&bits, &c, sizeof bits);
   return (bits & 0x7FFFFFFFu) == 0u;
@@ -25,7 +25,7 @@ static float row_value(const float *row, const float *d, uint32_t dim) {
   int started = 0;
   uint32_t j;
   for (j = 0u; j < dim; ++j) {
-    if (!coefficient_is_zero(row[j])) {
+    if (!is_exact_zero(row[j])) {
       const float term = row[j] * d[j];
       sum = started ? sum + term : term;
       started = 1;
@@ -41,7 +41,7 @@ float ha_state_region_max(const HaAircraftConfig *cfg, const float x[HA_X_DIM]) 
   uint32_t i, j;
   /* No clamp here: x comes from ha_state_view, already clamped to the plausibility spans. */
   for (j = 0u; j < HA_X_DIM; ++j) {
-    d[j] = coefficient_is_zero(cfg->x0[j]) ? x[j] : x[j] - cfg->x0[j];
+    d[j] = is_exact_zero(cfg->x0[j]) ? x[j] : x[j] - cfg->x0[j];
   }
   for (i = 0u; i < rows; ++i) {
     const float value = row_value(cfg->sx[i], d, HA_X_DIM);
@@ -57,7 +57,7 @@ float ha_actuator_region_max(const HaAircraftConfig *cfg, const float u[HA_U_DIM
   uint32_t i, j;
   for (j = 0u; j < HA_U_DIM; ++j) {
     const float clamped = ha_clampf(u[j], -HA_REGION_SPAN, HA_REGION_SPAN);
-    d[j] = coefficient_is_zero(cfg->u0[j]) ? clamped : clamped - cfg->u0[j];
+    d[j] = is_exact_zero(cfg->u0[j]) ? clamped : clamped - cfg->u0[j];
   }
   for (i = 0u; i < rows; ++i) {
     const float value = row_value(cfg->su[i], d, HA_U_DIM);

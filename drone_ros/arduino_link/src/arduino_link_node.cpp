@@ -149,16 +149,21 @@ bool ArduinoLinkNode::accept_announcement(const Frame &f, TopicAnnouncement *a) 
   return true;
 }
 
+ArduinoLinkNode::Endpoint ArduinoLinkNode::endpoint_for(const TopicAnnouncement &a) {
+  Endpoint ep;
+  ep.name = a.name;
+  ep.type = a.type;
+  ep.md5 = a.md5;
+  ep.buffer_size = a.buffer_size;
+  ep.known = find_known_type(ep.type, ep.md5);
+  return ep;
+}
+
 void ArduinoLinkNode::on_publisher_info(const Frame &f) {
   TopicAnnouncement info;
   if (!accept_announcement(f, &info)) return;
   negotiated_ = true;
-  Endpoint ep;
-  ep.name = info.name;
-  ep.type = info.type;
-  ep.md5 = info.md5;
-  ep.buffer_size = info.buffer_size;
-  ep.known = find_known_type(ep.type, ep.md5);
+  Endpoint ep = endpoint_for(info);
   std::lock_guard<std::mutex> lock(endpoints_mutex_);
   auto it = endpoints_.find(info.topic_id);
   if (it != endpoints_.end() && it->second.pub && it->second.name == ep.name && it->second.md5 == ep.md5) {
@@ -176,7 +181,7 @@ void ArduinoLinkNode::on_publisher_info(const Frame &f) {
       ep.pub = pwm_pub_;
     } else {
       topic_tools::ShapeShifter shape;
-      shape.morph(ep.md5, ep.type, ep.known != nullptr ? ep.known->definition : std::string(), "false");
+      shape.morph(ep.md5, ep.type, ep.definition(), "false");
       ep.pub = shape.advertise(nh_, ep.name, 10);
     }
   } catch (const ros::Exception &e) {
@@ -204,11 +209,7 @@ void ArduinoLinkNode::on_subscriber_info(const Frame &f) {
     existing->second.buffer_size = info.buffer_size;
     return;
   }
-  Endpoint ep;
-  ep.name = info.name;
-  ep.type = info.type;
-  ep.md5 = info.md5;
-  ep.buffer_size = info.buffer_size;
+  Endpoint ep = endpoint_for(info);
   boost::function<void(const topic_tools::ShapeShifter::ConstPtr &)> cb =
       [this, id](const topic_tools::ShapeShifter::ConstPtr &msg) { on_ros_message(id, msg); };
   try {
@@ -269,7 +270,7 @@ void ArduinoLinkNode::on_device_data(Endpoint &ep, const Frame &f) {
     return;
   }
   topic_tools::ShapeShifter shape;
-  shape.morph(ep.md5, ep.type, ep.known != nullptr ? ep.known->definition : std::string(), "false");
+  shape.morph(ep.md5, ep.type, ep.definition(), "false");
   ros::serialization::IStream in(const_cast<uint8_t *>(f.payload.data()), static_cast<uint32_t>(f.payload.size()));
   shape.read(in);
   ep.pub.publish(shape);

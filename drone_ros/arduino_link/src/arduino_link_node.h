@@ -49,6 +49,8 @@ class ArduinoLinkNode {
   struct Endpoint {
     std::string name, type, md5;
     const KnownType *known = nullptr;  // null when the type is not compiled in
+    // For rosbag; empty (ROS warns once) when the type is not compiled in.
+    std::string definition() const { return known != nullptr ? known->definition : std::string(); }
     int32_t buffer_size = 0;
     bool is_pwm = false;
     ros::Publisher pub;
@@ -65,6 +67,7 @@ class ArduinoLinkNode {
   void on_log(const Frame &frame);
   void on_device_data(Endpoint &ep, const Frame &frame);
   bool accept_announcement(const Frame &frame, TopicAnnouncement *a);
+  static Endpoint endpoint_for(const TopicAnnouncement &a);
   void refuse(const char *what, const std::string &why);
   void on_ros_message(uint16_t topic_id, const topic_tools::ShapeShifter::ConstPtr &msg);
   bool send(uint16_t topic_id, const std::vector<uint8_t> &payload);

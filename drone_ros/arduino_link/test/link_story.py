@@ -33,6 +33,7 @@ except ImportError:
     from drone_ros.msg import DecisionStatus, ServoCommand, pwm
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from story_wait import wait_for  # noqa: E402
 from wire_tap import WireTap, frame, topic_info  # noqa: E402
 
 WS = os.environ.get("DRONE_ROS_WS", "")
@@ -104,15 +105,6 @@ class Watch:
         if not reports:
             return collections.defaultdict(int)
         return collections.defaultdict(int, {k: int(v) for k, v in re.findall(r"(\w+) (\d+)", reports[-1])})
-
-
-def wait_for(predicate, timeout_s, what):
-    deadline = time.time() + timeout_s
-    while time.time() < deadline and not rospy.is_shutdown():
-        if predicate():
-            return
-        time.sleep(0.02)
-    raise AssertionError("timed out waiting for " + what)
 
 
 class LinkStories(unittest.TestCase):

@@ -6,7 +6,6 @@ import os
 import struct
 import sys
 import threading
-import time
 import unittest
 
 import rospy
@@ -18,15 +17,7 @@ from std_msgs.msg import Bool, Float32, Int32, String
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from roslib_device import RoslibDevice, Sketch, ser_string  # noqa: E402
-
-
-def wait_for(predicate, timeout_s, what):
-    deadline = time.time() + timeout_s
-    while time.time() < deadline and not rospy.is_shutdown():
-        if predicate():
-            return
-        time.sleep(0.02)
-    raise AssertionError("timed out waiting for " + what)
+from story_wait import wait_for  # noqa: E402
 
 
 class RoslibSketchStories(unittest.TestCase):

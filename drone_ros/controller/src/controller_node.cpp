@@ -123,8 +123,10 @@ bool ControllerNode::on_set_tunable(drone_ros::SetTunable::Request &req, drone_r
   values_ = next_values;
   board_.apply_params(params_);
   ++tunables_changed_;
-  // The parameter server shows what is in force, so a later HP restart or a reader sees it.
-  if (tunable_is_integer(req.name)) {
+  // The parameter server shows what is in force, so a later HP restart or a reader sees it, in
+  // the type the file gave it: a switch or selection stays an int.
+  XmlRpc::XmlRpcValue loaded;
+  if (pnh_.getParam(req.name, loaded) && loaded.getType() == XmlRpc::XmlRpcValue::TypeInt) {
     pnh_.setParam(req.name, static_cast<int>(r.value_in_force));
   } else {
     pnh_.setParam(req.name, r.value_in_force);

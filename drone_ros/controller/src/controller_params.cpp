@@ -138,36 +138,38 @@ namespace {
 struct Tunable {
   const char *name;
   TunableKind kind;
-  bool integer;
+  const char *fixed_reason;  // kFixed only: why it cannot change while running
 };
 
 // Every key of controller_param.yaml the ground may ask to change, and how. Left out (kNone):
 // hmcmd (a start-up command; return home in flight is guidance_selection) and frame_id (a
 // string), and everything under limits/, which is the aircraft's envelope, not a tuning.
 const Tunable kTunables[] = {
-    {"dt", TunableKind::kFixed, false},
-    {"Q_weight", TunableKind::kFixed, false},
-    {"throttle_trim", TunableKind::kLive, false},
-    {"elevator_trim", TunableKind::kLive, false},
-    {"aileron_trim", TunableKind::kLive, false},
-    {"rudder_trim", TunableKind::kLive, false},
-    {"sensor_timeout_s", TunableKind::kLive, false},
-    {"VTtrim", TunableKind::kGncRestart, false},
-    {"alpha", TunableKind::kGncRestart, false},
-    {"beta", TunableKind::kGncRestart, false},
-    {"guidance_selection", TunableKind::kGncRestart, true},
-    {"mpf_switch", TunableKind::kGncRestart, true},
-    {"mpf_radius", TunableKind::kGncRestart, false},
-    {"path_select", TunableKind::kGncRestart, true},
-    {"max_allow_error", TunableKind::kGncRestart, false},
-    {"dist2b", TunableKind::kGncRestart, false},
-    {"KpLon", TunableKind::kGncRestart, false},
-    {"KiLon", TunableKind::kGncRestart, false},
-    {"max_bank_deg", TunableKind::kGncRestart, false},
-    {"max_pitch_cmd_deg", TunableKind::kGncRestart, false},
-    {"min_airspeed_cmd_ftps", TunableKind::kGncRestart, false},
-    {"airspeed_valid_min_ftps", TunableKind::kGncRestart, false},
-    {"converged_sigma_deg", TunableKind::kGncRestart, false},
+    // The step timer is made once, and the HA's no_command_timeout_s (limits.yaml) is sized for
+    // the period: a new rate is a launch-time choice (DG808_flight.launch dt:=...).
+    {"dt", TunableKind::kFixed, "dt is set at launch only: the step timer and the HA's command timeout"},
+    {"Q_weight", TunableKind::kFixed, "Q_weight is fixed: the LQR gains are designed offline for it"},
+    {"throttle_trim", TunableKind::kLive, nullptr},
+    {"elevator_trim", TunableKind::kLive, nullptr},
+    {"aileron_trim", TunableKind::kLive, nullptr},
+    {"rudder_trim", TunableKind::kLive, nullptr},
+    {"sensor_timeout_s", TunableKind::kLive, nullptr},
+    {"VTtrim", TunableKind::kGncRestart, nullptr},
+    {"alpha", TunableKind::kGncRestart, nullptr},
+    {"beta", TunableKind::kGncRestart, nullptr},
+    {"guidance_selection", TunableKind::kGncRestart, nullptr},
+    {"mpf_switch", TunableKind::kGncRestart, nullptr},
+    {"mpf_radius", TunableKind::kGncRestart, nullptr},
+    {"path_select", TunableKind::kGncRestart, nullptr},
+    {"max_allow_error", TunableKind::kGncRestart, nullptr},
+    {"dist2b", TunableKind::kGncRestart, nullptr},
+    {"KpLon", TunableKind::kGncRestart, nullptr},
+    {"KiLon", TunableKind::kGncRestart, nullptr},
+    {"max_bank_deg", TunableKind::kGncRestart, nullptr},
+    {"max_pitch_cmd_deg", TunableKind::kGncRestart, nullptr},
+    {"min_airspeed_cmd_ftps", TunableKind::kGncRestart, nullptr},
+    {"airspeed_valid_min_ftps", TunableKind::kGncRestart, nullptr},
+    {"converged_sigma_deg", TunableKind::kGncRestart, nullptr},
 };
 
 const Tunable *find_tunable(const std::string &name) {
@@ -186,11 +188,6 @@ TunableKind tunable_kind(const std::string &name) {
   return t == nullptr ? TunableKind::kNone : t->kind;
 }
 
-bool tunable_is_integer(const std::string &name) {
-  const Tunable *t = find_tunable(name);
-  return t != nullptr && t->integer;
-}
-
 TunableResult change_tunable(const ParamValues &in_force, const std::string &name, double value,
                              bool hp_in_command, ControllerParams *params, ParamValues *values) {
   TunableResult result;
@@ -198,7 +195,8 @@ TunableResult change_tunable(const ParamValues &in_force, const std::string &nam
   if (current != in_force.end()) {
     result.value_in_force = current->second;
   }
-  const TunableKind kind = tunable_kind(name);
+  const Tunable *tunable = find_tunable(name);
+  const TunableKind kind = tunable == nullptr ? TunableKind::kNone : tunable->kind;
   if (kind == TunableKind::kNone || current == in_force.end()) {
     result.reason = name + " is not a tunable of controller_" GNC_AIRCRAFT_NAME;
     return result;
@@ -208,11 +206,7 @@ TunableResult change_tunable(const ParamValues &in_force, const std::string &nam
     return result;
   }
   if (kind == TunableKind::kFixed) {
-    // dt: the step timer is made once, and the HA's no_command_timeout_s (limits.yaml) is sized
-    // for the period; a new rate is a launch-time choice (DG808_flight.launch dt:=...).
-    // Q_weight: the gains are generated offline for one weight (design_gains.py).
-    result.reason = name == "dt" ? "dt is set at launch only: the step timer and the HA's command timeout"
-                                 : "Q_weight is fixed: the LQR gains are designed offline for it";
+    result.reason = tunable->fixed_reason;
     return result;
   }
   ParamValues next = in_force;

@@ -47,7 +47,6 @@ enum class TunableKind {
   kGncRestart,  // taken by the GNC only when it initializes: applied by re-initializing it
 };
 TunableKind tunable_kind(const std::string &name);
-bool tunable_is_integer(const std::string &name);  // a switch or selection (written back as int)
 
 struct TunableResult {
   bool accepted = false;

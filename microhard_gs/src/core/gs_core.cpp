@@ -107,11 +107,11 @@ MissionItem from_item_float(const mavlink_mission_item_t& m) {
 
 const char* controller_name(uint8_t controller) {
   switch (controller) {
-    case 0: return "HP";
-    case 1: return "HA";
-    case 2: return "RECOVERING";
-    case 3: return "HA_LATCHED";
-    case 4: return "MANUAL";
+    case kControllerHp: return "HP";
+    case kControllerHa: return "HA";
+    case kControllerRecovering: return "RECOVERING";
+    case kControllerHaLatched: return "HA_LATCHED";
+    case kControllerManual: return "MANUAL";
     default: return "UNKNOWN";
   }
 }
@@ -707,23 +707,23 @@ std::string decision_announcement(const DecisionInfo* previous, const DecisionIn
   const std::string reasons = why != 0 ? reason_names(why) : std::string();
   std::string reason;
   switch (now.controller) {
-    case 0:  // HP: the HA hands control back only once its command stayed valid long enough
+    case kControllerHp:  // the HA hands control back only once its command stayed valid long enough
       *severity = MAV_SEVERITY_NOTICE;
       reason = "HP command stable";
       break;
-    case 1:
+    case kControllerHa:
       *severity = MAV_SEVERITY_WARNING;
       reason = reasons.empty() ? "no reason reported" : reasons;
       break;
-    case 2:  // RECOVERING: the HA still flies, the HP's command is valid again and on probation
+    case kControllerRecovering:  // the HA still flies, the HP's command is valid again and on probation
       *severity = MAV_SEVERITY_NOTICE;
       reason = "HP command valid, watching its stability";
       break;
-    case 3:  // the HA for good: the HP was restarted as often as allowed
+    case kControllerHaLatched:  // the HA for good: the HP was restarted as often as allowed
       *severity = MAV_SEVERITY_CRITICAL;
       reason = "restart cap reached" + (reasons.empty() ? std::string() : "; " + reasons);
       break;
-    case 4:
+    case kControllerManual:
       *severity = MAV_SEVERITY_NOTICE;
       reason = "pilot in command (PIC switch)";
       break;
@@ -732,7 +732,7 @@ std::string decision_announcement(const DecisionInfo* previous, const DecisionIn
       reason = reasons.empty() ? "no reason reported" : reasons;
       break;
   }
-  if (previous != nullptr && previous->controller == 4 && now.controller != 4) {
+  if (previous != nullptr && previous->controller == kControllerManual && now.controller != kControllerManual) {
     reason = "PIC switch to computer; " + reason;
   }
   if (previous == nullptr) {
@@ -818,7 +818,7 @@ void GsCore::send_heartbeat() {
   // custom_mode tells which controller drives the servos (DecisionStatus.CONTROLLER_*).
   hb.custom_mode = have_decision_ ? decision_.controller : 0xFFFFFFFFu;
   hb.system_status = airborne ? MAV_STATE_ACTIVE : MAV_STATE_STANDBY;
-  if (have_decision_ && (decision_.controller == 1 || decision_.controller == 3)) {
+  if (have_decision_ && (decision_.controller == kControllerHa || decision_.controller == kControllerHaLatched)) {
     hb.system_status = MAV_STATE_CRITICAL;  // flying on the safety controller
   }
   hb.mavlink_version = 3;

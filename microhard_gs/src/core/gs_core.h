@@ -53,8 +53,16 @@ struct Telemetry {
   int32_t waypoint_index = 0;
 };
 
+// Who flies, as DecisionStatus.CONTROLLER_* numbers it (the node checks they agree at compile
+// time; this core is ROS-free).
+constexpr uint8_t kControllerHp = 0;
+constexpr uint8_t kControllerHa = 1;
+constexpr uint8_t kControllerRecovering = 2;
+constexpr uint8_t kControllerHaLatched = 3;
+constexpr uint8_t kControllerManual = 4;
+
 struct DecisionInfo {
-  uint8_t controller = 0;  // DecisionStatus.CONTROLLER_*
+  uint8_t controller = kControllerHp;  // one of kController*
   uint32_t reasons = 0;
   uint32_t reasons_at_switch = 0;
   double altitude_agl_ft = 0.0;

@@ -26,6 +26,13 @@
 namespace microhard_gs {
 namespace {
 
+static_assert(kControllerHp == drone_ros::DecisionStatus::CONTROLLER_HP &&
+                  kControllerHa == drone_ros::DecisionStatus::CONTROLLER_HA &&
+                  kControllerRecovering == drone_ros::DecisionStatus::CONTROLLER_RECOVERING &&
+                  kControllerHaLatched == drone_ros::DecisionStatus::CONTROLLER_HA_LATCHED &&
+                  kControllerManual == drone_ros::DecisionStatus::CONTROLLER_MANUAL,
+              "gs_core.h's ControllerId must number controllers as DecisionStatus does");
+
 Clock now_clock() {
   using namespace std::chrono;
   Clock c;
@@ -179,7 +186,7 @@ class Node {
 
   // Logs each change of the link's state once: the modem missing at start, unplugged, back.
   void report_link_change() {
-    const LinkHealth h = link_->health();
+    const LinkHealth& h = link_->health();
     if (h.up == link_was_up_ && h.last_error == last_link_error_) return;
     if (h.up) {
       ROS_INFO("microhard_gs: %s up (open %llu, %llu outages so far)", link_->describe().c_str(),
@@ -235,7 +242,7 @@ class Node {
 
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& s) {
     const Counters& c = core_.counters();
-    const LinkHealth h = link_->health();
+    const LinkHealth& h = link_->health();
     if (!h.up) {
       s.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "ground link down: " + h.last_error);
     } else if (!core_.home_known()) {

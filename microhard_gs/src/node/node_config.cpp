@@ -40,9 +40,10 @@ bool read_node_config(const ros::NodeHandle& nh, NodeConfig* c, std::string* err
   nh.param("udp_follow_sender", c->udp.follow_sender, true);
   nh.param<std::string>("serial_port", c->serial_port, "/dev/ttyUSB0");
   nh.param("serial_baud", c->serial_baud, 57600);
-  nh.param("reopen_period_s", c->reopen_period_s, 1.0);
-  double param_set_timeout_s = 0.5;
-  nh.param("param_set_timeout_s", param_set_timeout_s, 0.5);
+  // Defaults are those of the structs (node_config.h, gs_core.h), stated once.
+  nh.param("reopen_period_s", c->reopen_period_s, c->reopen_period_s);
+  double param_set_timeout_s = c->core.param_set_timeout_ms / 1000.0;
+  nh.param("param_set_timeout_s", param_set_timeout_s, param_set_timeout_s);
   nh.param<std::string>("signing_key_file", c->signing_key_file, "");
   // The controller loads its tunables (aircraft/<name>/controller_param.yaml) into its private
   // namespace; the thesis kept them in /controller_param.

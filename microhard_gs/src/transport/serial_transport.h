@@ -21,7 +21,6 @@ class SerialTransport : public Transport {
   long receive(uint8_t* buf, size_t cap, int timeout_ms) override;
   bool send(const uint8_t* data, size_t len) override;
   void maintain(uint64_t now_ms) override;
-  LinkHealth health() const override { return health_; }
   std::string describe() const override;
 
  private:
@@ -32,7 +31,6 @@ class SerialTransport : public Transport {
   bool tried_ = false;
   bool lost_ = false;  // receive() saw the port go; maintain() stamps the outage
   uint64_t last_attempt_ms_ = 0;
-  LinkHealth health_;
 };
 
 }  // namespace microhard_gs

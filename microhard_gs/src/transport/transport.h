@@ -28,8 +28,12 @@ class Transport {
   virtual bool send(const uint8_t* data, size_t len) = 0;
   // Called every loop with the monotonic time: a link that can vanish reopens itself here.
   virtual void maintain(uint64_t now_ms) { (void)now_ms; }
-  virtual LinkHealth health() const { return LinkHealth{}; }
+  // Read every loop: a reference, not a copy. A link that never drops (UDP) leaves it as made.
+  const LinkHealth& health() const { return health_; }
   virtual std::string describe() const = 0;
+
+ protected:
+  LinkHealth health_;
 };
 
 }  // namespace microhard_gs

@@ -4,13 +4,12 @@
 #include <cmath>
 
 #include "dg808_gnc_data.h"
+#include "drone_ros_common/wgs84.h"
 
 namespace dg808sim {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr double kWgs84AM = 6378137.0;
-constexpr double kWgs84E2 = 6.69437999014e-3;
 constexpr double kFtPerM = 1.0 / 0.3048;
 
 Eigen::Matrix3d body_to_ned(const Eigen::Vector3d &e) {
@@ -160,12 +159,10 @@ void Sim::sense(DG808_GNC_Input &in) {
   const Eigen::Vector3d v_ned = r_nb * vel_body_mps_;
   // The ellipsoid's radii at home: the test flies in WGS84 as the real sensor reports it.
   const double lat0 = config_.home_lat_deg * kPi / 180.0;
-  const double w2 = 1.0 - kWgs84E2 * std::sin(lat0) * std::sin(lat0);
-  const double meridian_m = kWgs84AM * (1.0 - kWgs84E2) / (w2 * std::sqrt(w2));
-  const double prime_vertical_m = kWgs84AM / std::sqrt(w2);
-  in.lat_deg = config_.home_lat_deg + pos_ned_m_.x() / meridian_m * 180.0 / kPi + noise(2e-6);
+  const drone_ros_common::Wgs84Radii r = drone_ros_common::wgs84_radii_at(config_.home_lat_deg);
+  in.lat_deg = config_.home_lat_deg + pos_ned_m_.x() / r.meridian_m * 180.0 / kPi + noise(2e-6);
   in.lon_deg = config_.home_lon_deg +
-               pos_ned_m_.y() / (prime_vertical_m * std::cos(lat0)) * 180.0 / kPi + noise(2e-6);
+               pos_ned_m_.y() / (r.prime_vertical_m * std::cos(lat0)) * 180.0 / kPi + noise(2e-6);
   in.alt_m = config_.home_alt_m - pos_ned_m_.z() + noise(0.3);
   in.vel_north_mps = v_ned.x() + noise(0.05);
   in.vel_east_mps = v_ned.y() + noise(0.05);
