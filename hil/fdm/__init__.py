@@ -2,7 +2,7 @@
 
     from hil.fdm import Fdm, Truth, Surfaces, Wind
 """
-from .fdm import Fdm, TrimError
+from .fdm import Fdm, FdmCrash, TrimError
 from .types import Surfaces, Truth, Wind
 
-__all__ = ["Fdm", "TrimError", "Surfaces", "Truth", "Wind"]
+__all__ = ["Fdm", "FdmCrash", "TrimError", "Surfaces", "Truth", "Wind"]

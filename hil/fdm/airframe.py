@@ -83,6 +83,11 @@ class Airframe:
         self.gear_rolling_friction = float(gear["rolling_friction"])
         self.contacts = [Contact(str(c["name"]), str(c["type"]), float(c["x_m"]), float(c["y_m"]),
                                  float(c["z_m"])) for c in gear["contacts"]]
+        crash = sim["crash"]
+        self.crash_sink_mps = float(crash["sink_mps"])
+        self.crash_roll_deg = float(crash["roll_deg"])
+        self.crash_pitch_min_deg = float(crash["pitch_min_deg"])
+        self.crash_pitch_max_deg = float(crash["pitch_max_deg"])
         self.stall_speed_limit_ftps = float(limits["state"]["stall_speed_ftps"])
         self._check()
 

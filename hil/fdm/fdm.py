@@ -30,6 +30,12 @@ class TrimError(ValueError):
     """No trimmed level flight at the requested state (too slow, too fast, beyond a limit)."""
 
 
+class FdmCrash(RuntimeError):
+    """The aircraft hit the ground beyond the airframe's crash limits (or the state diverged).
+    The flight is over: advance() raises again until the next reset; truth() keeps returning
+    the state at the crash, with crashed True."""
+
+
 class Fdm:
     def __init__(self, aircraft_dir, seed, dt_s=1.0 / 200.0, wind=None, work_dir=None,
                  mag_field_ned_gauss=DEFAULT_MAG_FIELD_NED_GAUSS):
@@ -58,6 +64,8 @@ class Fdm:
         self._exec = None
         self._steps = 0
         self._turbulence = None
+        self._crash = None
+        self._crash_truth = None
 
     # --- lifetime -------------------------------------------------------------------------
     def close(self):
@@ -103,6 +111,9 @@ class Fdm:
         self._n_psi = node("attitude/psi-rad")
         self._n_vt = node("velocities/vtrue-fps")
         self._n_agl = node("position/h-agl-ft")
+        self._n_gear_fz = node("forces/fbz-gear-lbs")
+        self._n_crash = [node(n) for n in ("velocities/v-down-fps", "attitude/phi-deg", "attitude/theta-deg",
+                                           "position/h-agl-ft")]
         return ex
 
     def _mean_wind_ned_fps(self):
@@ -148,6 +159,8 @@ class Fdm:
             s.reset(p)
         self._apply_servos([s.position for s in self._servos])
         self._steps = 0
+        self._crash = None
+        self._crash_truth = None
         self._turbulence = Turbulence(self.wind.turbulence, self.seed, self.dt_s)
         self._wind_mean = self._mean_wind_ned_fps()
         self._set_wind(self._gust())
@@ -269,6 +282,8 @@ class Fdm:
         """Integrates duration_s, a whole number of dt steps."""
         if self._exec is None:
             raise RuntimeError("call reset_airborne or reset_on_ground first")
+        if self._crash is not None:
+            raise FdmCrash(self._crash)
         n = int(round(duration_s / self.dt_s))
         if n < 0 or abs(n * self.dt_s - duration_s) > 1e-9:
             raise ValueError(f"duration {duration_s} s is not a whole number of {self.dt_s} s steps")
@@ -282,10 +297,42 @@ class Fdm:
             if not ex.run():
                 raise RuntimeError("JSBSim stopped")
             self._steps += 1
+            # Anything touching the ground (or a NaN, which compares unequal too): check it.
+            if self._n_gear_fz.get_double_value() != 0.0:
+                self._check_crash()
+
+    def _check_crash(self):
+        af = self.airframe
+        vd_fps, roll, pitch, agl_ft = (n.get_double_value() for n in self._n_crash)
+        vd = vd_fps * M_PER_FT
+        if not all(math.isfinite(x) for x in (vd, roll, pitch, agl_ft)):
+            reason = "the simulation diverged (non-finite state)"
+        elif vd > af.crash_sink_mps:
+            reason = f"hit the ground sinking at {vd:.1f} m/s (limit {af.crash_sink_mps})"
+        elif abs(roll) > af.crash_roll_deg:
+            reason = f"a wing dug in: bank {roll:.0f} deg on the ground (limit {af.crash_roll_deg})"
+        elif not af.crash_pitch_min_deg <= pitch <= af.crash_pitch_max_deg:
+            reason = (f"pitch {pitch:.0f} deg on the ground (limits {af.crash_pitch_min_deg}.."
+                      f"{af.crash_pitch_max_deg})")
+        elif agl_ft < 0.0:
+            reason = "the airframe went below the ground"
+        else:
+            return
+        t_s = self._steps * self.dt_s
+        self._crash = f"crashed at t = {t_s:.3f} s: {reason}"
+        self._crash_truth = self.truth()
+        raise FdmCrash(self._crash)
+
+    @property
+    def crash_reason(self):
+        """Why the flight ended, or None while it goes on."""
+        return self._crash
 
     def truth(self):
         if self._exec is None:
             raise RuntimeError("call reset_airborne or reset_on_ground first")
+        if self._crash_truth is not None:
+            return self._crash_truth
         (lat, lon, h_sl, h_agl, terrain, vn, ve, vd, phi, theta, psi, p, q, r, fx, fy, fz, vt, vc,
          alpha, beta, wow, p_psf, t_r, mass) = [n.get_double_value() for n in self._n_truth]
         k = M_PER_FT / mass
@@ -308,4 +355,4 @@ class Fdm:
             airspeed_true_mps=vt * M_PER_FT, airspeed_cal_mps=vc * M_PER_FT,
             alpha_deg=alpha, beta_deg=beta, servo=servo, on_ground=wow > 0.5,
             mag_body_gauss=(mx, my, mz), pressure_pa=p_psf * PA_PER_PSF,
-            temperature_c=(t_r - 491.67) * 5.0 / 9.0)
+            temperature_c=(t_r - 491.67) * 5.0 / 9.0, crashed=self._crash is not None)

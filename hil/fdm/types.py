@@ -59,3 +59,4 @@ class Truth:
     mag_body_gauss: Tuple[float, float, float]
     pressure_pa: float
     temperature_c: float
+    crashed: bool = False                         # the flight ended on the ground (FdmCrash)
