@@ -21,6 +21,7 @@ class Contact:
     x_m: float              # body FRD from the CG: forward, right, down
     y_m: float
     z_m: float
+    max_steer_deg: float = 0.0   # steerable wheel: full rudder turns it this far
 
 
 @dataclass(frozen=True)
@@ -82,7 +83,8 @@ class Airframe:
         self.gear_dynamic_friction = float(gear["dynamic_friction"])
         self.gear_rolling_friction = float(gear["rolling_friction"])
         self.contacts = [Contact(str(c["name"]), str(c["type"]), float(c["x_m"]), float(c["y_m"]),
-                                 float(c["z_m"])) for c in gear["contacts"]]
+                                 float(c["z_m"]), float(c.get("max_steer_deg", 0.0)))
+                         for c in gear["contacts"]]
         crash = sim["crash"]
         self.crash_sink_mps = float(crash["sink_mps"])
         self.crash_roll_deg = float(crash["roll_deg"])

@@ -25,6 +25,9 @@ SURFACE_PROPERTIES = {
     "rudder": "fcs/hil/rudder-pos-rad",
 }
 THROTTLE_PROPERTY = "fcs/hil/throttle-pos-norm"
+# Steerable wheels follow the rudder: full rudder is the wheel's max_steer. JSBSim steers a
+# positive angle to the right; rudder + (trailing edge left) yaws left, so the sign flips.
+STEER_SIGN = -1.0
 
 
 def _structural(x_m, y_m, z_m):
@@ -137,7 +140,7 @@ def _gear(af):
             f'    <rolling_friction>{_num(af.gear_rolling_friction)}</rolling_friction>\n'
             f'    <spring_coeff unit="N/M">{_num(af.gear_spring_n_per_m)}</spring_coeff>\n'
             f'    <damping_coeff unit="N/M/SEC">{_num(af.gear_damping_n_s_per_m)}</damping_coeff>\n'
-            f'    <max_steer unit="DEG">0</max_steer>\n'
+            f'    <max_steer unit="DEG">{_num(c.max_steer_deg)}</max_steer>\n'
             f'    <brake_group>NONE</brake_group>\n'
             f'    <retractable>0</retractable>\n'
             f'  </contact>')
@@ -156,6 +159,12 @@ def _propulsion(af):
         f'          <difference><value>1.0</value><quotient><property>velocities/vtrue-fps</property>'
         f'<value>{_num(vzero_fps)}</value></quotient></difference></product>\n'
         f'      </function>\n      <output>{THRUST_PROPERTY}</output>\n    </fcs_function>\n'
+        '  </channel>\n'
+        '  <channel name="steering">\n'
+        '    <fcs_function name="fcs/hil/steer-norm">\n      <function>\n'
+        f'        <product><value>{_num(STEER_SIGN / math.radians(af.servos["rudder"].limit_deg))}</value>'
+        f'<property>{SURFACE_PROPERTIES["rudder"]}</property></product>\n'
+        '      </function>\n      <output>fcs/steer-cmd-norm</output>\n    </fcs_function>\n'
         '  </channel>\n</system>')
     ext = (
         '<external_reactions>\n  <force name="thrust" frame="BODY">\n'
