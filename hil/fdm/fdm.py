@@ -37,6 +37,14 @@ class FdmCrash(RuntimeError):
 
 
 class Fdm:
+    """One simulated aircraft (HIL_INTERFACES.md section 1).
+
+    Fdm(aircraft_dir, seed, dt_s, wind, work_dir): generates the JSBSim model from
+    aircraft_dir/airframe.yaml and limits.yaml into work_dir (a temporary folder, removed on
+    close(), by default). Then reset_airborne() or reset_on_ground(), and in a loop
+    set_surfaces(), advance() and truth(). The seed drives the turbulence only; a reset starts
+    it over, so every reset with the same commands replays the same flight bit for bit."""
+
     def __init__(self, aircraft_dir, seed, dt_s=1.0 / 200.0, wind=None, work_dir=None,
                  mag_field_ned_gauss=DEFAULT_MAG_FIELD_NED_GAUSS):
         if not dt_s > 0.0:
@@ -232,7 +240,8 @@ class Fdm:
         if not np.max(np.abs(r)) < 1e-5:
             raise TrimError(f"no level trim at {airspeed_mps} m/s (residual {r.tolist()})")
         if not af.alpha_stall_neg_rad < alpha < af.alpha_stall_rad:
-            raise TrimError(f"{airspeed_mps} m/s is below the stall: trim alpha {math.degrees(alpha):.1f} deg")
+            raise TrimError(f"{airspeed_mps} m/s is below the stall: "
+                            f"trim alpha {math.degrees(alpha):.1f} deg")
         if not af.throttle_min <= thr <= af.throttle_max:
             raise TrimError(f"level flight at {airspeed_mps} m/s needs throttle {thr:.3f}, "
                             f"outside [{af.throttle_min}, {af.throttle_max}]")

@@ -9,7 +9,7 @@ they are. Forces and moments are given in JSBSim's body axes X (forward), Y (rig
 and ROLL, PITCH, YAW about them: the FRD frame of airframe.yaml. JSBSim's structural frame (X
 aft, Y right, Z up) is only used for locations, converted in _structural().
 
-Usage: python -m hil.fdm.model_xml <aircraft_dir> <out_root>  (writes <out_root>/aircraft/<name>/)
+Usage: python -m hil.fdm <aircraft_dir> <out_root>  (writes <out_root>/aircraft/<name>/)
 """
 import math
 import os
@@ -45,13 +45,17 @@ def _table(prop, pts):
             f"        <tableData>\n{rows}\n        </tableData>\n      </table>")
 
 
-def _sum_of_products(terms):
-    """terms: list of (coefficient, [property, ...]) -> JSBSim <sum> of <product>s."""
+def _products(terms):
+    """terms: list of (coefficient, [property, ...]) -> JSBSim <product>s, one per term."""
     parts = []
     for coeff, props in terms:
         inner = "".join(f"<property>{p}</property>" for p in props)
         parts.append(f"<product><value>{_num(coeff)}</value>{inner}</product>")
-    return "<sum>" + "".join(parts) + "</sum>"
+    return "".join(parts)
+
+
+def _sum_of_products(terms):
+    return "<sum>" + _products(terms) + "</sum>"
 
 
 def _aero(af):
@@ -69,8 +73,8 @@ def _aero(af):
     fn("aero/hil/cd-separation", _table("aero/alpha-deg", af.separation_drag_table()),
        "drag of separated flow past the stall")
     fn("aero/hil/cl", "<sum><property>aero/hil/cl-static</property>"
-       + _sum_of_products([(a["cl_q_per_rad"], ["aero/ci2vel", "velocities/q-aero-rad_sec"]),
-                           (a["cl_elevator_per_rad"], [de])])[5:],
+       + _products([(a["cl_q_per_rad"], ["aero/ci2vel", "velocities/q-aero-rad_sec"]),
+                    (a["cl_elevator_per_rad"], [de])]) + "</sum>",
        "CL = CL_static(alpha) + cl_q q c/2V + cl_de de")
     fn("aero/hil/cd", f"<sum><value>{_num(a['cd0'])}</value>"
        f"<product><value>{_num(a['cd_k'])}</value><property>aero/hil/cl</property>"
@@ -80,13 +84,13 @@ def _aero(af):
                                         (a["cy_rudder_per_rad"], [dr])]), "side force coefficient")
     # Pitching moment: cm_alpha * alpha with alpha clipped to +-90 deg (reversed flow does not
     # keep winding the moment up).
-    fns.append(
-        '  <function name="aero/hil/cm">\n    <description>Cm about the CG</description>\n'
-        f'    <sum><value>{_num(a["cm0"])}</value>'
-        f'<product><value>{_num(a["cm_alpha_per_rad"])}</value><min><value>{_num(math.pi / 2)}</value>'
-        f'<max><value>{_num(-math.pi / 2)}</value><property>aero/alpha-rad</property></max></min></product>'
-        + _sum_of_products([(a["cm_q_per_rad"], ["aero/ci2vel", "velocities/q-aero-rad_sec"]),
-                            (a["cm_elevator_per_rad"], [de])])[5:-6] + "</sum>\n  </function>")
+    alpha_clipped = (f'<min><value>{_num(math.pi / 2)}</value><max><value>{_num(-math.pi / 2)}</value>'
+                     f'<property>aero/alpha-rad</property></max></min>')
+    fn("aero/hil/cm", f'<sum><value>{_num(a["cm0"])}</value>'
+       f'<product><value>{_num(a["cm_alpha_per_rad"])}</value>{alpha_clipped}</product>'
+       + _products([(a["cm_q_per_rad"], ["aero/ci2vel", "velocities/q-aero-rad_sec"]),
+                    (a["cm_elevator_per_rad"], [de])]) + "</sum>",
+       "Cm about the CG")
     fn("aero/hil/croll", _sum_of_products([
         (a["cl_beta_per_rad"], ["aero/beta-rad"]),
         (a["cl_p_per_rad"], ["aero/bi2vel", "velocities/p-aero-rad_sec"]),
@@ -113,7 +117,8 @@ def _aero(af):
     cos_a = "<cos>" + p("aero/alpha-rad") + "</cos>"
     sin_a = "<sin>" + p("aero/alpha-rad") + "</sin>"
     fx = "<sum>" + prod(v(-1.0), qsp, p("aero/hil/cd"), cos_a) + prod(qsp, p("aero/hil/cl"), sin_a) + "</sum>"
-    fz = "<sum>" + prod(v(-1.0), qsp, p("aero/hil/cd"), sin_a) + prod(v(-1.0), qsp, p("aero/hil/cl"), cos_a) + "</sum>"
+    fz = ("<sum>" + prod(v(-1.0), qsp, p("aero/hil/cd"), sin_a)
+          + prod(v(-1.0), qsp, p("aero/hil/cl"), cos_a) + "</sum>")
     fy = prod(qsp, p("aero/hil/cy"))
     mx = prod(qsp, p("metrics/bw-ft"), p("aero/hil/croll"))
     my = prod(qsp, p("metrics/cbarw-ft"), p("aero/hil/cm"))

@@ -20,7 +20,8 @@ def fly(fdm, seconds=20.0):
     for k in range(steps):
         t = k * fdm.dt_s
         fdm.set_surfaces(dataclasses.replace(
-            trim, aileron_deg=4.0 * math.sin(0.7 * t), elevator_deg=trim.elevator_deg - 1.0 * math.sin(0.3 * t),
+            trim, aileron_deg=4.0 * math.sin(0.7 * t),
+            elevator_deg=trim.elevator_deg - 1.0 * math.sin(0.3 * t),
             rudder_deg=1.0 if 5.0 < t < 6.0 else 0.0))
         fdm.advance(fdm.dt_s)
         states.append(fdm.truth())
