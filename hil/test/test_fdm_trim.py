@@ -5,6 +5,7 @@ import re
 import sys
 
 import pytest
+import yaml
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 if ROOT not in sys.path:
@@ -95,3 +96,31 @@ def test_trim_faster_than_the_motor_can_hold_is_refused():
     with Fdm(AIRCRAFT, seed=1) as fdm:
         with pytest.raises(TrimError, match="throttle"):
             fdm.reset_airborne(47.4, 8.5, 420.0, 100.0, 0.0, 34.0)
+
+
+def test_a_second_aircraft_is_a_new_folder(tmp_path):
+    """Nothing of the DG808 is in the code: a copy with its own name and a heavier airframe
+    generates its own model and trims where its own numbers say."""
+    other = tmp_path / "XY99"
+    other.mkdir()
+    with open(os.path.join(AIRCRAFT, "airframe.yaml"), encoding="utf-8") as f:
+        data = yaml.safe_load(f)
+    data["aircraft"] = "XY99"
+    data["mass_kg"] = 12.0
+    (other / "airframe.yaml").write_text(yaml.safe_dump(data), encoding="utf-8")
+    with open(os.path.join(AIRCRAFT, "limits.yaml"), encoding="utf-8") as f:
+        (other / "limits.yaml").write_text(f.read(), encoding="utf-8")
+    speed = 20.0
+    alphas = {}
+    for name, folder in (("DG808", AIRCRAFT), ("XY99", str(other))):
+        with Fdm(folder, seed=1) as fdm:
+            assert os.path.basename(fdm.model_path) == name + ".xml"
+            fdm.reset_airborne(47.4, 8.5, 420.0, 100.0, 0.0, speed)
+            alphas[name] = fdm.truth().alpha_deg
+            fdm.advance(2.0)
+            assert abs(fdm.truth().vd_mps) < 0.05
+    # Lift ~ weight: CL(alpha) grows with the mass; the linear lift curve gives the alpha shift.
+    a = data["aero"]
+    cl_dg808 = a["cl0"] + a["cl_alpha_per_rad"] * math.radians(alphas["DG808"])
+    expected = math.degrees((cl_dg808 * 12.0 / 9.0 - a["cl0"]) / a["cl_alpha_per_rad"])
+    assert alphas["XY99"] == pytest.approx(expected, abs=0.1)
