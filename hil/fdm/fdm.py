@@ -202,8 +202,10 @@ class Fdm:
     def reset_airborne(self, lat_deg, lon_deg, ground_msl_m, height_agl_m, heading_deg, airspeed_mps):
         """Trimmed wings-level, level flight at that state; returns the trim Surfaces."""
         af = self.airframe
-        if not height_agl_m > 0.0:
-            raise ValueError(f"height_agl_m must be positive, not {height_agl_m}")
+        clearance_m = max(c.z_m for c in af.contacts)
+        if not height_agl_m > clearance_m:
+            raise ValueError(f"height_agl_m {height_agl_m} puts the gear on the ground: an airborne start "
+                             f"needs more than {clearance_m} m (reset_on_ground parks it)")
         ex = self._new_exec()
 
         # A steady uniform wind does not change the air-relative trim: trim in still air, then

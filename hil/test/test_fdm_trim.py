@@ -92,6 +92,12 @@ def test_trim_below_the_stall_speed_is_refused_with_the_reason():
             fdm.reset_airborne(47.4, 8.5, 420.0, 100.0, 0.0, 35.0 * FT)
 
 
+def test_airborne_start_with_the_wheels_in_the_ground_is_refused():
+    with Fdm(AIRCRAFT, seed=1) as fdm:
+        with pytest.raises(ValueError, match="reset_on_ground"):
+            fdm.reset_airborne(47.4, 8.5, 420.0, 0.2, 0.0, 18.0)
+
+
 def test_trim_faster_than_the_motor_can_hold_is_refused():
     with Fdm(AIRCRAFT, seed=1) as fdm:
         with pytest.raises(TrimError, match="throttle"):
