@@ -52,6 +52,9 @@ class Airframe:
         self.span_m = float(geo["wing_span_m"])
         self.chord_m = float(geo["mean_chord_m"])
         self.aero = {k: float(v) for k, v in data["aero"].items()}
+        # The design model's constant atmosphere; the simulation itself uses ISA and WGS84.
+        self.design_air_density_kg_m3 = float(data["air_density_kg_m3"])
+        self.design_gravity_m_s2 = float(data["gravity_m_s2"])
         prop = data["propulsion"]
         self.max_thrust_n = float(prop["max_thrust_n"])
         self.zero_thrust_speed_mps = float(prop["zero_thrust_speed_m_s"])

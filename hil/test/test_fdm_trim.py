@@ -90,6 +90,11 @@ def test_trim_below_the_stall_speed_is_refused_with_the_reason():
     with Fdm(AIRCRAFT, seed=1) as fdm:
         with pytest.raises(TrimError, match="stall"):
             fdm.reset_airborne(47.4, 8.5, 420.0, 100.0, 0.0, 35.0 * FT)
+        # Nothing half-initialised is left to fly.
+        with pytest.raises(RuntimeError, match="reset"):
+            fdm.advance(0.1)
+        with pytest.raises(ValueError, match="heading_deg"):
+            fdm.reset_airborne(47.4, 8.5, 420.0, 100.0, math.nan, 18.0)
 
 
 def test_airborne_start_with_the_wheels_in_the_ground_is_refused():
