@@ -151,6 +151,20 @@ class Airframe:
         pts.sort()
         return pts
 
+    def roll_damping_table(self):
+        """(alpha_deg, factor on cl_p): the local lift-curve slope over cl_alpha, from the lift
+        table. Roll damping is the wing's lift slope at work (the down-going wing meets a higher
+        alpha), so past the stall, where lift falls with alpha, it turns negative: autorotation,
+        the wing drop. Each segment's slope holds over the segment, with 0.5 deg ramps between."""
+        cla = self.aero["cl_alpha_per_rad"]
+        pts = []
+        lift = self.lift_table()
+        for (x0, y0), (x1, y1) in zip(lift, lift[1:]):
+            f = (y1 - y0) / math.radians(x1 - x0) / cla
+            r = min(0.25, (x1 - x0) / 4.0)
+            pts += [(x0 + r, f), (x1 - r, f)]
+        return pts
+
     def separation_drag_table(self):
         """(alpha_deg, CD_sep): zero in attached flow, rising to flat-plate drag past the stall."""
         cd90 = self.flat_plate_cd90
