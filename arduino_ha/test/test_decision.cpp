@@ -533,6 +533,24 @@ TEST(HaDecision, ClockWrapDoesNotLookLikeACrash) {
   EXPECT_LT(t.board.now_us, 0x10000000u);  // it did wrap
 }
 
+// A dead INS stays dead: ages saturate, so 2^32 us later the last state is not fresh again.
+TEST(HaDecision, InsSilentAcrossTheClockWrapStaysStale) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  t.refresh_state = false;  // the HA's INS feed dies for good; the HP keeps flying
+  const uint64_t periods = (uint64_t{1} << 32) / t.cfg.period_us + 1000u;
+  const uint64_t stale_after = t.cfg.state_timeout_us / t.cfg.period_us + 2u;
+  for (uint64_t i = 0; i < periods; ++i) {
+    t.StepWithGood();
+    if (i > stale_after) {
+      ASSERT_NE(t.controller(), HA_CONTROLLER_HP) << "period " << i << " of a dead INS";
+      ASSERT_NE(t.out().reasons, 0u) << "period " << i;
+    }
+    if (i % 10000u == 0u) t.board.servo_writes.clear();  // 72 minutes of writes: keep it small
+  }
+  EXPECT_LT(t.board.now_us, 0x10000000u);  // it did wrap
+}
+
 TEST(HaDecision, BoardIsServedEveryPeriod) {
   Timeline t;
   for (int i = 0; i < 10; ++i) t.StepWithGood();

@@ -40,9 +40,10 @@ typedef struct {
   const HaHpCommand *cmd; /* never NULL; meaningful only when have_cmd */
 } HaCmdFacts;
 
-/* cmd is the latest HP command (never NULL); have_cmd says whether one ever arrived. */
+/* cmd is the latest HP command (never NULL); have_cmd says whether one ever arrived;
+ * state_age_us is how long ago the INS state arrived (saturating). */
 void ha_state_view(const HaAircraftConfig *cfg, const HaInputs *in, const HaHpCommand *cmd,
-                   int have_cmd, uint32_t now_us, HaStateView *out);
+                   int have_cmd, uint32_t state_age_us, HaStateView *out);
 
 /* Runs every check; returns the HA_REASON_* bits and the two region values. */
 uint32_t ha_checks_evaluate(const HaAircraftConfig *cfg, const HaCmdFacts *facts,

@@ -22,6 +22,7 @@ void ha_core_init(HaCore *core, const HaAircraftConfig *cfg) {
   core->controller = HA_CONTROLLER_HA;
   core->applied.throttle = cfg->throttle_min;
   core->last_source = SRC_HA;
+  core->state_age_us = UINT32_MAX;
   ha_safety_ctrl_reset(&core->sc);
 }
 
@@ -66,6 +67,19 @@ static void track_command(HaCore *core, const HaInputs *in, uint32_t now_us, uin
   f->late_periods = core->late_periods;
   f->frozen = core->frozen;
   f->cmd = &in->hp_cmd;
+}
+
+/* Age of the INS state: restarted by each newly stamped valid state, otherwise counted up by the
+ * elapsed periods and saturating, never recomputed from the wrapping clock. */
+static uint32_t track_state_age(HaCore *core, const HaInputs *in, uint32_t now_us,
+                                uint32_t dt_us) {
+  if (in->state_valid != 0u && in->state_rx_us != core->seen_state_rx_us) {
+    core->seen_state_rx_us = in->state_rx_us;
+    core->state_age_us = ha_elapsed_us(now_us, in->state_rx_us);
+  } else {
+    core->state_age_us = add_sat(core->state_age_us, dt_us);
+  }
+  return core->state_age_us;
 }
 
 /* Forget restarts older than the window (before the 32-bit clock could wrap onto them). */
@@ -196,7 +210,8 @@ void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *
 
   out->restart_requested = 0u;
   track_command(core, in, now_us, dt_us, &facts);
-  ha_state_view(cfg, in, facts.cmd, facts.have_cmd, now_us, &view);
+  ha_state_view(cfg, in, facts.cmd, facts.have_cmd, track_state_age(core, in, now_us, dt_us),
+                &view);
   handle_operator(core, in, &view, now_us, out);
   reasons = ha_checks_evaluate(cfg, &facts, &view, &sx_max, &su_max) |
             (core->ground_command ? HA_REASON_GROUND_COMMAND : 0u);

@@ -137,6 +137,10 @@ typedef struct {
   uint32_t late_periods;
   uint32_t cmd_age_us;
   uint32_t stable_for_us;   /* the command has been valid this long (saturating) */
+  /* The HA's own state: its age saturates, so a state that stopped arriving never looks fresh
+   * again when the 32-bit clock wraps. */
+  uint32_t seen_state_rx_us;
+  uint32_t state_age_us;    /* UINT32_MAX before the first valid state */
   /* restarts */
   uint16_t restart_count;
   uint32_t restart_times_us[HA_MAX_RESTARTS_CAP];

@@ -26,9 +26,8 @@ static int position_plausible(const HaInputs *in) {
 /* Every stored value is clamped to its plausible span even when its ok flag is set: the flag
  * says whether to trust it, the clamp guarantees later arithmetic cannot overflow. */
 void ha_state_view(const HaAircraftConfig *cfg, const HaInputs *in, const HaHpCommand *cmd,
-                   int have_cmd, uint32_t now_us, HaStateView *out) {
-  const int fresh = in->state_valid != 0u &&
-                    ha_elapsed_us(now_us, in->state_rx_us) <= cfg->state_timeout_us;
+                   int have_cmd, uint32_t state_age_us, HaStateView *out) {
+  const int fresh = in->state_valid != 0u && state_age_us <= cfg->state_timeout_us;
   int j;
   for (j = 0; j < HA_X_DIM; ++j) {
     out->x[j] = cfg->x0[j];
