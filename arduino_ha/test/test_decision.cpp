@@ -6,6 +6,7 @@
 #include <limits>
 #include <vector>
 
+#include "ha_ins.h"
 #include "ha_test_util.h"
 
 namespace {
@@ -157,12 +158,16 @@ TEST(HaDecision, NoAirspeedOnTheGroundIsNoStall) {
   t.Parked();
   ASSERT_GT(t.ReachHp(), 0);
   EXPECT_EQ(t.out().reasons, 0u);
-  // A dead pitot in flight, though, counts as a stall.
+  // A pitot dead in flight (longer than a glitch) leaves the HA unable to check for a stall: it
+  // takes control and says why, and that is not a stall.
   t.Cruise();
+  for (int i = 0; i < 100; ++i) t.StepWithGood();
+  ASSERT_EQ(t.controller(), HA_CONTROLLER_HP);
   t.board.airspeed_ok = false;
-  t.StepWithGood();
-  EXPECT_EQ(t.controller(), HA_CONTROLLER_HA);
-  EXPECT_TRUE(t.out().reasons & HA_REASON_STALL);
+  for (uint32_t i = 0; i <= t.cfg.airspeed_timeout_us / t.cfg.period_us; ++i) t.StepWithGood();
+  EXPECT_NE(t.controller(), HA_CONTROLLER_HP);
+  EXPECT_EQ(t.out().reasons, HA_REASON_NO_HA_STATE);
+  EXPECT_EQ(t.out().reasons_at_switch, HA_REASON_NO_HA_STATE);
 }
 
 TEST(HaDecision, SwitchBackOnlyAfterStableWindowInsideInnerRegion) {
@@ -483,7 +488,10 @@ TEST(HaDecision, StaleInsStateSwitches) {
     ++periods;
   }
   EXPECT_EQ(t.controller(), HA_CONTROLLER_HA);
-  EXPECT_TRUE(t.out().reasons_at_switch & HA_REASON_STATE_REGION);
+  // Said as the HA lacking its own state (not a ceiling or region breach), and no HP fault.
+  EXPECT_EQ(t.out().reasons_at_switch, HA_REASON_NO_HA_STATE);
+  EXPECT_EQ(t.out().restart_count, 0u);
+  EXPECT_EQ(t.board.hp_reset_assertions, 0);
   EXPECT_LE(static_cast<uint32_t>(periods) * t.cfg.period_us,
             t.cfg.state_timeout_us + 2u * t.cfg.period_us);
 }
@@ -549,6 +557,88 @@ TEST(HaDecision, InsSilentAcrossTheClockWrapStaysStale) {
     if (i % 10000u == 0u) t.board.servo_writes.clear();  // 72 minutes of writes: keep it small
   }
   EXPECT_LT(t.board.now_us, 0x10000000u);  // it did wrap
+}
+
+// Feeds the INS adapter one solution per period, the way the board layer does.
+struct InsFeed {
+  explicit InsFeed(Timeline* timeline) : t(timeline) {
+    ha_ins_init(&ins);
+    HaInsSample home{};
+    home.has = HA_INS_HAS_REQUIRED | HA_INS_HAS_GPS_FIX;
+    home.lat_deg = 45.0;
+    home.lon_deg = -122.0;
+    home.alt_m = 100.0;
+    home.ins_status = 0x0006u;  // tracking, GNSS fix
+    home.gps_fix = 3;
+    ha_ins_update(&ins, &t->cfg, &home, t->board.now_us, &t->app.inputs);
+    flying = home;
+    flying.alt_m += 61.0;
+    flying.lat_deg += 0.0011;  // about the circle's radius north of home
+    flying.ypr_deg[0] = 90.0f;
+    flying.vel_ned_mps[1] = 18.0f;
+    t->refresh_state = false;
+  }
+  void Deliver(const HaInsSample& s) {
+    ha_ins_update(&ins, &t->cfg, &s, t->board.now_us + t->cfg.period_us / 2u, &t->app.inputs);
+  }
+  Timeline* t;
+  HaIns ins;
+  HaInsSample flying;
+};
+
+TEST(HaDecision, OneRejectedInsPacketIsNotAnHpFault) {
+  Timeline t;
+  InsFeed feed(&t);
+  for (int i = 0; i < 1000 && t.controller() != HA_CONTROLLER_HP; ++i) {
+    feed.Deliver(feed.flying);
+    t.StepWithGood();
+  }
+  ASSERT_EQ(t.controller(), HA_CONTROLLER_HP);
+  // Once a minute for four minutes, one packet with an INS error flag among good ones.
+  for (int minute = 0; minute < 4; ++minute) {
+    HaInsSample glitch = feed.flying;
+    glitch.ins_status |= 0x0010u;
+    feed.Deliver(glitch);
+    t.StepWithGood();
+    for (int i = 0; i < 6000; ++i) {
+      feed.Deliver(feed.flying);
+      t.StepWithGood();
+      ASSERT_EQ(t.controller(), HA_CONTROLLER_HP) << "minute " << minute << " period " << i;
+    }
+  }
+  EXPECT_EQ(t.out().restart_count, 0u);
+  EXPECT_EQ(t.board.hp_reset_assertions, 0);
+}
+
+TEST(HaDecision, OneFailedPitotReadIsNotAStallNorAnHpFault) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  for (int minute = 0; minute < 4; ++minute) {
+    t.board.airspeed_ok = false;  // one I2C read fails: the core sees -1 ft/s
+    t.StepWithGood();
+    EXPECT_EQ(t.controller(), HA_CONTROLLER_HP) << "minute " << minute;
+    EXPECT_EQ(t.out().reasons & HA_REASON_STALL, 0u) << "minute " << minute;
+    t.board.airspeed_ok = true;
+    for (int i = 0; i < 6000; ++i) t.StepWithGood();
+    EXPECT_EQ(t.controller(), HA_CONTROLLER_HP);
+  }
+  EXPECT_EQ(t.out().restart_count, 0u);
+  EXPECT_EQ(t.board.hp_reset_assertions, 0);
+}
+
+TEST(HaDecision, DeadPitotGivesTheHaControlWithoutResettingTheHp) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  t.board.airspeed_ok = false;  // the pitot is gone for good
+  for (int i = 0; i < 500; ++i) t.StepWithGood();
+  EXPECT_NE(t.controller(), HA_CONTROLLER_HP);  // nobody can check for a stall now
+  EXPECT_EQ(t.out().reasons & HA_REASON_STALL, 0u);
+  EXPECT_EQ(t.out().restart_count, 0u);
+  EXPECT_EQ(t.board.hp_reset_assertions, 0);
+  // The pitot comes back: the HP, which did nothing wrong, gets control back.
+  t.board.airspeed_ok = true;
+  EXPECT_GT(t.ReachHp(), 0);
+  EXPECT_EQ(t.out().restart_count, 0u);
 }
 
 TEST(HaDecision, BoardIsServedEveryPeriod) {

@@ -97,4 +97,21 @@ TEST(HaSafetyCtrl, KeepsAircraftInsideRegionWithHpGone) {
   }
 }
 
+// A blind HA (its INS feed gone) does not hold the HP's last surfaces: they fade to the trims.
+TEST(HaSafetyCtrl, BlindHaFadesTheHpsLastSurfacesToTrim) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  for (int i = 0; i < 100; ++i) t.StepWithGood(10.0f, -8.0f, 2.0f, 0.7f);  // the HP banks
+  t.refresh_state = false;  // the HA's VN-200 feed drops, and the HP dies with it
+  const int periods = 100 * 10;
+  for (int i = 0; i < periods; ++i) t.Step();
+  ASSERT_NE(t.controller(), HA_CONTROLLER_HP);
+  EXPECT_NEAR(t.servos().aileron_deg, 0.0f, 0.01f);
+  EXPECT_NEAR(t.servos().elevator_deg, 0.0f, 0.01f);
+  EXPECT_NEAR(t.servos().rudder_deg, 0.0f, 0.01f);
+  EXPECT_NEAR(t.servos().throttle, t.cfg.sc_throttle_trim, 0.01f);
+  // And the ground station is not told "ceiling" or "state region" for a missing INS.
+  EXPECT_EQ(t.out().reasons & (HA_REASON_CEILING | HA_REASON_STATE_REGION), 0u);
+}
+
 }  // namespace

@@ -98,6 +98,7 @@ def build(doc):
     c["inner_region_fraction"] = need(st, "inner_region_fraction", 0.05, 0.99)
     c["max_airspeed_ftps"] = need(sen, "max_airspeed_ftps", c["stall_speed_ftps"])
     c["state_timeout_us"] = us(positive(sen, "state_timeout_s"))
+    c["airspeed_timeout_us"] = us(positive(sen, "airspeed_timeout_s"))
 
     # S_x (x - x0) <= 1: symmetric boxes on the angles and rates, and the ceiling on altitude
     # (the HA needs no lower altitude bound here: the stall and airborne checks cover it).
@@ -193,6 +194,7 @@ def build(doc):
         raise ConfigError("circle_radius_ft too small: its turn needs more bank than bank_limit_deg")
     c["sc_throttle_trim"] = need(sc, "throttle_trim", c["throttle_min"], c["throttle_max"])
     c["sc_integrator_authority"] = need(sc, "integrator_authority", 0.0, 1.0)
+    c["sc_blind_fade_per_s"] = 1.0 / positive(sc, "blind_fade_s")
 
     step_s = positive(selft, "step_s")
     c["self_test_throttle_max"] = need(selft, "throttle_max", c["throttle_min"],

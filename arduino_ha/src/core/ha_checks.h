@@ -13,6 +13,10 @@
    HA_REASON_ACTUATOR_REGION | HA_REASON_ALPHA_BETA | HA_REASON_SENSOR_LINK |              \
    HA_REASON_FROZEN | HA_REASON_INTEGRITY | HA_REASON_ESTIMATOR)
 
+/* Reasons that are no fault of the HP: the HA's own sensors, the operator's choice. A switch for
+ * these alone neither resets the HP nor counts towards the restart cap. */
+#define HA_REASONS_NOT_HP (HA_REASON_NO_HA_STATE | HA_REASON_GROUND_COMMAND)
+
 /* The aircraft state after checking: a component that failed its check is marked not ok and
  * holds a harmless value (the region centre, or 0), never the raw input. */
 typedef struct {
@@ -40,10 +44,10 @@ typedef struct {
   const HaHpCommand *cmd; /* never NULL; meaningful only when have_cmd */
 } HaCmdFacts;
 
-/* cmd is the latest HP command (never NULL); have_cmd says whether one ever arrived;
- * state_age_us is how long ago the INS state arrived (saturating). */
+/* cmd is the latest HP command (never NULL); have_cmd says whether one ever arrived; own is
+ * the core's tracking of its own sensors (ages, the last good airspeed). */
 void ha_state_view(const HaAircraftConfig *cfg, const HaInputs *in, const HaHpCommand *cmd,
-                   int have_cmd, uint32_t state_age_us, HaStateView *out);
+                   int have_cmd, const HaOwnSensors *own, HaStateView *out);
 
 /* Runs every check; returns the HA_REASON_* bits and the two region values. */
 uint32_t ha_checks_evaluate(const HaAircraftConfig *cfg, const HaCmdFacts *facts,

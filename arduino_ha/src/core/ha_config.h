@@ -67,6 +67,8 @@ typedef struct {
   float airborne_agl_ft;
   float max_airspeed_ftps; /* a reading above this is a broken sensor, not a fast aircraft */
   uint32_t state_timeout_us; /* attitude/position older than this is not trusted */
+  /* A failed pitot read holds the last good one this long: a glitch is not a dead sensor. */
+  uint32_t airspeed_timeout_us;
 
   /* Decision logic. */
   uint32_t period_us;
@@ -117,6 +119,10 @@ typedef struct {
   float sc_throttle_kp_per_ftps;
   float sc_throttle_ki_per_ft;
   float sc_integrator_authority; /* integrator range as a fraction of the actuator half range */
+  /* Without its own attitude the HA cannot close a loop: the integrators (what is left of the
+   * HP's last surfaces) fade to zero, the trims, at this fraction of their authority per second,
+   * derived by the generator as 1 / blind_fade_s. */
+  float sc_blind_fade_per_s;
 
   /* Pre-flight surface self-test. */
   uint32_t self_test_step_us;

@@ -12,7 +12,8 @@
 /* Who produced the surfaces last period (a change starts a rate-limited transition). */
 enum { SRC_HA = 0, SRC_HP = 1, SRC_MANUAL = 2, SRC_SELF_TEST = 3 };
 
-#define HA_REASONS_STATE (HA_REASON_STALL | HA_REASON_CEILING | HA_REASON_STATE_REGION)
+#define HA_REASONS_STATE \
+  (HA_REASON_STALL | HA_REASON_CEILING | HA_REASON_STATE_REGION | HA_REASON_NO_HA_STATE)
 
 static uint32_t add_sat(uint32_t a, uint32_t b) { return a > UINT32_MAX - b ? UINT32_MAX : a + b; }
 
@@ -22,7 +23,8 @@ void ha_core_init(HaCore *core, const HaAircraftConfig *cfg) {
   core->controller = HA_CONTROLLER_HA;
   core->applied.throttle = cfg->throttle_min;
   core->last_source = SRC_HA;
-  core->state_age_us = UINT32_MAX;
+  core->own.state_age_us = UINT32_MAX;
+  core->own.airspeed_age_us = UINT32_MAX;
   ha_safety_ctrl_reset(&core->sc);
 }
 
@@ -69,17 +71,25 @@ static void track_command(HaCore *core, const HaInputs *in, uint32_t now_us, uin
   f->cmd = &in->hp_cmd;
 }
 
-/* Age of the INS state: restarted by each newly stamped valid state, otherwise counted up by the
- * elapsed periods and saturating, never recomputed from the wrapping clock. */
-static uint32_t track_state_age(HaCore *core, const HaInputs *in, uint32_t now_us,
-                                uint32_t dt_us) {
+/* The INS state's age restarts with each newly stamped valid state, and otherwise counts up by
+ * the elapsed periods, saturating: never recomputed from the wrapping clock. A pitot reading in
+ * range restarts the airspeed's age; a failed one (-1 from ha_app) ages the last good one. */
+static void track_own_sensors(HaCore *core, const HaInputs *in, uint32_t now_us,
+                              uint32_t dt_us) {
+  HaOwnSensors *own = &core->own;
+  const float max_ftps = core->cfg->max_airspeed_ftps;
   if (in->state_valid != 0u && in->state_rx_us != core->seen_state_rx_us) {
     core->seen_state_rx_us = in->state_rx_us;
-    core->state_age_us = ha_elapsed_us(now_us, in->state_rx_us);
+    own->state_age_us = ha_elapsed_us(now_us, in->state_rx_us);
   } else {
-    core->state_age_us = add_sat(core->state_age_us, dt_us);
+    own->state_age_us = add_sat(own->state_age_us, dt_us);
   }
-  return core->state_age_us;
+  if (ha_in_range(in->airspeed_ftps, 0.0f, max_ftps)) {
+    own->airspeed_ftps = ha_clampf(in->airspeed_ftps, 0.0f, max_ftps);
+    own->airspeed_age_us = 0u;
+  } else {
+    own->airspeed_age_us = add_sat(own->airspeed_age_us, dt_us);
+  }
 }
 
 /* Forget restarts older than the window (before the 32-bit clock could wrap onto them). */
@@ -149,7 +159,8 @@ static void on_switch(HaCore *core, uint8_t next, uint32_t reasons, uint32_t now
   const int from_hp_side =
       core->controller == HA_CONTROLLER_HP || core->controller == HA_CONTROLLER_RECOVERING;
   const int to_ha = next == HA_CONTROLLER_HA || next == HA_CONTROLLER_HA_LATCHED;
-  const int hp_fault = !core->ground_command && !core->self_test.active;
+  const int hp_fault = !core->ground_command && !core->self_test.active &&
+                       (reasons & ~HA_REASONS_NOT_HP) != 0u;
   const int latching = next == HA_CONTROLLER_HA_LATCHED && !core->latched;
   if ((from_hp_side && to_ha) || latching) {
     core->reasons_at_switch = reasons; /* why the HP lost control, or why it lost it for good */
@@ -210,8 +221,8 @@ void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *
 
   out->restart_requested = 0u;
   track_command(core, in, now_us, dt_us, &facts);
-  ha_state_view(cfg, in, facts.cmd, facts.have_cmd, track_state_age(core, in, now_us, dt_us),
-                &view);
+  track_own_sensors(core, in, now_us, dt_us);
+  ha_state_view(cfg, in, facts.cmd, facts.have_cmd, &core->own, &view);
   handle_operator(core, in, &view, now_us, out);
   reasons = ha_checks_evaluate(cfg, &facts, &view, &sx_max, &su_max) |
             (core->ground_command ? HA_REASON_GROUND_COMMAND : 0u);

@@ -38,6 +38,7 @@ enum {
 #define HA_REASON_INTEGRITY 1024u
 #define HA_REASON_ESTIMATOR 2048u
 #define HA_REASON_GROUND_COMMAND 4096u
+#define HA_REASON_NO_HA_STATE 8192u
 
 /* msg/OperatorCommand.msg command (0: no request) */
 enum {
@@ -114,6 +115,15 @@ typedef struct {
   float throttle_integ;
 } HaSafetyCtrlState;
 
+/* The HA's own sensors as tracked across periods. Ages saturate, so a state that stopped
+ * arriving never looks fresh again when the 32-bit clock wraps; a failed pitot read holds the
+ * last good reading for up to airspeed_timeout_us (one glitch is not a dead sensor). */
+typedef struct {
+  uint32_t state_age_us;    /* since the INS state arrived; UINT32_MAX before the first */
+  float airspeed_ftps;      /* the last reading inside [0, max_airspeed_ftps] */
+  uint32_t airspeed_age_us; /* since that reading; UINT32_MAX before the first */
+} HaOwnSensors;
+
 typedef struct {
   uint8_t active;
   uint32_t step;
@@ -137,10 +147,9 @@ typedef struct {
   uint32_t late_periods;
   uint32_t cmd_age_us;
   uint32_t stable_for_us;   /* the command has been valid this long (saturating) */
-  /* The HA's own state: its age saturates, so a state that stopped arriving never looks fresh
-   * again when the 32-bit clock wraps. */
+  /* The HA's own sensors across periods */
   uint32_t seen_state_rx_us;
-  uint32_t state_age_us;    /* UINT32_MAX before the first valid state */
+  HaOwnSensors own;
   /* restarts */
   uint16_t restart_count;
   uint32_t restart_times_us[HA_MAX_RESTARTS_CAP];

@@ -121,8 +121,9 @@ int ha_ins_update(HaIns *ins, const HaAircraftConfig *cfg, const HaInsSample *s,
   Checked c;
   double dlon_deg;
   float agl_ft;
+  /* A rejected solution is dropped without touching the state: the last good one stays, and
+   * the core's state timeout, not one bad packet, decides when it is too old to trust. */
   if (!sample_in_range(s) || !ins_tracking(s->ins_status)) {
-    in->state_valid = 0u;
     ins->solutions_rejected += 1u;
     return 0;
   }
@@ -132,7 +133,7 @@ int ha_ins_update(HaIns *ins, const HaAircraftConfig *cfg, const HaInsSample *s,
     latch_home(ins, &c);
   }
   if (!ins->home_latched) {
-    in->state_valid = 0u;
+    in->state_valid = 0u; /* nothing has ever been valid: no home, no altitude AGL */
     ins->solutions_rejected += 1u;
     return 0;
   }

@@ -31,6 +31,13 @@ static float pid(float *integ, float pd, float integ_step, float limit, float au
   return ha_clampf(pd + *integ, -limit, limit);
 }
 
+static float toward_zero(float v, float step) {
+  if (v > step) {
+    return v - step;
+  }
+  return v < -step ? v + step : 0.0f;
+}
+
 /* Outer lateral loop: the bank that flies the circle around home. */
 static float bank_command_deg(const HaAircraftConfig *cfg, const HaStateView *s) {
   const float dir = cfg->sc_circle_direction;
@@ -75,6 +82,14 @@ void ha_safety_ctrl_step(HaSafetyCtrlState *st, const HaAircraftConfig *cfg,
   float roll_pd = 0.0f, roll_step = 0.0f, pitch_pd = 0.0f, pitch_step = 0.0f;
   float thr_pd = cfg->sc_throttle_trim - throttle_mid, thr_step = 0.0f;
   float nose_up_deg;
+  const float auth = cfg->sc_integrator_authority;
+  if (!s->attitude_ok && in_control) {
+    /* Blind: nothing to close a loop on. What the integrators hold fades to the trims. */
+    const float fade = cfg->sc_blind_fade_per_s * auth * dt_s;
+    st->roll_integ_deg = toward_zero(st->roll_integ_deg, fade * cfg->aileron_limit_deg);
+    st->pitch_integ_deg = toward_zero(st->pitch_integ_deg, fade * cfg->elevator_limit_deg);
+    st->throttle_integ = toward_zero(st->throttle_integ, fade * throttle_half);
+  }
   if (s->attitude_ok) {
     const float roll_err = bank_command_deg(cfg, s) - s->x[HA_X_ROLL_DEG];
     const float pitch_err = pitch_command_deg(cfg, s) - s->x[HA_X_PITCH_DEG];
@@ -83,12 +98,11 @@ void ha_safety_ctrl_step(HaSafetyCtrlState *st, const HaAircraftConfig *cfg,
     pitch_pd = cfg->sc_pitch_kp * pitch_err - cfg->sc_pitch_kd * s->x[HA_X_Q_DEG_S];
     pitch_step = cfg->sc_pitch_ki * pitch_err * dt_s;
   }
-  if (s->airborne && s->airspeed_ok) {
+  if (s->airborne && s->airspeed_ok && s->attitude_ok) {
     const float speed_err = target_ftps - s->airspeed_ftps;
     thr_pd += cfg->sc_throttle_kp_per_ftps * speed_err;
     thr_step = cfg->sc_throttle_ki_per_ft * speed_err * dt_s;
   }
-  const float auth = cfg->sc_integrator_authority;
   out->aileron_deg = pid(&st->roll_integ_deg, roll_pd, roll_step, cfg->aileron_limit_deg, auth,
                          in_control, applied->aileron_deg);
   /* Elevator trailing edge down is positive (nose down): the loop works in nose-up degrees. */

@@ -82,8 +82,10 @@
     .sc_circle_bank_ff_deg = 13.0421703f, \
     .sc_throttle_trim = 0.4f, \
     .sc_integrator_authority = 0.25f, \
+    .sc_blind_fade_per_s = 0.5f, \
     .self_test_throttle_max = 0.3f, \
     .state_timeout_us = 100000u, \
+    .airspeed_timeout_us = 50000u, \
     .period_us = 10000u, \
     .late_periods_tolerated = 1u, \
     .no_command_timeout_us = 50000u, \
