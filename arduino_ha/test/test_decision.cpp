@@ -120,11 +120,15 @@ TEST(HaDecision, AboveCeilingSwitchesAndDescends) {
   ac.airspeed_ftps = 65.0f;
   bool switched = false;
   float peak_ft = 0.0f;
-  for (int i = 0; i < 100 * 120; ++i) {
+  for (int i = 0; i < 100 * 150; ++i) {
     ac.WriteTo(&t.app.inputs, t.board.now_us);
     t.board.airspeed_ftps = ac.airspeed_ftps;
     t.refresh_state = false;
-    t.StepWithGood(0.0f, -3.0f, 0.0f, 0.8f);  // a healthy HP that keeps climbing
+    if (i < 100 * 30) {
+      t.StepWithGood(0.0f, -3.0f, 0.0f, 0.8f);  // a healthy HP that keeps climbing...
+    } else {
+      t.Step();  // ...until it is gone, and the HA alone flies
+    }
     if (!switched && t.controller() != HA_CONTROLLER_HP) {
       switched = true;
       EXPECT_GT(ac.altitude_ft, t.cfg.ceiling_agl_ft);
@@ -135,7 +139,7 @@ TEST(HaDecision, AboveCeilingSwitchesAndDescends) {
   }
   ASSERT_TRUE(switched);
   EXPECT_LT(peak_ft, t.cfg.ceiling_agl_ft + 30.0f);
-  // Two minutes later the HA holds it inside its band, well below the ceiling.
+  // Two minutes on the HA alone: it holds the aircraft inside its band, well below the ceiling.
   EXPECT_LE(ac.altitude_ft, t.cfg.sc_alt_max_ft);
   EXPECT_GE(ac.altitude_ft, t.cfg.sc_alt_min_ft);
 }
@@ -639,6 +643,30 @@ TEST(HaDecision, DeadPitotGivesTheHaControlWithoutResettingTheHp) {
   t.board.airspeed_ok = true;
   EXPECT_GT(t.ReachHp(), 0);
   EXPECT_EQ(t.out().restart_count, 0u);
+}
+
+// Airborne is latched from more than height: a low pass keeps the motor and the stall check.
+TEST(HaDecision, LowPassAtTwentyFiveFeetKeepsTheMotorAndTheStallCheck) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  t.Cruise(25.0f, 60.0f);  // the HP flies a low pass
+  for (int i = 0; i < 100; ++i) t.StepWithGood();
+  ASSERT_EQ(t.controller(), HA_CONTROLLER_HP);
+  for (int i = 0; i < 300; ++i) t.Step();  // and dies there
+  ASSERT_EQ(t.controller(), HA_CONTROLLER_HA);
+  EXPECT_GT(t.servos().throttle, 0.5f * t.cfg.sc_throttle_trim);  // the motor keeps running
+  t.board.airspeed_ftps = t.cfg.stall_speed_ftps - 4.0f;
+  t.Step();
+  EXPECT_TRUE(t.out().reasons & HA_REASON_STALL);
+  // Below the launch point (terrain falls away), flying: the same.
+  t.Cruise(-40.0f, 60.0f);
+  for (int i = 0; i < 300; ++i) t.Step();
+  EXPECT_GT(t.servos().throttle, 0.5f * t.cfg.sc_throttle_trim);
+  // A landing is evident only once parked: then the motor idles and the stall check is off.
+  t.Parked();
+  for (int i = 0; i < 100 * 10; ++i) t.Step();
+  EXPECT_FLOAT_EQ(t.servos().throttle, t.cfg.throttle_min);
+  EXPECT_EQ(t.out().reasons & HA_REASON_STALL, 0u);
 }
 
 TEST(HaDecision, BoardIsServedEveryPeriod) {

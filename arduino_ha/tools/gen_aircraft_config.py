@@ -95,6 +95,7 @@ def build(doc):
     c["stall_speed_ftps"] = positive(st, "stall_speed_ftps")
     c["ceiling_agl_ft"] = positive(st, "ceiling_agl_ft")
     c["airborne_agl_ft"] = need(st, "airborne_agl_ft", 0.0, c["ceiling_agl_ft"])
+    c["landed_confirm_us"] = us(positive(st, "landed_confirm_s"))
     c["inner_region_fraction"] = need(st, "inner_region_fraction", 0.05, 0.99)
     c["max_airspeed_ftps"] = need(sen, "max_airspeed_ftps", c["stall_speed_ftps"])
     c["state_timeout_us"] = us(positive(sen, "state_timeout_s"))
@@ -184,9 +185,15 @@ def build(doc):
     c["sc_pitch_cmd_limit_deg"] = need(sc, "pitch_cmd_limit_deg", 1.0,
                                        pitch * c["inner_region_fraction"])
     c["sc_stall_margin"] = need(sc, "stall_margin", 1.05, 3.0)
-    if c["stall_speed_ftps"] * c["sc_stall_margin"] >= c["max_airspeed_ftps"]:
-        raise ConfigError("target airspeed above max_airspeed_ftps")
-    target_ftps = c["stall_speed_ftps"] * c["sc_stall_margin"]
+    # The throttle loop's target must lie above the pitch loop's floor, or the aircraft could
+    # never climb at it (the nose may rise only with speed above stall x stall_margin).
+    c["sc_cruise_margin"] = need(sc, "cruise_margin", c["sc_stall_margin"], 3.0)
+    if c["sc_cruise_margin"] <= c["sc_stall_margin"]:
+        raise ConfigError("cruise_margin must exceed stall_margin: at the throttle loop's target "
+                          "speed the pitch loop could not raise the nose")
+    if c["stall_speed_ftps"] * c["sc_cruise_margin"] >= c["max_airspeed_ftps"]:
+        raise ConfigError("cruise_margin: target airspeed above max_airspeed_ftps")
+    target_ftps = c["stall_speed_ftps"] * c["sc_cruise_margin"]
     # Steady coordinated turn: tan(bank) = V^2 / (g R). Derived here once, not per period.
     c["sc_circle_bank_ff_deg"] = math.degrees(
         math.atan(target_ftps * target_ftps / (STANDARD_GRAVITY_FTPS2 * c["sc_circle_radius_ft"])))

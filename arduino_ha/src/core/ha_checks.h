@@ -25,8 +25,13 @@ typedef struct {
   uint8_t position_ok; /* north, east, heading */
   uint8_t airspeed_ok;
   uint8_t alpha_beta_ok; /* the HP command's estimates are finite */
-  uint8_t airborne;      /* above alt0, or altitude unknown */
-  uint8_t on_ground;     /* reported on the ground, low and slow: the self-test may run */
+  /* Airborne is decided by the core from these, latched (ha_core.c): any one signal of flight
+   * sets it, and only a landing evident for landed_confirm_us clears it. */
+  uint8_t flying_evidence; /* above stall (pitot), above alt0 (INS), or the INS not parked */
+  uint8_t landed_evidence; /* the INS parked and low, and the pitot (if alive) below stall */
+  uint8_t blind;           /* neither a fresh INS state nor a live pitot: cannot tell */
+  uint8_t airborne;        /* set by the core: latched, or blind */
+  uint8_t on_ground;       /* set by the core: not airborne, parked: the self-test may run */
   float x[HA_X_DIM];
   float airspeed_ftps;
   float heading_deg;

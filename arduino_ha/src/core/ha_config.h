@@ -64,7 +64,8 @@ typedef struct {
   float beta_limit_deg;
   float stall_speed_ftps;
   float ceiling_agl_ft;
-  float airborne_agl_ft;
+  float airborne_agl_ft; /* one signal of flight among several (ha_core.c: airborne latch) */
+  uint32_t landed_confirm_us; /* a landing evident this long clears the airborne latch */
   float max_airspeed_ftps; /* a reading above this is a broken sensor, not a fast aircraft */
   uint32_t state_timeout_us; /* attitude/position older than this is not trusted */
   /* A failed pitot read holds the last good one this long: a glitch is not a dead sensor. */
@@ -113,8 +114,11 @@ typedef struct {
   float sc_alt_max_ft;
   float sc_alt_to_pitch_gain_deg_per_ft;
   float sc_pitch_cmd_limit_deg;
-  float sc_stall_margin;             /* target airspeed = stall_speed_ftps * margin */
-  float sc_speed_to_pitch_gain_deg_per_ftps; /* nose down when slow: speed beats altitude */
+  /* Slow beats low: below stall_speed_ftps * sc_stall_margin the pitch loop lowers the nose at
+   * every altitude; above it the nose may rise sc_speed_to_pitch_gain per ft/s of excess. */
+  float sc_stall_margin;
+  float sc_speed_to_pitch_gain_deg_per_ftps;
+  float sc_cruise_margin; /* the throttle loop's target airspeed = stall_speed_ftps * this */
   float sc_throttle_trim;
   float sc_throttle_kp_per_ftps;
   float sc_throttle_ki_per_ft;

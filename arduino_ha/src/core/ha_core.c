@@ -92,6 +92,26 @@ static void track_own_sensors(HaCore *core, const HaInputs *in, uint32_t now_us,
   }
 }
 
+/* Airborne from several signals, latched: never decided by height alone, so a low pass or
+ * terrain below the launch point keeps the motor and the stall check. Without any sensor the
+ * HA cannot rule flight out and counts as airborne. The self-test additionally needs parked. */
+static void decide_airborne(HaCore *core, const HaInputs *in, uint32_t dt_us, HaStateView *v) {
+  if (v->flying_evidence) {
+    core->airborne = 1u;
+    core->landed_for_us = 0u;
+  } else if (v->landed_evidence) {
+    core->landed_for_us = add_sat(core->landed_for_us, dt_us);
+    if (core->landed_for_us >= core->cfg->landed_confirm_us) {
+      core->airborne = 0u;
+    }
+  } else {
+    core->landed_for_us = 0u;
+  }
+  v->airborne = (uint8_t)(core->airborne || v->blind);
+  v->on_ground = (uint8_t)(!v->airborne && in->on_ground != 0u && v->airspeed_ok &&
+                           ha_greater(core->cfg->stall_speed_ftps, v->airspeed_ftps));
+}
+
 /* Forget restarts older than the window (before the 32-bit clock could wrap onto them). */
 static void prune_restarts(HaCore *core, uint32_t now_us) {
   uint32_t kept = 0u, i;
@@ -223,6 +243,7 @@ void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *
   track_command(core, in, now_us, dt_us, &facts);
   track_own_sensors(core, in, now_us, dt_us);
   ha_state_view(cfg, in, facts.cmd, facts.have_cmd, &core->own, &view);
+  decide_airborne(core, in, dt_us, &view);
   handle_operator(core, in, &view, now_us, out);
   reasons = ha_checks_evaluate(cfg, &facts, &view, &sx_max, &su_max) |
             (core->ground_command ? HA_REASON_GROUND_COMMAND : 0u);

@@ -150,6 +150,9 @@ typedef struct {
   /* The HA's own sensors across periods */
   uint32_t seen_state_rx_us;
   HaOwnSensors own;
+  /* Airborne, latched once flying until a landing has been evident for landed_confirm_us. */
+  uint8_t airborne;
+  uint32_t landed_for_us;
   /* restarts */
   uint16_t restart_count;
   uint32_t restart_times_us[HA_MAX_RESTARTS_CAP];

@@ -59,16 +59,22 @@ static float bank_command_deg(const HaAircraftConfig *cfg, const HaStateView *s)
   return ha_clampf(bank_deg, -cfg->sc_bank_limit_deg, cfg->sc_bank_limit_deg);
 }
 
-/* Outer longitudinal loop: altitude to the middle of the band, but speed first. */
+/* Outer longitudinal loop: the altitude band, but slow beats low. The nose may rise only as far
+ * as the airspeed above stall x stall_margin pays for (speed_to_pitch_gain per ft/s); below that
+ * speed the allowance is negative, so the nose goes down at every altitude, however low. The
+ * altitude term can always lower the nose (above the band). Without a known airspeed the
+ * altitude term alone decides (and the check reports the HA lacking state). */
 static float pitch_command_deg(const HaAircraftConfig *cfg, const HaStateView *s) {
-  const float target_ftps = cfg->stall_speed_ftps * cfg->sc_stall_margin;
+  const float floor_ftps = cfg->stall_speed_ftps * cfg->sc_stall_margin;
   const float mid_ft = 0.5f * (cfg->sc_alt_min_ft + cfg->sc_alt_max_ft);
   float pitch_deg = 0.0f;
   if (s->altitude_ok) {
-    pitch_deg += cfg->sc_alt_to_pitch_gain_deg_per_ft * (mid_ft - s->x[HA_X_ALT_AGL_FT]);
+    pitch_deg = cfg->sc_alt_to_pitch_gain_deg_per_ft * (mid_ft - s->x[HA_X_ALT_AGL_FT]);
   }
-  if (s->airspeed_ok && s->airspeed_ftps < target_ftps) {
-    pitch_deg -= cfg->sc_speed_to_pitch_gain_deg_per_ftps * (target_ftps - s->airspeed_ftps);
+  if (s->airspeed_ok) {
+    const float allowed_deg =
+        cfg->sc_speed_to_pitch_gain_deg_per_ftps * (s->airspeed_ftps - floor_ftps);
+    pitch_deg = allowed_deg < pitch_deg ? allowed_deg : pitch_deg;
   }
   return ha_clampf(pitch_deg, -cfg->sc_pitch_cmd_limit_deg, cfg->sc_pitch_cmd_limit_deg);
 }
@@ -76,7 +82,7 @@ static float pitch_command_deg(const HaAircraftConfig *cfg, const HaStateView *s
 void ha_safety_ctrl_step(HaSafetyCtrlState *st, const HaAircraftConfig *cfg,
                          const HaStateView *s, const HaSurfaces *applied, int in_control,
                          float dt_s, HaSurfaces *out) {
-  const float target_ftps = cfg->stall_speed_ftps * cfg->sc_stall_margin;
+  const float target_ftps = cfg->stall_speed_ftps * cfg->sc_cruise_margin;
   const float throttle_half = 0.5f * (cfg->throttle_max - cfg->throttle_min);
   const float throttle_mid = cfg->throttle_min + throttle_half;
   float roll_pd = 0.0f, roll_step = 0.0f, pitch_pd = 0.0f, pitch_step = 0.0f;

@@ -65,11 +65,16 @@ void ha_state_view(const HaAircraftConfig *cfg, const HaInputs *in, const HaHpCo
       out->position_ok ? ha_clampf(in->north_ft, -HA_POSITION_SPAN_FT, HA_POSITION_SPAN_FT) : 0.0f;
   out->east_ft =
       out->position_ok ? ha_clampf(in->east_ft, -HA_POSITION_SPAN_FT, HA_POSITION_SPAN_FT) : 0.0f;
-  /* The thesis's rule (airborne above alt0); an unknown altitude counts as airborne, so the
-   * stall check is never skipped on missing data. */
-  out->airborne = (uint8_t)!(out->altitude_ok &&
-                             !ha_greater(in->altitude_agl_ft, cfg->airborne_agl_ft));
-  /* The self-test moves every surface and spins the motor: only when everything says parked. */
-  out->on_ground = (uint8_t)(in->on_ground != 0u && !out->airborne && out->airspeed_ok &&
-                             ha_greater(cfg->stall_speed_ftps, out->airspeed_ftps));
+  /* Signals for the core's airborne latch. Each alone says flying: a pitot above stall, the
+   * INS above alt0, the INS not parked (moving or climbing); a landing needs them all to agree. */
+  {
+    const int fast = out->airspeed_ok && ha_greater(out->airspeed_ftps, cfg->stall_speed_ftps);
+    const int high =
+        out->altitude_ok && ha_greater(out->x[HA_X_ALT_AGL_FT], cfg->airborne_agl_ft);
+    out->flying_evidence = (uint8_t)(fast || high || (fresh && in->on_ground == 0u));
+    out->landed_evidence = (uint8_t)(out->altitude_ok && in->on_ground != 0u && !high && !fast);
+    out->blind = (uint8_t)(!fresh && !out->airspeed_ok);
+  }
+  out->airborne = 1u; /* until the core has decided */
+  out->on_ground = 0u;
 }

@@ -79,11 +79,13 @@
     .sc_alt_max_ft = 250.0f, \
     .sc_pitch_cmd_limit_deg = 10.0f, \
     .sc_stall_margin = 1.3f, \
-    .sc_circle_bank_ff_deg = 13.0421703f, \
+    .sc_cruise_margin = 1.5f, \
+    .sc_circle_bank_ff_deg = 17.139825f, \
     .sc_throttle_trim = 0.4f, \
     .sc_integrator_authority = 0.25f, \
     .sc_blind_fade_per_s = 0.5f, \
     .self_test_throttle_max = 0.3f, \
+    .landed_confirm_us = 3000000u, \
     .state_timeout_us = 100000u, \
     .airspeed_timeout_us = 50000u, \
     .period_us = 10000u, \
