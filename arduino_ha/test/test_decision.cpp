@@ -332,11 +332,11 @@ TEST(HaDecision, HpThatBootsWithinTheTimeoutIsNotResetAgain) {
   EXPECT_GT(t.ReachHp(), 0);
   EXPECT_EQ(t.out().restart_count, 1u);
   EXPECT_EQ(t.board.hp_reset_assertions, 1);
-  // The operator's choice of the HA is no HP failure: a silent HP then is not reset.
+  // The operator's choice of the HA is no HP failure: choosing it resets nothing.
   t.Operator(HA_OP_SELECT_HA);
   t.StepWithGood();
   ASSERT_EQ(t.controller(), HA_CONTROLLER_HA);
-  for (int i = 0; i < 4 * boot_periods; ++i) t.Step();
+  for (int i = 0; i < 2 * boot_periods; ++i) t.StepWithGood();
   EXPECT_EQ(t.controller(), HA_CONTROLLER_HA);
   EXPECT_EQ(t.out().restart_count, 1u);
 }
@@ -667,6 +667,61 @@ TEST(HaDecision, LowPassAtTwentyFiveFeetKeepsTheMotorAndTheStallCheck) {
   for (int i = 0; i < 100 * 10; ++i) t.Step();
   EXPECT_FLOAT_EQ(t.servos().throttle, t.cfg.throttle_min);
   EXPECT_EQ(t.out().reasons & HA_REASON_STALL, 0u);
+}
+
+// The HP dies while the pilot flies: it is restarted, the pilot keeps the servos.
+TEST(HaDecision, DeadHpIsRestartedWhileThePilotFlies) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  t.board.SetPilotInCommand(true);
+  for (int i = 0; i < 100; ++i) t.StepWithGood();
+  ASSERT_EQ(t.controller(), HA_CONTROLLER_MANUAL);
+  for (int i = 0; i < 100; ++i) {  // the HP process dies
+    t.Step();
+    ASSERT_EQ(t.controller(), HA_CONTROLLER_MANUAL);
+  }
+  EXPECT_EQ(t.out().restart_count, 1u);
+  EXPECT_EQ(t.board.hp_reset_assertions, 1);
+  // It boots, and the pilot hands back to the computers: the HP earns control as usual.
+  t.board.SetPilotInCommand(false);
+  EXPECT_GT(t.ReachHp(), 0);
+  EXPECT_EQ(t.out().restart_count, 1u);
+}
+
+TEST(HaDecision, DeadHpIsRestartedWhileTheOperatorHoldsTheHa) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  t.Operator(HA_OP_SELECT_HA);
+  for (int i = 0; i < 100; ++i) t.StepWithGood();
+  ASSERT_EQ(t.controller(), HA_CONTROLLER_HA);
+  ASSERT_EQ(t.out().restart_count, 0u);
+  for (int i = 0; i < 100; ++i) t.Step();  // the HP dies
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HA);
+  EXPECT_EQ(t.out().restart_count, 1u);
+  EXPECT_EQ(t.board.hp_reset_assertions, 1);
+  // Back up, and the operator asks for it: it gets control.
+  for (int i = 0; i < 100; ++i) t.StepWithGood();
+  t.Operator(HA_OP_SELECT_HP);
+  EXPECT_GT(t.ReachHp(), 0);
+}
+
+// One reset pulse is one restart, however many reasons asked for it in that period.
+TEST(HaDecision, OperatorRestartDuringAFailedRecoveryCountsOnce) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  t.Step();
+  t.Step();  // crash: reset 1
+  ASSERT_EQ(t.out().restart_count, 1u);
+  for (int i = 0; i < 50; ++i) t.Step();
+  for (int i = 0; i < 20; ++i) t.StepWithGood();
+  ASSERT_EQ(t.controller(), HA_CONTROLLER_RECOVERING);
+  // In the same period: the operator asks for a restart and the HP fails its recovery.
+  t.Operator(HA_OP_RESTART_HP);
+  t.StepWithGood(0.0f, 2.0f * t.cfg.elevator_limit_deg);
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HA);
+  EXPECT_EQ(t.out().restart_requested, 1u);
+  EXPECT_EQ(t.out().restart_count, 2u);
+  EXPECT_EQ(t.board.hp_reset_assertions, 2);
 }
 
 TEST(HaDecision, BoardIsServedEveryPeriod) {

@@ -146,12 +146,13 @@ static int boot_overdue(const HaCore *core, uint32_t now_us) {
          ha_elapsed_us(now_us, core->reset_released_us) >= core->cfg->hp_boot_timeout_us;
 }
 
-/* Operator requests never bypass a check: they only move the HA's own intent. */
-static void handle_operator(HaCore *core, const HaInputs *in, const HaStateView *view,
-                            uint32_t now_us, HaOutputs *out) {
-  int accepted = 0;
+/* Operator requests never bypass a check: they only move the HA's own intent. Returns 1 for an
+ * accepted RESTART_HP, which the policy then decides together with every other reason. */
+static int handle_operator(HaCore *core, const HaInputs *in, const HaStateView *view,
+                           uint32_t now_us) {
+  int accepted = 0, restart = 0;
   if (in->operator_count == core->seen_operator_count) {
-    return;
+    return 0;
   }
   core->seen_operator_count = in->operator_count;
   if (in->operator_command == HA_OP_SELECT_HP && !core->latched) {
@@ -162,7 +163,7 @@ static void handle_operator(HaCore *core, const HaInputs *in, const HaStateView 
     accepted = 1;
   } else if (in->operator_command == HA_OP_RESTART_HP && !core->latched &&
              core->controller != HA_CONTROLLER_HP) {
-    request_restart(core, now_us, out);
+    restart = 1;
     accepted = 1;
   } else if (in->operator_command == HA_OP_SELF_TEST && view->on_ground &&
              core->controller != HA_CONTROLLER_HP && core->controller != HA_CONTROLLER_MANUAL) {
@@ -171,23 +172,18 @@ static void handle_operator(HaCore *core, const HaInputs *in, const HaStateView 
   }
   core->operator_ack_id = in->operator_request_id;
   core->operator_ack_accepted = (uint8_t)accepted;
+  return restart;
 }
 
-/* Bookkeeping of a change of controller: why, the restart, the latch, a fresh stable window. */
-static void on_switch(HaCore *core, uint8_t next, uint32_t reasons, uint32_t now_us,
-                      HaOutputs *out) {
+/* Bookkeeping of a change of controller: why, the latch, a fresh stable window. */
+static void on_switch(HaCore *core, uint8_t next, uint32_t reasons) {
   const int from_hp_side =
       core->controller == HA_CONTROLLER_HP || core->controller == HA_CONTROLLER_RECOVERING;
   const int to_ha = next == HA_CONTROLLER_HA || next == HA_CONTROLLER_HA_LATCHED;
-  const int hp_fault = !core->ground_command && !core->self_test.active &&
-                       (reasons & ~HA_REASONS_NOT_HP) != 0u;
   const int latching = next == HA_CONTROLLER_HA_LATCHED && !core->latched;
   if ((from_hp_side && to_ha) || latching) {
     core->reasons_at_switch = reasons; /* why the HP lost control, or why it lost it for good */
     core->stable_for_us = 0u;
-    if (next == HA_CONTROLLER_HA && hp_fault) {
-      request_restart(core, now_us, out);
-    }
   }
   if (latching) {
     core->latched = 1u;
@@ -244,7 +240,7 @@ void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *
   track_own_sensors(core, in, now_us, dt_us);
   ha_state_view(cfg, in, facts.cmd, facts.have_cmd, &core->own, &view);
   decide_airborne(core, in, dt_us, &view);
-  handle_operator(core, in, &view, now_us, out);
+  policy.operator_restart = (uint8_t)handle_operator(core, in, &view, now_us);
   reasons = ha_checks_evaluate(cfg, &facts, &view, &sx_max, &su_max) |
             (core->ground_command ? HA_REASON_GROUND_COMMAND : 0u);
   core->stable_for_us = (reasons & HA_REASONS_COMMAND) ? 0u : add_sat(core->stable_for_us, dt_us);
@@ -267,12 +263,15 @@ void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *
                            !ha_greater(sx_max, cfg->inner_region_fraction));
   policy.restart_cap_reached = (uint8_t)restart_cap_reached(core);
   policy.boot_overdue = (uint8_t)boot_overdue(core, now_us);
+  policy.hp_dead = (uint8_t)(facts.have_cmd && (reasons & HA_REASON_NO_COMMAND) &&
+                             !core->awaiting_boot && !core->reset_active);
   {
     const uint8_t next = ha_policy_decide(&policy);
+    const uint8_t restart = ha_policy_restart(&policy, next);
     if (next != core->controller) {
-      on_switch(core, next, reasons, now_us, out);
+      on_switch(core, next, reasons);
     }
-    if (!out->restart_requested && ha_policy_reset_again(&policy, next)) {
+    if (restart) {
       request_restart(core, now_us, out);
     }
   }
