@@ -724,6 +724,27 @@ TEST(HaDecision, OperatorRestartDuringAFailedRecoveryCountsOnce) {
   EXPECT_EQ(t.board.hp_reset_assertions, 2);
 }
 
+// Airspeed hovering around stall: the HA keeps control until the HP could fly with margin.
+TEST(HaDecision, AirspeedHoveringAtStallDoesNotCycleHpAndHa) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  int handbacks = 0;
+  uint8_t before = t.controller();
+  for (int i = 0; i < 100 * 120; ++i) {
+    // 3 s just below stall, 3 s just above it, for two minutes.
+    t.board.airspeed_ftps = t.cfg.stall_speed_ftps + ((i / 300) % 2 == 0 ? -1.0f : 1.0f);
+    t.StepWithGood();
+    if (t.controller() == HA_CONTROLLER_HP && before != HA_CONTROLLER_HP) ++handbacks;
+    before = t.controller();
+  }
+  EXPECT_EQ(handbacks, 0);
+  EXPECT_NE(t.controller(), HA_CONTROLLER_HA_LATCHED);
+  EXPECT_EQ(t.out().restart_count, 1u);
+  // With the margin regained the HP gets control back.
+  t.board.airspeed_ftps = 60.0f;
+  EXPECT_GT(t.ReachHp(), 0);
+}
+
 TEST(HaDecision, BoardIsServedEveryPeriod) {
   Timeline t;
   for (int i = 0; i < 10; ++i) t.StepWithGood();

@@ -194,6 +194,11 @@ def build(doc):
     if c["stall_speed_ftps"] * c["sc_cruise_margin"] >= c["max_airspeed_ftps"]:
         raise ConfigError("cruise_margin: target airspeed above max_airspeed_ftps")
     target_ftps = c["stall_speed_ftps"] * c["sc_cruise_margin"]
+    handback = need(st, "handback_stall_multiple", 1.0, c["sc_cruise_margin"])
+    if handback <= 1.0 or handback >= c["sc_cruise_margin"]:
+        raise ConfigError("handback_stall_multiple must lie strictly between 1 and cruise_margin: "
+                          "above stall for margin, below the speed the HA itself flies at")
+    c["handback_airspeed_ftps"] = c["stall_speed_ftps"] * handback
     # Steady coordinated turn: tan(bank) = V^2 / (g R). Derived here once, not per period.
     c["sc_circle_bank_ff_deg"] = math.degrees(
         math.atan(target_ftps * target_ftps / (STANDARD_GRAVITY_FTPS2 * c["sc_circle_radius_ft"])))

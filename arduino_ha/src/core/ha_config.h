@@ -49,6 +49,9 @@ typedef struct {
   float su[HA_SU_MAX_ROWS][HA_U_DIM];
   float u0[HA_U_DIM];
   float inner_region_fraction; /* switch back only while max(S_x (x - x0)) <= this */
+  /* ... and, airborne, only above this airspeed (stall x handback_stall_multiple, derived by the
+   * generator): airspeed hovering at stall cannot cycle the HP and the HA. */
+  float handback_airspeed_ftps;
 
   /* Actuators (the box S_u is built from; the final saturation uses it directly). */
   float elevator_limit_deg;

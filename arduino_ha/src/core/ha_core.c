@@ -260,7 +260,9 @@ void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *
   policy.reasons = reasons;
   policy.stable = (uint8_t)(core->stable_for_us >= cfg->stable_window_us);
   policy.inner = (uint8_t)(!(reasons & HA_REASONS_STATE) &&
-                           !ha_greater(sx_max, cfg->inner_region_fraction));
+                           !ha_greater(sx_max, cfg->inner_region_fraction) &&
+                           (!view.airborne ||
+                            ha_greater(view.airspeed_ftps, cfg->handback_airspeed_ftps)));
   policy.restart_cap_reached = (uint8_t)restart_cap_reached(core);
   policy.boot_overdue = (uint8_t)boot_overdue(core, now_us);
   policy.hp_dead = (uint8_t)(facts.have_cmd && (reasons & HA_REASON_NO_COMMAND) &&

@@ -12,7 +12,7 @@ typedef struct {
   uint8_t ground_command;      /* the operator selected the HA */
   uint32_t reasons;            /* HA_REASON_* failing this period */
   uint8_t stable;              /* the HP command has been valid for the stable window */
-  uint8_t inner;               /* the state is inside the inner region, no stall, no ceiling */
+  uint8_t inner;               /* inside the inner region, no state reason, airspeed margin */
   uint8_t restart_cap_reached; /* K restarts already within T */
   uint8_t boot_overdue;        /* reset, released, and no valid command within the boot timeout */
   uint8_t hp_dead;             /* it had been up, and is silent now, with no reset under way */

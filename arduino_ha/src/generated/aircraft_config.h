@@ -80,6 +80,7 @@
     .sc_pitch_cmd_limit_deg = 10.0f, \
     .sc_stall_margin = 1.3f, \
     .sc_cruise_margin = 1.5f, \
+    .handback_airspeed_ftps = 50.4f, \
     .sc_circle_bank_ff_deg = 17.139825f, \
     .sc_throttle_trim = 0.4f, \
     .sc_integrator_authority = 0.25f, \
