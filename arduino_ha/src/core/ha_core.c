@@ -296,6 +296,13 @@ void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *
   ha_surfaces_saturate(cfg, &target);
   if (source != core->last_source || source == SRC_SELF_TEST) {
     core->transition_active = 1u;
+    core->manual_handover_left_us = cfg->manual_handover_us;
+  }
+  if (source == SRC_MANUAL && core->transition_active) {
+    /* The limit covers the handover into MANUAL at most, never the pilot's own inputs after. */
+    core->manual_handover_left_us =
+        core->manual_handover_left_us > dt_us ? core->manual_handover_left_us - dt_us : 0u;
+    core->transition_active = (uint8_t)(core->manual_handover_left_us != 0u);
   }
   if (core->transition_active) {
     HaSurfaces limited;
