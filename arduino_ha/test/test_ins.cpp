@@ -75,6 +75,7 @@ TEST_F(InsAdapter, InsSolutionBecomesHaStateInHaUnits) {
   EXPECT_NEAR(in.altitude_agl_ft, 50.0 * kFtPerM, 1e-2);
   EXPECT_NEAR(in.north_ft, 0.001 * kMPerDegLatAt45 * kFtPerM, 0.5);
   EXPECT_NEAR(in.east_ft, 0.002 * kMPerDegLonAt45 * kFtPerM, 0.5);
+  EXPECT_NEAR(in.groundspeed_ftps, 25.0 * kFtPerM, 1e-3);
   EXPECT_EQ(in.on_ground, 0u);  // 25 m/s ground speed, 164 ft up
 }
 

@@ -121,13 +121,14 @@ TEST(HaProperties, ServosAlwaysFiniteInsideSuAndOutsideCommandsNeverReachThem) {
       in.roll_deg = h.Maybe(p, h.Uniform(-10.0f, 10.0f));
       in.pitch_deg = h.Maybe(p, h.Uniform(-5.0f, 5.0f));
       in.heading_deg = h.Maybe(p, h.Uniform(-720.0f, 720.0f));
-      in.p_deg_s = h.Maybe(p, h.Uniform(-5.0f, 5.0f));
-      in.q_deg_s = h.Maybe(p, h.Uniform(-5.0f, 5.0f));
-      in.r_deg_s = h.Maybe(p, h.Uniform(-5.0f, 5.0f));
+      in.p_deg_s = h.Maybe(p, parked ? h.Uniform(-1.0f, 1.0f) : h.Uniform(-5.0f, 5.0f));
+      in.q_deg_s = h.Maybe(p, parked ? h.Uniform(-1.0f, 1.0f) : h.Uniform(-5.0f, 5.0f));
+      in.r_deg_s = h.Maybe(p, parked ? h.Uniform(-1.0f, 1.0f) : h.Uniform(-5.0f, 5.0f));
       in.altitude_agl_ft =
           h.Maybe(p, parked ? h.Uniform(0.0f, 10.0f) : h.Uniform(100.0f, 250.0f));
       in.north_ft = h.Maybe(p, h.Uniform(-1000.0f, 1000.0f));
       in.east_ft = h.Maybe(p, h.Uniform(-1000.0f, 1000.0f));
+      in.groundspeed_ftps = h.Maybe(p, parked ? h.Uniform(0.0f, 1.0f) : h.Uniform(50.0f, 70.0f));
       in.on_ground = h.Chance(p) ? static_cast<uint8_t>(h.U32()) : (parked ? 1u : 0u);
       in.state_valid = h.Chance(p) ? static_cast<uint8_t>(h.U32()) : 1u;
       in.state_rx_us = h.Chance(p) ? h.U32() : now;
@@ -236,7 +237,9 @@ TEST(HaProperties, ServosAlwaysFiniteInsideSuAndOutsideCommandsNeverReachThem) {
   EXPECT_GT(handovers[ha][manual] + handovers[hp][manual], 100u);
   EXPECT_GT(handovers[manual][ha] + handovers[manual][hp], 100u);
   const int self_test = static_cast<int>(Source::kSelfTest);
-  EXPECT_GT(handovers[self_test][self_test], 5000u);  // every self-test period is a slew
+  // Every self-test period is a slew. Fewer than before issue 13: one hostile sample that looks
+  // like flight now latches airborne (no self-test) until landed_confirm_s of parked.
+  EXPECT_GT(handovers[self_test][self_test], 2000u);
 }
 
 TEST(HaProperties, BitComparisonsGiveTheFloatComparisonsVerdicts) {

@@ -223,6 +223,10 @@ def build(doc):
     if step_s <= slowest:
         raise ConfigError("self_test step_s must exceed %.3f s (slew limit to limit)" % slowest)
     c["self_test_step_us"] = us(step_s)
+    c["self_test_max_tilt_deg"] = need(selft, "max_tilt_deg", 0.0, 45.0)
+    c["self_test_max_rate_deg_s"] = need(selft, "max_rate_deg_s", 0.0, 30.0)
+    c["self_test_max_groundspeed_ftps"] = need(selft, "max_groundspeed_ftps", 0.0,
+                                               c["stall_speed_ftps"])
     return c
 
 

@@ -86,6 +86,7 @@ static void any_link_inputs(HaInputs *in) {
   in->altitude_agl_ft = any_float();
   in->north_ft = any_float();
   in->east_ft = any_float();
+  in->groundspeed_ftps = any_float();
   in->on_ground = any_u8();
   in->state_valid = any_u8();
   in->state_rx_us = any_u32();

@@ -30,6 +30,7 @@ typedef struct {
   uint8_t flying_evidence; /* above stall (pitot), above alt0 (INS), or the INS not parked */
   uint8_t landed_evidence; /* the INS parked and low, and the pitot (if alive) below stall */
   uint8_t blind;           /* neither a fresh INS state nor a live pitot: cannot tell */
+  uint8_t still;           /* INS: level, no body rates, no ground speed (self-test gate) */
   uint8_t airborne;        /* set by the core: latched, or blind */
   uint8_t on_ground;       /* set by the core: not airborne, parked: the self-test may run */
   float x[HA_X_DIM];

@@ -138,6 +138,10 @@ typedef struct {
   /* Pre-flight surface self-test. */
   uint32_t self_test_step_us;
   float self_test_throttle_max;
+  /* Parked, for the self-test: roll and pitch within, body rates within, ground speed below. */
+  float self_test_max_tilt_deg;
+  float self_test_max_rate_deg_s;
+  float self_test_max_groundspeed_ftps;
 } HaAircraftConfig;
 
 #ifdef __cplusplus

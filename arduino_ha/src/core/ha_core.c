@@ -108,7 +108,7 @@ static void decide_airborne(HaCore *core, const HaInputs *in, uint32_t dt_us, Ha
     core->landed_for_us = 0u;
   }
   v->airborne = (uint8_t)(core->airborne || v->blind);
-  v->on_ground = (uint8_t)(!v->airborne && in->on_ground != 0u && v->airspeed_ok &&
+  v->on_ground = (uint8_t)(!v->airborne && in->on_ground != 0u && v->still && v->airspeed_ok &&
                            ha_greater(core->cfg->stall_speed_ftps, v->airspeed_ftps));
 }
 

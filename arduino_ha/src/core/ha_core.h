@@ -63,6 +63,7 @@ typedef struct {
   float altitude_agl_ft;
   float north_ft;     /* position relative to the home/rally point the HA circles */
   float east_ft;
+  float groundspeed_ftps; /* horizontal speed over the ground (INS) */
   uint8_t on_ground;  /* 1: weight on wheels / landed as reported by the INS side */
   uint8_t state_valid;  /* 0 until the link has delivered a state at least once */
   uint32_t state_rx_us; /* when that state arrived */

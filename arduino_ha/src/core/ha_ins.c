@@ -155,6 +155,8 @@ int ha_ins_update(HaIns *ins, const HaAircraftConfig *cfg, const HaInsSample *s,
   in->altitude_agl_ft = agl_ft;
   in->north_ft = (float)((c.lat_deg - ins->home_lat_deg) * ins->north_ft_per_deg);
   in->east_ft = (float)(dlon_deg * ins->east_ft_per_deg);
+  in->groundspeed_ftps = sqrtf(c.vel_ned_mps[0] * c.vel_ned_mps[0] +
+                               c.vel_ned_mps[1] * c.vel_ned_mps[1]) * (float)HA_INS_FT_PER_M;
   /* The INS has no weight-on-wheels: parked and no higher than the airborne altitude. The core
    * adds its own airspeed check before it trusts this. */
   in->on_ground = (uint8_t)(parked(cfg, &c) && agl_ft <= cfg->airborne_agl_ft);

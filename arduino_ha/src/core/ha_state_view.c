@@ -75,6 +75,13 @@ void ha_state_view(const HaAircraftConfig *cfg, const HaInputs *in, const HaHpCo
     out->landed_evidence = (uint8_t)(out->altitude_ok && in->on_ground != 0u && !high && !fast);
     out->blind = (uint8_t)(!fresh && !out->airspeed_ok);
   }
+  out->still = (uint8_t)(out->attitude_ok &&
+                         ha_within_span(in->roll_deg, cfg->self_test_max_tilt_deg) &&
+                         ha_within_span(in->pitch_deg, cfg->self_test_max_tilt_deg) &&
+                         ha_within_span(in->p_deg_s, cfg->self_test_max_rate_deg_s) &&
+                         ha_within_span(in->q_deg_s, cfg->self_test_max_rate_deg_s) &&
+                         ha_within_span(in->r_deg_s, cfg->self_test_max_rate_deg_s) &&
+                         ha_within_span(in->groundspeed_ftps, cfg->self_test_max_groundspeed_ftps));
   out->airborne = 1u; /* until the core has decided */
   out->on_ground = 0u;
 }

@@ -86,6 +86,9 @@
     .sc_integrator_authority = 0.25f, \
     .sc_blind_fade_per_s = 0.5f, \
     .self_test_throttle_max = 0.3f, \
+    .self_test_max_tilt_deg = 15.0f, \
+    .self_test_max_rate_deg_s = 3.0f, \
+    .self_test_max_groundspeed_ftps = 2.0f, \
     .landed_confirm_us = 3000000u, \
     .state_timeout_us = 100000u, \
     .airspeed_timeout_us = 50000u, \
