@@ -81,6 +81,7 @@ uint32_t ha_bench_timeline_next(HaBenchTimeline *t, HaInputs *in) {
   in->altitude_agl_ft = uniform(t, cfg->airborne_agl_ft * 2.0f, cfg->ceiling_agl_ft * 0.8f);
   in->north_ft = uniform(t, -3000.0f, 3000.0f);
   in->east_ft = uniform(t, -3000.0f, 3000.0f);
+  in->groundspeed_ftps = uniform(t, cfg->stall_speed_ftps, cfg->stall_speed_ftps * 2.0f);
   in->on_ground = 0u;
   in->state_valid = 1u;
   in->state_rx_us = t->now_us - jitter_us;

@@ -51,6 +51,7 @@ void Timeline::Cruise(float altitude_agl_ft, float airspeed_ftps) {
   in.altitude_agl_ft = altitude_agl_ft;
   in.north_ft = cfg.sc_circle_radius_ft;
   in.east_ft = 0.0f;
+  in.groundspeed_ftps = airspeed_ftps;
   in.on_ground = 0;
   in.state_valid = 1;
   in.state_rx_us = board.now_us;
@@ -138,6 +139,7 @@ void PointMassAircraft::WriteTo(HaInputs* in, uint32_t now_us) const {
   in->altitude_agl_ft = altitude_ft;
   in->north_ft = north_ft;
   in->east_ft = east_ft;
+  in->groundspeed_ftps = airspeed_ftps;
   in->on_ground = 0;
   in->state_valid = 1;
   in->state_rx_us = now_us;

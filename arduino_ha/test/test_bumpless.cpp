@@ -1,8 +1,10 @@
 // Bumpless switching both ways: at a switch no surface moves faster than the configured rate.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
+#include "ha_surfaces.h"
 #include "ha_test_util.h"
 
 namespace {
@@ -93,6 +95,40 @@ TEST(HaBumpless, HaTakeoverStartsFromAppliedSurfaces) {
             t.cfg.surface_rate_limit_deg_per_s * dt * 1.001f);
   EXPECT_LE(std::fabs(after.throttle - before.throttle),
             t.cfg.throttle_rate_limit_per_s * dt * 1.001f);
+}
+
+// The pilot's sticks are never rate-limited after the handover into MANUAL: a pilot rolling hard
+// while advancing the throttle gets exactly the sticks once the handover is over.
+TEST(HaBumpless, PilotsStickReversalsPassUnlimitedAfterTheHandover) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  for (int i = 0; i < 50; ++i) t.StepWithGood(-12.0f, 5.0f, 0.0f, 0.1f);
+  t.board.SetPilotInCommand(true);
+  const float dt = t.cfg.period_us * 1e-6f;
+  const float surface_full_s = 2.0f * std::max({t.cfg.elevator_limit_deg, t.cfg.aileron_limit_deg,
+                                                t.cfg.rudder_limit_deg}) /
+                               t.cfg.surface_rate_limit_deg_per_s;
+  const float throttle_full_s =
+      (t.cfg.throttle_max - t.cfg.throttle_min) / t.cfg.throttle_rate_limit_per_s;
+  const int handover_periods =
+      static_cast<int>(std::max(surface_full_s, throttle_full_s) / dt) + 2;
+  int lagging = 0;
+  for (int i = 0; i < 100 * 10; ++i) {
+    // Full aileron reversals every 0.25 s, throttle swept up and down over 1.2 s each way.
+    t.board.rc.pulse_us[HA_RC_AILERON] = (i / 25) % 2 == 0 ? 1000 : 2000;
+    const int sweep = i % 240;
+    t.board.rc.pulse_us[HA_RC_THROTTLE] =
+        static_cast<uint16_t>(1000 + (sweep < 120 ? sweep : 240 - sweep) * 1000 / 120);
+    t.StepWithGood();
+    ASSERT_EQ(t.controller(), HA_CONTROLLER_MANUAL);
+    if (i < handover_periods) continue;
+    HaSurfaces sticks;
+    ha_surfaces_from_rc(&t.cfg, &t.board.rc, &sticks);
+    if (t.servos().aileron_deg != sticks.aileron_deg || t.servos().throttle != sticks.throttle) {
+      ++lagging;
+    }
+  }
+  EXPECT_EQ(lagging, 0);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <limits>
 #include <vector>
 
+#include "ha_ins.h"
 #include "ha_test_util.h"
 
 namespace {
@@ -119,11 +120,15 @@ TEST(HaDecision, AboveCeilingSwitchesAndDescends) {
   ac.airspeed_ftps = 65.0f;
   bool switched = false;
   float peak_ft = 0.0f;
-  for (int i = 0; i < 100 * 120; ++i) {
+  for (int i = 0; i < 100 * 150; ++i) {
     ac.WriteTo(&t.app.inputs, t.board.now_us);
     t.board.airspeed_ftps = ac.airspeed_ftps;
     t.refresh_state = false;
-    t.StepWithGood(0.0f, -3.0f, 0.0f, 0.8f);  // a healthy HP that keeps climbing
+    if (i < 100 * 30) {
+      t.StepWithGood(0.0f, -3.0f, 0.0f, 0.8f);  // a healthy HP that keeps climbing...
+    } else {
+      t.Step();  // ...until it is gone, and the HA alone flies
+    }
     if (!switched && t.controller() != HA_CONTROLLER_HP) {
       switched = true;
       EXPECT_GT(ac.altitude_ft, t.cfg.ceiling_agl_ft);
@@ -134,7 +139,7 @@ TEST(HaDecision, AboveCeilingSwitchesAndDescends) {
   }
   ASSERT_TRUE(switched);
   EXPECT_LT(peak_ft, t.cfg.ceiling_agl_ft + 30.0f);
-  // Two minutes later the HA holds it inside its band, well below the ceiling.
+  // Two minutes on the HA alone: it holds the aircraft inside its band, well below the ceiling.
   EXPECT_LE(ac.altitude_ft, t.cfg.sc_alt_max_ft);
   EXPECT_GE(ac.altitude_ft, t.cfg.sc_alt_min_ft);
 }
@@ -157,12 +162,16 @@ TEST(HaDecision, NoAirspeedOnTheGroundIsNoStall) {
   t.Parked();
   ASSERT_GT(t.ReachHp(), 0);
   EXPECT_EQ(t.out().reasons, 0u);
-  // A dead pitot in flight, though, counts as a stall.
+  // A pitot dead in flight (longer than a glitch) leaves the HA unable to check for a stall: it
+  // takes control and says why, and that is not a stall.
   t.Cruise();
+  for (int i = 0; i < 100; ++i) t.StepWithGood();
+  ASSERT_EQ(t.controller(), HA_CONTROLLER_HP);
   t.board.airspeed_ok = false;
-  t.StepWithGood();
-  EXPECT_EQ(t.controller(), HA_CONTROLLER_HA);
-  EXPECT_TRUE(t.out().reasons & HA_REASON_STALL);
+  for (uint32_t i = 0; i <= t.cfg.airspeed_timeout_us / t.cfg.period_us; ++i) t.StepWithGood();
+  EXPECT_NE(t.controller(), HA_CONTROLLER_HP);
+  EXPECT_EQ(t.out().reasons, HA_REASON_NO_HA_STATE);
+  EXPECT_EQ(t.out().reasons_at_switch, HA_REASON_NO_HA_STATE);
 }
 
 TEST(HaDecision, SwitchBackOnlyAfterStableWindowInsideInnerRegion) {
@@ -323,11 +332,11 @@ TEST(HaDecision, HpThatBootsWithinTheTimeoutIsNotResetAgain) {
   EXPECT_GT(t.ReachHp(), 0);
   EXPECT_EQ(t.out().restart_count, 1u);
   EXPECT_EQ(t.board.hp_reset_assertions, 1);
-  // The operator's choice of the HA is no HP failure: a silent HP then is not reset.
+  // The operator's choice of the HA is no HP failure: choosing it resets nothing.
   t.Operator(HA_OP_SELECT_HA);
   t.StepWithGood();
   ASSERT_EQ(t.controller(), HA_CONTROLLER_HA);
-  for (int i = 0; i < 4 * boot_periods; ++i) t.Step();
+  for (int i = 0; i < 2 * boot_periods; ++i) t.StepWithGood();
   EXPECT_EQ(t.controller(), HA_CONTROLLER_HA);
   EXPECT_EQ(t.out().restart_count, 1u);
 }
@@ -483,7 +492,10 @@ TEST(HaDecision, StaleInsStateSwitches) {
     ++periods;
   }
   EXPECT_EQ(t.controller(), HA_CONTROLLER_HA);
-  EXPECT_TRUE(t.out().reasons_at_switch & HA_REASON_STATE_REGION);
+  // Said as the HA lacking its own state (not a ceiling or region breach), and no HP fault.
+  EXPECT_EQ(t.out().reasons_at_switch, HA_REASON_NO_HA_STATE);
+  EXPECT_EQ(t.out().restart_count, 0u);
+  EXPECT_EQ(t.board.hp_reset_assertions, 0);
   EXPECT_LE(static_cast<uint32_t>(periods) * t.cfg.period_us,
             t.cfg.state_timeout_us + 2u * t.cfg.period_us);
 }
@@ -531,6 +543,206 @@ TEST(HaDecision, ClockWrapDoesNotLookLikeACrash) {
     ASSERT_EQ(t.controller(), HA_CONTROLLER_HP) << "period " << i;
   }
   EXPECT_LT(t.board.now_us, 0x10000000u);  // it did wrap
+}
+
+// A dead INS stays dead: ages saturate, so 2^32 us later the last state is not fresh again.
+TEST(HaDecision, InsSilentAcrossTheClockWrapStaysStale) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  t.refresh_state = false;  // the HA's INS feed dies for good; the HP keeps flying
+  const uint64_t periods = (uint64_t{1} << 32) / t.cfg.period_us + 1000u;
+  const uint64_t stale_after = t.cfg.state_timeout_us / t.cfg.period_us + 2u;
+  for (uint64_t i = 0; i < periods; ++i) {
+    t.StepWithGood();
+    if (i > stale_after) {
+      ASSERT_NE(t.controller(), HA_CONTROLLER_HP) << "period " << i << " of a dead INS";
+      ASSERT_NE(t.out().reasons, 0u) << "period " << i;
+    }
+    if (i % 10000u == 0u) t.board.servo_writes.clear();  // 72 minutes of writes: keep it small
+  }
+  EXPECT_LT(t.board.now_us, 0x10000000u);  // it did wrap
+}
+
+// Feeds the INS adapter one solution per period, the way the board layer does.
+struct InsFeed {
+  explicit InsFeed(Timeline* timeline) : t(timeline) {
+    ha_ins_init(&ins);
+    HaInsSample home{};
+    home.has = HA_INS_HAS_REQUIRED | HA_INS_HAS_GPS_FIX;
+    home.lat_deg = 45.0;
+    home.lon_deg = -122.0;
+    home.alt_m = 100.0;
+    home.ins_status = 0x0006u;  // tracking, GNSS fix
+    home.gps_fix = 3;
+    ha_ins_update(&ins, &t->cfg, &home, t->board.now_us, &t->app.inputs);
+    flying = home;
+    flying.alt_m += 61.0;
+    flying.lat_deg += 0.0011;  // about the circle's radius north of home
+    flying.ypr_deg[0] = 90.0f;
+    flying.vel_ned_mps[1] = 18.0f;
+    t->refresh_state = false;
+  }
+  void Deliver(const HaInsSample& s) {
+    ha_ins_update(&ins, &t->cfg, &s, t->board.now_us + t->cfg.period_us / 2u, &t->app.inputs);
+  }
+  Timeline* t;
+  HaIns ins;
+  HaInsSample flying;
+};
+
+TEST(HaDecision, OneRejectedInsPacketIsNotAnHpFault) {
+  Timeline t;
+  InsFeed feed(&t);
+  for (int i = 0; i < 1000 && t.controller() != HA_CONTROLLER_HP; ++i) {
+    feed.Deliver(feed.flying);
+    t.StepWithGood();
+  }
+  ASSERT_EQ(t.controller(), HA_CONTROLLER_HP);
+  // Four times within a minute, one packet with an INS error flag among good ones.
+  for (int glitch_no = 0; glitch_no < 4; ++glitch_no) {
+    HaInsSample glitch = feed.flying;
+    glitch.ins_status |= 0x0010u;
+    feed.Deliver(glitch);
+    t.StepWithGood();
+    for (int i = 0; i < 1500; ++i) {
+      feed.Deliver(feed.flying);
+      t.StepWithGood();
+      ASSERT_EQ(t.controller(), HA_CONTROLLER_HP) << "glitch " << glitch_no << " period " << i;
+    }
+  }
+  EXPECT_EQ(t.out().restart_count, 0u);
+  EXPECT_EQ(t.board.hp_reset_assertions, 0);
+}
+
+TEST(HaDecision, OneFailedPitotReadIsNotAStallNorAnHpFault) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  for (int glitch_no = 0; glitch_no < 4; ++glitch_no) {  // four within a minute
+    t.board.airspeed_ok = false;  // one I2C read fails: the core sees -1 ft/s
+    t.StepWithGood();
+    EXPECT_EQ(t.controller(), HA_CONTROLLER_HP) << "glitch " << glitch_no;
+    EXPECT_EQ(t.out().reasons & HA_REASON_STALL, 0u) << "glitch " << glitch_no;
+    t.board.airspeed_ok = true;
+    for (int i = 0; i < 1500; ++i) t.StepWithGood();
+    EXPECT_EQ(t.controller(), HA_CONTROLLER_HP);
+  }
+  EXPECT_EQ(t.out().restart_count, 0u);
+  EXPECT_EQ(t.board.hp_reset_assertions, 0);
+}
+
+TEST(HaDecision, DeadPitotGivesTheHaControlWithoutResettingTheHp) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  t.board.airspeed_ok = false;  // the pitot is gone for good
+  for (int i = 0; i < 500; ++i) t.StepWithGood();
+  EXPECT_NE(t.controller(), HA_CONTROLLER_HP);  // nobody can check for a stall now
+  EXPECT_EQ(t.out().reasons & HA_REASON_STALL, 0u);
+  EXPECT_EQ(t.out().restart_count, 0u);
+  EXPECT_EQ(t.board.hp_reset_assertions, 0);
+  // The pitot comes back: the HP, which did nothing wrong, gets control back.
+  t.board.airspeed_ok = true;
+  EXPECT_GT(t.ReachHp(), 0);
+  EXPECT_EQ(t.out().restart_count, 0u);
+}
+
+// Airborne is latched from more than height: a low pass keeps the motor and the stall check.
+TEST(HaDecision, LowPassAtTwentyFiveFeetKeepsTheMotorAndTheStallCheck) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  t.Cruise(25.0f, 60.0f);  // the HP flies a low pass
+  for (int i = 0; i < 100; ++i) t.StepWithGood();
+  ASSERT_EQ(t.controller(), HA_CONTROLLER_HP);
+  for (int i = 0; i < 300; ++i) t.Step();  // and dies there
+  ASSERT_EQ(t.controller(), HA_CONTROLLER_HA);
+  EXPECT_GT(t.servos().throttle, 0.5f * t.cfg.sc_throttle_trim);  // the motor keeps running
+  t.board.airspeed_ftps = t.cfg.stall_speed_ftps - 4.0f;
+  t.Step();
+  EXPECT_TRUE(t.out().reasons & HA_REASON_STALL);
+  // Below the launch point (terrain falls away), flying: the same.
+  t.Cruise(-40.0f, 60.0f);
+  for (int i = 0; i < 300; ++i) t.Step();
+  EXPECT_GT(t.servos().throttle, 0.5f * t.cfg.sc_throttle_trim);
+  // A landing is evident only once parked: then the motor idles and the stall check is off.
+  t.Parked();
+  for (int i = 0; i < 100 * 10; ++i) t.Step();
+  EXPECT_FLOAT_EQ(t.servos().throttle, t.cfg.throttle_min);
+  EXPECT_EQ(t.out().reasons & HA_REASON_STALL, 0u);
+}
+
+// The HP dies while the pilot flies: it is restarted, the pilot keeps the servos.
+TEST(HaDecision, DeadHpIsRestartedWhileThePilotFlies) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  t.board.SetPilotInCommand(true);
+  for (int i = 0; i < 100; ++i) t.StepWithGood();
+  ASSERT_EQ(t.controller(), HA_CONTROLLER_MANUAL);
+  for (int i = 0; i < 100; ++i) {  // the HP process dies
+    t.Step();
+    ASSERT_EQ(t.controller(), HA_CONTROLLER_MANUAL);
+  }
+  EXPECT_EQ(t.out().restart_count, 1u);
+  EXPECT_EQ(t.board.hp_reset_assertions, 1);
+  // It boots, and the pilot hands back to the computers: the HP earns control as usual.
+  t.board.SetPilotInCommand(false);
+  EXPECT_GT(t.ReachHp(), 0);
+  EXPECT_EQ(t.out().restart_count, 1u);
+}
+
+TEST(HaDecision, DeadHpIsRestartedWhileTheOperatorHoldsTheHa) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  t.Operator(HA_OP_SELECT_HA);
+  for (int i = 0; i < 100; ++i) t.StepWithGood();
+  ASSERT_EQ(t.controller(), HA_CONTROLLER_HA);
+  ASSERT_EQ(t.out().restart_count, 0u);
+  for (int i = 0; i < 100; ++i) t.Step();  // the HP dies
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HA);
+  EXPECT_EQ(t.out().restart_count, 1u);
+  EXPECT_EQ(t.board.hp_reset_assertions, 1);
+  // Back up, and the operator asks for it: it gets control.
+  for (int i = 0; i < 100; ++i) t.StepWithGood();
+  t.Operator(HA_OP_SELECT_HP);
+  EXPECT_GT(t.ReachHp(), 0);
+}
+
+// One reset pulse is one restart, however many reasons asked for it in that period.
+TEST(HaDecision, OperatorRestartDuringAFailedRecoveryCountsOnce) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  t.Step();
+  t.Step();  // crash: reset 1
+  ASSERT_EQ(t.out().restart_count, 1u);
+  for (int i = 0; i < 50; ++i) t.Step();
+  for (int i = 0; i < 20; ++i) t.StepWithGood();
+  ASSERT_EQ(t.controller(), HA_CONTROLLER_RECOVERING);
+  // In the same period: the operator asks for a restart and the HP fails its recovery.
+  t.Operator(HA_OP_RESTART_HP);
+  t.StepWithGood(0.0f, 2.0f * t.cfg.elevator_limit_deg);
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HA);
+  EXPECT_EQ(t.out().restart_requested, 1u);
+  EXPECT_EQ(t.out().restart_count, 2u);
+  EXPECT_EQ(t.board.hp_reset_assertions, 2);
+}
+
+// Airspeed hovering around stall: the HA keeps control until the HP could fly with margin.
+TEST(HaDecision, AirspeedHoveringAtStallDoesNotCycleHpAndHa) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  int handbacks = 0;
+  uint8_t before = t.controller();
+  for (int i = 0; i < 100 * 120; ++i) {
+    // 3 s just below stall, 3 s just above it, for two minutes.
+    t.board.airspeed_ftps = t.cfg.stall_speed_ftps + ((i / 300) % 2 == 0 ? -1.0f : 1.0f);
+    t.StepWithGood();
+    if (t.controller() == HA_CONTROLLER_HP && before != HA_CONTROLLER_HP) ++handbacks;
+    before = t.controller();
+  }
+  EXPECT_EQ(handbacks, 0);
+  EXPECT_NE(t.controller(), HA_CONTROLLER_HA_LATCHED);
+  EXPECT_EQ(t.out().restart_count, 1u);
+  // With the margin regained the HP gets control back.
+  t.board.airspeed_ftps = 60.0f;
+  EXPECT_GT(t.ReachHp(), 0);
 }
 
 TEST(HaDecision, BoardIsServedEveryPeriod) {

@@ -91,4 +91,53 @@ TEST(HaGeneratedConfig, GeneratorRefusesABootTimeoutThatKeepsADeadHpFromTheLatch
   EXPECT_EQ(ha_aircraft_config.hp_boot_timeout_us, 15000000u);
 }
 
+// The generator's exit status and message for limits.yaml with one key's value replaced.
+int GenerateWithMessage(const std::string& key, const std::string& value, std::string* message) {
+  const std::string yaml = Slurp(HA_LIMITS_YAML);
+  const size_t at = yaml.find(key + ": ");
+  EXPECT_NE(at, std::string::npos) << key;
+  if (at == std::string::npos) return 0;
+  const size_t end = yaml.find('\n', at);
+  char name[] = "/tmp/ha_limits_XXXXXX";
+  const int fd = mkstemp(name);
+  EXPECT_GE(fd, 0);
+  close(fd);
+  std::ofstream(name) << yaml.substr(0, at) + key + ": " + value + yaml.substr(end);
+  const std::string err = std::string(name) + ".err";
+  const std::string cmd = std::string(HA_PYTHON) + " " + HA_CONFIG_GENERATOR + " " + name +
+                          " - >/dev/null 2>" + err;
+  const int status = std::system(cmd.c_str());
+  *message = Slurp(err);
+  std::remove(name);
+  std::remove(err.c_str());
+  return status;
+}
+
+TEST(HaGeneratedConfig, GeneratorRefusesWhatTheCoreCannotHoldNamingKeyAndReason) {
+  struct Case {
+    const char* key;
+    const char* value;
+    const char* reason;  // a word the message must contain
+  };
+  const Case cases[] = {
+      {"body_rate_limit_deg_per_s", "1.0e+46", "float"},  // its S_x rows vanish to zero
+      {"max_airspeed_ftps", "1.0e+39", "float"},          // overflows to inf
+      {"stable_window_s", "4.0e-7", "0 us"},              // rounds to no time at all
+      {"max_restarts", "1.9", "whole"},                   // silently 1
+      {"late_periods_tolerated", "1.5", "whole"},
+      {"pulse_min_us", "1000.5", "whole"},
+      {"no_command_timeout_s", "0.005", "period"},        // shorter than one period
+      {"state_timeout_s", "0.004", "period"},
+      {"late_periods_tolerated", "5", "no_command_timeout_s"},  // the timeout fires first
+  };
+  for (const Case& c : cases) {
+    std::string message;
+    EXPECT_NE(GenerateWithMessage(c.key, c.value, &message), 0) << c.key << ": " << c.value;
+    EXPECT_NE(message.find(c.key), std::string::npos) << message;
+    EXPECT_NE(message.find(c.reason), std::string::npos) << message;
+  }
+  std::string message;
+  EXPECT_EQ(GenerateWithMessage("max_restarts", "3", &message), 0) << message;
+}
+
 }  // namespace

@@ -1,6 +1,7 @@
 // The INS adapter (core/ha_ins.c): VN-200 solutions become the HA's aircraft state, in the
 // core's units, relative to a home latched on the ground; anything the INS does not vouch for,
-// or that is not a number, leaves the state invalid so the HA keeps control.
+// or that is not a number, is dropped without stamping the state, which then ages out in the
+// core (one bad packet is not a lost INS); before home is latched the state stays invalid.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -74,6 +75,7 @@ TEST_F(InsAdapter, InsSolutionBecomesHaStateInHaUnits) {
   EXPECT_NEAR(in.altitude_agl_ft, 50.0 * kFtPerM, 1e-2);
   EXPECT_NEAR(in.north_ft, 0.001 * kMPerDegLatAt45 * kFtPerM, 0.5);
   EXPECT_NEAR(in.east_ft, 0.002 * kMPerDegLonAt45 * kFtPerM, 0.5);
+  EXPECT_NEAR(in.groundspeed_ftps, 25.0 * kFtPerM, 1e-3);
   EXPECT_EQ(in.on_ground, 0u);  // 25 m/s ground speed, 164 ft up
 }
 
@@ -117,12 +119,12 @@ TEST_F(InsAdapter, FirstFixInFlightDoesNotBecomeHome) {
   EXPECT_EQ(ins.home_latched, 0u);
 }
 
-TEST_F(InsAdapter, NanAttitudeLeavesStateInvalid) {
+TEST_F(InsAdapter, NanAttitudeIsDroppedUnstamped) {
   ASSERT_EQ(Update(Parked(), 10u), 1);
   HaInsSample s = Flying(30.0, 0.0, 0.0);
   s.ypr_deg[2] = std::numeric_limits<float>::quiet_NaN();
   EXPECT_EQ(Update(s, 20u), 0);
-  EXPECT_EQ(in.state_valid, 0u);
+  EXPECT_EQ(in.state_valid, 1u);        // the last good state stays, to age out in the core
   EXPECT_EQ(in.state_rx_us, 10u);       // not stamped
   EXPECT_FLOAT_EQ(in.roll_deg, 0.0f);   // not written
   EXPECT_FALSE(std::isnan(in.roll_deg));
@@ -144,14 +146,13 @@ TEST_F(InsAdapter, NonFiniteOrImpossibleValuesAreRejected) {
   bad[4].vel_ned_mps[0] = -inf;
   bad[5].ypr_deg[1] = 95.0f;  // pitch beyond +/-90
   for (const HaInsSample& s : bad) {
-    in.state_valid = 1u;
     EXPECT_EQ(Update(s, 20u), 0);
-    EXPECT_EQ(in.state_valid, 0u);
+    EXPECT_EQ(in.state_rx_us, 10u);  // not stamped: the state ages from the last good one
   }
   EXPECT_EQ(ins.solutions_rejected, 6u);
 }
 
-TEST_F(InsAdapter, InsWithoutFixIsNotValid) {
+TEST_F(InsAdapter, InsWithoutFixIsDroppedUnstamped) {
   ASSERT_EQ(Update(Parked(), 10u), 1);
   const uint16_t statuses[] = {
       0x0002u,           // tracking, GNSS fix bit clear
@@ -163,18 +164,17 @@ TEST_F(InsAdapter, InsWithoutFixIsNotValid) {
   for (uint16_t status : statuses) {
     HaInsSample s = Flying(30.0, 0.0, 0.0);
     s.ins_status = status;
-    in.state_valid = 1u;
     EXPECT_EQ(Update(s, 20u), 0) << "status " << status;
-    EXPECT_EQ(in.state_valid, 0u) << "status " << status;
+    EXPECT_EQ(in.state_rx_us, 10u) << "status " << status;
   }
 }
 
-TEST_F(InsAdapter, PacketWithoutAttitudeIsNotValid) {
+TEST_F(InsAdapter, PacketWithoutAttitudeIsDroppedUnstamped) {
   ASSERT_EQ(Update(Parked(), 10u), 1);
   HaInsSample s = Flying(30.0, 0.0, 0.0);
   s.has = static_cast<uint8_t>(s.has & ~HA_INS_HAS_YPR);
   EXPECT_EQ(Update(s, 20u), 0);
-  EXPECT_EQ(in.state_valid, 0u);
+  EXPECT_EQ(in.state_rx_us, 10u);
 }
 
 TEST_F(InsAdapter, CrossingTheAntimeridianIsAShortHop) {

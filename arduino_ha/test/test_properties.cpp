@@ -5,7 +5,9 @@
 //   3. every reported value is finite;
 //   4. whenever the servos change hands (HP, HA incl. recovering and latched, pilot, self-test),
 //      no surface moves faster than its configured rate limit until the new source's command is
-//      reached: |delta| <= rate limit x period, in every period of the transition.
+//      reached: |delta| <= rate limit x period, in every period of the transition; a handover
+//      to the pilot ends at the latest after manual_handover_us, and from then on the servos
+//      are exactly the pilot's sticks (the pilot's own inputs are never rate-limited).
 // Episodes alternate between mostly sane and fully hostile inputs so that the HP really is in
 // control often enough for property 2 to be exercised.
 #include <gtest/gtest.h>
@@ -91,7 +93,7 @@ TEST(HaProperties, ServosAlwaysFiniteInsideSuAndOutsideCommandsNeverReachThem) {
   Hostile h(0x5eed1234u);
   const int kEpisodes = 1000;
   const int kStepsPerEpisode = 3000;  // 30 s of flight each: long enough to hand over to the HP
-  uint64_t steps = 0, hp_steps = 0, outside_rejected = 0, rate_limited = 0;
+  uint64_t steps = 0, hp_steps = 0, outside_rejected = 0, rate_limited = 0, pilot_handed = 0;
   uint64_t handovers[4][4] = {};  // [from][to] source changes seen
   HaCore core;
   HaInputs in;
@@ -119,13 +121,14 @@ TEST(HaProperties, ServosAlwaysFiniteInsideSuAndOutsideCommandsNeverReachThem) {
       in.roll_deg = h.Maybe(p, h.Uniform(-10.0f, 10.0f));
       in.pitch_deg = h.Maybe(p, h.Uniform(-5.0f, 5.0f));
       in.heading_deg = h.Maybe(p, h.Uniform(-720.0f, 720.0f));
-      in.p_deg_s = h.Maybe(p, h.Uniform(-5.0f, 5.0f));
-      in.q_deg_s = h.Maybe(p, h.Uniform(-5.0f, 5.0f));
-      in.r_deg_s = h.Maybe(p, h.Uniform(-5.0f, 5.0f));
+      in.p_deg_s = h.Maybe(p, parked ? h.Uniform(-1.0f, 1.0f) : h.Uniform(-5.0f, 5.0f));
+      in.q_deg_s = h.Maybe(p, parked ? h.Uniform(-1.0f, 1.0f) : h.Uniform(-5.0f, 5.0f));
+      in.r_deg_s = h.Maybe(p, parked ? h.Uniform(-1.0f, 1.0f) : h.Uniform(-5.0f, 5.0f));
       in.altitude_agl_ft =
           h.Maybe(p, parked ? h.Uniform(0.0f, 10.0f) : h.Uniform(100.0f, 250.0f));
       in.north_ft = h.Maybe(p, h.Uniform(-1000.0f, 1000.0f));
       in.east_ft = h.Maybe(p, h.Uniform(-1000.0f, 1000.0f));
+      in.groundspeed_ftps = h.Maybe(p, parked ? h.Uniform(0.0f, 1.0f) : h.Uniform(50.0f, 70.0f));
       in.on_ground = h.Chance(p) ? static_cast<uint8_t>(h.U32()) : (parked ? 1u : 0u);
       in.state_valid = h.Chance(p) ? static_cast<uint8_t>(h.U32()) : 1u;
       in.state_rx_us = h.Chance(p) ? h.U32() : now;
@@ -168,7 +171,14 @@ TEST(HaProperties, ServosAlwaysFiniteInsideSuAndOutsideCommandsNeverReachThem) {
       ha_core_step(&core, &in, now, &out);
 
       const Source source_now = SourceOf(out);
-      if (source_now != source || was_in_transition) {
+      if (source_now == Source::kManual && was_in_transition && !core.transition_active) {
+        HaSurfaces sticks;
+        ha_surfaces_from_rc(&cfg, &in.rc, &sticks);
+        ASSERT_EQ(std::memcmp(&out.surfaces, &sticks, sizeof sticks), 0)
+            << "episode " << episode << " step " << i << ": the handover to the pilot ended "
+            << "elsewhere than on the sticks";
+        ++pilot_handed;
+      } else if (source_now != source || was_in_transition) {
         ASSERT_TRUE(WithinRateLimit(cfg, applied_before, out.surfaces, dt_us))
             << "episode " << episode << " step " << i << " from source "
             << static_cast<int>(source) << " to " << static_cast<int>(source_now)
@@ -221,12 +231,15 @@ TEST(HaProperties, ServosAlwaysFiniteInsideSuAndOutsideCommandsNeverReachThem) {
   const int ha = static_cast<int>(Source::kHa), hp = static_cast<int>(Source::kHp),
             manual = static_cast<int>(Source::kManual);
   EXPECT_GT(rate_limited, steps / 100);
+  EXPECT_GT(pilot_handed, 100u);  // handovers to the pilot ended, onto the sticks
   EXPECT_GT(handovers[ha][hp], 100u);
   EXPECT_GT(handovers[hp][ha], 100u);
   EXPECT_GT(handovers[ha][manual] + handovers[hp][manual], 100u);
   EXPECT_GT(handovers[manual][ha] + handovers[manual][hp], 100u);
   const int self_test = static_cast<int>(Source::kSelfTest);
-  EXPECT_GT(handovers[self_test][self_test], 5000u);  // every self-test period is a slew
+  // Every self-test period is a slew. Fewer than before issue 13: one hostile sample that looks
+  // like flight now latches airborne (no self-test) until landed_confirm_s of parked.
+  EXPECT_GT(handovers[self_test][self_test], 2000u);
 }
 
 TEST(HaProperties, BitComparisonsGiveTheFloatComparisonsVerdicts) {

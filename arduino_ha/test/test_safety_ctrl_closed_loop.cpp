@@ -97,4 +97,94 @@ TEST(HaSafetyCtrl, KeepsAircraftInsideRegionWithHpGone) {
   }
 }
 
+// A blind HA (its INS feed gone) does not hold the HP's last surfaces: they fade to the trims.
+TEST(HaSafetyCtrl, BlindHaFadesTheHpsLastSurfacesToTrim) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  for (int i = 0; i < 100; ++i) t.StepWithGood(10.0f, -8.0f, 2.0f, 0.7f);  // the HP banks
+  t.refresh_state = false;  // the HA's VN-200 feed drops, and the HP dies with it
+  const int periods = 100 * 10;
+  for (int i = 0; i < periods; ++i) t.Step();
+  ASSERT_NE(t.controller(), HA_CONTROLLER_HP);
+  EXPECT_NEAR(t.servos().aileron_deg, 0.0f, 0.01f);
+  EXPECT_NEAR(t.servos().elevator_deg, 0.0f, 0.01f);
+  EXPECT_NEAR(t.servos().rudder_deg, 0.0f, 0.01f);
+  EXPECT_NEAR(t.servos().throttle, t.cfg.sc_throttle_trim, 0.01f);
+  // And the ground station is not told "ceiling" or "state region" for a missing INS.
+  EXPECT_EQ(t.out().reasons & (HA_REASON_CEILING | HA_REASON_STATE_REGION), 0u);
+}
+
+// Slow beats low, as a table over altitude x airspeed: below the stall margin the safety
+// controller's first command lowers the nose (trailing edge down) at every altitude, and above
+// it the altitude band still decides (so the law can climb when it has the speed to spend).
+TEST(HaSafetyCtrl, SlowBeatsLowAtEveryAltitude) {
+  const HaAircraftConfig& cfg = ha_aircraft_config;
+  const float margin_ftps = cfg.stall_speed_ftps * cfg.sc_stall_margin;
+  const float altitudes_ft[] = {-50, 0, 15, 30, 45, 60, 90, 130, 150, 200, 250, 300, 399, 450};
+  const float slow_fractions[] = {0.5f, 0.7f, 0.9f, 1.0f, 1.1f, 1.2f, 1.29f};
+  for (float alt_ft : altitudes_ft) {
+    for (float fraction : slow_fractions) {
+      const float v_ftps = cfg.stall_speed_ftps * fraction;
+      if (v_ftps >= margin_ftps) continue;
+      HaCore core;
+      ha_core_init(&core, &cfg);
+      HaInputs in{};
+      HaOutputs out{};
+      PointMassAircraft level;
+      level.altitude_ft = alt_ft;
+      level.airspeed_ftps = v_ftps;
+      level.north_ft = cfg.sc_circle_radius_ft;
+      level.heading_deg = 90.0f;
+      level.WriteTo(&in, 1000u);
+      ha_core_step(&core, &in, 1000u, &out);
+      EXPECT_GT(out.surfaces.elevator_deg, 0.0f)
+          << "nose up at " << alt_ft << " ft, " << v_ftps << " ft/s";
+    }
+  }
+}
+
+// The reviewer's case in closed loop: the HP flies slow and low and the HA takes over for STALL.
+TEST(HaSafetyCtrl, StallAtSixtyFeetLowersTheNose) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  PointMassAircraft ac;
+  ac.north_ft = t.cfg.sc_circle_radius_ft;
+  ac.heading_deg = 90.0f;
+  ac.altitude_ft = 60.0f;
+  ac.airspeed_ftps = 38.0f;
+  ac.pitch_deg = 6.0f;
+  t.refresh_state = false;
+  bool switched = false;
+  int ha_periods = 0, nose_up_periods_while_slow = 0;
+  float min_altitude_ft = ac.altitude_ft;
+  const float dt = t.cfg.period_us * 1e-6f;
+  for (int i = 0; i < 100 * 60; ++i) {
+    ac.WriteTo(&t.app.inputs, t.board.now_us);
+    t.board.airspeed_ftps = ac.airspeed_ftps;
+    if (!switched) {
+      t.StepWithGood(0.0f, -3.0f, 0.0f, 0.3f);  // the HP pulls, slow, until the HA takes over...
+      switched = t.controller() != HA_CONTROLLER_HP;
+      if (switched) {
+        EXPECT_TRUE(t.out().reasons_at_switch & HA_REASON_STALL);
+      }
+    } else {
+      t.Step();  // ...and is gone: the HA alone has to recover
+    }
+    ha_periods = t.controller() == HA_CONTROLLER_HP ? 0 : ha_periods + 1;
+    // After 0.2 s of handover slew from the HP's elevator, the HA's own law decides.
+    if (ha_periods > 20 && ac.airspeed_ftps < t.cfg.stall_speed_ftps &&
+        t.servos().elevator_deg < 0.0f) {
+      ++nose_up_periods_while_slow;
+    }
+    ac.Step(t.servos(), dt);
+    min_altitude_ft = std::min(min_altitude_ft, ac.altitude_ft);
+  }
+  std::printf("stall at 60 ft, 38 ft/s: lowest %.1f ft, %.1f ft/s after 60 s\n", min_altitude_ft,
+              ac.airspeed_ftps);
+  ASSERT_TRUE(switched);
+  EXPECT_EQ(nose_up_periods_while_slow, 0);
+  EXPECT_GT(min_altitude_ft, 0.0f);
+  EXPECT_GT(ac.airspeed_ftps, t.cfg.stall_speed_ftps * t.cfg.sc_stall_margin);
+}
+
 }  // namespace

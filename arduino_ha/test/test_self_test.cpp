@@ -65,4 +65,36 @@ TEST(HaSelfTest, PilotSwitchAbortsSelfTest) {
   EXPECT_EQ(t.controller(), HA_CONTROLLER_MANUAL);
 }
 
+// Parked means level, still and stopped: a tilted, turning or rolling aircraft that reports
+// itself on the ground (a wrong INS flag, a failed pitot reading zero) never runs the self-test.
+TEST(HaSelfTest, SelfTestRefusedUnlessLevelStillAndStopped) {
+  struct Case {
+    const char* name;
+    float roll_deg, pitch_deg, q_deg_s, r_deg_s, groundspeed_ftps;
+  };
+  const Case cases[] = {
+      {"banked", 30.0f, 0.0f, 0.0f, 0.0f, 0.0f},
+      {"nose high", 0.0f, 25.0f, 0.0f, 0.0f, 0.0f},
+      {"pitching", 0.0f, 0.0f, 20.0f, 0.0f, 0.0f},
+      {"turning", 0.0f, 0.0f, 0.0f, 15.0f, 0.0f},
+      // Flying slowly into a headwind over the ground, the pitot failed and reading zero.
+      {"moving over the ground", 0.0f, 0.0f, 0.0f, 0.0f, 20.0f},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    Timeline t;
+    t.Parked();
+    t.app.inputs.roll_deg = c.roll_deg;
+    t.app.inputs.pitch_deg = c.pitch_deg;
+    t.app.inputs.q_deg_s = c.q_deg_s;
+    t.app.inputs.r_deg_s = c.r_deg_s;
+    t.app.inputs.groundspeed_ftps = c.groundspeed_ftps;
+    for (int i = 0; i < 10; ++i) t.Step();
+    t.Operator(HA_OP_SELF_TEST);
+    t.Step();
+    EXPECT_EQ(t.out().operator_ack_accepted, 0u);
+    EXPECT_EQ(t.out().self_test_active, 0u);
+  }
+}
+
 }  // namespace

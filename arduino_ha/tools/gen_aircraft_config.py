@@ -27,6 +27,21 @@ class ConfigError(Exception):
 
 
 STANDARD_GRAVITY_FTPS2 = 32.174  # physics, not aircraft data
+FLT_MAX = 3.4028234663852886e38  # the core holds every value as an IEEE-754 single
+FLT_MIN_NORMAL = 1.1754943508222875e-38
+US_MAX = 2 ** 32 - 1  # times are uint32_t microseconds
+
+
+def fits_f32(key, value, what="value"):
+    """A value the core's float can hold: neither overflowing to inf nor vanishing to 0 (or a
+    denormal, which the Due's soft float handles slowly and EVA flags)."""
+    if abs(value) > FLT_MAX:
+        raise ConfigError("%s: %s %g does not fit a 32-bit float (overflows to inf)"
+                          % (key, what, value))
+    if value != 0.0 and abs(value) < FLT_MIN_NORMAL:
+        raise ConfigError("%s: %s %g vanishes as a 32-bit float (below %g)"
+                          % (key, what, value, FLT_MIN_NORMAL))
+    return value
 
 
 def need(section, key, low=None, high=None):
@@ -38,6 +53,7 @@ def need(section, key, low=None, high=None):
     value = float(value)
     if not math.isfinite(value):
         raise ConfigError("%s must be finite" % key)
+    fits_f32(key, value)
     if low is not None and value < low:
         raise ConfigError("%s = %g is below %g" % (key, value, low))
     if high is not None and value > high:
@@ -52,16 +68,33 @@ def positive(section, key):
     return value
 
 
-def us(seconds):
-    return int(round(seconds * 1e6))
+def whole(section, key, low, high):
+    """A count or a pulse width: the core holds it as an integer, so a fraction is refused, not
+    truncated."""
+    value = need(section, key, low, high)
+    if not value.is_integer():
+        raise ConfigError("%s = %g must be a whole number (the core would truncate it to %d)"
+                          % (key, value, int(value)))
+    return int(value)
 
 
-def symmetric_rows(dim, index, limit):
+def us(seconds, key):
+    """Seconds to the core's integer microseconds: refused if it rounds to no time at all or
+    does not fit the 32-bit clock."""
+    value = int(round(seconds * 1e6))
+    if value <= 0:
+        raise ConfigError("%s = %g s rounds to 0 us" % (key, seconds))
+    if value > US_MAX:
+        raise ConfigError("%s = %g s does not fit a 32-bit microsecond clock" % (key, seconds))
+    return value
+
+
+def symmetric_rows(dim, index, limit, key):
     """Rows +v/limit <= 1 and -v/limit <= 1 of a symmetric box constraint."""
     up = [0.0] * dim
     down = [0.0] * dim
-    up[index] = 1.0 / limit
-    down[index] = -1.0 / limit
+    up[index] = fits_f32(key, 1.0 / limit, "region row 1/limit =")
+    down[index] = -up[index]
     return [up, down]
 
 
@@ -95,43 +128,48 @@ def build(doc):
     c["stall_speed_ftps"] = positive(st, "stall_speed_ftps")
     c["ceiling_agl_ft"] = positive(st, "ceiling_agl_ft")
     c["airborne_agl_ft"] = need(st, "airborne_agl_ft", 0.0, c["ceiling_agl_ft"])
+    c["landed_confirm_us"] = us(positive(st, "landed_confirm_s"), "landed_confirm_s")
     c["inner_region_fraction"] = need(st, "inner_region_fraction", 0.05, 0.99)
     c["max_airspeed_ftps"] = need(sen, "max_airspeed_ftps", c["stall_speed_ftps"])
-    c["state_timeout_us"] = us(positive(sen, "state_timeout_s"))
+    c["state_timeout_us"] = us(positive(sen, "state_timeout_s"), "state_timeout_s")
+    c["airspeed_timeout_us"] = us(positive(sen, "airspeed_timeout_s"), "airspeed_timeout_s")
 
     # S_x (x - x0) <= 1: symmetric boxes on the angles and rates, and the ceiling on altitude
     # (the HA needs no lower altitude bound here: the stall and airborne checks cover it).
-    limits = [c["alpha_limit_deg"], c["beta_limit_deg"], roll, pitch, rate, rate, rate]
+    limits = [("alpha_limit_deg", c["alpha_limit_deg"]), ("beta_limit_deg", c["beta_limit_deg"]),
+              ("roll_limit_deg", roll), ("pitch_limit_deg", pitch)] + \
+        [("body_rate_limit_deg_per_s", rate)] * 3
     sx = []
-    for i, lim in enumerate(limits):
-        sx += symmetric_rows(len(X_NAMES), i, lim)
+    for i, (key, lim) in enumerate(limits):
+        sx += symmetric_rows(len(X_NAMES), i, lim, key)
     alt = [0.0] * len(X_NAMES)
-    alt[X_NAMES.index("alt_agl_ft")] = 1.0 / c["ceiling_agl_ft"]
+    alt[X_NAMES.index("alt_agl_ft")] = fits_f32("ceiling_agl_ft", 1.0 / c["ceiling_agl_ft"],
+                                                 "region row 1/limit =")
     sx.append(alt)
     c["sx"] = sx
     c["x0"] = [0.0] * len(X_NAMES)
 
     # S_u (u - u0) <= 1: surfaces symmetric about neutral, throttle centred on its range.
     su = []
-    for i, lim in enumerate([c["elevator_limit_deg"], c["aileron_limit_deg"],
-                             c["rudder_limit_deg"]]):
-        su += symmetric_rows(len(U_NAMES), i, lim)
+    for i, key in enumerate(["elevator_limit_deg", "aileron_limit_deg", "rudder_limit_deg"]):
+        su += symmetric_rows(len(U_NAMES), i, c[key], key)
     half = (c["throttle_max"] - c["throttle_min"]) / 2.0
-    su += symmetric_rows(len(U_NAMES), 3, half)
+    su += symmetric_rows(len(U_NAMES), 3, half, "throttle_max")
     c["su"] = su
     c["u0"] = [0.0, 0.0, 0.0, (c["throttle_max"] + c["throttle_min"]) / 2.0]
     if len(sx) > SX_MAX_ROWS or len(su) > SU_MAX_ROWS:
         raise ConfigError("too many region rows for HA_SX_MAX_ROWS/HA_SU_MAX_ROWS")
 
     rate_hz = need(dec, "rate_hz", 1.0, 1000.0)
-    c["period_us"] = us(1.0 / rate_hz)
-    c["late_periods_tolerated"] = int(need(dec, "late_periods_tolerated", 0.0, 100.0))
-    c["no_command_timeout_us"] = us(positive(dec, "no_command_timeout_s"))
-    c["stable_window_us"] = us(positive(dec, "stable_window_s"))
-    c["max_restarts"] = int(need(dec, "max_restarts", 1.0, MAX_RESTARTS_CAP))
-    c["restart_window_us"] = us(positive(dec, "restart_window_s"))
-    c["hp_reset_pulse_us"] = us(positive(dec, "hp_reset_pulse_s"))
-    c["hp_boot_timeout_us"] = us(positive(dec, "hp_boot_timeout_s"))
+    c["period_us"] = us(1.0 / rate_hz, "rate_hz")
+    c["late_periods_tolerated"] = whole(dec, "late_periods_tolerated", 0.0, 100.0)
+    c["no_command_timeout_us"] = us(positive(dec, "no_command_timeout_s"),
+                                    "no_command_timeout_s")
+    c["stable_window_us"] = us(positive(dec, "stable_window_s"), "stable_window_s")
+    c["max_restarts"] = whole(dec, "max_restarts", 1.0, MAX_RESTARTS_CAP)
+    c["restart_window_us"] = us(positive(dec, "restart_window_s"), "restart_window_s")
+    c["hp_reset_pulse_us"] = us(positive(dec, "hp_reset_pulse_s"), "hp_reset_pulse_s")
+    c["hp_boot_timeout_us"] = us(positive(dec, "hp_boot_timeout_s"), "hp_boot_timeout_s")
     if c["hp_boot_timeout_us"] <= c["no_command_timeout_us"]:
         raise ConfigError("hp_boot_timeout_s must exceed no_command_timeout_s")
     # An HP that never comes back is reset every pulse + boot timeout; the K-th reset must fall
@@ -140,6 +178,19 @@ def build(doc):
             c["restart_window_us"]:
         raise ConfigError("max_restarts x (hp_reset_pulse_s + hp_boot_timeout_s) must be shorter "
                           "than restart_window_s, or a dead HP is reset forever and never latched")
+    # Nothing the core times can be shorter than the period it is checked in.
+    for key in ("no_command_timeout_us", "state_timeout_us", "airspeed_timeout_us",
+                "stable_window_us", "hp_reset_pulse_us", "landed_confirm_us"):
+        if c[key] < c["period_us"]:
+            raise ConfigError("%s_s (%d us) is shorter than one period (%d us at rate_hz)"
+                              % (key[:-3], c[key], c["period_us"]))
+    # Tolerated late periods must run out before the no-command timeout, or the tolerance is
+    # a fiction: the HP would be declared dead while still "late".
+    if c["late_periods_tolerated"] * c["period_us"] >= c["no_command_timeout_us"]:
+        raise ConfigError("late_periods_tolerated x period (%d us) must be shorter than "
+                          "no_command_timeout_s (%d us)"
+                          % (c["late_periods_tolerated"] * c["period_us"],
+                             c["no_command_timeout_us"]))
     # The microsecond clock wraps after 2^32 us; longer windows could not be measured.
     for key in ("stable_window_us", "restart_window_us", "no_command_timeout_us",
                 "hp_boot_timeout_us"):
@@ -147,14 +198,14 @@ def build(doc):
             raise ConfigError("%s too long for a 32-bit microsecond clock" % key)
 
     for prefix, sec in (("rc", rc), ("servo", servo)):
-        lo = int(need(sec, "pulse_min_us", 500.0, 2500.0))
-        hi = int(need(sec, "pulse_max_us", 500.0, 2500.0))
+        lo = whole(sec, "pulse_min_us", 500.0, 2500.0)
+        hi = whole(sec, "pulse_max_us", 500.0, 2500.0)
         if hi <= lo:
             raise ConfigError("%s pulse_max_us must exceed pulse_min_us" % prefix)
         c[prefix + "_pulse_min_us"] = lo
         c[prefix + "_pulse_max_us"] = hi
-    c["pic_threshold_us"] = int(need(rc, "pic_threshold_us", c["rc_pulse_min_us"],
-                                     c["rc_pulse_max_us"]))
+    c["pic_threshold_us"] = whole(rc, "pic_threshold_us", c["rc_pulse_min_us"],
+                                  c["rc_pulse_max_us"])
     # Stick slopes: [min, max] us onto [-limit, +limit] (throttle onto [min, max]), derived here
     # so the HA divides nothing per period.
     rc_span_us = float(c["rc_pulse_max_us"] - c["rc_pulse_min_us"])
@@ -183,9 +234,20 @@ def build(doc):
     c["sc_pitch_cmd_limit_deg"] = need(sc, "pitch_cmd_limit_deg", 1.0,
                                        pitch * c["inner_region_fraction"])
     c["sc_stall_margin"] = need(sc, "stall_margin", 1.05, 3.0)
-    if c["stall_speed_ftps"] * c["sc_stall_margin"] >= c["max_airspeed_ftps"]:
-        raise ConfigError("target airspeed above max_airspeed_ftps")
-    target_ftps = c["stall_speed_ftps"] * c["sc_stall_margin"]
+    # The throttle loop's target must lie above the pitch loop's floor, or the aircraft could
+    # never climb at it (the nose may rise only with speed above stall x stall_margin).
+    c["sc_cruise_margin"] = need(sc, "cruise_margin", c["sc_stall_margin"], 3.0)
+    if c["sc_cruise_margin"] <= c["sc_stall_margin"]:
+        raise ConfigError("cruise_margin must exceed stall_margin: at the throttle loop's target "
+                          "speed the pitch loop could not raise the nose")
+    if c["stall_speed_ftps"] * c["sc_cruise_margin"] >= c["max_airspeed_ftps"]:
+        raise ConfigError("cruise_margin: target airspeed above max_airspeed_ftps")
+    target_ftps = c["stall_speed_ftps"] * c["sc_cruise_margin"]
+    handback = need(st, "handback_stall_multiple", 1.0, c["sc_cruise_margin"])
+    if handback <= 1.0 or handback >= c["sc_cruise_margin"]:
+        raise ConfigError("handback_stall_multiple must lie strictly between 1 and cruise_margin: "
+                          "above stall for margin, below the speed the HA itself flies at")
+    c["handback_airspeed_ftps"] = c["stall_speed_ftps"] * handback
     # Steady coordinated turn: tan(bank) = V^2 / (g R). Derived here once, not per period.
     c["sc_circle_bank_ff_deg"] = math.degrees(
         math.atan(target_ftps * target_ftps / (STANDARD_GRAVITY_FTPS2 * c["sc_circle_radius_ft"])))
@@ -193,6 +255,13 @@ def build(doc):
         raise ConfigError("circle_radius_ft too small: its turn needs more bank than bank_limit_deg")
     c["sc_throttle_trim"] = need(sc, "throttle_trim", c["throttle_min"], c["throttle_max"])
     c["sc_integrator_authority"] = need(sc, "integrator_authority", 0.0, 1.0)
+    c["sc_blind_fade_per_s"] = 1.0 / positive(sc, "blind_fade_s")
+
+    c["manual_handover_us"] = us(max(
+        2.0 * max(c["elevator_limit_deg"], c["aileron_limit_deg"], c["rudder_limit_deg"])
+        / c["surface_rate_limit_deg_per_s"],
+        (c["throttle_max"] - c["throttle_min"]) / c["throttle_rate_limit_per_s"]),
+        "surface_rate_limit_deg_per_s")
 
     step_s = positive(selft, "step_s")
     c["self_test_throttle_max"] = need(selft, "throttle_max", c["throttle_min"],
@@ -203,7 +272,14 @@ def build(doc):
                   / c["throttle_rate_limit_per_s"])
     if step_s <= slowest:
         raise ConfigError("self_test step_s must exceed %.3f s (slew limit to limit)" % slowest)
-    c["self_test_step_us"] = us(step_s)
+    c["self_test_step_us"] = us(step_s, "step_s")
+    c["self_test_max_tilt_deg"] = need(selft, "max_tilt_deg", 0.0, 45.0)
+    c["self_test_max_rate_deg_s"] = need(selft, "max_rate_deg_s", 0.0, 30.0)
+    c["self_test_max_groundspeed_ftps"] = need(selft, "max_groundspeed_ftps", 0.0,
+                                               c["stall_speed_ftps"])
+    for key, value in c.items():
+        if isinstance(value, float):
+            fits_f32(key, value, "derived value")
     return c
 
 

@@ -86,6 +86,7 @@ static void any_link_inputs(HaInputs *in) {
   in->altitude_agl_ft = any_float();
   in->north_ft = any_float();
   in->east_ft = any_float();
+  in->groundspeed_ftps = any_float();
   in->on_ground = any_u8();
   in->state_valid = any_u8();
   in->state_rx_us = any_u32();
@@ -174,7 +175,7 @@ static void eva_kick_watchdog(void *ctx) { (void)ctx; }
 /* The decision reported to the HP side is always one of the defined values. */
 static void check_decision(const HaOutputs *out) {
   /*@ assert controller_defined: out->controller <= HA_CONTROLLER_MANUAL; */
-  /*@ assert reasons_defined: (out->reasons & ~(uint32_t)0x1FFFu) == 0; */
+  /*@ assert reasons_defined: (out->reasons & ~(uint32_t)0x3FFFu) == 0; */
   /*@ assert leds_defined: (out->leds & ~(uint8_t)0x0Fu) == 0; */
 }
 

@@ -65,30 +65,36 @@ static uint32_t check_integrity(const HaCmdFacts *f) {
   return flag(!f->intact, HA_REASON_INTEGRITY);
 }
 
-/* Airborne with an airspeed at or below stall, or unknown. */
-static uint32_t check_stall(const HaAircraftConfig *cfg, const HaStateView *s) {
-  const int above_stall = s->airspeed_ok && ha_greater(s->airspeed_ftps, cfg->stall_speed_ftps);
-  return flag(s->airborne && !above_stall, HA_REASON_STALL);
+/* The HA cannot judge the state checks: its INS state is stale or invalid, or in flight its
+ * pitot has failed for longer than a glitch. Said as such, not as a ceiling or region breach. */
+static uint32_t check_ha_state(const HaStateView *s) {
+  return flag(!s->attitude_ok || !s->altitude_ok || (s->airborne && !s->airspeed_ok),
+              HA_REASON_NO_HA_STATE);
 }
 
-/* Above the ceiling, or altitude unknown. */
+/* Airborne with a known airspeed at or below stall. */
+static uint32_t check_stall(const HaAircraftConfig *cfg, const HaStateView *s) {
+  return flag(s->airborne && s->airspeed_ok &&
+                  !ha_greater(s->airspeed_ftps, cfg->stall_speed_ftps),
+              HA_REASON_STALL);
+}
+
+/* Above the ceiling (a component not ok holds the region centre, so only known values count). */
 static uint32_t check_ceiling(const HaAircraftConfig *cfg, const HaStateView *s) {
-  return flag(!s->altitude_ok || ha_greater(s->x[HA_X_ALT_AGL_FT], cfg->ceiling_agl_ft),
-              HA_REASON_CEILING);
+  return flag(ha_greater(s->x[HA_X_ALT_AGL_FT], cfg->ceiling_agl_ft), HA_REASON_CEILING);
 }
 
 static uint32_t check_state_region(const HaAircraftConfig *cfg, const HaStateView *s,
                                    float *region_max) {
   *region_max = ha_state_region_max(cfg, s->x);
-  return flag(!s->attitude_ok || !s->altitude_ok || ha_greater(*region_max, 1.0f),
-              HA_REASON_STATE_REGION);
+  return flag(ha_greater(*region_max, 1.0f), HA_REASON_STATE_REGION);
 }
 
 uint32_t ha_checks_evaluate(const HaAircraftConfig *cfg, const HaCmdFacts *facts,
                             const HaStateView *state, float *state_region_max,
                             float *actuator_region_max) {
   uint32_t reasons = check_no_command(cfg, facts) | check_deadline(cfg, facts) |
-                     check_stall(cfg, state) | check_ceiling(cfg, state) |
+                     check_ha_state(state) | check_stall(cfg, state) | check_ceiling(cfg, state) |
                      check_state_region(cfg, state, state_region_max);
   *actuator_region_max = 0.0f;
   if (facts->have_cmd) {

@@ -13,6 +13,10 @@
    HA_REASON_ACTUATOR_REGION | HA_REASON_ALPHA_BETA | HA_REASON_SENSOR_LINK |              \
    HA_REASON_FROZEN | HA_REASON_INTEGRITY | HA_REASON_ESTIMATOR)
 
+/* Reasons that are no fault of the HP: the HA's own sensors, the operator's choice. A switch for
+ * these alone neither resets the HP nor counts towards the restart cap. */
+#define HA_REASONS_NOT_HP (HA_REASON_NO_HA_STATE | HA_REASON_GROUND_COMMAND)
+
 /* The aircraft state after checking: a component that failed its check is marked not ok and
  * holds a harmless value (the region centre, or 0), never the raw input. */
 typedef struct {
@@ -21,8 +25,14 @@ typedef struct {
   uint8_t position_ok; /* north, east, heading */
   uint8_t airspeed_ok;
   uint8_t alpha_beta_ok; /* the HP command's estimates are finite */
-  uint8_t airborne;      /* above alt0, or altitude unknown */
-  uint8_t on_ground;     /* reported on the ground, low and slow: the self-test may run */
+  /* Airborne is decided by the core from these, latched (ha_core.c): any one signal of flight
+   * sets it, and only a landing evident for landed_confirm_us clears it. */
+  uint8_t flying_evidence; /* above stall (pitot), above alt0 (INS), or the INS not parked */
+  uint8_t landed_evidence; /* the INS parked and low, and the pitot (if alive) below stall */
+  uint8_t blind;           /* neither a fresh INS state nor a live pitot: cannot tell */
+  uint8_t still;           /* INS: level, no body rates, no ground speed (self-test gate) */
+  uint8_t airborne;        /* set by the core: latched, or blind */
+  uint8_t on_ground;       /* set by the core: not airborne, parked: the self-test may run */
   float x[HA_X_DIM];
   float airspeed_ftps;
   float heading_deg;
@@ -40,9 +50,10 @@ typedef struct {
   const HaHpCommand *cmd; /* never NULL; meaningful only when have_cmd */
 } HaCmdFacts;
 
-/* cmd is the latest HP command (never NULL); have_cmd says whether one ever arrived. */
+/* cmd is the latest HP command (never NULL); have_cmd says whether one ever arrived; own is
+ * the core's tracking of its own sensors (ages, the last good airspeed). */
 void ha_state_view(const HaAircraftConfig *cfg, const HaInputs *in, const HaHpCommand *cmd,
-                   int have_cmd, uint32_t now_us, HaStateView *out);
+                   int have_cmd, const HaOwnSensors *own, HaStateView *out);
 
 /* Runs every check; returns the HA_REASON_* bits and the two region values. */
 uint32_t ha_checks_evaluate(const HaAircraftConfig *cfg, const HaCmdFacts *facts,

@@ -49,6 +49,9 @@ typedef struct {
   float su[HA_SU_MAX_ROWS][HA_U_DIM];
   float u0[HA_U_DIM];
   float inner_region_fraction; /* switch back only while max(S_x (x - x0)) <= this */
+  /* ... and, airborne, only above this airspeed (stall x handback_stall_multiple, derived by the
+   * generator): airspeed hovering at stall cannot cycle the HP and the HA. */
+  float handback_airspeed_ftps;
 
   /* Actuators (the box S_u is built from; the final saturation uses it directly). */
   float elevator_limit_deg;
@@ -58,15 +61,22 @@ typedef struct {
   float throttle_max;
   float surface_rate_limit_deg_per_s;
   float throttle_rate_limit_per_s;
+  /* The longest a handover into MANUAL may be rate-limited: the time the limiter needs to cross
+   * any surface's or the throttle's full range, derived by the generator. After it the pilot's
+   * sticks pass unchanged, even if they moved faster than the limiter could follow. */
+  uint32_t manual_handover_us;
 
   /* State checks. */
   float alpha_limit_deg;
   float beta_limit_deg;
   float stall_speed_ftps;
   float ceiling_agl_ft;
-  float airborne_agl_ft;
+  float airborne_agl_ft; /* one signal of flight among several (ha_core.c: airborne latch) */
+  uint32_t landed_confirm_us; /* a landing evident this long clears the airborne latch */
   float max_airspeed_ftps; /* a reading above this is a broken sensor, not a fast aircraft */
   uint32_t state_timeout_us; /* attitude/position older than this is not trusted */
+  /* A failed pitot read holds the last good one this long: a glitch is not a dead sensor. */
+  uint32_t airspeed_timeout_us;
 
   /* Decision logic. */
   uint32_t period_us;
@@ -111,16 +121,27 @@ typedef struct {
   float sc_alt_max_ft;
   float sc_alt_to_pitch_gain_deg_per_ft;
   float sc_pitch_cmd_limit_deg;
-  float sc_stall_margin;             /* target airspeed = stall_speed_ftps * margin */
-  float sc_speed_to_pitch_gain_deg_per_ftps; /* nose down when slow: speed beats altitude */
+  /* Slow beats low: below stall_speed_ftps * sc_stall_margin the pitch loop lowers the nose at
+   * every altitude; above it the nose may rise sc_speed_to_pitch_gain per ft/s of excess. */
+  float sc_stall_margin;
+  float sc_speed_to_pitch_gain_deg_per_ftps;
+  float sc_cruise_margin; /* the throttle loop's target airspeed = stall_speed_ftps * this */
   float sc_throttle_trim;
   float sc_throttle_kp_per_ftps;
   float sc_throttle_ki_per_ft;
   float sc_integrator_authority; /* integrator range as a fraction of the actuator half range */
+  /* Without its own attitude the HA cannot close a loop: the integrators (what is left of the
+   * HP's last surfaces) fade to zero, the trims, at this fraction of their authority per second,
+   * derived by the generator as 1 / blind_fade_s. */
+  float sc_blind_fade_per_s;
 
   /* Pre-flight surface self-test. */
   uint32_t self_test_step_us;
   float self_test_throttle_max;
+  /* Parked, for the self-test: roll and pitch within, body rates within, ground speed below. */
+  float self_test_max_tilt_deg;
+  float self_test_max_rate_deg_s;
+  float self_test_max_groundspeed_ftps;
 } HaAircraftConfig;
 
 #ifdef __cplusplus

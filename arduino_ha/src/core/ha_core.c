@@ -12,7 +12,8 @@
 /* Who produced the surfaces last period (a change starts a rate-limited transition). */
 enum { SRC_HA = 0, SRC_HP = 1, SRC_MANUAL = 2, SRC_SELF_TEST = 3 };
 
-#define HA_REASONS_STATE (HA_REASON_STALL | HA_REASON_CEILING | HA_REASON_STATE_REGION)
+#define HA_REASONS_STATE \
+  (HA_REASON_STALL | HA_REASON_CEILING | HA_REASON_STATE_REGION | HA_REASON_NO_HA_STATE)
 
 static uint32_t add_sat(uint32_t a, uint32_t b) { return a > UINT32_MAX - b ? UINT32_MAX : a + b; }
 
@@ -22,6 +23,8 @@ void ha_core_init(HaCore *core, const HaAircraftConfig *cfg) {
   core->controller = HA_CONTROLLER_HA;
   core->applied.throttle = cfg->throttle_min;
   core->last_source = SRC_HA;
+  core->own.state_age_us = UINT32_MAX;
+  core->own.airspeed_age_us = UINT32_MAX;
   ha_safety_ctrl_reset(&core->sc);
 }
 
@@ -68,6 +71,47 @@ static void track_command(HaCore *core, const HaInputs *in, uint32_t now_us, uin
   f->cmd = &in->hp_cmd;
 }
 
+/* The INS state's age restarts with each newly stamped valid state, and otherwise counts up by
+ * the elapsed periods, saturating: never recomputed from the wrapping clock. A pitot reading in
+ * range restarts the airspeed's age; a failed one (-1 from ha_app) ages the last good one. */
+static void track_own_sensors(HaCore *core, const HaInputs *in, uint32_t now_us,
+                              uint32_t dt_us) {
+  HaOwnSensors *own = &core->own;
+  const float max_ftps = core->cfg->max_airspeed_ftps;
+  if (in->state_valid != 0u && in->state_rx_us != core->seen_state_rx_us) {
+    core->seen_state_rx_us = in->state_rx_us;
+    own->state_age_us = ha_elapsed_us(now_us, in->state_rx_us);
+  } else {
+    own->state_age_us = add_sat(own->state_age_us, dt_us);
+  }
+  if (ha_in_range(in->airspeed_ftps, 0.0f, max_ftps)) {
+    own->airspeed_ftps = ha_clampf(in->airspeed_ftps, 0.0f, max_ftps);
+    own->airspeed_age_us = 0u;
+  } else {
+    own->airspeed_age_us = add_sat(own->airspeed_age_us, dt_us);
+  }
+}
+
+/* Airborne from several signals, latched: never decided by height alone, so a low pass or
+ * terrain below the launch point keeps the motor and the stall check. Without any sensor the
+ * HA cannot rule flight out and counts as airborne. The self-test additionally needs parked. */
+static void decide_airborne(HaCore *core, const HaInputs *in, uint32_t dt_us, HaStateView *v) {
+  if (v->flying_evidence) {
+    core->airborne = 1u;
+    core->landed_for_us = 0u;
+  } else if (v->landed_evidence) {
+    core->landed_for_us = add_sat(core->landed_for_us, dt_us);
+    if (core->landed_for_us >= core->cfg->landed_confirm_us) {
+      core->airborne = 0u;
+    }
+  } else {
+    core->landed_for_us = 0u;
+  }
+  v->airborne = (uint8_t)(core->airborne || v->blind);
+  v->on_ground = (uint8_t)(!v->airborne && in->on_ground != 0u && v->still && v->airspeed_ok &&
+                           ha_greater(core->cfg->stall_speed_ftps, v->airspeed_ftps));
+}
+
 /* Forget restarts older than the window (before the 32-bit clock could wrap onto them). */
 static void prune_restarts(HaCore *core, uint32_t now_us) {
   uint32_t kept = 0u, i;
@@ -102,12 +146,13 @@ static int boot_overdue(const HaCore *core, uint32_t now_us) {
          ha_elapsed_us(now_us, core->reset_released_us) >= core->cfg->hp_boot_timeout_us;
 }
 
-/* Operator requests never bypass a check: they only move the HA's own intent. */
-static void handle_operator(HaCore *core, const HaInputs *in, const HaStateView *view,
-                            uint32_t now_us, HaOutputs *out) {
-  int accepted = 0;
+/* Operator requests never bypass a check: they only move the HA's own intent. Returns 1 for an
+ * accepted RESTART_HP, which the policy then decides together with every other reason. */
+static int handle_operator(HaCore *core, const HaInputs *in, const HaStateView *view,
+                           uint32_t now_us) {
+  int accepted = 0, restart = 0;
   if (in->operator_count == core->seen_operator_count) {
-    return;
+    return 0;
   }
   core->seen_operator_count = in->operator_count;
   if (in->operator_command == HA_OP_SELECT_HP && !core->latched) {
@@ -118,7 +163,7 @@ static void handle_operator(HaCore *core, const HaInputs *in, const HaStateView 
     accepted = 1;
   } else if (in->operator_command == HA_OP_RESTART_HP && !core->latched &&
              core->controller != HA_CONTROLLER_HP) {
-    request_restart(core, now_us, out);
+    restart = 1;
     accepted = 1;
   } else if (in->operator_command == HA_OP_SELF_TEST && view->on_ground &&
              core->controller != HA_CONTROLLER_HP && core->controller != HA_CONTROLLER_MANUAL) {
@@ -127,22 +172,18 @@ static void handle_operator(HaCore *core, const HaInputs *in, const HaStateView 
   }
   core->operator_ack_id = in->operator_request_id;
   core->operator_ack_accepted = (uint8_t)accepted;
+  return restart;
 }
 
-/* Bookkeeping of a change of controller: why, the restart, the latch, a fresh stable window. */
-static void on_switch(HaCore *core, uint8_t next, uint32_t reasons, uint32_t now_us,
-                      HaOutputs *out) {
+/* Bookkeeping of a change of controller: why, the latch, a fresh stable window. */
+static void on_switch(HaCore *core, uint8_t next, uint32_t reasons) {
   const int from_hp_side =
       core->controller == HA_CONTROLLER_HP || core->controller == HA_CONTROLLER_RECOVERING;
   const int to_ha = next == HA_CONTROLLER_HA || next == HA_CONTROLLER_HA_LATCHED;
-  const int hp_fault = !core->ground_command && !core->self_test.active;
   const int latching = next == HA_CONTROLLER_HA_LATCHED && !core->latched;
   if ((from_hp_side && to_ha) || latching) {
     core->reasons_at_switch = reasons; /* why the HP lost control, or why it lost it for good */
     core->stable_for_us = 0u;
-    if (next == HA_CONTROLLER_HA && hp_fault) {
-      request_restart(core, now_us, out);
-    }
   }
   if (latching) {
     core->latched = 1u;
@@ -196,8 +237,10 @@ void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *
 
   out->restart_requested = 0u;
   track_command(core, in, now_us, dt_us, &facts);
-  ha_state_view(cfg, in, facts.cmd, facts.have_cmd, now_us, &view);
-  handle_operator(core, in, &view, now_us, out);
+  track_own_sensors(core, in, now_us, dt_us);
+  ha_state_view(cfg, in, facts.cmd, facts.have_cmd, &core->own, &view);
+  decide_airborne(core, in, dt_us, &view);
+  policy.operator_restart = (uint8_t)handle_operator(core, in, &view, now_us);
   reasons = ha_checks_evaluate(cfg, &facts, &view, &sx_max, &su_max) |
             (core->ground_command ? HA_REASON_GROUND_COMMAND : 0u);
   core->stable_for_us = (reasons & HA_REASONS_COMMAND) ? 0u : add_sat(core->stable_for_us, dt_us);
@@ -217,15 +260,20 @@ void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *
   policy.reasons = reasons;
   policy.stable = (uint8_t)(core->stable_for_us >= cfg->stable_window_us);
   policy.inner = (uint8_t)(!(reasons & HA_REASONS_STATE) &&
-                           !ha_greater(sx_max, cfg->inner_region_fraction));
+                           !ha_greater(sx_max, cfg->inner_region_fraction) &&
+                           (!view.airborne ||
+                            ha_greater(view.airspeed_ftps, cfg->handback_airspeed_ftps)));
   policy.restart_cap_reached = (uint8_t)restart_cap_reached(core);
   policy.boot_overdue = (uint8_t)boot_overdue(core, now_us);
+  policy.hp_dead = (uint8_t)(facts.have_cmd && (reasons & HA_REASON_NO_COMMAND) &&
+                             !core->awaiting_boot && !core->reset_active);
   {
     const uint8_t next = ha_policy_decide(&policy);
+    const uint8_t restart = ha_policy_restart(&policy, next);
     if (next != core->controller) {
-      on_switch(core, next, reasons, now_us, out);
+      on_switch(core, next, reasons);
     }
-    if (!out->restart_requested && ha_policy_reset_again(&policy, next)) {
+    if (restart) {
       request_restart(core, now_us, out);
     }
   }
@@ -248,6 +296,13 @@ void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *
   ha_surfaces_saturate(cfg, &target);
   if (source != core->last_source || source == SRC_SELF_TEST) {
     core->transition_active = 1u;
+    core->manual_handover_left_us = cfg->manual_handover_us;
+  }
+  if (source == SRC_MANUAL && core->transition_active) {
+    /* The limit covers the handover into MANUAL at most, never the pilot's own inputs after. */
+    core->manual_handover_left_us =
+        core->manual_handover_left_us > dt_us ? core->manual_handover_left_us - dt_us : 0u;
+    core->transition_active = (uint8_t)(core->manual_handover_left_us != 0u);
   }
   if (core->transition_active) {
     HaSurfaces limited;

@@ -38,6 +38,7 @@ enum {
 #define HA_REASON_INTEGRITY 1024u
 #define HA_REASON_ESTIMATOR 2048u
 #define HA_REASON_GROUND_COMMAND 4096u
+#define HA_REASON_NO_HA_STATE 8192u
 
 /* msg/OperatorCommand.msg command (0: no request) */
 enum {
@@ -62,6 +63,7 @@ typedef struct {
   float altitude_agl_ft;
   float north_ft;     /* position relative to the home/rally point the HA circles */
   float east_ft;
+  float groundspeed_ftps; /* horizontal speed over the ground (INS) */
   uint8_t on_ground;  /* 1: weight on wheels / landed as reported by the INS side */
   uint8_t state_valid;  /* 0 until the link has delivered a state at least once */
   uint32_t state_rx_us; /* when that state arrived */
@@ -114,6 +116,15 @@ typedef struct {
   float throttle_integ;
 } HaSafetyCtrlState;
 
+/* The HA's own sensors as tracked across periods. Ages saturate, so a state that stopped
+ * arriving never looks fresh again when the 32-bit clock wraps; a failed pitot read holds the
+ * last good reading for up to airspeed_timeout_us (one glitch is not a dead sensor). */
+typedef struct {
+  uint32_t state_age_us;    /* since the INS state arrived; UINT32_MAX before the first */
+  float airspeed_ftps;      /* the last reading inside [0, max_airspeed_ftps] */
+  uint32_t airspeed_age_us; /* since that reading; UINT32_MAX before the first */
+} HaOwnSensors;
+
 typedef struct {
   uint8_t active;
   uint32_t step;
@@ -137,6 +148,12 @@ typedef struct {
   uint32_t late_periods;
   uint32_t cmd_age_us;
   uint32_t stable_for_us;   /* the command has been valid this long (saturating) */
+  /* The HA's own sensors across periods */
+  uint32_t seen_state_rx_us;
+  HaOwnSensors own;
+  /* Airborne, latched once flying until a landing has been evident for landed_confirm_us. */
+  uint8_t airborne;
+  uint32_t landed_for_us;
   /* restarts */
   uint16_t restart_count;
   uint32_t restart_times_us[HA_MAX_RESTARTS_CAP];
@@ -152,6 +169,7 @@ typedef struct {
   /* bumpless transfer */
   HaSurfaces applied;       /* what went to the servos last period */
   uint8_t transition_active;
+  uint32_t manual_handover_left_us; /* into MANUAL: rate-limited at most this much longer */
   uint8_t last_source;
   HaSafetyCtrlState sc;
   HaSelfTestState self_test;

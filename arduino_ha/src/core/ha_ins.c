@@ -121,8 +121,9 @@ int ha_ins_update(HaIns *ins, const HaAircraftConfig *cfg, const HaInsSample *s,
   Checked c;
   double dlon_deg;
   float agl_ft;
+  /* A rejected solution is dropped without touching the state: the last good one stays, and
+   * the core's state timeout, not one bad packet, decides when it is too old to trust. */
   if (!sample_in_range(s) || !ins_tracking(s->ins_status)) {
-    in->state_valid = 0u;
     ins->solutions_rejected += 1u;
     return 0;
   }
@@ -132,7 +133,7 @@ int ha_ins_update(HaIns *ins, const HaAircraftConfig *cfg, const HaInsSample *s,
     latch_home(ins, &c);
   }
   if (!ins->home_latched) {
-    in->state_valid = 0u;
+    in->state_valid = 0u; /* nothing has ever been valid: no home, no altitude AGL */
     ins->solutions_rejected += 1u;
     return 0;
   }
@@ -154,6 +155,8 @@ int ha_ins_update(HaIns *ins, const HaAircraftConfig *cfg, const HaInsSample *s,
   in->altitude_agl_ft = agl_ft;
   in->north_ft = (float)((c.lat_deg - ins->home_lat_deg) * ins->north_ft_per_deg);
   in->east_ft = (float)(dlon_deg * ins->east_ft_per_deg);
+  in->groundspeed_ftps = sqrtf(c.vel_ned_mps[0] * c.vel_ned_mps[0] +
+                               c.vel_ned_mps[1] * c.vel_ned_mps[1]) * (float)HA_INS_FT_PER_M;
   /* The INS has no weight-on-wheels: parked and no higher than the airborne altitude. The core
    * adds its own airspeed check before it trusts this. */
   in->on_ground = (uint8_t)(parked(cfg, &c) && agl_ft <= cfg->airborne_agl_ft);

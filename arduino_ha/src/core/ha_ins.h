@@ -68,7 +68,9 @@ void ha_ins_init(HaIns *ins);
 /* Applies one solution received at now_us. Returns 1 and writes every state field of *inputs
  * with state_valid = 1 and state_rx_us = now_us when the INS is tracking with a GNSS fix and no
  * error flag, every field it needs is present, finite and inside the sensor's range, and home is
- * latched; otherwise sets state_valid = 0, leaves the other fields alone and returns 0.
+ * latched. Otherwise returns 0 and leaves every field alone (state_valid = 0 only while home is
+ * not latched): one rejected packet is not a lost INS, the core's state timeout ages the last
+ * good state out.
  * cfg supplies the aircraft's stall speed and airborne altitude (on_ground, parked). */
 int ha_ins_update(HaIns *ins, const HaAircraftConfig *cfg, const HaInsSample *sample,
                   uint32_t now_us, HaInputs *inputs);

@@ -31,6 +31,13 @@ static float pid(float *integ, float pd, float integ_step, float limit, float au
   return ha_clampf(pd + *integ, -limit, limit);
 }
 
+static float toward_zero(float v, float step) {
+  if (v > step) {
+    return v - step;
+  }
+  return v < -step ? v + step : 0.0f;
+}
+
 /* Outer lateral loop: the bank that flies the circle around home. */
 static float bank_command_deg(const HaAircraftConfig *cfg, const HaStateView *s) {
   const float dir = cfg->sc_circle_direction;
@@ -52,16 +59,22 @@ static float bank_command_deg(const HaAircraftConfig *cfg, const HaStateView *s)
   return ha_clampf(bank_deg, -cfg->sc_bank_limit_deg, cfg->sc_bank_limit_deg);
 }
 
-/* Outer longitudinal loop: altitude to the middle of the band, but speed first. */
+/* Outer longitudinal loop: the altitude band, but slow beats low. The nose may rise only as far
+ * as the airspeed above stall x stall_margin pays for (speed_to_pitch_gain per ft/s); below that
+ * speed the allowance is negative, so the nose goes down at every altitude, however low. The
+ * altitude term can always lower the nose (above the band). Without a known airspeed the
+ * altitude term alone decides (and the check reports the HA lacking state). */
 static float pitch_command_deg(const HaAircraftConfig *cfg, const HaStateView *s) {
-  const float target_ftps = cfg->stall_speed_ftps * cfg->sc_stall_margin;
+  const float floor_ftps = cfg->stall_speed_ftps * cfg->sc_stall_margin;
   const float mid_ft = 0.5f * (cfg->sc_alt_min_ft + cfg->sc_alt_max_ft);
   float pitch_deg = 0.0f;
   if (s->altitude_ok) {
-    pitch_deg += cfg->sc_alt_to_pitch_gain_deg_per_ft * (mid_ft - s->x[HA_X_ALT_AGL_FT]);
+    pitch_deg = cfg->sc_alt_to_pitch_gain_deg_per_ft * (mid_ft - s->x[HA_X_ALT_AGL_FT]);
   }
-  if (s->airspeed_ok && s->airspeed_ftps < target_ftps) {
-    pitch_deg -= cfg->sc_speed_to_pitch_gain_deg_per_ftps * (target_ftps - s->airspeed_ftps);
+  if (s->airspeed_ok) {
+    const float allowed_deg =
+        cfg->sc_speed_to_pitch_gain_deg_per_ftps * (s->airspeed_ftps - floor_ftps);
+    pitch_deg = allowed_deg < pitch_deg ? allowed_deg : pitch_deg;
   }
   return ha_clampf(pitch_deg, -cfg->sc_pitch_cmd_limit_deg, cfg->sc_pitch_cmd_limit_deg);
 }
@@ -69,12 +82,20 @@ static float pitch_command_deg(const HaAircraftConfig *cfg, const HaStateView *s
 void ha_safety_ctrl_step(HaSafetyCtrlState *st, const HaAircraftConfig *cfg,
                          const HaStateView *s, const HaSurfaces *applied, int in_control,
                          float dt_s, HaSurfaces *out) {
-  const float target_ftps = cfg->stall_speed_ftps * cfg->sc_stall_margin;
+  const float target_ftps = cfg->stall_speed_ftps * cfg->sc_cruise_margin;
   const float throttle_half = 0.5f * (cfg->throttle_max - cfg->throttle_min);
   const float throttle_mid = cfg->throttle_min + throttle_half;
   float roll_pd = 0.0f, roll_step = 0.0f, pitch_pd = 0.0f, pitch_step = 0.0f;
   float thr_pd = cfg->sc_throttle_trim - throttle_mid, thr_step = 0.0f;
   float nose_up_deg;
+  const float auth = cfg->sc_integrator_authority;
+  if (!s->attitude_ok && in_control) {
+    /* Blind: nothing to close a loop on. What the integrators hold fades to the trims. */
+    const float fade = cfg->sc_blind_fade_per_s * auth * dt_s;
+    st->roll_integ_deg = toward_zero(st->roll_integ_deg, fade * cfg->aileron_limit_deg);
+    st->pitch_integ_deg = toward_zero(st->pitch_integ_deg, fade * cfg->elevator_limit_deg);
+    st->throttle_integ = toward_zero(st->throttle_integ, fade * throttle_half);
+  }
   if (s->attitude_ok) {
     const float roll_err = bank_command_deg(cfg, s) - s->x[HA_X_ROLL_DEG];
     const float pitch_err = pitch_command_deg(cfg, s) - s->x[HA_X_PITCH_DEG];
@@ -83,12 +104,11 @@ void ha_safety_ctrl_step(HaSafetyCtrlState *st, const HaAircraftConfig *cfg,
     pitch_pd = cfg->sc_pitch_kp * pitch_err - cfg->sc_pitch_kd * s->x[HA_X_Q_DEG_S];
     pitch_step = cfg->sc_pitch_ki * pitch_err * dt_s;
   }
-  if (s->airborne && s->airspeed_ok) {
+  if (s->airborne && s->airspeed_ok && s->attitude_ok) {
     const float speed_err = target_ftps - s->airspeed_ftps;
     thr_pd += cfg->sc_throttle_kp_per_ftps * speed_err;
     thr_step = cfg->sc_throttle_ki_per_ft * speed_err * dt_s;
   }
-  const float auth = cfg->sc_integrator_authority;
   out->aileron_deg = pid(&st->roll_integ_deg, roll_pd, roll_step, cfg->aileron_limit_deg, auth,
                          in_control, applied->aileron_deg);
   /* Elevator trailing edge down is positive (nose down): the loop works in nose-up degrees. */

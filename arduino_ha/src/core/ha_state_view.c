@@ -26,9 +26,8 @@ static int position_plausible(const HaInputs *in) {
 /* Every stored value is clamped to its plausible span even when its ok flag is set: the flag
  * says whether to trust it, the clamp guarantees later arithmetic cannot overflow. */
 void ha_state_view(const HaAircraftConfig *cfg, const HaInputs *in, const HaHpCommand *cmd,
-                   int have_cmd, uint32_t now_us, HaStateView *out) {
-  const int fresh = in->state_valid != 0u &&
-                    ha_elapsed_us(now_us, in->state_rx_us) <= cfg->state_timeout_us;
+                   int have_cmd, const HaOwnSensors *own, HaStateView *out) {
+  const int fresh = in->state_valid != 0u && own->state_age_us <= cfg->state_timeout_us;
   int j;
   for (j = 0; j < HA_X_DIM; ++j) {
     out->x[j] = cfg->x0[j];
@@ -37,7 +36,7 @@ void ha_state_view(const HaAircraftConfig *cfg, const HaInputs *in, const HaHpCo
   out->altitude_ok =
       (uint8_t)(fresh && ha_within_span(in->altitude_agl_ft, HA_ALT_SPAN_FT));
   out->position_ok = (uint8_t)(fresh && position_plausible(in));
-  out->airspeed_ok = (uint8_t)ha_in_range(in->airspeed_ftps, 0.0f, cfg->max_airspeed_ftps);
+  out->airspeed_ok = (uint8_t)(own->airspeed_age_us <= cfg->airspeed_timeout_us);
   out->alpha_beta_ok = (uint8_t)(have_cmd && ha_finite(cmd->alpha_est_deg) &&
                                  ha_finite(cmd->beta_est_deg));
   if (out->attitude_ok) {
@@ -58,7 +57,7 @@ void ha_state_view(const HaAircraftConfig *cfg, const HaInputs *in, const HaHpCo
     out->x[HA_X_BETA_DEG] = ha_clampf(cmd->beta_est_deg, -HA_ROLL_SPAN_DEG, HA_ROLL_SPAN_DEG);
   }
   out->airspeed_ftps =
-      out->airspeed_ok ? ha_clampf(in->airspeed_ftps, 0.0f, cfg->max_airspeed_ftps) : 0.0f;
+      out->airspeed_ok ? ha_clampf(own->airspeed_ftps, 0.0f, cfg->max_airspeed_ftps) : 0.0f;
   out->heading_deg = out->position_ok
                          ? ha_clampf(in->heading_deg, -HA_HEADING_SPAN_DEG, HA_HEADING_SPAN_DEG)
                          : 0.0f;
@@ -66,11 +65,23 @@ void ha_state_view(const HaAircraftConfig *cfg, const HaInputs *in, const HaHpCo
       out->position_ok ? ha_clampf(in->north_ft, -HA_POSITION_SPAN_FT, HA_POSITION_SPAN_FT) : 0.0f;
   out->east_ft =
       out->position_ok ? ha_clampf(in->east_ft, -HA_POSITION_SPAN_FT, HA_POSITION_SPAN_FT) : 0.0f;
-  /* The thesis's rule (airborne above alt0); an unknown altitude counts as airborne, so the
-   * stall check is never skipped on missing data. */
-  out->airborne = (uint8_t)!(out->altitude_ok &&
-                             !ha_greater(in->altitude_agl_ft, cfg->airborne_agl_ft));
-  /* The self-test moves every surface and spins the motor: only when everything says parked. */
-  out->on_ground = (uint8_t)(in->on_ground != 0u && !out->airborne && out->airspeed_ok &&
-                             ha_greater(cfg->stall_speed_ftps, in->airspeed_ftps));
+  /* Signals for the core's airborne latch. Each alone says flying: a pitot above stall, the
+   * INS above alt0, the INS not parked (moving or climbing); a landing needs them all to agree. */
+  {
+    const int fast = out->airspeed_ok && ha_greater(out->airspeed_ftps, cfg->stall_speed_ftps);
+    const int high =
+        out->altitude_ok && ha_greater(out->x[HA_X_ALT_AGL_FT], cfg->airborne_agl_ft);
+    out->flying_evidence = (uint8_t)(fast || high || (fresh && in->on_ground == 0u));
+    out->landed_evidence = (uint8_t)(out->altitude_ok && in->on_ground != 0u && !high && !fast);
+    out->blind = (uint8_t)(!fresh && !out->airspeed_ok);
+  }
+  out->still = (uint8_t)(out->attitude_ok &&
+                         ha_within_span(in->roll_deg, cfg->self_test_max_tilt_deg) &&
+                         ha_within_span(in->pitch_deg, cfg->self_test_max_tilt_deg) &&
+                         ha_within_span(in->p_deg_s, cfg->self_test_max_rate_deg_s) &&
+                         ha_within_span(in->q_deg_s, cfg->self_test_max_rate_deg_s) &&
+                         ha_within_span(in->r_deg_s, cfg->self_test_max_rate_deg_s) &&
+                         ha_within_span(in->groundspeed_ftps, cfg->self_test_max_groundspeed_ftps));
+  out->airborne = 1u; /* until the core has decided */
+  out->on_ground = 0u;
 }

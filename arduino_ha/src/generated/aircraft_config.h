@@ -79,11 +79,19 @@
     .sc_alt_max_ft = 250.0f, \
     .sc_pitch_cmd_limit_deg = 10.0f, \
     .sc_stall_margin = 1.3f, \
-    .sc_circle_bank_ff_deg = 13.0421703f, \
+    .sc_cruise_margin = 1.5f, \
+    .handback_airspeed_ftps = 50.4f, \
+    .sc_circle_bank_ff_deg = 17.139825f, \
     .sc_throttle_trim = 0.4f, \
     .sc_integrator_authority = 0.25f, \
+    .sc_blind_fade_per_s = 0.5f, \
     .self_test_throttle_max = 0.3f, \
+    .self_test_max_tilt_deg = 15.0f, \
+    .self_test_max_rate_deg_s = 3.0f, \
+    .self_test_max_groundspeed_ftps = 2.0f, \
+    .landed_confirm_us = 3000000u, \
     .state_timeout_us = 100000u, \
+    .airspeed_timeout_us = 50000u, \
     .period_us = 10000u, \
     .late_periods_tolerated = 1u, \
     .no_command_timeout_us = 50000u, \
@@ -97,6 +105,7 @@
     .servo_pulse_min_us = 1000u, \
     .servo_pulse_max_us = 2000u, \
     .pic_threshold_us = 1500u, \
+    .manual_handover_us = 2000000u, \
     .self_test_step_us = 1000000u, \
   }
 

@@ -50,7 +50,7 @@ bool drone_ros_pwm_deserialize(drone_ros_pwm *msg, const uint8_t *in, size_t len
 
 /* drone_ros/DecisionStatus */
 #define DRONE_ROS_DECISIONSTATUS_TYPE "drone_ros/DecisionStatus"
-#define DRONE_ROS_DECISIONSTATUS_MD5 "0a35362d555c20c81ea6c418a9368b3f"
+#define DRONE_ROS_DECISIONSTATUS_MD5 "a1079b75d716f51674d5c77f57380492"
 #define DRONE_ROS_DECISIONSTATUS_CONTROLLER_HP (0u)
 #define DRONE_ROS_DECISIONSTATUS_CONTROLLER_HA (1u)
 #define DRONE_ROS_DECISIONSTATUS_CONTROLLER_RECOVERING (2u)
@@ -69,6 +69,7 @@ bool drone_ros_pwm_deserialize(drone_ros_pwm *msg, const uint8_t *in, size_t len
 #define DRONE_ROS_DECISIONSTATUS_REASON_INTEGRITY (1024u)
 #define DRONE_ROS_DECISIONSTATUS_REASON_ESTIMATOR (2048u)
 #define DRONE_ROS_DECISIONSTATUS_REASON_GROUND_COMMAND (4096u)
+#define DRONE_ROS_DECISIONSTATUS_REASON_NO_HA_STATE (8192u)
 typedef struct {
   HaRosTime stamp;
   uint8_t controller;
