@@ -24,10 +24,16 @@ $(GS_FUZZ_DIR)/mavlink/development/mavlink.h:
 	@$(VENV)/bin/python -m pymavlink.tools.mavgen --lang=C --wire-protocol=2.0 -o $(GS_FUZZ_DIR)/mavlink \
 	  "$$($(VENV)/bin/python -c 'import os, pymavlink; print(os.path.join(os.path.dirname(pymavlink.__file__), "dialects/v20/development.xml"))')" > /dev/null
 
-$(GS_FUZZ_BIN): $(GS_FUZZ_SOURCES) $(wildcard $(GS_DIR)/src/core/*.h) $(GS_FUZZ_DIR)/mavlink/development/mavlink.h
+# The parameter table is the aircraft's tunables list, written by the controller's generator.
+GS_FUZZ_AIRCRAFT ?= DG808
+$(GS_FUZZ_DIR)/tunables/tunables_table.h: $(ROOT)/tools/gen_tunables.py $(ROOT)/aircraft/$(GS_FUZZ_AIRCRAFT)/tunables.yaml $(ROOT)/aircraft/$(GS_FUZZ_AIRCRAFT)/controller_param.yaml
+	@$(VENV)/bin/python $(ROOT)/tools/gen_tunables.py $(ROOT)/aircraft/$(GS_FUZZ_AIRCRAFT)/tunables.yaml \
+	  $(ROOT)/aircraft/$(GS_FUZZ_AIRCRAFT)/controller_param.yaml $@
+
+$(GS_FUZZ_BIN): $(GS_FUZZ_SOURCES) $(wildcard $(GS_DIR)/src/core/*.h) $(GS_FUZZ_DIR)/mavlink/development/mavlink.h $(GS_FUZZ_DIR)/tunables/tunables_table.h
 	@test -n "$(GS_CLANGXX)" || { echo "fuzz-gs: clang++ not found (microhard_gs/apt-packages.txt)"; exit 1; }
 	$(GS_CLANGXX) -std=c++17 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
-	  -Wall -Wextra -Werror -I$(GS_DIR)/src/core -I$(ROOT)/drone_ros/common/include -isystem $(GS_FUZZ_DIR)/mavlink $(GS_FUZZ_SOURCES) -o $@
+	  -Wall -Wextra -Werror -I$(GS_DIR)/src/core -I$(GS_FUZZ_DIR)/tunables -I$(ROOT)/drone_ros/common/include -isystem $(GS_FUZZ_DIR)/mavlink $(GS_FUZZ_SOURCES) -o $@
 
 # The full log goes to a file; the console gets the verdict and the run count, and on a crash the
 # log's tail with the reproducer's path.

@@ -328,7 +328,8 @@ std::string statustexts(const std::vector<mavlink_message_t>& out) {
   return joined;
 }
 
-constexpr double kMpfRadiusAtStart = 31.0;  // some_params(): its index in the table
+// some_params() gives each parameter its index in the table as value.
+const double kMpfRadiusAtStart = static_cast<double>(some_params().find("mpf_radius", 10));
 
 TEST(Parameters, SetIsAskedOfTheControllerAndEchoedWithTheValueItPutInForce) {
   Bench b;

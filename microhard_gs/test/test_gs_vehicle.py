@@ -83,18 +83,14 @@ def download_parameters(conn, timeout_s=10.0):
     return count, got
 
 
-# The aircraft's controller_param.yaml keys the ground station serves (the others are estimator
-# start values, a start-up command and a string), by their MAVLink ids.
-SHORT_IDS = {"guidance_selection": "GUIDANCE_SELECT", "max_pitch_cmd_deg": "MAX_PITCH_CMD",
-             "min_airspeed_cmd_ftps": "MIN_AIRSPD_CMD", "airspeed_valid_min_ftps": "AIRSPD_VALID_MIN",
-             "converged_sigma_deg": "CONVERGED_SIGMA"}
-NOT_SERVED = {"alpha", "beta", "hmcmd", "frame_id"}
-
-
 def aircraft_tunables():
+    """The aircraft's tunables (tunables.yaml, the one list the controller takes too) by MAVLink
+    id, with their values in controller_param.yaml."""
     with open(os.path.join(gh.AIRCRAFT_DIR, "controller_param.yaml")) as f:
         values = yaml.safe_load(f)
-    return {SHORT_IDS.get(k, k): v for k, v in values.items() if k not in NOT_SERVED}
+    with open(os.path.join(gh.AIRCRAFT_DIR, "tunables.yaml")) as f:
+        tunables = yaml.safe_load(f)["tunables"]
+    return {t.get("mav_id", t["name"]): values[t["name"]] for t in tunables}
 
 
 def test_parameter_download_completes_with_the_aircrafts_controller_tunables(gs):
