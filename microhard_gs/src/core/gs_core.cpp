@@ -680,12 +680,12 @@ std::string decision_announcement(const DecisionInfo* previous, const DecisionIn
 }
 
 void GsCore::set_decision(const DecisionInfo& d) {
-  if (!have_decision_ || d.controller != decision_.controller) {
+  const bool changed = !have_decision_ || d.controller != decision_.controller;
+  if (changed) {
     uint8_t severity = MAV_SEVERITY_NOTICE;
     const std::string text = decision_announcement(have_decision_ ? &decision_ : nullptr, d, &severity);
     send_statustext(severity, text);
   }
-  const bool changed = !have_decision_ || d.controller != decision_.controller;
   decision_ = d;
   have_decision_ = true;
   if (changed) send_current_mode();  // the standard-modes protocol wants every change at once
