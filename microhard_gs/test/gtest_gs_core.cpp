@@ -665,9 +665,11 @@ TEST(MissionCurrent, CountsMissionItemsNotWaypoints) {
     mavlink_msg_mission_item_int_pack(255, 190, m, 1, 1, 2, MAV_FRAME_MISSION, MAV_CMD_DO_CHANGE_SPEED, 0, 1, 0,
                                       20.0f, -1, 0, 0, 0, 0, MAV_MISSION_TYPE_MISSION);
   }));
-  const auto acks = of_type(b.feed(gcs.item(3, 600, 0, 200)), MAVLINK_MSG_ID_MISSION_ACK);
+  const auto done = b.feed(gcs.item(3, 600, 0, 200));
+  const auto acks = of_type(done, MAVLINK_MSG_ID_MISSION_ACK);
   ASSERT_EQ(acks.size(), 1u);
   ASSERT_EQ(ack_of(acks[0]), MAV_MISSION_ACCEPTED);
+  EXPECT_EQ(statustexts(done), "Mission accepted: 2 waypoints, item 0 is home (not flown)");
   Telemetry t = flying();
   t.waypoint_index = 1;
   b.core.set_telemetry(t, b.at(b.now_ms));
