@@ -8,7 +8,8 @@ GS_FUZZ_BIN := $(GS_FUZZ_DIR)/fuzz_gs_core
 GS_CLANGXX ?= $(shell command -v clang++-14 || command -v clang++)
 GS_FUZZ_SECONDS ?= 300
 GS_FUZZ_SOURCES := $(GS_DIR)/fuzz/fuzz_gs_core.cpp $(GS_DIR)/src/core/gs_core.cpp \
-  $(GS_DIR)/src/core/mission.cpp $(GS_DIR)/src/core/geo.cpp $(GS_DIR)/src/core/params.cpp \
+  $(GS_DIR)/src/core/mission.cpp $(GS_DIR)/src/core/mission_frames.cpp $(GS_DIR)/src/core/modes.cpp \
+  $(GS_DIR)/src/core/geo.cpp $(GS_DIR)/src/core/params.cpp \
   $(GS_DIR)/src/core/signing_key.cpp
 
 .PHONY: fuzz-gs fuzz-gs-smoke bench-gs
@@ -17,16 +18,22 @@ FUZZ_SMOKE_TARGETS += fuzz-gs-smoke
 BENCH_TARGETS += bench-gs
 
 # The MAVLink headers are generated from the installed pymavlink here too, never checked in.
-$(GS_FUZZ_DIR)/mavlink/common/mavlink.h:
+$(GS_FUZZ_DIR)/mavlink/development/mavlink.h:
 	@$(VENV)/bin/python -c "import pymavlink" 2>/dev/null || { echo "fuzz-gs: no pymavlink in $(VENV): run make deps"; exit 1; }
 	@rm -rf $(GS_FUZZ_DIR)/mavlink && mkdir -p $(GS_FUZZ_DIR)
 	@$(VENV)/bin/python -m pymavlink.tools.mavgen --lang=C --wire-protocol=2.0 -o $(GS_FUZZ_DIR)/mavlink \
-	  "$$($(VENV)/bin/python -c 'import os, pymavlink; print(os.path.join(os.path.dirname(pymavlink.__file__), "dialects/v20/common.xml"))')" > /dev/null
+	  "$$($(VENV)/bin/python -c 'import os, pymavlink; print(os.path.join(os.path.dirname(pymavlink.__file__), "dialects/v20/development.xml"))')" > /dev/null
 
-$(GS_FUZZ_BIN): $(GS_FUZZ_SOURCES) $(wildcard $(GS_DIR)/src/core/*.h) $(GS_FUZZ_DIR)/mavlink/common/mavlink.h
+# The parameter table is the aircraft's tunables list, written by the controller's generator.
+GS_FUZZ_AIRCRAFT ?= DG808
+$(GS_FUZZ_DIR)/tunables/tunables_table.h: $(ROOT)/tools/gen_tunables.py $(ROOT)/aircraft/$(GS_FUZZ_AIRCRAFT)/tunables.yaml $(ROOT)/aircraft/$(GS_FUZZ_AIRCRAFT)/controller_param.yaml
+	@$(VENV)/bin/python $(ROOT)/tools/gen_tunables.py $(ROOT)/aircraft/$(GS_FUZZ_AIRCRAFT)/tunables.yaml \
+	  $(ROOT)/aircraft/$(GS_FUZZ_AIRCRAFT)/controller_param.yaml $@
+
+$(GS_FUZZ_BIN): $(GS_FUZZ_SOURCES) $(wildcard $(GS_DIR)/src/core/*.h) $(GS_FUZZ_DIR)/mavlink/development/mavlink.h $(GS_FUZZ_DIR)/tunables/tunables_table.h
 	@test -n "$(GS_CLANGXX)" || { echo "fuzz-gs: clang++ not found (microhard_gs/apt-packages.txt)"; exit 1; }
 	$(GS_CLANGXX) -std=c++17 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
-	  -Wall -Wextra -Werror -I$(GS_DIR)/src/core -I$(ROOT)/drone_ros/common/include -isystem $(GS_FUZZ_DIR)/mavlink $(GS_FUZZ_SOURCES) -o $@
+	  -Wall -Wextra -Werror -I$(GS_DIR)/src/core -I$(GS_FUZZ_DIR)/tunables -I$(ROOT)/drone_ros/common/include -isystem $(GS_FUZZ_DIR)/mavlink $(GS_FUZZ_SOURCES) -o $@
 
 # The full log goes to a file; the console gets the verdict and the run count, and on a crash the
 # log's tail with the reproducer's path.

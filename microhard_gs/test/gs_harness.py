@@ -124,7 +124,7 @@ class GsSystem:
             if not udp_client:  # the test talks over another link (the serial transport)
                 return
             self.conn = mavutil.mavlink_connection("udpin:127.0.0.1:%d" % self.gcs_port,
-                                                   source_system=255, source_component=190, dialect="common")
+                                                   source_system=255, source_component=190, dialect="development")
             hb = self.conn.wait_heartbeat(timeout=30)
             if hb is None:
                 raise RuntimeError("no HEARTBEAT from microhard_gs")
@@ -239,17 +239,23 @@ def local_to_latlon(north_ft, east_ft):
     return lat, lon
 
 
-def waypoint(seq, north_ft, east_ft, height_ft):
+ABSOLUTE_FRAMES = (mavlink.MAV_FRAME_GLOBAL, mavlink.MAV_FRAME_GLOBAL_INT)
+
+
+def waypoint(seq, north_ft, east_ft, height_ft, frame=mavlink.MAV_FRAME_GLOBAL_RELATIVE_ALT_INT):
+    """A waypoint `height_ft` above home; in an absolute (MSL) frame its altitude is home's plus that."""
     lat, lon = local_to_latlon(north_ft, east_ft)
+    z_m = height_ft / FT_PER_M + (HOME[2] if frame in ABSOLUTE_FRAMES else 0.0)
     return mavlink.MAVLink_mission_item_int_message(
-        1, 1, seq, mavlink.MAV_FRAME_GLOBAL_RELATIVE_ALT_INT, mavlink.MAV_CMD_NAV_WAYPOINT, 0, 1,
-        0, 10, 0, float("nan"), int(round(lat * 1e7)), int(round(lon * 1e7)), height_ft / FT_PER_M,
+        1, 1, seq, frame, mavlink.MAV_CMD_NAV_WAYPOINT, 0, 1,
+        0, 10, 0, float("nan"), int(round(lat * 1e7)), int(round(lon * 1e7)), z_m,
         mavlink.MAV_MISSION_TYPE_MISSION)
 
 
 def as_legacy(item):
+    """The same item as a legacy MISSION_ITEM (degrees), in the same frame."""
     return mavlink.MAVLink_mission_item_message(
-        item.target_system, item.target_component, item.seq, mavlink.MAV_FRAME_GLOBAL_RELATIVE_ALT,
+        item.target_system, item.target_component, item.seq, item.frame,
         item.command, item.current, item.autocontinue, item.param1, item.param2, item.param3, item.param4,
         item.x * 1e-7, item.y * 1e-7, item.z, item.mission_type)
 
@@ -283,8 +289,9 @@ def upload_mission(conn, items, count=None, resend_s=1.0, timeout_s=30.0, legacy
     return None
 
 
-def download_mission(conn, timeout_s=10.0, attempts=1):
-    """Downloads like QGroundControl: every request is repeated on silence, `attempts` times."""
+def download_mission(conn, timeout_s=10.0, attempts=1, legacy=False):
+    """Downloads like QGroundControl: every request is repeated on silence, `attempts` times.
+    legacy: ask with MISSION_REQUEST and get MISSION_ITEMs."""
     def ask(send, kind, match=lambda m: True):
         for _ in range(attempts):
             send()
@@ -301,8 +308,12 @@ def download_mission(conn, timeout_s=10.0, attempts=1):
         return None
     items = []
     for seq in range(count_msg.count):
-        item = ask(lambda: conn.mav.mission_request_int_send(1, 1, seq, mavlink.MAV_MISSION_TYPE_MISSION),
-                   "MISSION_ITEM_INT", lambda m: m.seq == seq)
+        if legacy:
+            item = ask(lambda: conn.mav.mission_request_send(1, 1, seq, mavlink.MAV_MISSION_TYPE_MISSION),
+                       "MISSION_ITEM", lambda m: m.seq == seq)
+        else:
+            item = ask(lambda: conn.mav.mission_request_int_send(1, 1, seq, mavlink.MAV_MISSION_TYPE_MISSION),
+                       "MISSION_ITEM_INT", lambda m: m.seq == seq)
         if item is None:
             return None
         items.append(item)

@@ -72,6 +72,32 @@ class Gcs {
       mavlink_msg_mission_count_pack_status(255, 190, &tx_, m, 1, 1, n, MAV_MISSION_TYPE_MISSION);
     });
   }
+  // A waypoint as a GCS sends it in any frame: MISSION_ITEM_INT (lat/lon deg * 1e7) or the
+  // legacy MISSION_ITEM (degrees).
+  std::vector<uint8_t> waypoint_in(uint16_t seq, uint8_t mav_frame, double lat_deg, double lon_deg, float z_m,
+                                   bool legacy = false) {
+    return frame([&](mavlink_message_t* m) {
+      if (legacy) {
+        mavlink_msg_mission_item_pack_status(255, 190, &tx_, m, 1, 1, seq, mav_frame, MAV_CMD_NAV_WAYPOINT, 0, 1, 0, 0,
+                                             0, 0, static_cast<float>(lat_deg), static_cast<float>(lon_deg), z_m,
+                                             MAV_MISSION_TYPE_MISSION);
+      } else {
+        mavlink_msg_mission_item_int_pack_status(255, 190, &tx_, m, 1, 1, seq, mav_frame, MAV_CMD_NAV_WAYPOINT, 0, 1, 0,
+                                                 0, 0, 0, static_cast<int32_t>(std::lround(lat_deg * 1e7)),
+                                                 static_cast<int32_t>(std::lround(lon_deg * 1e7)), z_m,
+                                                 MAV_MISSION_TYPE_MISSION);
+      }
+    });
+  }
+  std::vector<uint8_t> request_item(uint16_t seq, bool legacy) {
+    return frame([&](mavlink_message_t* m) {
+      if (legacy) {
+        mavlink_msg_mission_request_pack_status(255, 190, &tx_, m, 1, 1, seq, MAV_MISSION_TYPE_MISSION);
+      } else {
+        mavlink_msg_mission_request_int_pack_status(255, 190, &tx_, m, 1, 1, seq, MAV_MISSION_TYPE_MISSION);
+      }
+    });
+  }
   std::vector<uint8_t> item(uint16_t seq, double north_ft, double east_ft, double height_ft) {
     double lat = 0, lon = 0;
     north_east_ft_to_geodetic(kHome, NorthEastFt{north_ft, east_ft}, &lat, &lon);
@@ -181,16 +207,18 @@ TEST(Telemetry, StaleDataStopsPositionReportsButNotHeartbeat) {
   EXPECT_FALSE(of_type(msgs, MAVLINK_MSG_ID_SYS_STATUS).empty());
 }
 
-TEST(MissionUpload, LostItemsAreRequestedAgainAfterTheTimeoutThenTheUploadGivesUp) {
+TEST(MissionUpload, LostItemsAreRequestedAgainBothWaysAfterTheTimeoutThenTheUploadGivesUp) {
   Bench b;
   b.run_for(10);
   auto out = b.feed(Gcs().count(3));
   ASSERT_EQ(of_type(out, MAVLINK_MSG_ID_MISSION_REQUEST_INT).size(), 1u);
-  // The GCS never answers: 5 retries at 1.5 s, then a cancel ACK and a STATUSTEXT.
+  // The GCS never answers: 5 retries at 1.5 s, asking with MISSION_REQUEST and MISSION_REQUEST_INT
+  // in turn, then a cancel ACK and a STATUSTEXT.
   auto msgs = b.run_for(1490);
   EXPECT_TRUE(of_type(msgs, MAVLINK_MSG_ID_MISSION_REQUEST_INT).empty());
   msgs = b.run_for(1500 * 5 + 100);
-  EXPECT_EQ(of_type(msgs, MAVLINK_MSG_ID_MISSION_REQUEST_INT).size(), 5u);
+  EXPECT_EQ(of_type(msgs, MAVLINK_MSG_ID_MISSION_REQUEST).size(), 3u);
+  EXPECT_EQ(of_type(msgs, MAVLINK_MSG_ID_MISSION_REQUEST_INT).size(), 2u);
   const auto acks = of_type(msgs, MAVLINK_MSG_ID_MISSION_ACK);
   ASSERT_EQ(acks.size(), 1u);
   EXPECT_EQ(ack_of(acks[0]), MAV_MISSION_OPERATION_CANCELLED);
@@ -300,7 +328,8 @@ std::string statustexts(const std::vector<mavlink_message_t>& out) {
   return joined;
 }
 
-constexpr double kMpfRadiusAtStart = 31.0;  // some_params(): its index in the table
+// some_params() gives each parameter its index in the table as value.
+const double kMpfRadiusAtStart = static_cast<double>(some_params().find("mpf_radius", 10));
 
 TEST(Parameters, SetIsAskedOfTheControllerAndEchoedWithTheValueItPutInForce) {
   Bench b;
@@ -551,4 +580,179 @@ TEST(SigningKeyFile, HexKeyParsesAndGarbageIsRefused) {
   EXPECT_FALSE(parse_signing_key(std::string(63, 'a'), &key, &error));
   EXPECT_FALSE(parse_signing_key(std::string(62, 'a') + "zz", &key, &error));
   EXPECT_FALSE(parse_signing_key(std::string(64, '0'), &key, &error));
+}
+
+// ---------------------------------------------------------------- frames, item 0, modes, fence
+
+namespace {
+double lat_of(double north_ft) {
+  double lat = 0, lon = 0;
+  north_east_ft_to_geodetic(kHome, NorthEastFt{north_ft, 0.0}, &lat, &lon);
+  return lat;
+}
+}  // namespace
+
+TEST(MissionUpload, GcsThatAnswersOnlyMissionRequestGetsItsUploadThrough) {
+  // MAVProxy answers MISSION_REQUEST (with MISSION_ITEM_INT) and ignores MISSION_REQUEST_INT.
+  Bench b;
+  Gcs gcs;
+  ASSERT_EQ(of_type(b.feed(gcs.count(2)), MAVLINK_MSG_ID_MISSION_REQUEST_INT).size(), 1u);
+  const auto retry = b.run_for(1600);
+  const auto legacy = of_type(retry, MAVLINK_MSG_ID_MISSION_REQUEST);
+  ASSERT_EQ(legacy.size(), 1u);
+  EXPECT_EQ(mavlink_msg_mission_request_get_seq(&legacy[0]), 0);
+  auto out = b.feed(gcs.waypoint_in(0, MAV_FRAME_GLOBAL_RELATIVE_ALT, lat_of(0), kHome.lon_deg, 60.0f));
+  const auto next = of_type(out, MAVLINK_MSG_ID_MISSION_REQUEST);
+  ASSERT_EQ(next.size(), 1u) << "keeps asking the way that was answered";
+  EXPECT_EQ(mavlink_msg_mission_request_get_seq(&next[0]), 1);
+  out = b.feed(gcs.waypoint_in(1, MAV_FRAME_GLOBAL_RELATIVE_ALT, lat_of(500), kHome.lon_deg, 60.0f));
+  const auto acks = of_type(out, MAVLINK_MSG_ID_MISSION_ACK);
+  ASSERT_EQ(acks.size(), 1u);
+  EXPECT_EQ(ack_of(acks[0]), MAV_MISSION_ACCEPTED);
+}
+
+TEST(MissionDownload, EachItemComesBackInTheFrameItWasUploadedIn) {
+  // Every global frame, in both item messages, 200 ft above home; downloads answer in the
+  // uploaded frame (a MISSION_ITEM, which carries degrees, gives 5 and 6 as 0 and 3).
+  struct Case { uint8_t frame; bool legacy; uint8_t int_frame; uint8_t float_frame; };
+  const Case cases[] = {
+      {MAV_FRAME_GLOBAL, false, MAV_FRAME_GLOBAL, MAV_FRAME_GLOBAL},
+      {MAV_FRAME_GLOBAL_RELATIVE_ALT, false, MAV_FRAME_GLOBAL_RELATIVE_ALT, MAV_FRAME_GLOBAL_RELATIVE_ALT},
+      {MAV_FRAME_GLOBAL_INT, false, MAV_FRAME_GLOBAL_INT, MAV_FRAME_GLOBAL},
+      {MAV_FRAME_GLOBAL_RELATIVE_ALT_INT, false, MAV_FRAME_GLOBAL_RELATIVE_ALT_INT, MAV_FRAME_GLOBAL_RELATIVE_ALT},
+      {MAV_FRAME_GLOBAL, true, MAV_FRAME_GLOBAL, MAV_FRAME_GLOBAL},
+      {MAV_FRAME_GLOBAL_RELATIVE_ALT, true, MAV_FRAME_GLOBAL_RELATIVE_ALT, MAV_FRAME_GLOBAL_RELATIVE_ALT},
+      {MAV_FRAME_GLOBAL_INT, true, MAV_FRAME_GLOBAL_INT, MAV_FRAME_GLOBAL},
+      {MAV_FRAME_GLOBAL_RELATIVE_ALT_INT, true, MAV_FRAME_GLOBAL_RELATIVE_ALT_INT, MAV_FRAME_GLOBAL_RELATIVE_ALT},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(testing::Message() << "frame " << int(c.frame) << (c.legacy ? " MISSION_ITEM" : " MISSION_ITEM_INT"));
+    Bench b;
+    Gcs gcs;
+    const bool absolute = c.frame == MAV_FRAME_GLOBAL || c.frame == MAV_FRAME_GLOBAL_INT;
+    const float z_m = static_cast<float>((absolute ? kHome.alt_m : 0.0) + 200.0 * 0.3048);
+    b.feed(gcs.count(1));
+    const auto acks = of_type(b.feed(gcs.waypoint_in(0, c.frame, lat_of(300), kHome.lon_deg, z_m, c.legacy)),
+                              MAVLINK_MSG_ID_MISSION_ACK);
+    ASSERT_EQ(acks.size(), 1u);
+    ASSERT_EQ(ack_of(acks[0]), MAV_MISSION_ACCEPTED);
+    const auto plans = b.core.take_way_plans();
+    ASSERT_EQ(plans.size(), 1u);
+    EXPECT_NEAR(plans[0].height_ft[0], 200.0, 0.01);
+    EXPECT_NEAR(plans[0].north_ft[0], 300.0, c.legacy ? 3.0 : 0.5);
+
+    const auto as_int = of_type(b.feed(gcs.request_item(0, false)), MAVLINK_MSG_ID_MISSION_ITEM_INT);
+    ASSERT_EQ(as_int.size(), 1u);
+    EXPECT_EQ(mavlink_msg_mission_item_int_get_frame(&as_int[0]), c.int_frame);
+    EXPECT_FLOAT_EQ(mavlink_msg_mission_item_int_get_z(&as_int[0]), z_m);
+    EXPECT_NEAR(mavlink_msg_mission_item_int_get_x(&as_int[0]), lat_of(300) * 1e7, c.legacy ? 40 : 1);
+    const auto as_float = of_type(b.feed(gcs.request_item(0, true)), MAVLINK_MSG_ID_MISSION_ITEM);
+    ASSERT_EQ(as_float.size(), 1u);
+    EXPECT_EQ(mavlink_msg_mission_item_get_frame(&as_float[0]), c.float_frame);
+    EXPECT_NEAR(mavlink_msg_mission_item_get_x(&as_float[0]), lat_of(300), 1e-5);
+  }
+}
+
+TEST(MissionCurrent, CountsMissionItemsNotWaypoints) {
+  // Item 0 is home (not flown) and item 2 a speed change: the controller's second waypoint
+  // (waypoint_index 1) is mission item 3.
+  Bench b;
+  Gcs gcs;
+  b.feed(gcs.count(4));
+  b.feed(gcs.waypoint_in(0, MAV_FRAME_GLOBAL, kHome.lat_deg, kHome.lon_deg, static_cast<float>(kHome.alt_m)));
+  b.feed(gcs.item(1, 300, 0, 200));
+  b.feed(gcs.frame([&](mavlink_message_t* m) {
+    mavlink_msg_mission_item_int_pack(255, 190, m, 1, 1, 2, MAV_FRAME_MISSION, MAV_CMD_DO_CHANGE_SPEED, 0, 1, 0,
+                                      20.0f, -1, 0, 0, 0, 0, MAV_MISSION_TYPE_MISSION);
+  }));
+  const auto done = b.feed(gcs.item(3, 600, 0, 200));
+  const auto acks = of_type(done, MAVLINK_MSG_ID_MISSION_ACK);
+  ASSERT_EQ(acks.size(), 1u);
+  ASSERT_EQ(ack_of(acks[0]), MAV_MISSION_ACCEPTED);
+  EXPECT_EQ(statustexts(done), "Mission accepted: 2 waypoints, item 0 is home (not flown)");
+  Telemetry t = flying();
+  t.waypoint_index = 1;
+  b.core.set_telemetry(t, b.at(b.now_ms));
+  const auto current = of_type(b.run_for(200), MAVLINK_MSG_ID_MISSION_CURRENT);
+  ASSERT_FALSE(current.empty());
+  EXPECT_EQ(mavlink_msg_mission_current_get_seq(&current.back()), 3);
+  EXPECT_EQ(mavlink_msg_mission_current_get_total(&current.back()), 4);
+}
+
+std::string mode_name(const mavlink_message_t& m) {
+  char name[36] = {};
+  mavlink_msg_available_modes_get_mode_name(&m, name);
+  return name;
+}
+
+TEST(Modes, AvailableModesNameEveryControllerAndOnlyHpAndHaCanBeSelected) {
+  Bench b;
+  auto out = b.feed(Gcs().command(MAV_CMD_REQUEST_MESSAGE, MAVLINK_MSG_ID_AVAILABLE_MODES, 0));
+  const auto acks = of_type(out, MAVLINK_MSG_ID_COMMAND_ACK);
+  ASSERT_EQ(acks.size(), 1u);
+  EXPECT_EQ(mavlink_msg_command_ack_get_result(&acks[0]), MAV_RESULT_ACCEPTED);
+  const auto modes = of_type(out, MAVLINK_MSG_ID_AVAILABLE_MODES);
+  ASSERT_EQ(modes.size(), 5u);
+  const char* names[] = {"HP", "HA", "RECOVERING", "HA_LATCHED", "MANUAL"};
+  for (uint32_t i = 0; i < 5; ++i) {
+    EXPECT_EQ(mode_name(modes[i]), names[i]);
+    EXPECT_EQ(mavlink_msg_available_modes_get_custom_mode(&modes[i]), i);  // = DecisionStatus.controller
+    EXPECT_EQ(mavlink_msg_available_modes_get_mode_index(&modes[i]), i + 1);
+    EXPECT_EQ(mavlink_msg_available_modes_get_number_modes(&modes[i]), 5);
+    const bool selectable = (mavlink_msg_available_modes_get_properties(&modes[i]) &
+                             MAV_MODE_PROPERTY_NOT_USER_SELECTABLE) == 0;
+    EXPECT_EQ(selectable, i <= 1) << names[i];
+  }
+  // QGroundControl asks for one index at a time.
+  out = b.feed(Gcs().command(MAV_CMD_REQUEST_MESSAGE, MAVLINK_MSG_ID_AVAILABLE_MODES, 4));
+  ASSERT_EQ(of_type(out, MAVLINK_MSG_ID_AVAILABLE_MODES).size(), 1u);
+  EXPECT_EQ(mode_name(of_type(out, MAVLINK_MSG_ID_AVAILABLE_MODES)[0]), "HA_LATCHED");
+  out = b.feed(Gcs().command(MAV_CMD_REQUEST_MESSAGE, MAVLINK_MSG_ID_AVAILABLE_MODES, 6));
+  EXPECT_EQ(mavlink_msg_command_ack_get_result(&of_type(out, MAVLINK_MSG_ID_COMMAND_ACK)[0]), MAV_RESULT_DENIED);
+  EXPECT_TRUE(of_type(out, MAVLINK_MSG_ID_AVAILABLE_MODES).empty());
+}
+
+TEST(Modes, HeartbeatAndCurrentModeAgreeOnWhoFliesAndAChangeIsSentAtOnce) {
+  Bench b;
+  b.core.set_telemetry(flying(), b.at(b.now_ms));  // computer_in_command: must not decide the mode
+  DecisionInfo d;
+  d.controller = kControllerManual;
+  d.altitude_agl_ft = 120.0;
+  b.core.set_decision(d);
+  const auto at_once = of_type(decode_all(b.core.take_frames()), MAVLINK_MSG_ID_CURRENT_MODE);
+  ASSERT_EQ(at_once.size(), 1u);
+  EXPECT_EQ(mavlink_msg_current_mode_get_custom_mode(&at_once[0]), kControllerManual);
+  const auto msgs = b.run_for(1100);
+  const auto hbs = of_type(msgs, MAVLINK_MSG_ID_HEARTBEAT);
+  ASSERT_FALSE(hbs.empty());
+  EXPECT_EQ(mavlink_msg_heartbeat_get_custom_mode(&hbs.back()), kControllerManual);
+  const uint8_t base = mavlink_msg_heartbeat_get_base_mode(&hbs.back());
+  EXPECT_TRUE(base & MAV_MODE_FLAG_CUSTOM_MODE_ENABLED);
+  EXPECT_TRUE(base & MAV_MODE_FLAG_MANUAL_INPUT_ENABLED);
+  EXPECT_FALSE(base & MAV_MODE_FLAG_AUTO_ENABLED);
+  EXPECT_TRUE(base & MAV_MODE_FLAG_SAFETY_ARMED);
+  EXPECT_FALSE(of_type(msgs, MAVLINK_MSG_ID_CURRENT_MODE).empty()) << "streamed with the heartbeat";
+
+  b.feed(Gcs().command(MAV_CMD_DO_SET_MODE, MAV_MODE_FLAG_CUSTOM_MODE_ENABLED, 1));
+  d.controller = kControllerHp;
+  b.core.set_decision(d);
+  const auto now = of_type(decode_all(b.core.take_frames()), MAVLINK_MSG_ID_CURRENT_MODE);
+  ASSERT_EQ(now.size(), 1u);
+  EXPECT_EQ(mavlink_msg_current_mode_get_custom_mode(&now[0]), kControllerHp);
+  EXPECT_EQ(mavlink_msg_current_mode_get_intended_custom_mode(&now[0]), kControllerHa) << "the operator asked for the HA";
+  const auto hb = of_type(b.run_for(1100), MAVLINK_MSG_ID_HEARTBEAT);
+  ASSERT_FALSE(hb.empty());
+  EXPECT_TRUE(mavlink_msg_heartbeat_get_base_mode(&hb.back()) & MAV_MODE_FLAG_AUTO_ENABLED);
+  EXPECT_FALSE(mavlink_msg_heartbeat_get_base_mode(&hb.back()) & MAV_MODE_FLAG_MANUAL_INPUT_ENABLED);
+}
+
+TEST(Telemetry, NoGeofenceIsReportedAbsentAndHealthySoNoBreachIsShown) {
+  Bench b;
+  b.core.set_telemetry(flying(), b.at(b.now_ms));
+  const auto status = of_type(b.run_for(200), MAVLINK_MSG_ID_SYS_STATUS);
+  ASSERT_FALSE(status.empty());
+  EXPECT_EQ(mavlink_msg_sys_status_get_onboard_control_sensors_present(&status[0]) & MAV_SYS_STATUS_GEOFENCE, 0u);
+  EXPECT_EQ(mavlink_msg_sys_status_get_onboard_control_sensors_enabled(&status[0]) & MAV_SYS_STATUS_GEOFENCE, 0u);
+  EXPECT_EQ(mavlink_msg_sys_status_get_onboard_control_sensors_health(&status[0]) & MAV_SYS_STATUS_GEOFENCE,
+            static_cast<uint32_t>(MAV_SYS_STATUS_GEOFENCE));
 }

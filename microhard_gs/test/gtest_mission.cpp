@@ -6,6 +6,7 @@
 #include "geo.h"
 #include "mavlink_all.h"
 #include "mission.h"
+#include "mission_frames.h"
 
 using namespace microhard_gs;
 
@@ -136,4 +137,91 @@ TEST(Mission, NotANumberAltitudeIsRejected) {
   MissionItem it = waypoint(0, 0, 0, 200);
   it.z = NAN;
   EXPECT_EQ(check_mission_item(it, kHome, limits()).result, MAV_MISSION_INVALID_PARAM7);
+}
+
+TEST(Mission, EveryGlobalFrameGivesTheSameHeightAboveHome) {
+  // 0 and 5 are MSL, measured from home's altitude; 3 and 6 are already above home.
+  const uint8_t frames[] = {MAV_FRAME_GLOBAL, MAV_FRAME_GLOBAL_RELATIVE_ALT, MAV_FRAME_GLOBAL_INT,
+                            MAV_FRAME_GLOBAL_RELATIVE_ALT_INT};
+  for (uint8_t frame : frames) {
+    MissionItem it = waypoint(1, 400, 0, 0);
+    it.frame = frame;
+    const bool absolute = frame == MAV_FRAME_GLOBAL || frame == MAV_FRAME_GLOBAL_INT;
+    it.z = static_cast<float>((absolute ? kHome.alt_m : 0.0) + 250.0 / kFeetPerMetre);
+    MissionItem items[1] = {it};
+    WayPlan plan;
+    ASSERT_TRUE(build_way_plan(items, 1, kHome, limits(), &plan).ok()) << int(frame);
+    EXPECT_NEAR(plan.height_ft[0], 250.0, 0.01) << int(frame);
+    EXPECT_NEAR(plan.north_ft[0], 400.0, 0.5) << int(frame);
+  }
+}
+
+TEST(Mission, ItemZeroOnTheGroundIsHomeAndIsNotFlown) {
+  // A MAVProxy / ArduPilot waypoint file: row 0 is home, MSL, then the waypoints.
+  MissionItem home_row = waypoint(0, 0, 0, 0);
+  home_row.frame = MAV_FRAME_GLOBAL;
+  home_row.z = static_cast<float>(kHome.alt_m);
+  MissionItem items[3] = {home_row, waypoint(1, 300, 0, 200), waypoint(2, 600, 100, 250)};
+  EXPECT_TRUE(is_home_row(items[0], kHome, limits()));
+  WayPlan plan;
+  const MissionVerdict v = build_way_plan(items, 3, kHome, limits(), &plan);
+  ASSERT_TRUE(v.ok()) << v.reason;
+  ASSERT_EQ(plan.fp, 2);
+  EXPECT_NEAR(plan.north_ft[0], 300.0, 0.5);
+  EXPECT_EQ(plan.item_seq[0], 1);
+  EXPECT_EQ(plan.item_seq[1], 2);
+}
+
+TEST(Mission, ItemZeroAtFlyingHeightIsTheFirstWaypoint) {
+  // QGroundControl with a generic autopilot sends no home: its first waypoint is seq 0.
+  MissionItem items[2] = {waypoint(0, 300, 0, 200), waypoint(1, 600, 0, 200)};
+  EXPECT_FALSE(is_home_row(items[0], kHome, limits()));
+  WayPlan plan;
+  ASSERT_TRUE(build_way_plan(items, 2, kHome, limits(), &plan).ok());
+  EXPECT_EQ(plan.fp, 2);
+  EXPECT_EQ(plan.item_seq[0], 0);
+}
+
+TEST(Mission, HomeRowIsStillCheckedAsAPositionAndOnlyAtSeqZero) {
+  MissionItem far_home = waypoint(0, 2500, 2500, 0);
+  EXPECT_EQ(check_mission_item(far_home, kHome, limits()).result, MAV_MISSION_INVALID_PARAM5_X);
+  MissionItem items[2] = {waypoint(0, 0, 0, 0), waypoint(1, 300, 0, 20)};  // row 1 on the ground
+  WayPlan plan;
+  const MissionVerdict v = build_way_plan(items, 2, kHome, limits(), &plan);
+  EXPECT_EQ(v.result, MAV_MISSION_INVALID_PARAM7);
+  EXPECT_NE(v.reason.find("Item 1"), std::string::npos) << v.reason;
+}
+
+TEST(MissionFrames, LegacyItemKeepsItsFrameAndCarriesDegrees) {
+  mavlink_mission_item_t wire{};
+  wire.seq = 2;
+  wire.frame = MAV_FRAME_GLOBAL_RELATIVE_ALT;
+  wire.command = MAV_CMD_NAV_WAYPOINT;
+  wire.x = 40.1234567f;
+  wire.y = -88.2345678f;
+  wire.z = 61.0f;
+  const MissionItem it = from_item_float(wire);
+  EXPECT_EQ(it.frame, MAV_FRAME_GLOBAL_RELATIVE_ALT);
+  EXPECT_NEAR(it.x, 401234567, 30);  // float32 degrees: a few 1e-7 deg
+  EXPECT_NEAR(it.y, -882345678, 30);
+  const mavlink_mission_item_int_t as_int = to_item_int(it);
+  EXPECT_EQ(as_int.frame, MAV_FRAME_GLOBAL_RELATIVE_ALT);
+  EXPECT_EQ(as_int.x, it.x);
+  const mavlink_mission_item_t back = to_item_float(it);
+  EXPECT_EQ(back.frame, MAV_FRAME_GLOBAL_RELATIVE_ALT);
+  EXPECT_FLOAT_EQ(back.x, wire.x);
+  MissionItem int_frame = it;
+  int_frame.frame = MAV_FRAME_GLOBAL_INT;
+  EXPECT_EQ(to_item_float(int_frame).frame, MAV_FRAME_GLOBAL);  // degrees travel in the float twin
+  EXPECT_EQ(to_item_int(int_frame).frame, MAV_FRAME_GLOBAL_INT);
+}
+
+TEST(MissionFrames, NonFiniteLegacyCoordinatesAreRefusedNotWrapped) {
+  mavlink_mission_item_t wire{};
+  wire.frame = MAV_FRAME_GLOBAL;
+  wire.command = MAV_CMD_NAV_WAYPOINT;
+  wire.x = NAN;
+  wire.y = -88.22f;
+  wire.z = 300.0f;
+  EXPECT_EQ(check_mission_item(from_item_float(wire), kHome, limits()).result, MAV_MISSION_INVALID_PARAM5_X);
 }

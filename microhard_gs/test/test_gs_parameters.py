@@ -7,6 +7,7 @@ import sys
 import time
 
 import pytest
+import yaml
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import gs_harness as gh  # noqa: E402
@@ -69,6 +70,45 @@ def test_rate_and_lqr_weight_cannot_change_in_flight_and_the_operator_learns_why
 def test_switch_is_set_byte_wise_and_the_controller_keeps_it_an_integer(gs):
     assert set_param(gs, "path_select", 1, mavlink.MAV_PARAM_TYPE_INT32) == 1
     assert gs.rosparam("/controller_DG808/path_select") == "1"
+
+
+def test_every_parameter_served_is_a_tunable_the_controller_knows(gs):
+    """The ground station's table and the controller's ~set_tunable are one list
+    (aircraft/DG808/tunables.yaml): all of it is served, and a set of each served parameter to
+    the value it has reaches a controller that knows the name (it refuses names it does not know
+    as "not a tunable"; dt and Q_weight it refuses as fixed)."""
+    with open(os.path.join(gh.AIRCRAFT_DIR, "tunables.yaml")) as f:
+        listed = {t.get("mav_id", t["name"]) for t in yaml.safe_load(f)["tunables"]}
+    fly_on(gs, HA)
+    gs.conn.mav.param_request_list_send(1, 1)
+    served = {}
+    count = None
+    deadline = time.time() + 15
+    while time.time() < deadline and (count is None or len(served) < count):
+        m = gs.conn.recv_match(type="PARAM_VALUE", blocking=True, timeout=0.5)
+        if m is not None:
+            count = m.param_count
+            served[m.param_id] = m
+    assert set(served) == listed and count == len(listed)
+    texts = []
+    for param_id, m in sorted(served.items()):
+        gs.conn.mav.param_set_send(1, 1, param_id.encode(), m.param_value, m.param_type)
+        deadline = time.time() + 5
+        echo = None
+        while time.time() < deadline and echo is None:
+            msg = gs.conn.recv_match(type=["PARAM_VALUE", "STATUSTEXT"], blocking=True, timeout=0.2)
+            if msg is not None and msg.get_type() == "STATUSTEXT":
+                texts.append(msg.text)
+            elif msg is not None and msg.param_id == param_id:
+                echo = msg
+        assert echo is not None and echo.param_value == m.param_value, param_id
+    deadline = time.time() + 1.0  # the reason follows the last echo
+    while time.time() < deadline:
+        msg = gs.conn.recv_match(type="STATUSTEXT", blocking=True, timeout=0.2)
+        if msg is not None:
+            texts.append(msg.text)
+    joined = "".join(texts)  # long reasons come in 50-character chunks, in order
+    assert "not a tunable" not in joined and "not running" not in joined, texts
 
 
 def test_gain_change_waits_for_the_ha_to_fly_but_a_trim_goes_in_at_once(gs):

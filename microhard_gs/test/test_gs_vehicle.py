@@ -1,6 +1,6 @@
 """A real MAVLink client (pymavlink) talks to microhard_gs over UDP on loopback: the vehicle,
 its parameters, missions (good and bad), operator commands and decision-logic announcements."""
-import math
+import json
 import os
 import sys
 import time
@@ -83,18 +83,14 @@ def download_parameters(conn, timeout_s=10.0):
     return count, got
 
 
-# The aircraft's controller_param.yaml keys the ground station serves (the others are estimator
-# start values, a start-up command and a string), by their MAVLink ids.
-SHORT_IDS = {"guidance_selection": "GUIDANCE_SELECT", "max_pitch_cmd_deg": "MAX_PITCH_CMD",
-             "min_airspeed_cmd_ftps": "MIN_AIRSPD_CMD", "airspeed_valid_min_ftps": "AIRSPD_VALID_MIN",
-             "converged_sigma_deg": "CONVERGED_SIGMA"}
-NOT_SERVED = {"alpha", "beta", "hmcmd", "frame_id"}
-
-
 def aircraft_tunables():
+    """The aircraft's tunables (tunables.yaml, the one list the controller takes too) by MAVLink
+    id, with their values in controller_param.yaml."""
     with open(os.path.join(gh.AIRCRAFT_DIR, "controller_param.yaml")) as f:
         values = yaml.safe_load(f)
-    return {SHORT_IDS.get(k, k): v for k, v in values.items() if k not in NOT_SERVED}
+    with open(os.path.join(gh.AIRCRAFT_DIR, "tunables.yaml")) as f:
+        tunables = yaml.safe_load(f)["tunables"]
+    return {t.get("mav_id", t["name"]): values[t["name"]] for t in tunables}
 
 
 def test_parameter_download_completes_with_the_aircrafts_controller_tunables(gs):
@@ -171,6 +167,58 @@ def test_legacy_mission_item_upload_is_accepted(gs):
     assert ack is not None and ack.type == mavlink.MAV_MISSION_ACCEPTED
     # float32 degrees resolve about 2 ft at this longitude: why MISSION_ITEM_INT exists
     assert_plan_is_ten(gs.wait_event(lambda e: e["topic"] == "way", 5), tolerance_ft=3.0)
+
+
+FRAMES = [mavlink.MAV_FRAME_GLOBAL, mavlink.MAV_FRAME_GLOBAL_RELATIVE_ALT, mavlink.MAV_FRAME_GLOBAL_INT,
+          mavlink.MAV_FRAME_GLOBAL_RELATIVE_ALT_INT]
+FLOAT_TWIN = {mavlink.MAV_FRAME_GLOBAL_INT: mavlink.MAV_FRAME_GLOBAL,
+              mavlink.MAV_FRAME_GLOBAL_RELATIVE_ALT_INT: mavlink.MAV_FRAME_GLOBAL_RELATIVE_ALT}
+
+
+@pytest.mark.parametrize("legacy", [False, True], ids=["MISSION_ITEM_INT", "MISSION_ITEM"])
+@pytest.mark.parametrize("frame", FRAMES, ids=["frame0", "frame3", "frame5", "frame6"])
+def test_mission_in_every_global_frame_flies_the_same_heights_and_downloads_in_its_frame(gs, frame, legacy):
+    """0 and 5 are MSL (home's altitude + the height), 3 and 6 heights above home: /way gets the
+    same plan, and a download answers in the frame uploaded (a MISSION_ITEM gives 5/6 as 0/3)."""
+    legs = [(200.0, 0.0, 150.0), (400.0, 150.0, 250.0), (600.0, -100.0, 350.0)]
+    items = [gh.waypoint(i, n, e, h, frame) for i, (n, e, h) in enumerate(legs)]
+    gs.drain_events()
+    ack = gh.upload_mission(gs.conn, items, legacy=legacy)
+    assert ack is not None and ack.type == mavlink.MAV_MISSION_ACCEPTED
+    plan = gs.wait_event(lambda e: e["topic"] == "way", 5)
+    assert plan is not None and plan["fp"] == 3
+    for i, (n, e, h) in enumerate(legs):
+        assert plan["north"][i] == pytest.approx(n, abs=3.0)
+        assert plan["east"][i] == pytest.approx(e, abs=3.0)
+        assert plan["height"][i] == pytest.approx(h, abs=0.05)
+    as_int = gh.download_mission(gs.conn)
+    assert [m.frame for m in as_int] == [frame] * 3
+    assert [m.z for m in as_int] == pytest.approx([m.z for m in items])
+    as_float = gh.download_mission(gs.conn, legacy=True)
+    assert [m.frame for m in as_float] == [FLOAT_TWIN.get(frame, frame)] * 3
+    assert [m.x for m in as_float] == pytest.approx([m.x * 1e-7 for m in items], abs=1e-5)
+
+
+def test_ground_station_learns_the_mode_names_and_they_match_the_shipped_pymavlink_map(gs):
+    """AVAILABLE_MODES (what QGroundControl reads) and gcs/pymavlink_custom_mode_map.json (what
+    MAVProxy reads through pymavlink) name the same custom modes the same way."""
+    gh.command_long(gs.conn, mavlink.MAV_CMD_REQUEST_MESSAGE, mavlink.MAVLINK_MSG_ID_AVAILABLE_MODES, 0)
+    ack = gh.wait_command_ack(gs.conn, mavlink.MAV_CMD_REQUEST_MESSAGE)
+    assert ack is not None and ack.result == mavlink.MAV_RESULT_ACCEPTED
+    modes = {}
+    deadline = time.time() + 5
+    while time.time() < deadline and len(modes) < 5:
+        m = gs.conn.recv_match(type="AVAILABLE_MODES", blocking=True, timeout=0.5)
+        if m is not None:
+            modes[m.custom_mode] = m
+    assert {k: m.mode_name for k, m in modes.items()} == {
+        0: "HP", 1: "HA", 2: "RECOVERING", 3: "HA_LATCHED", 4: "MANUAL"}
+    selectable = {m.mode_name for m in modes.values()
+                  if not m.properties & mavlink.MAV_MODE_PROPERTY_NOT_USER_SELECTABLE}
+    assert selectable == {"HP", "HA"}
+    with open(os.path.join(gh.HERE, "..", "gcs", "pymavlink_custom_mode_map.json")) as f:
+        shipped = json.load(f)[str(mavlink.MAV_TYPE_FIXED_WING)]
+    assert {int(k): v for k, v in shipped.items() if int(k) in modes} == {k: m.mode_name for k, m in modes.items()}
 
 
 def test_clearing_the_mission_publishes_an_empty_plan(gs):

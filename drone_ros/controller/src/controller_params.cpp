@@ -3,6 +3,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "tunables_table.h"
+
 namespace controller {
 namespace {
 
@@ -135,45 +137,20 @@ bool build_controller_params(const ParamLookup &lookup, ControllerParams *params
 
 namespace {
 
-struct Tunable {
-  const char *name;
-  TunableKind kind;
-  const char *fixed_reason;  // kFixed only: why it cannot change while running
-};
+using tunables::Tunable;
 
-// Every key of controller_param.yaml the ground may ask to change, and how. Left out (kNone):
-// hmcmd (a start-up command; return home in flight is guidance_selection) and frame_id (a
-// string), and everything under limits/, which is the aircraft's envelope, not a tuning.
-const Tunable kTunables[] = {
-    // The step timer is made once, and the HA's no_command_timeout_s (limits.yaml) is sized for
-    // the period: a new rate is a launch-time choice (DG808_flight.launch dt:=...).
-    {"dt", TunableKind::kFixed, "dt is set at launch only: the step timer and the HA's command timeout"},
-    {"Q_weight", TunableKind::kFixed, "Q_weight is fixed: the LQR gains are designed offline for it"},
-    {"throttle_trim", TunableKind::kLive, nullptr},
-    {"elevator_trim", TunableKind::kLive, nullptr},
-    {"aileron_trim", TunableKind::kLive, nullptr},
-    {"rudder_trim", TunableKind::kLive, nullptr},
-    {"sensor_timeout_s", TunableKind::kLive, nullptr},
-    {"VTtrim", TunableKind::kGncRestart, nullptr},
-    {"alpha", TunableKind::kGncRestart, nullptr},
-    {"beta", TunableKind::kGncRestart, nullptr},
-    {"guidance_selection", TunableKind::kGncRestart, nullptr},
-    {"mpf_switch", TunableKind::kGncRestart, nullptr},
-    {"mpf_radius", TunableKind::kGncRestart, nullptr},
-    {"path_select", TunableKind::kGncRestart, nullptr},
-    {"max_allow_error", TunableKind::kGncRestart, nullptr},
-    {"dist2b", TunableKind::kGncRestart, nullptr},
-    {"KpLon", TunableKind::kGncRestart, nullptr},
-    {"KiLon", TunableKind::kGncRestart, nullptr},
-    {"max_bank_deg", TunableKind::kGncRestart, nullptr},
-    {"max_pitch_cmd_deg", TunableKind::kGncRestart, nullptr},
-    {"min_airspeed_cmd_ftps", TunableKind::kGncRestart, nullptr},
-    {"airspeed_valid_min_ftps", TunableKind::kGncRestart, nullptr},
-    {"converged_sigma_deg", TunableKind::kGncRestart, nullptr},
-};
+TunableKind kind_of(tunables::Apply apply) {
+  switch (apply) {
+    case tunables::Apply::kLive: return TunableKind::kLive;
+    case tunables::Apply::kGncRestart: return TunableKind::kGncRestart;
+    case tunables::Apply::kFixed: return TunableKind::kFixed;
+  }
+  return TunableKind::kNone;
+}
 
+// The aircraft's tunables.yaml, the list microhard_gs serves too (generated, tunables_table.h).
 const Tunable *find_tunable(const std::string &name) {
-  for (const Tunable &t : kTunables) {
+  for (const Tunable &t : tunables::kTunables) {
     if (name == t.name) {
       return &t;
     }
@@ -185,7 +162,7 @@ const Tunable *find_tunable(const std::string &name) {
 
 TunableKind tunable_kind(const std::string &name) {
   const Tunable *t = find_tunable(name);
-  return t == nullptr ? TunableKind::kNone : t->kind;
+  return t == nullptr ? TunableKind::kNone : kind_of(t->apply);
 }
 
 TunableResult change_tunable(const ParamValues &in_force, const std::string &name, double value,
@@ -196,7 +173,7 @@ TunableResult change_tunable(const ParamValues &in_force, const std::string &nam
     result.value_in_force = current->second;
   }
   const Tunable *tunable = find_tunable(name);
-  const TunableKind kind = tunable == nullptr ? TunableKind::kNone : tunable->kind;
+  const TunableKind kind = tunable == nullptr ? TunableKind::kNone : kind_of(tunable->apply);
   if (kind == TunableKind::kNone || current == in_force.end()) {
     result.reason = name + " is not a tunable of controller_" GNC_AIRCRAFT_NAME;
     return result;

@@ -60,61 +60,7 @@ double heading_deg(double yaw_rad) {
   return std::isfinite(h) ? h : 0.0;
 }
 
-MissionItem from_item_int(const mavlink_mission_item_int_t& m) {
-  MissionItem it;
-  it.seq = m.seq;
-  it.frame = m.frame;
-  it.command = m.command;
-  it.current = m.current;
-  it.autocontinue = m.autocontinue;
-  it.param1 = m.param1;
-  it.param2 = m.param2;
-  it.param3 = m.param3;
-  it.param4 = m.param4;
-  it.x = m.x;
-  it.y = m.y;
-  it.z = m.z;
-  return it;
-}
-
-// Legacy float items carry degrees; the _INT twin of the frame keeps one stored representation.
-MissionItem from_item_float(const mavlink_mission_item_t& m) {
-  MissionItem it;
-  it.seq = m.seq;
-  it.frame = m.frame;
-  if (m.frame == MAV_FRAME_GLOBAL) it.frame = MAV_FRAME_GLOBAL_INT;
-  if (m.frame == MAV_FRAME_GLOBAL_RELATIVE_ALT) it.frame = MAV_FRAME_GLOBAL_RELATIVE_ALT_INT;
-  it.command = m.command;
-  it.current = m.current;
-  it.autocontinue = m.autocontinue;
-  it.param1 = m.param1;
-  it.param2 = m.param2;
-  it.param3 = m.param3;
-  it.param4 = m.param4;
-  const bool global = it.frame == MAV_FRAME_GLOBAL_INT || it.frame == MAV_FRAME_GLOBAL_RELATIVE_ALT_INT;
-  if (global) {
-    it.x = clamp_i32(static_cast<double>(m.x) * 1e7);
-    it.y = clamp_i32(static_cast<double>(m.y) * 1e7);
-  } else {
-    it.x = clamp_i32(m.x);
-    it.y = clamp_i32(m.y);
-  }
-  it.z = m.z;
-  return it;
-}
-
 }  // namespace
-
-const char* controller_name(uint8_t controller) {
-  switch (controller) {
-    case kControllerHp: return "HP";
-    case kControllerHa: return "HA";
-    case kControllerRecovering: return "RECOVERING";
-    case kControllerHaLatched: return "HA_LATCHED";
-    case kControllerManual: return "MANUAL";
-    default: return "UNKNOWN";
-  }
-}
 
 std::string reason_names(uint32_t reasons) {
   static const char* const kNames[] = {
@@ -393,6 +339,7 @@ void GsCore::on_mission_count(const mavlink_message_t& msg, const Clock& now) {
   if (m.count == 0) {  // an empty upload clears the mission
     upload_.active = false;
     mission_count_ = 0;
+    mission_plan_ = WayPlan{};
     way_plans_.push_back(WayPlan{});
     ++counters_.missions_accepted;
     send_mission_ack(msg.sysid, msg.compid, MAV_MISSION_ACCEPTED, MAV_MISSION_TYPE_MISSION);
@@ -461,6 +408,7 @@ void GsCore::on_mission_item(const mavlink_message_t& msg, const MissionItem& it
     return;
   }
   if (legacy) upload_.legacy = true;
+  upload_.answered = true;
   if (item.seq != upload_.next_seq) {
     // A duplicate of an item already stored, or one from the future: ask again for the one
     // we need (the protocol's answer to out-of-sequence items).
@@ -488,10 +436,13 @@ void GsCore::on_mission_item(const mavlink_message_t& msg, const MissionItem& it
   }
   std::copy(upload_.items, upload_.items + upload_.count, mission_);
   mission_count_ = upload_.count;
+  mission_plan_ = plan;
   way_plans_.push_back(plan);
   ++counters_.missions_accepted;
   finish_upload(MAV_MISSION_ACCEPTED, "", now);
-  send_statustext(MAV_SEVERITY_INFO, "Mission accepted: " + std::to_string(plan.fp) + " waypoints");
+  const bool home_row = is_home_row(mission_[0], home_, config_.limits);
+  send_statustext(MAV_SEVERITY_INFO, "Mission accepted: " + std::to_string(plan.fp) + " waypoints" +
+                                         (home_row ? ", item 0 is home (not flown)" : ""));
 }
 
 void GsCore::on_mission_request_list(const mavlink_message_t& msg) {
@@ -528,47 +479,20 @@ void GsCore::on_mission_request(const mavlink_message_t& msg, bool legacy) {
     send_mission_ack(msg.sysid, msg.compid, MAV_MISSION_INVALID_SEQUENCE, mission_type);
     return;
   }
-  const MissionItem& it = mission_[seq];
-  const bool global = it.frame == MAV_FRAME_GLOBAL_INT || it.frame == MAV_FRAME_GLOBAL_RELATIVE_ALT_INT;
+  // Downloads answer in the frame each item was uploaded in (mission_frames.h).
   if (legacy) {
-    mavlink_mission_item_t m{};
+    mavlink_mission_item_t m = to_item_float(mission_[seq]);
     m.target_system = msg.sysid;
     m.target_component = msg.compid;
-    m.seq = seq;
-    m.frame = it.frame;
-    if (it.frame == MAV_FRAME_GLOBAL_INT) m.frame = MAV_FRAME_GLOBAL;
-    if (it.frame == MAV_FRAME_GLOBAL_RELATIVE_ALT_INT) m.frame = MAV_FRAME_GLOBAL_RELATIVE_ALT;
-    m.command = it.command;
     m.current = seq == 0 ? 1 : 0;
-    m.autocontinue = it.autocontinue;
-    m.param1 = it.param1;
-    m.param2 = it.param2;
-    m.param3 = it.param3;
-    m.param4 = it.param4;
-    m.x = global ? static_cast<float>(it.x * 1e-7) : static_cast<float>(it.x);
-    m.y = global ? static_cast<float>(it.y * 1e-7) : static_cast<float>(it.y);
-    m.z = it.z;
-    m.mission_type = MAV_MISSION_TYPE_MISSION;
     emit([&](mavlink_message_t* out) {
       mavlink_msg_mission_item_encode_status(config_.system_id, config_.component_id, &tx_status_, out, &m);
     });
   } else {
-    mavlink_mission_item_int_t m{};
+    mavlink_mission_item_int_t m = to_item_int(mission_[seq]);
     m.target_system = msg.sysid;
     m.target_component = msg.compid;
-    m.seq = seq;
-    m.frame = it.frame;
-    m.command = it.command;
     m.current = seq == 0 ? 1 : 0;
-    m.autocontinue = it.autocontinue;
-    m.param1 = it.param1;
-    m.param2 = it.param2;
-    m.param3 = it.param3;
-    m.param4 = it.param4;
-    m.x = it.x;
-    m.y = it.y;
-    m.z = it.z;
-    m.mission_type = MAV_MISSION_TYPE_MISSION;
     emit([&](mavlink_message_t* out) {
       mavlink_msg_mission_item_int_encode_status(config_.system_id, config_.component_id, &tx_status_, out, &m);
     });
@@ -582,6 +506,7 @@ void GsCore::on_mission_clear_all(const mavlink_message_t& msg) {
   if (m.mission_type == MAV_MISSION_TYPE_MISSION || m.mission_type == MAV_MISSION_TYPE_ALL) {
     upload_.active = false;
     mission_count_ = 0;
+    mission_plan_ = WayPlan{};
     way_plans_.push_back(WayPlan{});
   }
   send_mission_ack(msg.sysid, msg.compid, MAV_MISSION_ACCEPTED, m.mission_type);
@@ -630,6 +555,12 @@ void GsCore::on_command(const mavlink_message_t& msg, uint16_t command, const fl
                             params[0] == static_cast<float>(MAVLINK_MSG_ID_HOME_POSITION));
     if (want_version) send_autopilot_version();
     if (want_home) send_home_position();
+    const bool request = command == MAV_CMD_REQUEST_MESSAGE;
+    if (request && params[0] == static_cast<float>(MAVLINK_MSG_ID_CURRENT_MODE)) send_current_mode();
+    if (request && params[0] == static_cast<float>(MAVLINK_MSG_ID_AVAILABLE_MODES)) {
+      const int index = static_cast<int>(params[1]);
+      for (int i = index == 0 ? 1 : index; i <= (index == 0 ? kModeCount : index); ++i) send_available_mode(i);
+    }
   }
 }
 
@@ -647,12 +578,9 @@ uint8_t GsCore::execute_command(uint16_t command, const float params[7]) {
       if (!std::isfinite(params[0]) || !std::isfinite(params[1])) return MAV_RESULT_DENIED;
       const uint32_t flags = static_cast<uint32_t>(params[0]);
       if ((flags & MAV_MODE_FLAG_CUSTOM_MODE_ENABLED) == 0) return MAV_RESULT_DENIED;
-      if (params[1] == 0.0f) {
-        operator_requests_.push_back(OperatorRequest::kSelectHp);
-        return MAV_RESULT_ACCEPTED;
-      }
-      if (params[1] == 1.0f) {
-        operator_requests_.push_back(OperatorRequest::kSelectHa);
+      if (params[1] == 0.0f || params[1] == 1.0f) {
+        operator_requests_.push_back(params[1] == 0.0f ? OperatorRequest::kSelectHp : OperatorRequest::kSelectHa);
+        intended_custom_mode_ = params[1] == 0.0f ? kControllerHp : kControllerHa;
         return MAV_RESULT_ACCEPTED;
       }
       return MAV_RESULT_DENIED;
@@ -679,6 +607,13 @@ uint8_t GsCore::execute_command(uint16_t command, const float params[7]) {
       if (params[0] == static_cast<float>(MAVLINK_MSG_ID_AUTOPILOT_VERSION)) return MAV_RESULT_ACCEPTED;
       if (params[0] == static_cast<float>(MAVLINK_MSG_ID_HOME_POSITION)) {
         return home_known_ ? MAV_RESULT_ACCEPTED : MAV_RESULT_TEMPORARILY_REJECTED;
+      }
+      if (params[0] == static_cast<float>(MAVLINK_MSG_ID_CURRENT_MODE)) return MAV_RESULT_ACCEPTED;
+      if (params[0] == static_cast<float>(MAVLINK_MSG_ID_AVAILABLE_MODES)) {
+        // param2: 0 for every mode, else the index of one (1-based).
+        const bool one = params[1] >= 1.0f && params[1] <= static_cast<float>(kModeCount) &&
+                         params[1] == std::floor(params[1]);
+        return params[1] == 0.0f || one ? MAV_RESULT_ACCEPTED : MAV_RESULT_DENIED;
       }
       return MAV_RESULT_UNSUPPORTED;
     default:
@@ -745,13 +680,15 @@ std::string decision_announcement(const DecisionInfo* previous, const DecisionIn
 }
 
 void GsCore::set_decision(const DecisionInfo& d) {
-  if (!have_decision_ || d.controller != decision_.controller) {
+  const bool changed = !have_decision_ || d.controller != decision_.controller;
+  if (changed) {
     uint8_t severity = MAV_SEVERITY_NOTICE;
     const std::string text = decision_announcement(have_decision_ ? &decision_ : nullptr, d, &severity);
     send_statustext(severity, text);
   }
   decision_ = d;
   have_decision_ = true;
+  if (changed) send_current_mode();  // the standard-modes protocol wants every change at once
 }
 
 void GsCore::send_statustext(uint8_t severity, const std::string& text) {
@@ -802,21 +739,29 @@ void GsCore::send_home_position() {
   });
 }
 
+void GsCore::send_available_mode(int mode_index) {
+  mavlink_available_modes_t m{};
+  if (!available_mode(mode_index, &m)) return;
+  emit([&](mavlink_message_t* out) {
+    mavlink_msg_available_modes_encode_status(config_.system_id, config_.component_id, &tx_status_, out, &m);
+  });
+}
+
+void GsCore::send_current_mode() {
+  const mavlink_current_mode_t m = current_mode(have_decision_, decision_.controller, intended_custom_mode_);
+  emit([&](mavlink_message_t* out) {
+    mavlink_msg_current_mode_encode_status(config_.system_id, config_.component_id, &tx_status_, out, &m);
+  });
+}
+
 void GsCore::send_heartbeat() {
   mavlink_heartbeat_t hb{};
   hb.type = MAV_TYPE_FIXED_WING;
   hb.autopilot = MAV_AUTOPILOT_GENERIC;
-  hb.base_mode = MAV_MODE_FLAG_CUSTOM_MODE_ENABLED;
-  const bool fresh = have_telemetry_;
-  if (fresh && telemetry_.computer_in_command) {
-    hb.base_mode |= MAV_MODE_FLAG_AUTO_ENABLED | MAV_MODE_FLAG_GUIDED_ENABLED | MAV_MODE_FLAG_STABILIZE_ENABLED;
-  } else {
-    hb.base_mode |= MAV_MODE_FLAG_MANUAL_INPUT_ENABLED;
-  }
   const bool airborne = have_decision_ && decision_.altitude_agl_ft > config_.airborne_agl_ft;
-  if (airborne) hb.base_mode |= MAV_MODE_FLAG_SAFETY_ARMED;
-  // custom_mode tells which controller drives the servos (DecisionStatus.CONTROLLER_*).
-  hb.custom_mode = have_decision_ ? decision_.controller : 0xFFFFFFFFu;
+  // custom_mode tells which controller drives the servos (DecisionStatus.CONTROLLER_*, modes.h).
+  hb.base_mode = heartbeat_base_mode(have_decision_, decision_.controller, airborne);
+  hb.custom_mode = have_decision_ ? decision_.controller : kCustomModeUnknown;
   hb.system_status = airborne ? MAV_STATE_ACTIVE : MAV_STATE_STANDBY;
   if (have_decision_ && (decision_.controller == kControllerHa || decision_.controller == kControllerHaLatched)) {
     hb.system_status = MAV_STATE_CRITICAL;  // flying on the safety controller
@@ -825,6 +770,7 @@ void GsCore::send_heartbeat() {
   emit([&](mavlink_message_t* m) {
     mavlink_msg_heartbeat_encode_status(config_.system_id, config_.component_id, &tx_status_, m, &hb);
   });
+  send_current_mode();  // streamed with the heartbeat (the protocol asks for about 0.5 Hz)
 }
 
 void GsCore::send_telemetry_set(const Clock& now) {
@@ -841,7 +787,10 @@ void GsCore::send_telemetry_set(const Clock& now) {
   uint32_t health = 0;
   if (fresh && t.ins_link_up) health |= MAV_SYS_STATUS_SENSOR_3D_GYRO | MAV_SYS_STATUS_SENSOR_3D_ACCEL | MAV_SYS_STATUS_SENSOR_GPS;
   if (fresh && t.ha_link_up) health |= MAV_SYS_STATUS_SENSOR_DIFFERENTIAL_PRESSURE | MAV_SYS_STATUS_SENSOR_ABSOLUTE_PRESSURE;
-  s.onboard_control_sensors_health = health;
+  // No geofence: neither present nor enabled, and healthy (never breached), as ArduPilot reports
+  // it. A ground station that starts out assuming the fence healthy (MAVProxy) would otherwise
+  // announce "fence breach" on the first SYS_STATUS.
+  s.onboard_control_sensors_health = health | MAV_SYS_STATUS_GEOFENCE;
   s.voltage_battery = fresh ? clamp_u16(t.voltage_v * 1000.0) : UINT16_MAX;
   s.current_battery = -1;
   s.battery_remaining = -1;
@@ -911,7 +860,9 @@ void GsCore::send_telemetry_set(const Clock& now) {
 
   if (mission_count_ > 0) {
     mavlink_mission_current_t c{};
-    c.seq = static_cast<uint16_t>(std::max<int32_t>(0, std::min<int32_t>(t.waypoint_index, mission_count_ - 1)));
+    // The controller counts the waypoints on /way; the GCS counts mission items (home, speeds).
+    const int32_t wp = std::max<int32_t>(0, std::min<int32_t>(t.waypoint_index, mission_plan_.fp - 1));
+    c.seq = static_cast<uint16_t>(mission_plan_.fp > 0 ? mission_plan_.item_seq[wp] : 0);
     c.total = static_cast<uint16_t>(mission_count_);
     c.mission_state = MISSION_STATE_ACTIVE;
     c.mission_mode = t.computer_in_command ? 1 : 2;
@@ -957,6 +908,8 @@ void GsCore::tick(const Clock& now) {
     if (upload_.retries < config_.mission_max_retries) {
       ++upload_.retries;
       ++counters_.mission_request_retries;
+      // No item yet: maybe the GCS answers only the other request message. Ask both ways in turn.
+      if (!upload_.answered) upload_.legacy = !upload_.legacy;
       request_next_item(now);
     } else {
       ++counters_.mission_uploads_timed_out;

@@ -10,6 +10,8 @@
 #include "geo.h"
 #include "mavlink_all.h"
 #include "mission.h"
+#include "mission_frames.h"
+#include "modes.h"
 #include "params.h"
 #include "signing_key.h"
 
@@ -52,14 +54,6 @@ struct Telemetry {
   bool computer_in_command = false;
   int32_t waypoint_index = 0;
 };
-
-// Who flies, as DecisionStatus.CONTROLLER_* numbers it (the node checks they agree at compile
-// time; this core is ROS-free).
-constexpr uint8_t kControllerHp = 0;
-constexpr uint8_t kControllerHa = 1;
-constexpr uint8_t kControllerRecovering = 2;
-constexpr uint8_t kControllerHaLatched = 3;
-constexpr uint8_t kControllerManual = 4;
 
 struct DecisionInfo {
   uint8_t controller = kControllerHp;  // one of kController*
@@ -141,7 +135,10 @@ class GsCore {
  private:
   struct Upload {
     bool active = false;
-    bool legacy = false;  // the GCS answered with MISSION_ITEM: ask with MISSION_REQUEST
+    // Ask with MISSION_REQUEST rather than MISSION_REQUEST_INT: the GCS answered with MISSION_ITEM,
+    // or it answered only once asked that way (MAVProxy answers MISSION_REQUEST alone).
+    bool legacy = false;
+    bool answered = false;  // an item of this upload arrived: the way of asking is settled
     uint8_t partner_sys = 0, partner_comp = 0;
     int count = 0;
     int next_seq = 0;
@@ -188,6 +185,8 @@ class GsCore {
   void send_heartbeat();
   void send_telemetry_set(const Clock& now);
   void send_home_position();
+  void send_available_mode(int mode_index);
+  void send_current_mode();
   void send_autopilot_version();
   void send_statustext(uint8_t severity, const std::string& text);
 
@@ -214,6 +213,7 @@ class GsCore {
   Telemetry telemetry_;
   bool have_decision_ = false;
   DecisionInfo decision_;
+  uint32_t intended_custom_mode_ = 0;  // the operator's last DO_SET_MODE (0: none yet)
 
   bool home_known_ = false;
   GeoPoint home_;
@@ -222,6 +222,7 @@ class GsCore {
   LastUploadResult last_upload_;
   MissionItem mission_[kMaxMissionItems];
   int mission_count_ = 0;
+  WayPlan mission_plan_;  // the plan of the mission held (its waypoints' item numbers)
 
   uint16_t statustext_id_ = 0;
 
@@ -243,6 +244,5 @@ std::string reason_names(uint32_t reasons);
 // The STATUSTEXT for a decision status that changes who flies, naming why ("Controller HP->HA:
 // NO_COMMAND,STALL"); `previous` is null for the first status seen. Sets *severity.
 std::string decision_announcement(const DecisionInfo* previous, const DecisionInfo& now, uint8_t* severity);
-const char* controller_name(uint8_t controller);
 
 }  // namespace microhard_gs

@@ -1,4 +1,6 @@
-// The MAVLink 2 C library generated at build time by pymavlink's mavgen from the common.xml
-// that pymavlink ships (see ../../CMakeLists.txt). Included as a SYSTEM header.
+// The MAVLink 2 C library generated at build time by pymavlink's mavgen from the development.xml
+// that pymavlink ships (common.xml plus the standard-modes messages AVAILABLE_MODES and
+// CURRENT_MODE, which pymavlink 2.4.50 has only there; see ../../CMakeLists.txt). Included as a
+// SYSTEM header.
 #pragma once
-#include <common/mavlink.h>
+#include <development/mavlink.h>

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "mavlink_all.h"
+#include "mission_frames.h"
 
 namespace microhard_gs {
 namespace {
@@ -25,23 +26,12 @@ MissionVerdict verdict(uint8_t result, std::string reason) {
   return v;
 }
 
-bool is_global_frame(uint8_t frame) {
-  return frame == MAV_FRAME_GLOBAL_INT || frame == MAV_FRAME_GLOBAL_RELATIVE_ALT_INT;
-}
-
 }  // namespace
 
-bool item_height_above_home_ft(const MissionItem& item, const GeoPoint& home, double* height_ft) {
-  if (!std::isfinite(item.z)) return false;
-  if (item.frame == MAV_FRAME_GLOBAL_RELATIVE_ALT_INT) {
-    *height_ft = static_cast<double>(item.z) * kFeetPerMetre;
-    return true;
-  }
-  if (item.frame == MAV_FRAME_GLOBAL_INT) {  // altitude above the same datum as home's
-    *height_ft = (static_cast<double>(item.z) - home.alt_m) * kFeetPerMetre;
-    return true;
-  }
-  return false;
+bool is_home_row(const MissionItem& item, const GeoPoint& home, const MissionLimits& limits) {
+  double height_ft = 0.0;
+  return item.seq == 0 && item.command == MAV_CMD_NAV_WAYPOINT && is_global_frame(item.frame) &&
+         height_above_home_ft(item.frame, item.z, home, &height_ft) && height_ft < limits.floor_ft;
 }
 
 MissionVerdict check_mission_item(const MissionItem& item, const GeoPoint& home,
@@ -75,14 +65,15 @@ MissionVerdict check_mission_item(const MissionItem& item, const GeoPoint& home,
     return verdict(MAV_MISSION_INVALID_PARAM6_Y, text("Item %d: longitude %.1f invalid", n, lon_deg));
   }
   double height_ft = 0.0;
-  if (!item_height_above_home_ft(item, home, &height_ft)) {
+  if (!height_above_home_ft(item.frame, item.z, home, &height_ft)) {
     return verdict(MAV_MISSION_INVALID_PARAM7, text("Item %d: altitude invalid", n));
   }
+  const bool home_row = is_home_row(item, home, limits);
   if (height_ft > limits.ceiling_ft) {
     return verdict(MAV_MISSION_INVALID_PARAM7,
                    text("Item %d: %.0f ft above ceiling %.0f ft", n, height_ft, limits.ceiling_ft));
   }
-  if (height_ft < limits.floor_ft) {
+  if (height_ft < limits.floor_ft && !home_row) {
     return verdict(MAV_MISSION_INVALID_PARAM7,
                    text("Item %d: %.0f ft below floor %.0f ft", n, height_ft, limits.floor_ft));
   }
@@ -109,13 +100,15 @@ MissionVerdict build_way_plan(const MissionItem* items, int count, const GeoPoin
       if (items[i].param2 > 0.0f) speed_ftps = static_cast<double>(items[i].param2) * kFeetPerMetre;
       continue;
     }
+    if (is_home_row(items[i], home, limits)) continue;  // home: not flown
     double height_ft = 0.0;
-    item_height_above_home_ft(items[i], home, &height_ft);
+    height_above_home_ft(items[i].frame, items[i].z, home, &height_ft);
     const NorthEastFt ne = geodetic_to_north_east_ft(home, items[i].x * 1e-7, items[i].y * 1e-7);
     out.north_ft[out.fp] = ne.north_ft;
     out.east_ft[out.fp] = ne.east_ft;
     out.height_ft[out.fp] = height_ft;
     out.velocity_ftps[out.fp] = speed_ftps;
+    out.item_seq[out.fp] = items[i].seq;
     ++out.fp;
   }
   *plan = out;

@@ -13,8 +13,8 @@ namespace microhard_gs {
 constexpr int kMaxMissionItems = 32;
 
 // A MISSION_ITEM_INT's fields, copied out of the packed wire struct. Legacy float items
-// (MISSION_ITEM) are stored in this form too: lat/lon scaled by 1e7 and the frame mapped to its
-// _INT twin, so the rest of the code sees one representation.
+// (MISSION_ITEM) are stored in this form too, lat/lon scaled by 1e7; the frame is kept as
+// uploaded (mission_frames.h), so a download answers in it.
 struct MissionItem {
   uint16_t seq = 0;
   uint8_t frame = 0;
@@ -51,10 +51,20 @@ struct WayPlan {
   double east_ft[kMaxMissionItems] = {};
   double height_ft[kMaxMissionItems] = {};
   double velocity_ftps[kMaxMissionItems] = {};
+  int item_seq[kMaxMissionItems] = {};  // the mission item each waypoint came from (MISSION_CURRENT)
 };
 
+// Item 0 as home (ArduPilot's convention, which MAVProxy's and QGroundControl's ArduPilot-mode
+// waypoint files follow): a NAV_WAYPOINT at seq 0 whose height above home is below the mission
+// floor is the home row. It is not flown and does not move the vehicle's home; it is checked as a
+// position (valid, inside the radius) and kept, so a download gives the file back. A seq-0
+// waypoint at or above the floor is flown like any other: a GCS that does not send home
+// (QGroundControl with a generic autopilot) puts its first waypoint there.
+bool is_home_row(const MissionItem& item, const GeoPoint& home, const MissionLimits& limits);
+
 // Checks one item on its own: supported command and frame, position valid, height within
-// [floor, ceiling] above home, inside the radius, speed not below stall.
+// [floor, ceiling] above home (the home row: below the floor), inside the radius, speed not below
+// stall.
 MissionVerdict check_mission_item(const MissionItem& item, const GeoPoint& home,
                                   const MissionLimits& limits);
 
@@ -62,8 +72,5 @@ MissionVerdict check_mission_item(const MissionItem& item, const GeoPoint& home,
 // rejection, so the caller's previous mission stays.
 MissionVerdict build_way_plan(const MissionItem* items, int count, const GeoPoint& home,
                               const MissionLimits& limits, WayPlan* plan);
-
-// Height of a navigation item above home [ft], from its frame.
-bool item_height_above_home_ft(const MissionItem& item, const GeoPoint& home, double* height_ft);
 
 }  // namespace microhard_gs

@@ -1,5 +1,5 @@
-// The controller's tunable parameters (the thesis's /controller_param/* set) as the MAVLink
-// parameter protocol sees them: a fixed-order table with 16-character ids.
+// The controller's tunable parameters as the MAVLink parameter protocol sees them: a fixed-order
+// table with 16-character ids.
 #pragma once
 
 #include <cstddef>
@@ -15,10 +15,10 @@ struct ParamSpec {
   bool is_integer;       // switches and selections are integers, gains and trims reals
 };
 
-// The tunable set of controller_DG808: the thesis's read_parameter() list plus the ones today's
-// controller added (aircraft/DG808/controller_param.yaml). Left out on purpose: alpha/beta/gps_v*
-// (HiL and estimator start values), enable, hmcmd and controller_selection (commands, which
-// travel as MAVLink commands and /operator_command, never as parameters), frame_id (a string).
+// The controller's tunables, in the order of aircraft/<name>/tunables.yaml: the list the
+// controller's ~set_tunable takes (both are generated from it, tunables_table.h). Not in it:
+// hmcmd (a start-up command; commands travel as MAVLink commands and /operator_command, never as
+// parameters), frame_id (a string), limits/ (the aircraft's envelope).
 const std::vector<ParamSpec>& controller_param_specs();
 
 class ParamTable {
