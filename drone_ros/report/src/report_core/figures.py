@@ -57,6 +57,11 @@ def _broken(t, y, gap_periods=5.0):
     return np.insert(t, gaps, np.nan), np.insert(y, gaps, np.nan)
 
 
+def _legend_above(ax, handles):
+    ax.legend(handles=handles, loc="lower left", bbox_to_anchor=(0.0, 1.02), ncol=4, fontsize=8,
+              frameon=False)
+
+
 def _save(fig, out_dir, name):
     path = os.path.join(out_dir, name)
     fig.savefig(path, dpi=DPI)
@@ -113,8 +118,7 @@ def outputs(log, runs, switches, out_dir):
             ax.plot(d.t, ha, lw=0.9, color=colour("HA"), label="HA output (while driving)")
             ax.plot(d.t, getattr(d, field), lw=1.2, color="k", ls=":", label="applied (HA to servos)")
         ax.set_ylabel(ylabel)
-    axes[0].legend(handles=axes[0].get_legend_handles_labels()[0] + _shading_legend(runs),
-                   loc="upper right", fontsize=8, ncol=3)
+    _legend_above(axes[0], axes[0].get_legend_handles_labels()[0] + _shading_legend(runs))
     return _save(fig, out_dir, "fig5_3_outputs.png")
 
 
@@ -136,7 +140,7 @@ def _state_figure(log, runs, switches, out_dir, title, name, panels):
         else:
             _no_data(ax, ylabel)
     if _shading_legend(runs):
-        axes[0].legend(handles=_shading_legend(runs), loc="upper right", fontsize=8)
+        _legend_above(axes[0], _shading_legend(runs))
     return _save(fig, out_dir, name)
 
 
@@ -220,14 +224,13 @@ def altitude(log, limits, runs, switches, out_dir):
                              (source + "; " if source else "") + "HA-checked: /decision_status")
     ax = axes[0]
     if position is not None:
-        ax.plot(position[0], position[3], lw=1.0, label="height above home")
+        ax.plot(*_broken(position[0], position[3]), lw=1.0, label="height above home")
     ax.plot(log.decision.t, log.decision.altitude_agl_ft, lw=0.8, ls="--", color="0.35",
             label="altitude the HA checked")
     ax.axhline(ceiling_ft, color="r", lw=1.2, label="ceiling %g ft" % ceiling_ft)
     ax.axhline(airborne_ft, color="0.5", lw=0.8, ls=":", label="airborne above %g ft" % airborne_ft)
     ax.set_ylabel("height [ft]")
-    ax.legend(handles=ax.get_legend_handles_labels()[0] + _shading_legend(runs), loc="lower right",
-              fontsize=8)
+    _legend_above(ax, ax.get_legend_handles_labels()[0] + _shading_legend(runs))
     return _save(fig, out_dir, "altitude.png")
 
 
@@ -239,15 +242,14 @@ def airspeed(log, limits, runs, switches, out_dir):
     if log.truth is not None:
         ax.plot(log.truth.t, log.truth.airspeed_ftps, lw=1.0, label="true airspeed")
     elif log.data is not None:
-        ax.plot(log.data.t, log.data.air_velocity_ftps, lw=1.0, label="airspeed (/data)")
+        ax.plot(*_broken(log.data.t, log.data.air_velocity_ftps), lw=1.0, label="airspeed (/data)")
     ax.plot(log.decision.t, log.decision.airspeed_ftps, lw=0.8, ls="--", color="0.35",
             label="airspeed the HA checked")
     if log.pwm is not None and log.truth is None:
         ax.plot(log.pwm.t, log.pwm.velocity_ftps, lw=0.6, color="0.6", label="HA pitot (/pwm)")
     ax.axhline(stall_ftps, color="r", lw=1.2, label="stall %g ft/s" % stall_ftps)
     ax.set_ylabel("airspeed [ft/s]")
-    ax.legend(handles=ax.get_legend_handles_labels()[0] + _shading_legend(runs), loc="lower right",
-              fontsize=8)
+    _legend_above(ax, ax.get_legend_handles_labels()[0] + _shading_legend(runs))
     return _save(fig, out_dir, "airspeed.png")
 
 
