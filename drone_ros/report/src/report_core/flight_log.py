@@ -5,6 +5,7 @@ A record is a dict of the message's fields (nested messages as dicts, times as f
 seconds) plus "_t_bag", the time the recorder received it. A message's own stamp is its time;
 the receive time stands in only where a message has no stamp or an unset one."""
 import math
+from array import array
 
 import numpy as np
 
@@ -66,20 +67,6 @@ def _stamp(record):
     return float(record["_t_bag"])
 
 
-def _table(topic, records, fields, t0):
-    if not records:
-        return None
-    columns = {"t": np.array([_stamp(r) for r in records]) - t0}
-    for name, path in fields.items():
-        try:
-            columns[name] = np.array([_field(r, path) for r in records], dtype=float)
-        except (KeyError, IndexError, TypeError) as error:
-            raise ReportError("%s has no field %s (%s): the bag was recorded with another version "
-                              "of the message" % (topic, path, error)) from None
-    order = np.argsort(columns["t"], kind="stable")
-    return Table({name: column[order] for name, column in columns.items()})
-
-
 TRUTH_FIELDS = {name: name for name in (
     "latitude_deg", "longitude_deg", "altitude_msl_m", "height_above_home_ft", "north_ft", "east_ft",
     "roll_deg", "pitch_deg", "heading_deg", "p_deg_s", "q_deg_s", "r_deg_s",
@@ -106,23 +93,76 @@ DATA_FIELDS = {
 }
 
 
+FIELD_TABLES = {TOPIC_TRUTH: TRUTH_FIELDS, TOPIC_DECISION: DECISION_FIELDS,
+                TOPIC_SERVO_OP: SERVO_OP_FIELDS, TOPIC_PWM: PWM_FIELDS, TOPIC_INS: INS_FIELDS,
+                TOPIC_DATA: DATA_FIELDS}
+# The top-level fields read per topic, so an edge decoding a long log keeps only these.
+FIELDS_BY_TOPIC = {
+    topic: {"header", "stamp"} | {path.split(".")[0].split("[")[0] for path in fields.values()}
+    for topic, fields in FIELD_TABLES.items()}
+FIELDS_BY_TOPIC[TOPIC_WAY] = {"north", "east", "height", "fp"}
+
+
+class LogBuilder:
+    """Takes records one at a time and keeps only the columns the report draws (8 bytes a value),
+    so an hour of flight fits in memory."""
+
+    def __init__(self):
+        self.columns = {topic: {name: array("d") for name in ("t", *fields)}
+                        for topic, fields in FIELD_TABLES.items()}
+        self.last_plan = None
+        self.t_min = math.inf
+        self.t_max = -math.inf
+
+    def add(self, topic, record):
+        t = _stamp(record)
+        if topic == TOPIC_WAY:
+            if _flight_plan(record):
+                self.last_plan = record
+        elif topic in FIELD_TABLES:
+            columns = self.columns[topic]
+            values = []
+            for name, path in FIELD_TABLES[topic].items():
+                try:
+                    values.append(float(_field(record, path)))
+                except (KeyError, IndexError, TypeError, ValueError) as error:
+                    raise ReportError("%s has no field %s (%s): the bag was recorded with another "
+                                      "version of the message" % (topic, path, error)) from None
+            columns["t"].append(t)
+            for name, value in zip(FIELD_TABLES[topic], values):
+                columns[name].append(value)
+        else:
+            return
+        self.t_min, self.t_max = min(self.t_min, t), max(self.t_max, t)
+
+    def table(self, topic):
+        columns = self.columns[topic]
+        if not columns["t"]:
+            return None
+        t = np.frombuffer(columns["t"], dtype=float) - self.t_min
+        order = np.argsort(t, kind="stable")
+        out = {"t": t[order]}
+        for name in FIELD_TABLES[topic]:
+            out[name] = np.frombuffer(columns[name], dtype=float)[order]
+        return Table(out)
+
+
 class FlightLog:
     """Everything the report draws, decoded; None for a topic the bag does not hold."""
 
-    def __init__(self, records, definition_texts):
-        present = [r for topic in TOPICS for r in records.get(topic, ())]
-        if not records.get(TOPIC_DECISION):
+    def __init__(self, builder, definition_texts):
+        if not builder.columns[TOPIC_DECISION]["t"]:
             raise ReportError("no %s messages: the report is built around the HA's decisions, "
                               "record that topic" % TOPIC_DECISION)
-        self.t0 = min(_stamp(r) for r in present)
-        self.truth = _table(TOPIC_TRUTH, records.get(TOPIC_TRUTH, []), TRUTH_FIELDS, self.t0)
-        self.decision = _table(TOPIC_DECISION, records[TOPIC_DECISION], DECISION_FIELDS, self.t0)
-        self.servo_op = _table(TOPIC_SERVO_OP, records.get(TOPIC_SERVO_OP, []), SERVO_OP_FIELDS, self.t0)
-        self.pwm = _table(TOPIC_PWM, records.get(TOPIC_PWM, []), PWM_FIELDS, self.t0)
-        self.ins = _table(TOPIC_INS, records.get(TOPIC_INS, []), INS_FIELDS, self.t0)
-        self.data = _table(TOPIC_DATA, records.get(TOPIC_DATA, []), DATA_FIELDS, self.t0)
-        self.duration_s = max(_stamp(r) for r in present) - self.t0
-        self.waypoints = _last_flight_plan(records.get(TOPIC_WAY, []))
+        self.t0 = builder.t_min
+        self.duration_s = builder.t_max - builder.t_min
+        self.truth = builder.table(TOPIC_TRUTH)
+        self.decision = builder.table(TOPIC_DECISION)
+        self.servo_op = builder.table(TOPIC_SERVO_OP)
+        self.pwm = builder.table(TOPIC_PWM)
+        self.ins = builder.table(TOPIC_INS)
+        self.data = builder.table(TOPIC_DATA)
+        self.waypoints = _flight_plan(builder.last_plan) if builder.last_plan else []
         text = definition_texts.get(TOPIC_DECISION, "")
         self.controller_names = definitions.constants(text, "CONTROLLER_")
         self.reason_names = definitions.constants(text, "REASON_")
@@ -165,11 +205,10 @@ def ned_from_home(lat_deg, lon_deg, home_lat_deg, home_lon_deg):
     return north, east
 
 
-def _last_flight_plan(records):
-    """The last accepted plan as [(north_ft, east_ft, height_ft)], [] when none was published."""
-    for record in reversed(records):
-        count = int(record.get("fp", 0))
-        if 0 < count <= len(record.get("north", ())):
-            return [(float(record["north"][i]), float(record["east"][i]), float(record["height"][i]))
-                    for i in range(count)]
+def _flight_plan(record):
+    """A /way record's plan as [(north_ft, east_ft, height_ft)], [] when it holds none."""
+    count = int(record.get("fp", 0))
+    if 0 < count <= len(record.get("north", ())):
+        return [(float(record["north"][i]), float(record["east"][i]), float(record["height"][i]))
+                for i in range(count)]
     return []

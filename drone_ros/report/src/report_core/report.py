@@ -3,7 +3,7 @@ import json
 import os
 
 from . import figures, page, switches as switches_mod
-from .flight_log import FlightLog, ReportError  # noqa: F401  (ReportError is part of the API)
+from .flight_log import FlightLog, LogBuilder, ReportError  # noqa: F401  (the API)
 
 FIGURES = (
     (figures.outputs, False, "Fig. 5.3: HP output, HA output and the applied output per surface"),
@@ -18,10 +18,10 @@ FIGURES = (
 )
 
 
-def make_report(records, definition_texts, limits, out_dir, title):
-    """records/definition_texts: as FlightLog takes them; limits: the aircraft's limits.yaml.
-    Returns the path of index.html."""
-    log = FlightLog(records, definition_texts)
+def make_report(builder, definition_texts, limits, out_dir, title):
+    """builder: a LogBuilder fed the flight's records; definition_texts: {topic: message
+    definition}; limits: the aircraft's limits.yaml. Returns the path of index.html."""
+    log = FlightLog(builder, definition_texts)
     for section, key in (("state", "ceiling_agl_ft"), ("state", "stall_speed_ftps"),
                          ("state", "airborne_agl_ft"), ("decision", "rate_hz"),
                          ("decision", "no_command_timeout_s")):
