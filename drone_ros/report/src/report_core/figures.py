@@ -57,6 +57,33 @@ def _broken(t, y, gap_periods=5.0):
     return np.insert(t, gaps, np.nan), np.insert(y, gaps, np.nan)
 
 
+MAX_POINTS = 8000  # per line: several per pixel of a 1200-pixel-wide plot
+
+
+def _thin(t, y, max_points=MAX_POINTS):
+    """At most max_points samples: the min and the max of each of max_points/2 runs of samples,
+    in time order. The line looks the same at the figure's resolution, no spike is lost, and an
+    hour at 100 Hz draws in seconds."""
+    t, y = np.asarray(t, dtype=float), np.asarray(y, dtype=float)
+    bins = max_points // 2
+    if len(t) <= max_points or bins < 1:
+        return t, y
+    k = len(t) // bins
+    n = bins * k
+    rows = y[:n].reshape(bins, k)
+    low = np.argmin(np.where(np.isnan(rows), np.inf, rows), axis=1)
+    high = np.argmax(np.where(np.isnan(rows), -np.inf, rows), axis=1)
+    base = np.arange(bins) * k
+    keep = np.sort(np.concatenate((base + low, base + high, np.arange(n, len(t)))))
+    keep = np.unique(keep)
+    return t[keep], y[keep]
+
+
+def _line(ax, t, y, *args, **kwargs):
+    """A time series drawn thinned, and broken where messages stopped."""
+    return ax.plot(*_broken(*_thin(t, y)), *args, **kwargs)
+
+
 def _legend_above(ax, handles):
     ax.legend(handles=handles, loc="lower left", bbox_to_anchor=(0.0, 1.02), ncol=4, fontsize=8,
               frameon=False)
@@ -103,20 +130,22 @@ def outputs(log, runs, switches, out_dir):
     fig, axes = _time_figure("Outputs of the performance (HP) and safety (HA) controllers and what "
                              "was applied", len(surfaces), runs, switches, source)
     d = log.decision
-    hp_driving = d.controller == log.controller_value.get("HP", 0)
+    ha_values = [log.controller_value[n] for n in ("HA", "RECOVERING", "HA_LATCHED")
+                 if n in log.controller_value]
+    ha_driving = np.isin(d.controller, ha_values)
     for ax, (field, ha_field, ylabel) in zip(axes, surfaces):
         if log.servo_op is not None:
-            ax.plot(*_broken(log.servo_op.t, getattr(log.servo_op, field)), lw=0.9,
+            _line(ax, log.servo_op.t, getattr(log.servo_op, field), lw=0.9,
                     color=colour("HP"), label="HP output")
         if log.truth is not None:
-            ax.plot(log.truth.t, getattr(log.truth, ha_field), lw=0.9, color=colour("HA"),
+            _line(ax, log.truth.t, getattr(log.truth, ha_field), lw=0.9, color=colour("HA"),
                     label="HA output")
-            ax.plot(log.truth.t, getattr(log.truth, field), lw=1.2, color="k", ls=":",
+            _line(ax, log.truth.t, getattr(log.truth, field), lw=1.2, color="k", ls=":",
                     label="applied (at the surface)")
         else:
-            ha = np.where(hp_driving, np.nan, getattr(d, field))
-            ax.plot(d.t, ha, lw=0.9, color=colour("HA"), label="HA output (while driving)")
-            ax.plot(d.t, getattr(d, field), lw=1.2, color="k", ls=":", label="applied (HA to servos)")
+            ha = np.where(ha_driving, getattr(d, field), np.nan)
+            _line(ax, d.t, ha, lw=0.9, color=colour("HA"), label="HA output (while driving)")
+            _line(ax, d.t, getattr(d, field), lw=1.2, color="k", ls=":", label="applied (HA to servos)")
         ax.set_ylabel(ylabel)
     _legend_above(axes[0], axes[0].get_legend_handles_labels()[0] + _shading_legend(runs))
     return _save(fig, out_dir, "fig5_3_outputs.png")
@@ -134,9 +163,9 @@ def _state_figure(log, runs, switches, out_dir, title, name, panels):
     for ax, (ylabel, truth_of, data_of) in zip(axes, panels):
         ax.set_ylabel(ylabel)
         if log.truth is not None and truth_of is not None:
-            ax.plot(log.truth.t, truth_of(log.truth), lw=0.9)
+            _line(ax, log.truth.t, truth_of(log.truth), lw=0.9)
         elif log.data is not None and data_of is not None:
-            ax.plot(*_broken(log.data.t, data_of(log.data)), lw=0.9)
+            _line(ax, log.data.t, data_of(log.data), lw=0.9)
         else:
             _no_data(ax, ylabel)
     if _shading_legend(runs):
@@ -186,6 +215,9 @@ def track(log, runs, switches, out_dir):
         source = ""
     else:
         t, north, east, _, source = position
+        stride = max(1, len(t) // 20000)  # a track point every few feet is plenty on a map
+        keep = np.unique(np.concatenate((np.arange(0, len(t), stride), [len(t) - 1])))
+        t, north, east = t[keep], north[keep], east[keep]
         who = log.controller_at(t)
         points = np.column_stack((east, north)).reshape(-1, 1, 2)
         segments = np.concatenate((points[:-1], points[1:]), axis=1)
@@ -224,8 +256,8 @@ def altitude(log, limits, runs, switches, out_dir):
                              (source + "; " if source else "") + "HA-checked: /decision_status")
     ax = axes[0]
     if position is not None:
-        ax.plot(*_broken(position[0], position[3]), lw=1.0, label="height above home")
-    ax.plot(log.decision.t, log.decision.altitude_agl_ft, lw=0.8, ls="--", color="0.35",
+        _line(ax, position[0], position[3], lw=1.0, label="height above home")
+    _line(ax, log.decision.t, log.decision.altitude_agl_ft, lw=0.8, ls="--", color="0.35",
             label="altitude the HA checked")
     ax.axhline(ceiling_ft, color="r", lw=1.2, label="ceiling %g ft" % ceiling_ft)
     ax.axhline(airborne_ft, color="0.5", lw=0.8, ls=":", label="airborne above %g ft" % airborne_ft)
@@ -240,13 +272,13 @@ def airspeed(log, limits, runs, switches, out_dir):
     fig, axes = _time_figure("Airspeed against stall", 1, runs, switches, source)
     ax = axes[0]
     if log.truth is not None:
-        ax.plot(log.truth.t, log.truth.airspeed_ftps, lw=1.0, label="true airspeed")
+        _line(ax, log.truth.t, log.truth.airspeed_ftps, lw=1.0, label="true airspeed")
     elif log.data is not None:
-        ax.plot(*_broken(log.data.t, log.data.air_velocity_ftps), lw=1.0, label="airspeed (/data)")
-    ax.plot(log.decision.t, log.decision.airspeed_ftps, lw=0.8, ls="--", color="0.35",
+        _line(ax, log.data.t, log.data.air_velocity_ftps, lw=1.0, label="airspeed (/data)")
+    _line(ax, log.decision.t, log.decision.airspeed_ftps, lw=0.8, ls="--", color="0.35",
             label="airspeed the HA checked")
     if log.pwm is not None and log.truth is None:
-        ax.plot(log.pwm.t, log.pwm.velocity_ftps, lw=0.6, color="0.6", label="HA pitot (/pwm)")
+        _line(ax, log.pwm.t, log.pwm.velocity_ftps, lw=0.6, color="0.6", label="HA pitot (/pwm)")
     ax.axhline(stall_ftps, color="r", lw=1.2, label="stall %g ft/s" % stall_ftps)
     ax.set_ylabel("airspeed [ft/s]")
     _legend_above(ax, ax.get_legend_handles_labels()[0] + _shading_legend(runs))
@@ -264,13 +296,13 @@ def link_and_timing(log, limits, runs, switches, out_dir):
                              "/pwm, /ins, /servo_op, /decision_status")
     ax_links, ax_reasons, ax_age = axes
     if log.pwm is not None:
-        ax_links.step(log.pwm.t, log.pwm.usbstatus + 0.04, where="post", lw=1.0,
+        ax_links.step(*_thin(log.pwm.t, log.pwm.usbstatus + 0.04), where="post", lw=1.0,
                       label="HP-HA link (/pwm usbstatus)")
     if log.ins is not None:
-        ax_links.step(log.ins.t, log.ins.usbstatus - 0.04, where="post", lw=1.0,
+        ax_links.step(*_thin(log.ins.t, log.ins.usbstatus - 0.04), where="post", lw=1.0,
                       label="HP-VN-200 link (/ins usbstatus)")
     if log.servo_op is not None:
-        ax_links.step(log.servo_op.t, log.servo_op.sensor_links_healthy, where="post", lw=0.8,
+        ax_links.step(*_thin(log.servo_op.t, log.servo_op.sensor_links_healthy), where="post", lw=0.8,
                       ls="--", label="HP: sensor links healthy (/servo_op)")
     ax_links.set_ylim(-0.2, 1.3)
     ax_links.set_yticks([0, 1], ["down", "up"])
@@ -278,8 +310,8 @@ def link_and_timing(log, limits, runs, switches, out_dir):
 
     names_by_bit = {bit: name for bit, name in log.reason_names.items() if name in _TIMING_REASONS}
     for row, (bit, name) in enumerate(sorted(names_by_bit.items())):
-        failing = (log.decision.reasons.astype(int) & bit) != 0
-        ax_reasons.fill_between(log.decision.t, row - 0.35, row + 0.35, where=failing, step="post",
+        t, failing = _thin(log.decision.t, (log.decision.reasons.astype(int) & bit) != 0)
+        ax_reasons.fill_between(t, row - 0.35, row + 0.35, where=failing > 0, step="post",
                                 color=colour("HA"), lw=0)
     ax_reasons.set_yticks(range(len(names_by_bit)), [n for _, n in sorted(names_by_bit.items())],
                           fontsize=8)
@@ -290,9 +322,9 @@ def link_and_timing(log, limits, runs, switches, out_dir):
     period_ms = 1000.0 / limits["decision"]["rate_hz"]
     age = command_age_s(log)
     if age is not None:
-        ax_age.plot(age[0], age[1] * 1000.0, ".", ms=2, label="age of the HP command the HA judged")
+        ax_age.plot(*_thin(age[0], age[1] * 1000.0), ".", ms=2, label="age of the HP command the HA judged")
     if log.servo_op is not None and len(log.servo_op) > 1:
-        ax_age.plot(log.servo_op.t[1:], np.diff(log.servo_op.stamp) * 1000.0, ".", ms=2,
+        ax_age.plot(*_thin(log.servo_op.t[1:], np.diff(log.servo_op.stamp) * 1000.0), ".", ms=2,
                     label="HP command period")
     ax_age.axhline(period_ms, color="0.4", lw=0.8, ls=":", label="HA period %g ms" % period_ms)
     ax_age.axhline(timeout_ms, color="r", lw=1.0, label="no-command timeout %g ms" % timeout_ms)

@@ -3,7 +3,7 @@ import json
 import os
 
 from . import figures, page, switches as switches_mod
-from .flight_log import FlightLog, LogBuilder, ReportError  # noqa: F401  (the API)
+from .flight_log import FlightLog, ReportError
 
 FIGURES = (
     (figures.outputs, False, "Fig. 5.3: HP output, HA output and the applied output per surface"),
