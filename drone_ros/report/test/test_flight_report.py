@@ -1,0 +1,203 @@
+"""flight_report run as a person runs it (the built `rosrun drone_ros flight_report` executable)
+on bags of a scripted flight: HP flying, a crash, the HA taking over with REASON_NO_COMMAND,
+RECOVERING, back to the HP."""
+import os
+import struct
+import subprocess
+import sys
+from html.parser import HTMLParser
+
+import pytest
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "src"))
+
+import scripted_flight  # noqa: E402
+from drone_ros.msg import DecisionStatus  # noqa: E402
+from report_core import definitions  # noqa: E402
+
+FIGURES = ("fig5_3_outputs.png", "fig5_4_accelerations.png", "fig5_5_euler_angles.png",
+           "fig5_6_body_rates.png", "fig5_7_velocity.png", "track.png", "altitude.png",
+           "airspeed.png", "link_timing.png")
+# The labels the page gives each controller (figures.CONTROLLER_LABELS).
+LABELS = {DecisionStatus.CONTROLLER_HP: "HP", DecisionStatus.CONTROLLER_HA: "HA",
+          DecisionStatus.CONTROLLER_RECOVERING: "recovering"}
+
+
+def tool():
+    path = os.path.join(os.environ["DRONE_ROS_WS"], "devel", "lib", "drone_ros", "flight_report")
+    assert os.access(path, os.X_OK), "build the workspace first: %s is missing" % path
+    return path
+
+
+def run(*args):
+    return subprocess.run([tool(), *args], capture_output=True, text=True, timeout=300)
+
+
+class _Tables(HTMLParser):
+    """The rows of the table with id="switches", as cell texts."""
+
+    def __init__(self):
+        super().__init__()
+        self.rows, self.images, self._in, self._cell = [], [], False, None
+
+    def handle_starttag(self, tag, attrs):
+        attrs = dict(attrs)
+        if tag == "table":
+            self._in = attrs.get("id") == "switches"
+        elif tag == "img":
+            self.images.append(attrs["src"])
+        elif self._in and tag == "tr":
+            self.rows.append([])
+        elif self._in and tag == "td":
+            self._cell = ""
+
+    def handle_endtag(self, tag):
+        if tag == "table":
+            self._in = False
+        elif self._in and tag == "td":
+            self.rows[-1].append(self._cell.strip())
+            self._cell = None
+
+    def handle_data(self, data):
+        if self._cell is not None:
+            self._cell += data
+
+
+def page(index_path):
+    parser = _Tables()
+    with open(index_path) as f:
+        text = f.read()
+    parser.feed(text)
+    return text, [row for row in parser.rows if row]
+
+
+def png_size(path):
+    with open(path, "rb") as f:
+        head = f.read(24)
+    assert head[:8] == b"\x89PNG\r\n\x1a\n", "%s is not a PNG" % path
+    return struct.unpack(">II", head[16:24])
+
+
+def expected_switches():
+    out = []
+    previous = DecisionStatus.CONTROLLER_HP
+    times = [s[0] for s in scripted_flight.SWITCHES] + [scripted_flight.LAST_DECISION_S]
+    for i, (t_s, to, reasons) in enumerate(scripted_flight.SWITCHES):
+        out.append((t_s, LABELS[previous], LABELS[to], reasons, times[i + 1] - t_s))
+        previous = to
+    return out
+
+
+@pytest.fixture(scope="module")
+def hil_flight(tmp_path_factory):
+    """A HiL output folder as HIL_INTERFACES.md section 4 lays it out, the report in report/."""
+    folder = tmp_path_factory.mktemp("out") / "2026-11-23_101500-DG808-7"
+    folder.mkdir()
+    bag = folder / "flight.bag"
+    scripted_flight.write(str(bag), with_truth=True)
+    result = run(str(bag))
+    assert result.returncode == 0, result.stderr
+    assert "Traceback" not in result.stderr
+    return folder / "report"
+
+
+def test_hil_report_has_every_figure_and_links_them_from_the_page(hil_flight):
+    text, _ = page(hil_flight / "index.html")
+    parser = _Tables()
+    parser.feed(text)
+    for name in FIGURES:
+        path = hil_flight / name
+        assert path.exists(), name
+        width, height = png_size(path)
+        assert width >= 800 and height >= 450, name
+        assert path.stat().st_size > 20000, "%s looks empty (%d bytes)" % (name, path.stat().st_size)
+        assert name in parser.images, "%s is not on the page" % name
+
+
+def test_switch_list_matches_the_scripted_crash_takeover_and_hand_back(hil_flight):
+    _, rows = page(hil_flight / "index.html")
+    expected = expected_switches()
+    assert len(rows) == len(expected), rows
+    for row, (t_s, from_label, to_label, reasons, duration_s) in zip(rows, expected):
+        number, time_cell, from_cell, to_cell, reason_cell, duration_cell = row
+        # The decisions are stamped 2 ms after the period starts (scripted_flight).
+        assert float(time_cell) == pytest.approx(t_s + 0.002, abs=0.006), row
+        assert (from_cell, to_cell) == (from_label, to_label), row
+        named = definitions.bit_names(reasons, {DecisionStatus.REASON_NO_COMMAND: "NO_COMMAND"})
+        if named:
+            assert reason_cell == ", ".join(named), row
+        else:
+            assert reason_cell.startswith("none"), row
+        assert float(duration_cell.split()[0]) == pytest.approx(duration_s, abs=0.011), row
+    assert "until the end of the log" in rows[-1][5]
+    assert "HP command valid for 2.00 s" in rows[-1][4]
+
+
+def test_hil_report_draws_truth_and_names_its_source(hil_flight):
+    text, _ = page(hil_flight / "index.html")
+    assert "No simulator truth" not in text
+    assert "simulator truth" in text
+
+
+def test_real_flight_without_truth_reports_measured_state_and_says_so(tmp_path):
+    bag = tmp_path / "2026-11-23_120000-DG808-flight.bag"
+    scripted_flight.write(str(bag), with_truth=False)
+    result = run(str(bag), "--out", str(tmp_path / "r"))
+    assert result.returncode == 0, result.stderr
+    text, rows = page(tmp_path / "r" / "index.html")
+    assert "No simulator truth (/hil/truth) in this log" in text
+    assert [(r[2], r[3]) for r in rows] == [(s[1], s[2]) for s in expected_switches()]
+    for name in FIGURES:
+        assert (tmp_path / "r" / name).stat().st_size > 20000, name
+
+
+def test_aircraft_unknown_from_the_name_asks_for_it(tmp_path):
+    bag = tmp_path / "flight.bag"
+    scripted_flight.write(str(bag), end_s=2.0)
+    result = run(str(bag))
+    assert result.returncode == 2
+    assert "--aircraft" in result.stderr and "Traceback" not in result.stderr
+    result = run(str(bag), "--aircraft", "DG808", "--out", str(tmp_path / "r"))
+    assert result.returncode == 0, result.stderr
+    assert (tmp_path / "r" / "index.html").exists()
+
+
+def test_a_file_that_is_not_a_bag_gets_a_clear_error(tmp_path):
+    bag = tmp_path / "2026-11-23_120000-DG808-flight.bag"
+    bag.write_bytes(b"this is not a bag\n" * 100)
+    result = run(str(bag), "--out", str(tmp_path / "r"))
+    assert result.returncode == 2
+    assert "cannot read" in result.stderr and "Traceback" not in result.stderr
+    assert not (tmp_path / "r" / "index.html").exists()
+
+
+def test_a_truncated_bag_gets_a_clear_error_naming_the_fix(tmp_path):
+    bag = tmp_path / "2026-11-23_120000-DG808-flight.bag"
+    scripted_flight.write(str(bag), end_s=10.0)
+    raw = bag.read_bytes()
+    bag.write_bytes(raw[: len(raw) // 2])
+    result = run(str(bag), "--out", str(tmp_path / "r"))
+    assert result.returncode == 2
+    assert "rosbag reindex" in result.stderr and "Traceback" not in result.stderr
+
+
+def test_a_bag_without_decisions_says_which_topic_is_missing(tmp_path):
+    import rosbag
+    from drone_ros.msg import pwm
+    bag_path = tmp_path / "2026-11-23_120000-DG808-flight.bag"
+    with rosbag.Bag(str(bag_path), "w") as bag:
+        bag.write("/pwm", pwm())
+    result = run(str(bag_path), "--out", str(tmp_path / "r"))
+    assert result.returncode == 2
+    assert "/decision_status" in result.stderr and "Traceback" not in result.stderr
+
+
+def test_reason_names_come_from_the_message_definition():
+    names = definitions.constants(DecisionStatus._full_text, "REASON_")
+    declared = {getattr(DecisionStatus, a): a[len("REASON_"):] for a in dir(DecisionStatus)
+                if a.startswith("REASON_")}
+    assert names == declared
+    # A reason a newer HA sends is shown by value, never dropped.
+    assert definitions.bit_names(DecisionStatus.REASON_STALL | (1 << 20), names) == [
+        "STALL", "unnamed bit 0x100000"]
