@@ -118,9 +118,19 @@ class ValueChecks:
         """tf world -> body: the fake flies north (latitude rising) at constant height, so the
         body moves along +y of the local ENU frame anchored at the first solution, and the
         rotation is the REP-103 orientation published on ~imu/data at the same stamp."""
-        tfs = [t for m in rec.get("/tf") for t in m.transforms if t.child_frame_id == "vn200"]
-        self.assertTrue(tfs, "no tf vn200_enu -> vn200")
-        last = tfs[-1]
+        def body_tfs():
+            return [t for m in rec.get("/tf") for t in m.transforms if t.child_frame_id == "vn200"]
+
+        # /tf and ~imu/data reach us on separate connections: under load either may lag the
+        # other, so wait for a transform whose imu sample has arrived too, then judge that one.
+        def imu_stamps():
+            return {m.header.stamp for m in rec.get("/vn200/imu/data")}
+
+        self.assertTrue(rec.wait_for(body_tfs, 5.0), "no tf vn200_enu -> vn200")
+        rec.wait_for(lambda: any(t.header.stamp in imu_stamps() for t in body_tfs()), 5.0)
+        stamps = imu_stamps()
+        matched = [t for t in body_tfs() if t.header.stamp in stamps]
+        last = matched[-1] if matched else body_tfs()[-1]
         self.assertEqual("vn200_enu", last.header.frame_id)
         self.assertAlmostEqual(0.0, last.transform.translation.x, places=2)
         self.assertAlmostEqual(0.0, last.transform.translation.z, places=2)
