@@ -4,6 +4,7 @@
 #include <ros/serialization.h>
 
 #include <drone_ros/DecisionStatus.h>
+#include <drone_ros/HilTruth.h>
 #include <drone_ros/OperatorCommand.h>
 #include <drone_ros/ServoCommand.h>
 #include <drone_ros/data.h>
@@ -298,6 +299,7 @@ TEST(Messages, Md5sumsArePinned) {
   expectPinned<drone_ros::ServoCommand>(sums);
   expectPinned<drone_ros::DecisionStatus>(sums);
   expectPinned<drone_ros::OperatorCommand>(sums);
+  expectPinned<drone_ros::HilTruth>(sums);
 }
 
 int main(int argc, char** argv) {
