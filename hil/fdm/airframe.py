@@ -1,0 +1,177 @@
+"""The aircraft data the flight-dynamics model is generated from: airframe.yaml and limits.yaml.
+
+Everything the simulator knows about an aircraft comes through here, so the JSBSim model, the
+trim and the tests read one set of numbers. SI units in the attribute names.
+"""
+import math
+import os
+from dataclasses import dataclass
+
+import numpy as np
+import yaml
+
+FT_PER_M = 1.0 / 0.3048
+LBF_PER_N = 0.2248089430997105
+
+
+@dataclass(frozen=True)
+class Contact:
+    name: str
+    kind: str               # "BOGEY" (a wheel) or "STRUCTURE" (a skid, wingtip, tail)
+    x_m: float              # body FRD from the CG: forward, right, down
+    y_m: float
+    z_m: float
+    max_steer_deg: float = 0.0   # steerable wheel: full rudder turns it this far
+
+
+@dataclass(frozen=True)
+class ServoSpec:
+    limit_deg: float        # travel, symmetric about neutral (throttle: 0..1)
+    rate_per_s: float       # deg/s for surfaces, 1/s for the throttle
+
+
+def _load(path):
+    with open(path, "r", encoding="utf-8") as f:
+        return yaml.safe_load(f)
+
+
+class Airframe:
+    """airframe.yaml + limits.yaml of one aircraft folder, with the derived stall figures."""
+
+    def __init__(self, aircraft_dir):
+        self.dir = os.path.abspath(aircraft_dir)
+        data = _load(os.path.join(self.dir, "airframe.yaml"))
+        limits = _load(os.path.join(self.dir, "limits.yaml"))
+        self.name = str(data["aircraft"])
+        self.mass_kg = float(data["mass_kg"])
+        inertia = data["inertia_kg_m2"]
+        self.ixx, self.iyy, self.izz = (float(inertia[k]) for k in ("ixx", "iyy", "izz"))
+        self.ixz = float(inertia.get("ixz", 0.0))
+        geo = data["geometry"]
+        self.wing_area_m2 = float(geo["wing_area_m2"])
+        self.span_m = float(geo["wing_span_m"])
+        self.chord_m = float(geo["mean_chord_m"])
+        self.aero = {k: float(v) for k, v in data["aero"].items()}
+        prop = data["propulsion"]
+        self.max_thrust_n = float(prop["max_thrust_n"])
+        self.zero_thrust_speed_mps = float(prop["zero_thrust_speed_m_s"])
+
+        sim = data["simulation"]
+        stall = sim["stall"]
+        self.cl_min = float(stall["cl_min"])
+        self.stall_drop_deg = float(stall["lift_drop_deg"])
+        self.post_stall_cl_fraction = float(stall["post_stall_cl_fraction"])
+        self.flat_plate_cd90 = float(stall["flat_plate_cd90"])
+
+        act = limits["actuators"]
+        servo = sim["servo"]
+        rate = float(servo["surface_rate_deg_per_s"])
+        self.servos = {
+            "elevator": ServoSpec(float(act["elevator_limit_deg"]), rate),
+            "aileron": ServoSpec(float(act["aileron_limit_deg"]), rate),
+            "rudder": ServoSpec(float(act["rudder_limit_deg"]), rate),
+        }
+        self.throttle_min = float(act["throttle_min"])
+        self.throttle_max = float(act["throttle_max"])
+        self.throttle_rate_per_s = float(servo["throttle_rate_per_s"])
+        self.servo_delay_s = float(servo["transport_delay_s"])
+
+        gear = sim["gear"]
+        self.gear_spring_n_per_m = float(gear["spring_n_per_m"])
+        self.gear_damping_n_s_per_m = float(gear["damping_n_s_per_m"])
+        self.gear_static_friction = float(gear["static_friction"])
+        self.gear_dynamic_friction = float(gear["dynamic_friction"])
+        self.gear_rolling_friction = float(gear["rolling_friction"])
+        self.contacts = [Contact(str(c["name"]), str(c["type"]), float(c["x_m"]), float(c["y_m"]),
+                                 float(c["z_m"]), float(c.get("max_steer_deg", 0.0)))
+                         for c in gear["contacts"]]
+        crash = sim["crash"]
+        self.crash_sink_mps = float(crash["sink_mps"])
+        self.crash_roll_deg = float(crash["roll_deg"])
+        self.crash_pitch_min_deg = float(crash["pitch_min_deg"])
+        self.crash_pitch_max_deg = float(crash["pitch_max_deg"])
+        self.stall_speed_limit_ftps = float(limits["state"]["stall_speed_ftps"])
+        self._check()
+
+    def _check(self):
+        a = self.aero
+        if not a["cl_max"] > a["cl0"]:
+            raise ValueError(f"{self.name}: cl_max {a['cl_max']} must exceed cl0 {a['cl0']}")
+        if not self.cl_min < a["cl0"]:
+            raise ValueError(f"{self.name}: cl_min {self.cl_min} must be below cl0 {a['cl0']}")
+        if not 0.0 < self.post_stall_cl_fraction < 1.0:
+            raise ValueError(f"{self.name}: post_stall_cl_fraction must be in (0, 1)")
+        if not any(c.kind == "BOGEY" for c in self.contacts):
+            raise ValueError(f"{self.name}: the gear needs at least one wheel (type BOGEY)")
+
+    # Stall: lift is linear in alpha up to alpha_stall, where it reaches cl_max.
+    @property
+    def alpha_stall_rad(self):
+        return (self.aero["cl_max"] - self.aero["cl0"]) / self.aero["cl_alpha_per_rad"]
+
+    @property
+    def alpha_stall_neg_rad(self):
+        return (self.cl_min - self.aero["cl0"]) / self.aero["cl_alpha_per_rad"]
+
+    def lift_table(self):
+        """(alpha_deg, CL) breakpoints of the static lift curve over -180..180 deg.
+
+        Linear between the negative and positive stall, falls by (1 - post_stall_cl_fraction)
+        within lift_drop_deg past each stall, then blends into a flat plate (CN = cd90 sin(alpha))
+        by 40 deg, which it follows to +-180 deg."""
+        a = self.aero
+        cl0, cla = a["cl0"], a["cl_alpha_per_rad"]
+        cd90 = self.flat_plate_cd90
+        a_s = math.degrees(self.alpha_stall_rad)
+        a_n = math.degrees(self.alpha_stall_neg_rad)
+        drop = self.stall_drop_deg
+        frac = self.post_stall_cl_fraction
+
+        def plate(deg):
+            r = math.radians(deg)
+            return cd90 * math.sin(r) * math.cos(r)
+
+        blend_deg = 40.0
+        if not a_s + drop < blend_deg or not a_n - drop > -blend_deg:
+            raise ValueError(f"{self.name}: stall angles too large for the post-stall model")
+        pts = []
+        for deg in range(-180, -int(blend_deg) + 1, 5):
+            pts.append((float(deg), plate(deg)))
+        pts.append((a_n - drop, frac * self.cl_min))
+        pts.append((a_n, self.cl_min))
+        pts.append((a_s, a["cl_max"]))
+        pts.append((a_s + drop, frac * a["cl_max"]))
+        for deg in range(int(blend_deg), 181, 5):
+            pts.append((float(deg), plate(deg)))
+        # Passing through (0, cl0) keeps the linear range exact at the breakpoints too.
+        pts.append((0.0, cl0))
+        pts.sort()
+        return pts
+
+    def separation_drag_table(self):
+        """(alpha_deg, CD_sep): zero in attached flow, rising to flat-plate drag past the stall."""
+        cd90 = self.flat_plate_cd90
+        a_s = math.degrees(self.alpha_stall_rad)
+        a_n = math.degrees(self.alpha_stall_neg_rad)
+        drop = self.stall_drop_deg
+        pts = [(a_n, 0.0), (a_s, 0.0)]
+        for deg in range(-180, 181, 5):
+            if deg >= a_s + drop or deg <= a_n - drop:
+                pts.append((float(deg), cd90 * math.sin(math.radians(deg)) ** 2))
+        pts.append((a_s + drop, cd90 * math.sin(math.radians(a_s + drop)) ** 2))
+        pts.append((a_n - drop, cd90 * math.sin(math.radians(a_n - drop)) ** 2))
+        pts = sorted(set(pts))
+        return pts
+
+    def cl_static(self, alpha_rad):
+        """The static lift curve as the generated JSBSim table interpolates it."""
+        xs, ys = zip(*self.lift_table())
+        return float(np.interp(math.degrees(alpha_rad), xs, ys))
+
+    def cd_separation(self, alpha_rad):
+        xs, ys = zip(*self.separation_drag_table())
+        return float(np.interp(math.degrees(alpha_rad), xs, ys))
+
+    def one_g_stall_speed_mps(self, rho_kg_m3, g_m_s2):
+        """1 g stall speed at cl_max (elevator lift ignored): V = sqrt(2 m g / (rho S cl_max))."""
+        return math.sqrt(2.0 * self.mass_kg * g_m_s2 / (rho_kg_m3 * self.wing_area_m2 * self.aero["cl_max"]))

@@ -1,0 +1,367 @@
+"""The HiL flight-dynamics model: JSBSim, driven step by step from Python.
+
+One Fdm is one aircraft in one atmosphere. The JSBSim model is generated from the aircraft
+folder (model_xml.py), the servos (servo.py) and the turbulence (turbulence.py) run here, in
+lockstep with JSBSim's integrator, so everything is decided by the seed and the commands."""
+import math
+import os
+import tempfile
+
+import jsbsim
+import numpy as np
+
+from .airframe import FT_PER_M, Airframe
+from .model_xml import SURFACE_PROPERTIES, THROTTLE_PROPERTY, write_model
+from .servo import Servo
+from .turbulence import Turbulence
+from .types import Surfaces, Truth, Wind
+
+M_PER_FT = 0.3048
+PA_PER_PSF = 47.88025898
+# A constant earth field for the magnetometer, NED [gauss]: roughly the mid-latitude northern
+# hemisphere field (WMM: horizontal ~0.2 G, downward ~0.45 G). Not site-specific on purpose.
+DEFAULT_MAG_FIELD_NED_GAUSS = (0.2, 0.0, 0.45)
+_SETTLE_S = 3.0          # parked start: time on the springs before the state is frozen as the IC
+
+jsbsim.FGJSBBase().debug_lvl = 0   # no banner or model echo on stdout
+
+
+class TrimError(ValueError):
+    """No trimmed level flight at the requested state (too slow, too fast, beyond a limit)."""
+
+
+class FdmCrash(RuntimeError):
+    """The aircraft hit the ground beyond the airframe's crash limits (or the state diverged).
+    The flight is over: advance() raises again until the next reset; truth() keeps returning
+    the state at the crash, with crashed True."""
+
+
+class Fdm:
+    """One simulated aircraft (HIL_INTERFACES.md section 1).
+
+    Fdm(aircraft_dir, seed, dt_s, wind, work_dir): generates the JSBSim model from
+    aircraft_dir/airframe.yaml and limits.yaml into work_dir (a temporary folder, removed on
+    close(), by default). Then reset_airborne() or reset_on_ground(), and in a loop
+    set_surfaces(), advance() and truth(). The seed drives the turbulence only; a reset starts
+    it over, so every reset with the same commands replays the same flight bit for bit."""
+
+    def __init__(self, aircraft_dir, seed, dt_s=1.0 / 200.0, wind=None, work_dir=None,
+                 mag_field_ned_gauss=DEFAULT_MAG_FIELD_NED_GAUSS):
+        if not dt_s > 0.0:
+            raise ValueError(f"dt_s must be positive, not {dt_s}")
+        self.airframe = Airframe(aircraft_dir)
+        self.seed = int(seed)
+        self.dt_s = float(dt_s)
+        self.wind = wind if wind is not None else Wind()
+        if not isinstance(self.wind, Wind):
+            raise TypeError("wind must be a hil.fdm.Wind")
+        self.mag_field_ned_gauss = tuple(float(x) for x in mag_field_ned_gauss)
+        self._tmp = None
+        if work_dir is None:
+            self._tmp = tempfile.TemporaryDirectory(prefix="hil_fdm_")
+            work_dir = self._tmp.name
+        self.work_dir = os.path.abspath(work_dir)
+        self.model_path = write_model(self.airframe, self.work_dir)
+
+        af = self.airframe
+        delay_steps = int(round(af.servo_delay_s / self.dt_s))
+        self._servos = [Servo(-af.servos[k].limit_deg, af.servos[k].limit_deg, af.servos[k].rate_per_s,
+                              delay_steps, self.dt_s) for k in ("elevator", "aileron", "rudder")]
+        self._servos.append(Servo(af.throttle_min, af.throttle_max, af.throttle_rate_per_s,
+                                  delay_steps, self.dt_s))
+        self._exec = None
+        self._steps = 0
+        self._turbulence = None
+        self._crash = None
+        self._crash_truth = None
+
+    # --- lifetime -------------------------------------------------------------------------
+    def close(self):
+        self._exec = None
+        if self._tmp is not None:
+            self._tmp.cleanup()
+            self._tmp = None
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    # --- set-up ---------------------------------------------------------------------------
+    def _new_exec(self):
+        ex = jsbsim.FGFDMExec(self.work_dir)
+        ex.set_debug_level(0)
+        if not ex.load_model(self.airframe.name):
+            raise RuntimeError(f"JSBSim could not load {self.model_path}")
+        ex.set_dt(self.dt_s)
+        pm = ex.get_property_manager()
+
+        def node(path):
+            n = pm.get_node(path)
+            if n is None:
+                raise RuntimeError(f"JSBSim model has no property {path}")
+            return n
+
+        self._exec = ex
+        self._n_surface = [node(SURFACE_PROPERTIES[k]) for k in ("elevator", "aileron", "rudder")]
+        self._n_throttle = node(THROTTLE_PROPERTY)
+        self._n_wind = [node("atmosphere/wind-north-fps"), node("atmosphere/wind-east-fps"),
+                        node("atmosphere/wind-down-fps")]
+        names = ["position/lat-geod-deg", "position/long-gc-deg", "position/geod-alt-ft", "position/h-agl-ft",
+                 "position/terrain-elevation-asl-ft", "velocities/v-north-fps", "velocities/v-east-fps",
+                 "velocities/v-down-fps", "attitude/phi-rad", "attitude/theta-rad", "attitude/psi-rad",
+                 "velocities/p-rad_sec", "velocities/q-rad_sec", "velocities/r-rad_sec",
+                 "forces/fbx-total-lbs", "forces/fby-total-lbs", "forces/fbz-total-lbs",
+                 "velocities/vtrue-fps", "velocities/vc-fps", "aero/alpha-deg", "aero/beta-deg",
+                 "gear/wow", "atmosphere/P-psf", "atmosphere/T-R", "inertia/mass-slugs"]
+        self._n_truth = [node(n) for n in names]
+        self._n_psi = node("attitude/psi-rad")
+        self._n_vt = node("velocities/vtrue-fps")
+        self._n_agl = node("position/h-agl-ft")
+        self._n_gear_fz = node("forces/fbz-gear-lbs")
+        self._n_crash = [node(n) for n in ("velocities/v-down-fps", "attitude/phi-deg", "attitude/theta-deg",
+                                           "position/h-agl-ft")]
+        return ex
+
+    def _mean_wind_ned_fps(self):
+        from_rad = math.radians(self.wind.mean_from_deg)
+        m = self.wind.mean_mps * FT_PER_M
+        return -m * math.cos(from_rad), -m * math.sin(from_rad), 0.0
+
+    def _set_ic_common(self, ex, lat_deg, lon_deg, ground_msl_m, height_agl_m, heading_deg, wind):
+        ex["ic/lat-geod-deg"] = float(lat_deg)
+        ex["ic/long-gc-deg"] = float(lon_deg)
+        ex["ic/terrain-elevation-ft"] = float(ground_msl_m) * FT_PER_M
+        ex["ic/h-agl-ft"] = float(height_agl_m) * FT_PER_M
+        ex["ic/psi-true-deg"] = float(heading_deg) % 360.0
+        if wind:
+            wn, we, _ = self._mean_wind_ned_fps()
+            ex["ic/vw-mag-fps"] = math.hypot(wn, we)
+            # JSBSim's ic/vw-dir-deg is where the wind blows to, not where it comes from.
+            ex["ic/vw-dir-deg"] = (float(self.wind.mean_from_deg) + 180.0) % 360.0
+        else:
+            ex["ic/vw-mag-fps"] = 0.0
+
+    def _init_state(self, ex, ground_vel_ned_fps, theta_rad, phi_rad):
+        """Attitude and ground velocity given, body rates zero; JSBSim's IC in the mean wind.
+        (Given this way JSBSim's IC keeps the wind out of the heading, which its airspeed
+        setters do not.)"""
+        ex["ic/theta-rad"] = theta_rad
+        ex["ic/phi-rad"] = phi_rad
+        ex["ic/vn-fps"], ex["ic/ve-fps"], ex["ic/vd-fps"] = ground_vel_ned_fps
+        ex["ic/p-rad_sec"] = 0.0
+        ex["ic/q-rad_sec"] = 0.0
+        ex["ic/r-rad_sec"] = 0.0
+        if not ex.run_ic():
+            raise RuntimeError("JSBSim run_ic failed")
+
+    def _apply_servos(self, positions):
+        for n, p in zip(self._n_surface, positions[:3]):
+            n.set_double_value(math.radians(p))
+        self._n_throttle.set_double_value(positions[3])
+
+    def _start(self, positions):
+        """Servos at rest at positions, time zero, turbulence from the seed's start."""
+        for s, p in zip(self._servos, positions):
+            s.reset(p)
+        self._apply_servos([s.position for s in self._servos])
+        self._steps = 0
+        self._crash = None
+        self._crash_truth = None
+        self._turbulence = Turbulence(self.wind.turbulence, self.seed, self.dt_s)
+        self._wind_mean = self._mean_wind_ned_fps()
+        self._set_wind(self._gust())
+
+    def _gust(self):
+        agl_m = self._n_agl.get_double_value() * M_PER_FT
+        vt_mps = self._n_vt.get_double_value() * M_PER_FT
+        return self._turbulence.step(agl_m, vt_mps, self._n_psi.get_double_value())
+
+    def _set_wind(self, gust_ned_mps):
+        for n, mean, g in zip(self._n_wind, self._wind_mean, gust_ned_mps):
+            n.set_double_value(mean + g * FT_PER_M)
+
+    def _trim_residual(self, ex, base_ic, vt_fps, x):
+        alpha, de, thr = x
+        base_ic()
+        ex["ic/vt-fps"] = vt_fps
+        ex["ic/beta-rad"] = 0.0
+        ex["ic/phi-rad"] = 0.0
+        ex["ic/gamma-rad"] = 0.0
+        ex["ic/alpha-rad"] = alpha
+        ex["ic/p-rad_sec"] = 0.0
+        ex["ic/q-rad_sec"] = 0.0
+        ex["ic/r-rad_sec"] = 0.0
+        self._apply_servos([math.degrees(de), 0.0, 0.0, thr])
+        if not ex.run_ic():
+            raise RuntimeError("JSBSim run_ic failed")
+        return np.array([ex["accelerations/udot-ft_sec2"], ex["accelerations/wdot-ft_sec2"],
+                         ex["accelerations/qdot-rad_sec2"] * 10.0])
+
+    def reset_airborne(self, lat_deg, lon_deg, ground_msl_m, height_agl_m, heading_deg, airspeed_mps):
+        """Trimmed wings-level, level flight at that state; returns the trim Surfaces."""
+        af = self.airframe
+        if not height_agl_m > 0.0:
+            raise ValueError(f"height_agl_m must be positive, not {height_agl_m}")
+        ex = self._new_exec()
+
+        # A steady uniform wind does not change the air-relative trim: trim in still air, then
+        # start in the wind with the same air-relative state.
+        def base_ic():
+            self._set_ic_common(ex, lat_deg, lon_deg, ground_msl_m, height_agl_m, heading_deg, wind=False)
+
+        vt_fps = float(airspeed_mps) * FT_PER_M
+        a = af.aero
+        # Start from the linear model's trim (lift = weight, Cm = 0); Newton on JSBSim's own
+        # accelerations does the rest (density, gravity and the earth's rotation where it flies).
+        rho = 1.225
+        cl_req = 2.0 * af.mass_kg * 9.80665 / (rho * af.wing_area_m2 * float(airspeed_mps) ** 2)
+        if cl_req > a["cl_max"]:
+            raise TrimError(f"{airspeed_mps} m/s is below the stall speed: level flight needs CL "
+                            f"{cl_req:.2f} > cl_max {a['cl_max']}")
+        alpha0 = (cl_req - a["cl0"]) / a["cl_alpha_per_rad"]
+        de0 = -(a["cm0"] + a["cm_alpha_per_rad"] * alpha0) / a["cm_elevator_per_rad"]
+        x = np.array([alpha0, de0, 0.3])
+        steps = np.array([1e-5, 1e-5, 1e-4])
+        r = self._trim_residual(ex, base_ic, vt_fps, x)
+        for _ in range(30):
+            if np.max(np.abs(r)) < 1e-7:
+                break
+            jac = np.empty((3, 3))
+            for j in range(3):
+                xp = x.copy()
+                xp[j] += steps[j]
+                jac[:, j] = (self._trim_residual(ex, base_ic, vt_fps, xp) - r) / steps[j]
+            dx = np.linalg.solve(jac, -r)
+            x = x + dx
+            r = self._trim_residual(ex, base_ic, vt_fps, x)
+        alpha, de, thr = x
+        if not np.max(np.abs(r)) < 1e-5:
+            raise TrimError(f"no level trim at {airspeed_mps} m/s (residual {r.tolist()})")
+        if not af.alpha_stall_neg_rad < alpha < af.alpha_stall_rad:
+            raise TrimError(f"{airspeed_mps} m/s is below the stall: "
+                            f"trim alpha {math.degrees(alpha):.1f} deg")
+        if not af.throttle_min <= thr <= af.throttle_max:
+            raise TrimError(f"level flight at {airspeed_mps} m/s needs throttle {thr:.3f}, "
+                            f"outside [{af.throttle_min}, {af.throttle_max}]")
+        if not abs(math.degrees(de)) <= af.servos["elevator"].limit_deg:
+            raise TrimError(f"level flight at {airspeed_mps} m/s needs elevator {math.degrees(de):.1f} deg")
+        trim = Surfaces(math.degrees(de), 0.0, 0.0, float(thr))
+        ex = self._new_exec()
+        self._set_ic_common(ex, lat_deg, lon_deg, ground_msl_m, height_agl_m, heading_deg, wind=True)
+        psi = math.radians(heading_deg)
+        wn, we, wd = self._mean_wind_ned_fps()
+        self._apply_servos([trim.elevator_deg, 0.0, 0.0, trim.throttle])
+        self._init_state(ex, (vt_fps * math.cos(psi) + wn, vt_fps * math.sin(psi) + we, wd), alpha, 0.0)
+        self._start([trim.elevator_deg, 0.0, 0.0, trim.throttle])
+        return trim
+
+    def reset_on_ground(self, lat_deg, lon_deg, ground_msl_m, heading_deg):
+        """Parked on its gear, at rest, throttle zero, surfaces neutral."""
+        af = self.airframe
+        wheel_z = max(c.z_m for c in af.contacts if c.kind == "BOGEY")
+        ex = self._new_exec()
+
+        def ground_ic(height_m, theta_rad, phi_rad):
+            self._set_ic_common(ex, lat_deg, lon_deg, ground_msl_m, height_m, heading_deg, wind=True)
+            self._init_state(ex, (0.0, 0.0, 0.0), theta_rad, phi_rad)
+
+        # Wheels touching, then let the springs take the weight, and start from where it came
+        # to rest (velocities zeroed) so t = 0 is already settled.
+        ground_ic(wheel_z, 0.0, 0.0)
+        self._start([0.0, 0.0, 0.0, 0.0])
+        for _ in range(int(round(_SETTLE_S / self.dt_s))):
+            ex.run()
+        settled = (ex["position/h-agl-ft"] * M_PER_FT, ex["attitude/theta-rad"], ex["attitude/phi-rad"])
+        ground_ic(*settled)
+        self._start([0.0, 0.0, 0.0, 0.0])
+
+    # --- running --------------------------------------------------------------------------
+    def set_surfaces(self, surfaces):
+        """Commands to the servos (msg/pwm.msg signs), clipped to their travel."""
+        cmds = (surfaces.elevator_deg, surfaces.aileron_deg, surfaces.rudder_deg, surfaces.throttle)
+        for c in cmds:
+            if not math.isfinite(c):
+                raise ValueError(f"servo command must be finite: {surfaces}")
+        for s, c in zip(self._servos, cmds):
+            s.set_command(c)
+
+    def advance(self, duration_s):
+        """Integrates duration_s, a whole number of dt steps."""
+        if self._exec is None:
+            raise RuntimeError("call reset_airborne or reset_on_ground first")
+        if self._crash is not None:
+            raise FdmCrash(self._crash)
+        n = int(round(duration_s / self.dt_s))
+        if n < 0 or abs(n * self.dt_s - duration_s) > 1e-9:
+            raise ValueError(f"duration {duration_s} s is not a whole number of {self.dt_s} s steps")
+        ex = self._exec
+        servos = self._servos
+        turbulent = self.wind.turbulence != "none"
+        for _ in range(n):
+            self._apply_servos([s.step() for s in servos])
+            if turbulent:
+                self._set_wind(self._gust())
+            if not ex.run():
+                raise RuntimeError("JSBSim stopped")
+            self._steps += 1
+            # Anything touching the ground (or a NaN, which compares unequal too): check it.
+            if self._n_gear_fz.get_double_value() != 0.0:
+                self._check_crash()
+
+    def _check_crash(self):
+        af = self.airframe
+        vd_fps, roll, pitch, agl_ft = (n.get_double_value() for n in self._n_crash)
+        vd = vd_fps * M_PER_FT
+        if not all(math.isfinite(x) for x in (vd, roll, pitch, agl_ft)):
+            reason = "the simulation diverged (non-finite state)"
+        elif vd > af.crash_sink_mps:
+            reason = f"hit the ground sinking at {vd:.1f} m/s (limit {af.crash_sink_mps})"
+        elif abs(roll) > af.crash_roll_deg:
+            reason = f"a wing dug in: bank {roll:.0f} deg on the ground (limit {af.crash_roll_deg})"
+        elif not af.crash_pitch_min_deg <= pitch <= af.crash_pitch_max_deg:
+            reason = (f"pitch {pitch:.0f} deg on the ground (limits {af.crash_pitch_min_deg}.."
+                      f"{af.crash_pitch_max_deg})")
+        elif agl_ft < 0.0:
+            reason = "the airframe went below the ground"
+        else:
+            return
+        t_s = self._steps * self.dt_s
+        self._crash = f"crashed at t = {t_s:.3f} s: {reason}"
+        self._crash_truth = self.truth()
+        raise FdmCrash(self._crash)
+
+    @property
+    def crash_reason(self):
+        """Why the flight ended, or None while it goes on."""
+        return self._crash
+
+    def truth(self):
+        if self._exec is None:
+            raise RuntimeError("call reset_airborne or reset_on_ground first")
+        if self._crash_truth is not None:
+            return self._crash_truth
+        (lat, lon, h_sl, h_agl, terrain, vn, ve, vd, phi, theta, psi, p, q, r, fx, fy, fz, vt, vc,
+         alpha, beta, wow, p_psf, t_r, mass) = [n.get_double_value() for n in self._n_truth]
+        k = M_PER_FT / mass
+        sphi, cphi = math.sin(phi), math.cos(phi)
+        sth, cth = math.sin(theta), math.cos(theta)
+        spsi, cpsi = math.sin(psi), math.cos(psi)
+        bn, be, bd = self.mag_field_ned_gauss
+        # NED -> body FRD (ZYX Euler angles).
+        mx = cth * cpsi * bn + cth * spsi * be - sth * bd
+        my = (sphi * sth * cpsi - cphi * spsi) * bn + (sphi * sth * spsi + cphi * cpsi) * be + sphi * cth * bd
+        mz = (cphi * sth * cpsi + sphi * spsi) * bn + (cphi * sth * spsi - sphi * cpsi) * be + cphi * cth * bd
+        servo = Surfaces(*(s.position for s in self._servos))
+        return Truth(
+            t_s=self._steps * self.dt_s, lat_deg=lat, lon_deg=lon, alt_msl_m=h_sl * M_PER_FT,
+            height_agl_m=h_agl * M_PER_FT, ground_msl_m=terrain * M_PER_FT,
+            vn_mps=vn * M_PER_FT, ve_mps=ve * M_PER_FT, vd_mps=vd * M_PER_FT,
+            roll_deg=math.degrees(phi), pitch_deg=math.degrees(theta),
+            heading_deg=math.degrees(psi) % 360.0, p_rad_s=p, q_rad_s=q, r_rad_s=r,
+            accel_body_mps2=(fx * k, fy * k, fz * k),
+            airspeed_true_mps=vt * M_PER_FT, airspeed_cal_mps=vc * M_PER_FT,
+            alpha_deg=alpha, beta_deg=beta, servo=servo, on_ground=wow > 0.5,
+            mag_body_gauss=(mx, my, mz), pressure_pa=p_psf * PA_PER_PSF,
+            temperature_c=(t_r - 491.67) * 5.0 / 9.0, crashed=self._crash is not None)

@@ -1,0 +1,72 @@
+"""The stall: pulling the elevator up past cl_max at the trim throttle loses lift, and the stall
+speed measured in flight agrees with limits.yaml's stall_speed_ftps."""
+import dataclasses
+import math
+import os
+import sys
+
+import pytest
+import yaml
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+if ROOT not in sys.path:
+    sys.path.insert(0, ROOT)
+from hil.fdm import Fdm  # noqa: E402
+
+AIRCRAFT = os.path.join(ROOT, "aircraft", "DG808")
+FT = 0.3048
+R_AIR = 287.053            # J/(kg K), dry air
+RHO_SEA_LEVEL = 1.225      # ISA, where limits.yaml's 1 g stall speed is stated
+G0 = 9.80665
+
+
+def lift_coefficient(truth, mass_kg, area_m2):
+    """CL as a flight test measures it: accelerometer, air data and the weighed aircraft."""
+    rho = truth.pressure_pa / (R_AIR * (truth.temperature_c + 273.15))
+    alpha = math.radians(truth.alpha_deg)
+    ax, _, az = truth.accel_body_mps2
+    lift = mass_kg * (-az * math.cos(alpha) + ax * math.sin(alpha))
+    return lift / (0.5 * rho * truth.airspeed_true_mps ** 2 * area_m2)
+
+
+@pytest.fixture(scope="module")
+def pull_up():
+    """From trim, elevator up at 0.5 deg/s to full travel, trim throttle held; 10 Hz samples."""
+    with Fdm(AIRCRAFT, seed=5) as fdm:
+        trim = fdm.reset_airborne(47.4, 8.5, 420.0, 150.0, 0.0, 18.0)
+        limit = fdm.airframe.servos["elevator"].limit_deg
+        samples = []
+        while fdm.truth().t_s < 40.0:
+            de = max(trim.elevator_deg - 0.5 * fdm.truth().t_s, -limit)
+            fdm.set_surfaces(dataclasses.replace(trim, elevator_deg=de))
+            fdm.advance(0.1)
+            samples.append(fdm.truth())
+        yield fdm.airframe, trim, samples
+
+
+def test_pulling_past_cl_max_stalls_and_the_aircraft_sinks(pull_up):
+    af, trim, samples = pull_up
+    cls = [lift_coefficient(s, af.mass_kg, af.wing_area_m2) for s in samples]
+    i_peak = max(range(len(cls)), key=cls.__getitem__)
+    alpha_stall_deg = math.degrees(af.alpha_stall_rad)
+    # Lift peaks at the stall angle, then the wing is driven well past it.
+    assert samples[i_peak].alpha_deg == pytest.approx(alpha_stall_deg, abs=1.0)
+    assert max(s.alpha_deg for s in samples) > alpha_stall_deg + 8.0
+    # Past the stall lift has gone: the last 10 s fly at well under cl_max, sinking fast.
+    late = samples[-100:]
+    assert max(cls[-100:]) < 0.8 * cls[i_peak]
+    assert min(s.vd_mps for s in late) > 3.0
+    assert all(s.throttle == trim.throttle for s in (x.servo for x in samples))
+    peak_height = max(s.height_agl_m for s in samples)
+    assert peak_height - samples[-1].height_agl_m > 30.0
+
+
+def test_measured_stall_speed_agrees_with_limits_yaml(pull_up):
+    af, _, samples = pull_up
+    cl_max_measured = max(lift_coefficient(s, af.mass_kg, af.wing_area_m2) for s in samples)
+    # Trimmed at the stall, the elevator's own download takes a little off the wing's cl_max.
+    assert cl_max_measured == pytest.approx(af.aero["cl_max"], rel=0.03)
+    v_stall_ftps = math.sqrt(2.0 * af.mass_kg * G0 / (RHO_SEA_LEVEL * af.wing_area_m2 * cl_max_measured)) / FT
+    with open(os.path.join(AIRCRAFT, "limits.yaml"), encoding="utf-8") as f:
+        limit_ftps = yaml.safe_load(f)["state"]["stall_speed_ftps"]
+    assert v_stall_ftps == pytest.approx(limit_ftps, rel=0.03)

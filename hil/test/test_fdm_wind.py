@@ -1,0 +1,56 @@
+"""Wind: ground speed is air speed plus the wind; turbulence shakes the air speed as its level says."""
+import os
+import statistics
+import sys
+
+import pytest
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+if ROOT not in sys.path:
+    sys.path.insert(0, ROOT)
+from hil.fdm import Fdm, Wind  # noqa: E402
+
+AIRCRAFT = os.path.join(ROOT, "aircraft", "DG808")
+
+
+def test_wind_from_the_north_adds_a_southward_ground_velocity():
+    with Fdm(AIRCRAFT, seed=1, wind=Wind(mean_from_deg=0.0, mean_mps=5.0)) as fdm:
+        fdm.reset_airborne(47.4, 8.5, 420.0, 100.0, 90.0, 18.0)     # heading east
+        for t in (fdm.truth(), (fdm.advance(2.0), fdm.truth())[1]):
+            assert t.airspeed_true_mps == pytest.approx(18.0, abs=0.02)
+            assert t.ve_mps == pytest.approx(18.0, abs=0.05)
+            assert t.vn_mps == pytest.approx(-5.0, abs=0.05)
+            assert t.heading_deg == pytest.approx(90.0, abs=0.2)
+            assert abs(t.beta_deg) < 0.1            # trimmed in the air mass: no sideslip
+
+
+def test_headwind_slows_the_ground_speed_not_the_air_speed():
+    with Fdm(AIRCRAFT, seed=1, wind=Wind(mean_from_deg=180.0, mean_mps=7.0)) as fdm:
+        fdm.reset_airborne(47.4, 8.5, 420.0, 100.0, 180.0, 18.0)    # heading south, into it
+        fdm.advance(5.0)
+        t = fdm.truth()
+    assert t.airspeed_true_mps == pytest.approx(18.0, abs=0.05)
+    assert -t.vn_mps == pytest.approx(18.0 - 7.0, abs=0.1)
+    assert abs(t.ve_mps) < 0.1
+
+
+def airspeed_spread(turbulence):
+    with Fdm(AIRCRAFT, seed=9, wind=Wind(mean_from_deg=200.0, mean_mps=4.0, turbulence=turbulence)) as fdm:
+        fdm.reset_airborne(47.4, 8.5, 420.0, 100.0, 0.0, 18.0)
+        speeds = []
+        for _ in range(200):
+            fdm.advance(0.1)
+            speeds.append(fdm.truth().airspeed_true_mps)
+    return statistics.pstdev(speeds)
+
+
+def test_turbulence_level_orders_the_airspeed_spread():
+    none, light, moderate = (airspeed_spread(x) for x in ("none", "light", "moderate"))
+    assert none < 0.02
+    assert light > 0.1
+    assert moderate > 1.5 * light
+
+
+def test_unknown_turbulence_level_is_rejected():
+    with pytest.raises(ValueError, match="turbulence"):
+        Wind(mean_from_deg=0.0, mean_mps=3.0, turbulence="severe")
