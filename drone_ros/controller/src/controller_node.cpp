@@ -236,7 +236,13 @@ void ControllerNode::on_clock(const rosgraph_msgs::Clock::ConstPtr &msg) {
 void ControllerNode::step(double now, const ros::Time &stamp) {
   ++steps_;
   board_.fill_input(&in_);
-  gnc_step(&in_, &out_);
+  // The estimator starts from its first input: a controller (re)started in flight that stepped
+  // before the pitot's first /pwm would take the whole ground speed for wind. Until every
+  // sensor has been heard from, the command goes out invalid (estimator not converged, links
+  // unhealthy) and the GNC waits.
+  if (board_.all_seen()) {
+    gnc_step(&in_, &out_);
+  }
   unhealthy_mask_ = board_.unhealthy_links(now);
   const drone_ros::ServoCommand cmd = build_servo_command(seq_++, stamp, out_, unhealthy_mask_ == 0,
                                                           params_.gnc.throttle_min);

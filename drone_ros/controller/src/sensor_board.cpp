@@ -82,6 +82,15 @@ bool SensorBoard::on_ins(const drone_ros::ins &msg, double now_s) {
   return true;
 }
 
+bool SensorBoard::all_seen() const {
+  for (uint32_t i = 0; i < kLinkCount; ++i) {
+    if (!seen_[i]) {
+      return false;
+    }
+  }
+  return true;
+}
+
 void SensorBoard::restamp_arrivals(double now_s) {
   for (uint32_t i = 0; i < kLinkCount; ++i) {
     if (seen_[i]) {
