@@ -170,6 +170,8 @@ class Simulation:
         for k, v in ports.items():
             if not v:
                 raise RuntimeError("~%s is required" % k)
+            os.makedirs(os.path.dirname(v), exist_ok=True)
+        os.makedirs(self.out_dir, exist_ok=True)
         self.hp_vn = sensors.Vn200Port(ports["hp_vn200_port"], 2, self.seed, sensors.HP_VN200_BAUD)
         self.ha_vn = sensors.Vn200Port(ports["ha_vn200_port"], 1, self.seed, sensors.HA_VN200_BAUD,
                                        fixed_output=sensors.HA_OUTPUT_1)
