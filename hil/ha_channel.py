@@ -74,6 +74,27 @@ class HaChannel:
                         (cmd_seq or 0) & 0xFFFFFFFF, wait_ms, *rc_pulses_us, 0, airspeed_ftps, battery_v)
         return self._exchange(rec, timeout_s)
 
+    def send_inputs(self, rc_pulses_us, rc_valid, airspeed_ftps, battery_v, airspeed_ok=True,
+                    battery_ok=True):
+        """Real time: the board inputs only (the SIL keeps its own clock and answers a reply
+        after each of its periods, which latest_reply() collects)."""
+        flags = (RC_VALID if rc_valid else 0) | (AIRSPEED_OK if airspeed_ok else 0) | \
+            (BATTERY_OK if battery_ok else 0)
+        self.conn.send(STEP.pack(MAGIC_STEP, VERSION, flags, 0, 0, 0, 0, *rc_pulses_us, 0,
+                                 airspeed_ftps, battery_v))
+
+    def latest_reply(self):
+        """Real time: the newest reply waiting, or None."""
+        last = None
+        while True:
+            try:
+                data = self.conn.recv(256, socket.MSG_DONTWAIT)
+            except BlockingIOError:
+                return last
+            if not data:
+                raise ConnectionError("ha_sil closed the control channel")
+            last = decode_reply(data)
+
     def close(self):
         for s in (self.conn, self.server):
             if s is not None:

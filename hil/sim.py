@@ -27,6 +27,7 @@ import socket
 import sys
 import threading
 import time
+import warnings
 import xmlrpc.client
 from collections import deque
 
@@ -131,6 +132,10 @@ class Simulation:
         self.aircraft_dir = p("aircraft_dir", os.path.join(ROOT, "aircraft", self.aircraft))
         self.seed = int(p("seed", 1))
         self.mode = p("mode", "lockstep")
+        if self.mode not in ("lockstep", "realtime"):
+            raise RuntimeError("~mode must be lockstep or realtime, not %r" % self.mode)
+        self.realtime = self.mode == "realtime"
+        self.last_reply = None
         self.rate_hz = float(p("rate_hz", 100.0))
         self.controller_node = p("controller_node", "/controller_DG808")
         self.controller_dt_s = float(rospy.get_param(self.controller_node + "/dt", 0.05))
@@ -156,6 +161,9 @@ class Simulation:
 
         self.master = rosgraph.Master("/hil_sim")
         self.waiter = Waiter()
+        # queue_size None: published in this thread before publish() returns, which is what
+        # makes "published" mean "on its way to every subscriber" in the stepping order.
+        warnings.filterwarnings("ignore", message="The publisher should be created with an explicit keyword")
         self.clock_pub = rospy.Publisher("/clock", Clock, queue_size=None)
         self.truth_pub = rospy.Publisher("/hil/truth", HilTruth, queue_size=None)
         rospy.Subscriber("/vn200/temperature", Temperature, lambda m: self.waiter.hit("vn"), queue_size=1000)
@@ -227,6 +235,10 @@ class Simulation:
 
     def service_while_waiting(self):
         self.hp_vn.service_commands()
+        if self.realtime:
+            reply = self.chan.latest_reply()
+            self.last_reply = reply or self.last_reply
+            return self.last_reply or ha_channel.Reply(*([0, 0, (0.0,) * 4, (0.0,) * 4] + [0] * 14))
         return self.chan.poll()
 
     def wait_until(self, what, cond, timeout_s):
@@ -248,7 +260,10 @@ class Simulation:
                 raise RuntimeError("ha_sil never connected to the control channel")
         self.wait_until("the HA link (arduino node <-> ha_sil)", lambda r: r.flags & ha_channel.R_LINK_CONNECTED, 120.0)
         self.wait_until("the vn200 node's configuration of the VN-200", lambda r: self.hp_vn.configured(), 120.0)
-        self.wait_until("controller_DG808 subscribed to its inputs", lambda r: self.controller_connected(), 120.0)
+        inputs = CONTROLLER_INPUTS[1:] if self.realtime else CONTROLLER_INPUTS  # no /clock on the wall clock
+        self.wait_until("controller_DG808 subscribed to its inputs",
+                        lambda r: inbound_connected(self.master, self.controller_node, inputs) and
+                        inbound_connected(self.master, "/arduino", ["/servo_op"]), 120.0)
         if self.wait_for_recorder:
             self.wait_until("the flight recorder", lambda r: self.truth_pub.get_num_connections() > 0, 60.0)
         for line in self.hp_vn.log:
@@ -311,6 +326,38 @@ class Simulation:
             self.await_restart(t_s)
         tm.lap("restart")
         return reply
+
+    def step_realtime(self, k):
+        """Real time: nobody is waited for; the SIL runs its own periods on the wall clock and the
+        latest servo outputs it reported are applied."""
+        t_us = k * self.period_us
+        t_s = t_us * 1e-6
+        self.sim_t_s = t_s
+        tm = self.timer
+        if self.crash_at_s >= 0.0 and t_s >= self.crash_at_s and not hasattr(self, "crashed_at"):
+            self.crashed_at = t_s
+            self.kill_controller(t_s)
+        tm.lap("scenario")
+        self.hp_vn.service_commands()
+        self.hp_vn.emit_until(t_s, self.truth_at)
+        self.ha_vn.emit_until(t_s, self.truth_at)
+        tm.lap("sensors")
+        tr = self.truth_at(t_s)
+        self.chan.send_inputs((1100, 1500, 1500, 1500, 1000), True, self.ams.read_ftps(tr.airspeed_cal_mps),
+                              self.battery.read_v(t_s, tr.servo.throttle))
+        reply = self.chan.latest_reply()
+        if reply is not None:
+            self.last_reply = reply
+            if reply.flags & ha_channel.R_RESTART_REQUESTED:
+                self.event(t_s, "HA requests an HP restart (restart %d)" % reply.restart_count)
+        tm.lap("ha_step")
+        if self.last_reply is None:
+            return None
+        el, ai, ru, th = self.last_reply.applied
+        self.fdm.set_surfaces(Surfaces(elevator_deg=el, aileron_deg=ai, rudder_deg=ru, throttle=th))
+        self.publish_truth(t_us, tr, self.last_reply, None)
+        tm.lap("truth")
+        return self.last_reply
 
     def publish_truth(self, t_us, tr, reply, cmd_seq):
         m = HilTruth()
@@ -399,7 +446,15 @@ class Simulation:
                     airborne = True
                     self.event(k * self.period_us * 1e-6, "airborne start: %.0f ft above home, %.0f ft/s, heading %.0f deg" %
                                (self.start_height_ft, self.start_airspeed_ftps, heading))
-                self.step(k)
+                if self.realtime:
+                    if k == 0 or k == ground_steps:
+                        pace0 = time.monotonic() - k * self.period_us * 1e-6
+                    delay = pace0 + k * self.period_us * 1e-6 - time.monotonic()
+                    if delay > 0.0:
+                        time.sleep(delay)
+                    self.step_realtime(k)
+                else:
+                    self.step(k)
                 self.timer.lap("step")
                 if k < steps:
                     try:

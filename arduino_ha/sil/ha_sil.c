@@ -405,6 +405,8 @@ static int decode_step(const uint8_t *b, size_t len, HaSilStep *st) {
          st->version == HA_SIL_VERSION;
 }
 
+/* Lockstep: the simulator waits for each reply, so the send may block. Real time: the SIL keeps
+ * its own clock and never waits for the simulator; a reply that finds the socket full is dropped. */
 static void send_reply(Sil *sil, uint16_t flags, uint64_t t_us) {
   const HaOutputs *o = &sil->app.outputs;
   uint8_t b[REPLY_RECORD_LEN];
@@ -439,8 +441,11 @@ static void send_reply(Sil *sil, uint16_t flags, uint64_t t_us) {
   put_u32(b, &at, sil->ins.ins.solutions_used);
   put_u32(b, &at, sil->ins.ins.solutions_rejected);
   put_u32(b, &at, vn_framer_bad_packets(&sil->ins.framer.stats) + sil->ins.decode_errors);
-  if (send(sil->channel_fd, b, at, MSG_NOSIGNAL) != (ssize_t)at) {
-    g_stop = 1; /* the simulator is gone: so is the world this HA lives in */
+  {
+    const ssize_t n = send(sil->channel_fd, b, at, MSG_NOSIGNAL | (sil->sim_clock ? 0 : MSG_DONTWAIT));
+    if (n != (ssize_t)at && !(n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK))) {
+      g_stop = 1; /* the simulator is gone: so is the world this HA lives in */
+    }
   }
 }
 
