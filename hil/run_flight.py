@@ -185,14 +185,14 @@ def main(argv=None):
     if code == 0 and os.path.exists(summary):
         with open(summary) as f:
             s = json.load(f)
-        report(s, out)
+        report(s, out, bag=not args.no_bag)
     elif os.path.exists(os.path.join(out, "error.txt")):
         with open(os.path.join(out, "error.txt")) as f:
             print("run_flight: the simulator stopped: %s" % f.read().strip(), file=sys.stderr)
     return code
 
 
-def report(s, out):
+def report(s, out, bag=True):
     tk = s.get("takeover") or {}
     print("flight: %s seed %d, %.0f s simulated in %.0f s (%.1fx real time)" % (
         s["aircraft"], s["seed"], s["simulated_s"], s["wall_s"], s["x_real_time"] or 0.0))
@@ -209,7 +209,7 @@ def report(s, out):
         s["unsafe_servo_commands"]["outside_S_u"], s["unsafe_servo_commands"]["steps"],
         s["state_while_ha_flies"]["max_S_x_row"]))
     print("mission: %d of %d waypoints reached" % (s["mission"]["reached"], s["mission"]["waypoints"]))
-    print("output: %s (flight.bag, summary.json; the report goes to %s/report/)" % (out, out))
+    print("output: %s (%ssummary.json; the report goes to %s/report/)" % (out, "flight.bag, " if bag else "", out))
 
 
 if __name__ == "__main__":
