@@ -95,7 +95,9 @@ def main(argv=None):
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--realtime", action="store_true")
     ap.add_argument("--duration", type=float, default=240.0)
-    ap.add_argument("--crash-at", type=float, default=100.0)
+    ap.add_argument("--crash-at", type=float, default=100.0, help="when the HP fails (negative: never)")
+    ap.add_argument("--fault", choices=("crash", "hang"), default="crash",
+                    help="crash: SIGKILL of controller_DG808; hang: SIGSTOP (it stays up, silent)")
     ap.add_argument("--rate-hz", type=float, default=100.0, help="the HA's control rate")
     ap.add_argument("--controller-hz", type=float, default=None, help="default: the HA's rate")
     ap.add_argument("--out", default=os.path.join(HERE, "out"), help="parent of the flight folder")
@@ -143,7 +145,7 @@ def main(argv=None):
                   "run_dir:=" + run_dir, "out_dir:=" + out, "seed:=%d" % args.seed,
                   "mode:=" + ("realtime" if args.realtime else "lockstep"),
                   "rate_hz:=%g" % args.rate_hz, "dt:=%g" % (1.0 / controller_hz),
-                  "duration_s:=%g" % args.duration, "crash_at_s:=%g" % args.crash_at,
+                  "duration_s:=%g" % args.duration, "crash_at_s:=%g" % args.crash_at, "fault:=" + args.fault,
                   "gs_udp_bind_port:=%d" % gs_bind, "gs_udp_remote_port:=%d" % gs_remote,
                   "wait_for_recorder:=%s" % ("false" if args.no_bag else "true")]
         launcher = procs.start("launch", launch)
@@ -197,8 +199,8 @@ def report(s, out, bag=True):
     print("flight: %s seed %d, %.0f s simulated in %.0f s (%.1fx real time)" % (
         s["aircraft"], s["seed"], s["simulated_s"], s["wall_s"], s["x_real_time"] or 0.0))
     for seg in s["who_flew"]:
-        print("  %7.2f .. %7.2f s  %-10s reasons at switch %#x" % (seg["from_s"], seg["to_s"], seg["controller"],
-                                                                 seg["reasons_at_switch"]))
+        print("  %7.2f .. %7.2f s  %-10s %s" % (seg["from_s"], seg["to_s"], seg["controller"],
+                                              " ".join(seg.get("why", [])) or ""))
     if tk:
         print("takeover: crash at %.2f s, HA at %s s (%s s after the deadline miss), HP back at %s s" % (
             tk["crash_injected_s"], tk["takeover_s"], tk["latency_after_deadline_miss_s"], tk["hand_back_s"]))

@@ -99,12 +99,25 @@ def node_api(master, name):
         return None
 
 
+class TimeoutTransport(xmlrpc.client.Transport):
+    """A hung node accepts the connection and never answers: ask with a deadline."""
+
+    def __init__(self, timeout_s=0.5):
+        super().__init__()
+        self.timeout_s = timeout_s
+
+    def make_connection(self, host):
+        conn = super().make_connection(host)
+        conn.timeout = self.timeout_s
+        return conn
+
+
 def node_pid(master, name):
     uri = node_api(master, name)
     if uri is None:
         return None
     try:
-        code, _, pid = xmlrpc.client.ServerProxy(uri).getPid("/hil_sim")
+        code, _, pid = xmlrpc.client.ServerProxy(uri, transport=TimeoutTransport()).getPid("/hil_sim")
         return pid if code == 1 else None
     except (OSError, xmlrpc.client.Error):
         return None
@@ -116,7 +129,7 @@ def inbound_connected(master, name, topics):
     if uri is None:
         return False
     try:
-        code, _, info = xmlrpc.client.ServerProxy(uri).getBusInfo("/hil_sim")
+        code, _, info = xmlrpc.client.ServerProxy(uri, transport=TimeoutTransport()).getBusInfo("/hil_sim")
     except (OSError, xmlrpc.client.Error):
         return False
     if code != 1:
@@ -142,6 +155,9 @@ class Simulation:
         self.reach_ft = float(rospy.get_param(self.controller_node + "/dist2b", 80.0))
         self.duration_s = float(p("duration_s", 240.0))
         self.crash_at_s = float(p("crash_at_s", 100.0))
+        self.fault = p("fault", "crash")  # crash: SIGKILL; hang: SIGSTOP (alive but silent)
+        if self.fault not in ("crash", "hang"):
+            raise RuntimeError("~fault must be crash or hang, not %r" % self.fault)
         self.ground_s = float(p("ground_s", 2.0))
         self.start_height_ft = float(p("start_height_ft", 200.0))
         self.start_airspeed_ftps = float(p("start_airspeed_ftps", 60.0))
@@ -387,6 +403,10 @@ class Simulation:
         self.hp_alive = False
         if pid is None:
             self.event(t_s, "crash injection: controller not running")
+            return
+        if self.fault == "hang":
+            os.kill(pid, signal.SIGSTOP)  # hung: its process and its ROS connections stay up
+            self.event(t_s, "HP hang injected: SIGSTOP to controller_DG808 (pid %d)" % pid)
             return
         os.kill(pid, signal.SIGKILL)
         deadline = time.monotonic() + 10.0

@@ -55,6 +55,13 @@ class Regions:
         return n * FT_PER_M, e * FT_PER_M
 
 
+def reason_names(mask):
+    """REASON_* names of msg/DecisionStatus.msg set in mask."""
+    from drone_ros.msg import DecisionStatus
+    return [n[len("REASON_"):] for n in dir(DecisionStatus)
+            if n.startswith("REASON_") and getattr(DecisionStatus, n) & mask]
+
+
 def segments(records):
     """Who flew when: one entry per stretch of one controller, with the HA's reasons."""
     out = []
@@ -65,7 +72,9 @@ def segments(records):
                 out[-1]["to_s"] = round(t, 3)
             out.append({"from_s": round(t, 3), "to_s": None,
                         "controller": CONTROLLERS.get(reply.controller, str(reply.controller)),
-                        "reasons_at_switch": reply.reasons_at_switch, "reasons": reply.reasons,
+                        "reasons_at_switch": reply.reasons_at_switch,
+                        "why": reason_names(reply.reasons_at_switch if reply.controller != 0 else 0),
+                        "reasons": reply.reasons,
                         "stable_for_s_at_switch": round(reply.stable_for_s, 3)})
     if out:
         out[-1]["to_s"] = round(records[-1][0] * 1e-6, 3)

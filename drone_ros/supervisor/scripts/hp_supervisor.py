@@ -28,21 +28,39 @@ import rospy
 from drone_ros.msg import DecisionStatus
 
 
-def node_pid(master, node):
-    """PID of a running node on this machine, or None when it is not running (or not local)."""
+class TimeoutTransport(xmlrpc.client.Transport):
+    """A hung node accepts the connection and never answers: ask with a deadline."""
+
+    def __init__(self, timeout_s):
+        super().__init__()
+        self.timeout_s = timeout_s
+
+    def make_connection(self, host):
+        conn = super().make_connection(host)
+        conn.timeout = self.timeout_s
+        return conn
+
+
+def node_uri(master, node):
     try:
-        uri = master.lookupNode(node)
+        return master.lookupNode(node)
     except (rosgraph.MasterError, socket.error, xmlrpc.client.Error):
         return None
-    host = urlparse(uri).hostname
-    if host not in ("localhost", "127.0.0.1", socket.gethostname(), rosgraph.network.get_host_name()):
-        rospy.logwarn("hp_supervisor: %s runs on %s, not here: cannot restart it", node, host)
-        return None
+
+
+def ask_pid(uri, timeout_s=0.5):
+    """The node's own answer to getPid, or None (gone: connection refused; hung: no answer)."""
     try:
-        code, _, pid = xmlrpc.client.ServerProxy(uri).getPid(rospy.get_name())
-    except (socket.error, xmlrpc.client.Error, OSError):
-        return None  # its XML-RPC server is gone with it: crashed
+        code, _, pid = xmlrpc.client.ServerProxy(uri, transport=TimeoutTransport(timeout_s)).getPid(
+            rospy.get_name())
+    except (socket.error, socket.timeout, xmlrpc.client.Error, OSError):
+        return None
     return pid if code == 1 else None
+
+
+def local(uri):
+    host = urlparse(uri).hostname
+    return host in ("localhost", "127.0.0.1", socket.gethostname(), rosgraph.network.get_host_name())
 
 
 def alive(pid):
@@ -72,6 +90,9 @@ class Supervisor:
         self.requested = False
         self.busy = threading.Lock()
         self.restarts = 0
+        self.known = (None, None)  # (uri, pid) of the node while it answered
+        self.learner = threading.Thread(target=self.learn_pids, daemon=True)
+        self.learner.start()
         rospy.Subscriber("/decision_status", DecisionStatus, self.on_status, queue_size=10)
         rospy.loginfo("hp_supervisor: restarts %s when the HA asks (boot delay %.1f s)",
                       self.node, self.boot_delay_s)
@@ -86,8 +107,30 @@ class Supervisor:
             return
         threading.Thread(target=self.restart, daemon=True).start()
 
+    def learn_pids(self):
+        """Remembers the node's PID while it answers: a hung node cannot be asked."""
+        while not rospy.is_shutdown():
+            uri = node_uri(self.master, self.node)
+            if uri is not None and uri != self.known[0] and local(uri):
+                pid = ask_pid(uri)
+                if pid is not None:
+                    self.known = (uri, pid)
+            time.sleep(0.2)
+
+    def find_pid(self):
+        uri = node_uri(self.master, self.node)
+        if uri is None:
+            return None
+        if not local(uri):
+            rospy.logwarn("hp_supervisor: %s runs on %s, not here: cannot restart it", self.node, uri)
+            return None
+        pid = ask_pid(uri)
+        if pid is None and self.known[0] == uri:
+            pid = self.known[1]  # it does not answer (hung): the PID it had when it did
+        return pid
+
     def stop_running(self):
-        pid = node_pid(self.master, self.node)
+        pid = self.find_pid()
         if pid is None or not alive(pid):
             rospy.logwarn("hp_supervisor: %s is not running (crashed)", self.node)
             return
