@@ -52,6 +52,9 @@ class Airframe:
         self.span_m = float(geo["wing_span_m"])
         self.chord_m = float(geo["mean_chord_m"])
         self.aero = {k: float(v) for k, v in data["aero"].items()}
+        # The design model's constant atmosphere; the simulation itself uses ISA and WGS84.
+        self.design_air_density_kg_m3 = float(data["air_density_kg_m3"])
+        self.design_gravity_m_s2 = float(data["gravity_m_s2"])
         prop = data["propulsion"]
         self.max_thrust_n = float(prop["max_thrust_n"])
         self.zero_thrust_speed_mps = float(prop["zero_thrust_speed_m_s"])
@@ -146,6 +149,20 @@ class Airframe:
         # Passing through (0, cl0) keeps the linear range exact at the breakpoints too.
         pts.append((0.0, cl0))
         pts.sort()
+        return pts
+
+    def roll_damping_table(self):
+        """(alpha_deg, factor on cl_p): the local lift-curve slope over cl_alpha, from the lift
+        table. Roll damping is the wing's lift slope at work (the down-going wing meets a higher
+        alpha), so past the stall, where lift falls with alpha, it turns negative: autorotation,
+        the wing drop. Each segment's slope holds over the segment, with 0.5 deg ramps between."""
+        cla = self.aero["cl_alpha_per_rad"]
+        pts = []
+        lift = self.lift_table()
+        for (x0, y0), (x1, y1) in zip(lift, lift[1:]):
+            f = (y1 - y0) / math.radians(x1 - x0) / cla
+            r = min(0.25, (x1 - x0) / 4.0)
+            pts += [(x0 + r, f), (x1 - r, f)]
         return pts
 
     def separation_drag_table(self):

@@ -36,6 +36,12 @@ class FdmCrash(RuntimeError):
     the state at the crash, with crashed True."""
 
 
+def _check_finite(**values):
+    for name, v in values.items():
+        if not math.isfinite(float(v)):
+            raise ValueError(f"{name} must be finite, not {v}")
+
+
 class Fdm:
     """One simulated aircraft (HIL_INTERFACES.md section 1).
 
@@ -196,14 +202,28 @@ class Fdm:
         self._apply_servos([math.degrees(de), 0.0, 0.0, thr])
         if not ex.run_ic():
             raise RuntimeError("JSBSim run_ic failed")
+        # qdot weighted up: per unit of trim error it is about ten times smaller than udot, wdot.
         return np.array([ex["accelerations/udot-ft_sec2"], ex["accelerations/wdot-ft_sec2"],
                          ex["accelerations/qdot-rad_sec2"] * 10.0])
 
     def reset_airborne(self, lat_deg, lon_deg, ground_msl_m, height_agl_m, heading_deg, airspeed_mps):
-        """Trimmed wings-level, level flight at that state; returns the trim Surfaces."""
+        """Trimmed wings-level, level flight at that state; returns the trim Surfaces.
+        Raises TrimError (and leaves the Fdm unset) when there is no such trim."""
+        _check_finite(lat_deg=lat_deg, lon_deg=lon_deg, ground_msl_m=ground_msl_m,
+                      height_agl_m=height_agl_m, heading_deg=heading_deg, airspeed_mps=airspeed_mps)
+        try:
+            return self._reset_airborne(lat_deg, lon_deg, ground_msl_m, height_agl_m, heading_deg,
+                                        airspeed_mps)
+        except Exception:
+            self._exec = None
+            raise
+
+    def _reset_airborne(self, lat_deg, lon_deg, ground_msl_m, height_agl_m, heading_deg, airspeed_mps):
         af = self.airframe
-        if not height_agl_m > 0.0:
-            raise ValueError(f"height_agl_m must be positive, not {height_agl_m}")
+        clearance_m = max(c.z_m for c in af.contacts)
+        if not height_agl_m > clearance_m:
+            raise ValueError(f"height_agl_m {height_agl_m} puts the gear on the ground: an airborne start "
+                             f"needs more than {clearance_m} m (reset_on_ground parks it)")
         ex = self._new_exec()
 
         # A steady uniform wind does not change the air-relative trim: trim in still air, then
@@ -215,8 +235,8 @@ class Fdm:
         a = af.aero
         # Start from the linear model's trim (lift = weight, Cm = 0); Newton on JSBSim's own
         # accelerations does the rest (density, gravity and the earth's rotation where it flies).
-        rho = 1.225
-        cl_req = 2.0 * af.mass_kg * 9.80665 / (rho * af.wing_area_m2 * float(airspeed_mps) ** 2)
+        cl_req = (2.0 * af.mass_kg * af.design_gravity_m_s2
+                  / (af.design_air_density_kg_m3 * af.wing_area_m2 * float(airspeed_mps) ** 2))
         if cl_req > a["cl_max"]:
             raise TrimError(f"{airspeed_mps} m/s is below the stall speed: level flight needs CL "
                             f"{cl_req:.2f} > cl_max {a['cl_max']}")
@@ -259,6 +279,7 @@ class Fdm:
 
     def reset_on_ground(self, lat_deg, lon_deg, ground_msl_m, heading_deg):
         """Parked on its gear, at rest, throttle zero, surfaces neutral."""
+        _check_finite(lat_deg=lat_deg, lon_deg=lon_deg, ground_msl_m=ground_msl_m, heading_deg=heading_deg)
         af = self.airframe
         wheel_z = max(c.z_m for c in af.contacts if c.kind == "BOGEY")
         ex = self._new_exec()

@@ -70,6 +70,8 @@ def _aero(af):
 
     fn("aero/hil/cl-static", _table("aero/alpha-deg", af.lift_table()),
        "static lift curve with the stall")
+    fn("aero/hil/roll-damping-factor", _table("aero/alpha-deg", af.roll_damping_table()),
+       "cl_p scaled by the local lift-curve slope: negative past the stall (autorotation)")
     fn("aero/hil/cd-separation", _table("aero/alpha-deg", af.separation_drag_table()),
        "drag of separated flow past the stall")
     fn("aero/hil/cl", "<sum><property>aero/hil/cl-static</property>"
@@ -93,7 +95,7 @@ def _aero(af):
        "Cm about the CG")
     fn("aero/hil/croll", _sum_of_products([
         (a["cl_beta_per_rad"], ["aero/beta-rad"]),
-        (a["cl_p_per_rad"], ["aero/bi2vel", "velocities/p-aero-rad_sec"]),
+        (a["cl_p_per_rad"], ["aero/bi2vel", "velocities/p-aero-rad_sec", "aero/hil/roll-damping-factor"]),
         (a["cl_r_per_rad"], ["aero/bi2vel", "velocities/r-aero-rad_sec"]),
         (a["cl_aileron_per_rad"], [da]), (a["cl_rudder_per_rad"], [dr])]), "rolling moment coefficient")
     fn("aero/hil/cn", _sum_of_products([

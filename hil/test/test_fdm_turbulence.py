@@ -1,4 +1,4 @@
-"""The seeded turbulence has the Dryden low-altitude intensities and correlation times."""
+"""The seeded turbulence has the Dryden low-altitude intensities and autocorrelations."""
 import math
 import os
 import statistics
@@ -52,13 +52,18 @@ def test_moderate_turbulence_has_the_dryden_intensities(moderate):
     assert abs(statistics.fmean(down)) < 0.1 * sigma_w
 
 
-def test_gusts_stay_correlated_for_the_dryden_time_scale_l_over_v(moderate):
+def test_gusts_stay_correlated_as_the_dryden_autocorrelations_say(moderate):
+    """Dryden: R_u(xi) = exp(-xi / L_u); R_v, R_w(xi) = exp(-xi / L) (1 - xi / (2 L)), xi = V t."""
     _, _, l_u, l_w = dryden_low_altitude(30.0)
-    north, _, down = zip(*moderate)
-    lag_s = 2.0
-    lag = int(lag_s / DT)
-    assert autocorrelation(down, lag) == pytest.approx(math.exp(-AIRSPEED * lag_s / l_w), abs=0.06)
-    assert autocorrelation(north, lag) == pytest.approx(math.exp(-AIRSPEED * lag_s / l_u), abs=0.06)
+    north, east, down = zip(*moderate)
+    for lag_s in (1.0, 3.0):
+        lag = int(lag_s / DT)
+        xi = AIRSPEED * lag_s
+        assert autocorrelation(north, lag) == pytest.approx(math.exp(-xi / l_u), abs=0.06)
+        lateral = math.exp(-xi / l_u) * (1 - xi / (2 * l_u))
+        vertical = math.exp(-xi / l_w) * (1 - xi / (2 * l_w))
+        assert autocorrelation(east, lag) == pytest.approx(lateral, abs=0.06)
+        assert autocorrelation(down, lag) == pytest.approx(vertical, abs=0.06)
 
 
 def test_moderate_is_light_doubled_and_none_is_calm():

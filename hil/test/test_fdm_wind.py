@@ -1,4 +1,5 @@
 """Wind: ground speed is air speed plus the wind; turbulence shakes the air speed as its level says."""
+import math
 import os
 import statistics
 import sys
@@ -54,3 +55,20 @@ def test_turbulence_level_orders_the_airspeed_spread():
 def test_unknown_turbulence_level_is_rejected():
     with pytest.raises(ValueError, match="turbulence"):
         Wind(mean_from_deg=0.0, mean_mps=3.0, turbulence="severe")
+
+
+def test_position_moves_with_the_ground_velocity():
+    """lat/lon change as the NED velocity says (WGS84 radii), so north/east from home agree."""
+    a, e2 = 6378137.0, 6.69437999014e-3
+    with Fdm(AIRCRAFT, seed=1, wind=Wind(mean_from_deg=0.0, mean_mps=5.0)) as fdm:
+        fdm.reset_airborne(47.4, 8.5, 420.0, 100.0, 90.0, 18.0)
+        start = fdm.truth()
+        fdm.advance(10.0)
+        end = fdm.truth()
+    lat = math.radians(start.lat_deg)
+    w = 1.0 - e2 * math.sin(lat) ** 2
+    north_m = math.radians(end.lat_deg - start.lat_deg) * a * (1.0 - e2) / w ** 1.5
+    east_m = math.radians(end.lon_deg - start.lon_deg) * a / math.sqrt(w) * math.cos(lat)
+    assert north_m == pytest.approx(-5.0 * 10.0, rel=0.01)
+    assert east_m == pytest.approx(18.0 * 10.0, rel=0.01)
+    assert end.alt_msl_m == pytest.approx(start.alt_msl_m, abs=0.3)
