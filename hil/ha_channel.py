@@ -16,13 +16,13 @@ R_LINK_CONNECTED, R_COMMAND_TIMEOUT, R_VN_TIMEOUT, R_STATE_VALID = 1, 2, 4, 8
 R_HP_RESET, R_RESTART_REQUESTED, R_STEPPED = 16, 32, 64
 
 STEP = struct.Struct("<IHHQQII5HHff")
-REPLY = struct.Struct("<IHHQ4f4fBBHIIIIfffIIII")
-assert STEP.size == 52 and REPLY.size == 96
+REPLY = struct.Struct("<IHHQ4f4fBBHIIIIfffIIIII")
+assert STEP.size == 52 and REPLY.size == 100
 
 Reply = namedtuple("Reply", "flags t_us applied ha_command controller leds restart_count reasons "
                             "reasons_at_switch last_seq commands_received stable_for_s "
                             "state_region_max actuator_region_max vn_bytes_read "
-                            "ins_solutions_used ins_solutions_rejected ins_bad_packets")
+                            "ins_solutions_used ins_solutions_rejected ins_bad_packets wait_us")
 
 
 def decode_reply(data):

@@ -182,9 +182,9 @@ class Simulation:
         warnings.filterwarnings("ignore", message="The publisher should be created with an explicit keyword")
         self.clock_pub = rospy.Publisher("/clock", Clock, queue_size=None)
         self.truth_pub = rospy.Publisher("/hil/truth", HilTruth, queue_size=None)
-        rospy.Subscriber("/vn200/temperature", Temperature, lambda m: self.waiter.hit("vn"), queue_size=1000)
-        rospy.Subscriber("/decision_status", DecisionStatus, lambda m: self.waiter.hit("status", m), queue_size=1000)
-        rospy.Subscriber("/servo_op", ServoCommand, lambda m: self.waiter.hit("servo_op", m), queue_size=1000)
+        rospy.Subscriber("/vn200/temperature", Temperature, lambda m: self.waiter.hit("vn"), queue_size=1000, tcp_nodelay=True)
+        rospy.Subscriber("/decision_status", DecisionStatus, lambda m: self.waiter.hit("status", m), queue_size=1000, tcp_nodelay=True)
+        rospy.Subscriber("/servo_op", ServoCommand, lambda m: self.waiter.hit("servo_op", m), queue_size=1000, tcp_nodelay=True)
         rospy.Subscriber("/way", way, lambda m: self.waiter.hit("way", m), queue_size=10)
         rospy.Subscriber("/to_hil", hil_data, self.on_to_hil, queue_size=1000)
         self.waypoint_log = []  # (t_s, waypoint_index) on change
@@ -254,7 +254,7 @@ class Simulation:
         if self.realtime:
             reply = self.chan.latest_reply()
             self.last_reply = reply or self.last_reply
-            return self.last_reply or ha_channel.Reply(*([0, 0, (0.0,) * 4, (0.0,) * 4] + [0] * 14))
+            return self.last_reply or ha_channel.Reply(*([0, 0, (0.0,) * 4, (0.0,) * 4] + [0] * 15))
         return self.chan.poll()
 
     def wait_until(self, what, cond, timeout_s):
@@ -328,6 +328,9 @@ class Simulation:
                                (1100, 1500, 1500, 1500, 1000), True,
                                self.ams.read_ftps(tr.airspeed_cal_mps),
                                self.battery.read_v(t_s, tr.servo.throttle))
+        # The HA's share: the wall time it waited for the command to come through the arduino node.
+        tm.totals["ha_step"] = tm.totals.get("ha_step", 0.0) - reply.wait_us * 1e-6
+        tm.totals["ha_wait_command"] = tm.totals.get("ha_wait_command", 0.0) + reply.wait_us * 1e-6
         tm.lap("ha_step")
         if reply.flags & (ha_channel.R_COMMAND_TIMEOUT | ha_channel.R_VN_TIMEOUT):
             self.event(t_s, "ha_sil wait ran out (flags %#x)" % reply.flags)
@@ -446,6 +449,7 @@ class Simulation:
         self.home = (home_lat, home_lon, parked.alt_msl_m)
         self.preflight()
         wall0 = time.monotonic()
+        self.timer.t = time.perf_counter()
         steps = int(round(self.duration_s * self.rate_hz))
         ground_steps = int(round(self.ground_s * self.rate_hz))
         airborne = False
@@ -466,6 +470,7 @@ class Simulation:
                     airborne = True
                     self.event(k * self.period_us * 1e-6, "airborne start: %.0f ft above home, %.0f ft/s, heading %.0f deg" %
                                (self.start_height_ft, self.start_airspeed_ftps, heading))
+                    self.timer.lap("mission_upload_and_trim")
                 if self.realtime:
                     if k == 0 or k == ground_steps:
                         pace0 = time.monotonic() - k * self.period_us * 1e-6
@@ -531,6 +536,9 @@ class Simulation:
 
 
 def main():
+    # rospy's receive threads and this stepping thread share the GIL: a thread waiting on a
+    # condition another thread has just set waits for the switch interval (5 ms by default).
+    sys.setswitchinterval(1e-4)
     rospy.init_node("hil_sim")
     sim = Simulation()
     code = 0

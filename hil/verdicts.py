@@ -152,7 +152,9 @@ def summarize(sim):
         "simulated_s": round(flown, 3),
         "wall_s": round(sim.wall_s, 3),
         "x_real_time": round(flown / sim.wall_s, 2) if sim.wall_s > 0 else None,
-        "step_time_ms": {k: round(v * 1000.0 / steps, 4) for k, v in sorted(t.items())},
+        "step_time_ms": {k: round(v * 1000.0 / steps, 4) for k, v in sorted(t.items())
+                         if k != "mission_upload_and_trim"},
+        "mission_upload_and_trim_s": round(t.get("mission_upload_and_trim", 0.0), 3),
         "takeover": takeover,
         "hand_backs": handbacks,
         "who_flew": segs,

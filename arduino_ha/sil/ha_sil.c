@@ -380,7 +380,7 @@ static float get_f32(const uint8_t *b, size_t *at) {
 }
 
 #define STEP_RECORD_LEN 52u
-#define REPLY_RECORD_LEN 96u
+#define REPLY_RECORD_LEN 100u
 
 static int decode_step(const uint8_t *b, size_t len, HaSilStep *st) {
   size_t at = 0u;
@@ -407,7 +407,7 @@ static int decode_step(const uint8_t *b, size_t len, HaSilStep *st) {
 
 /* Lockstep: the simulator waits for each reply, so the send may block. Real time: the SIL keeps
  * its own clock and never waits for the simulator; a reply that finds the socket full is dropped. */
-static void send_reply(Sil *sil, uint16_t flags, uint64_t t_us) {
+static void send_reply(Sil *sil, uint16_t flags, uint64_t t_us, uint32_t wait_us) {
   const HaOutputs *o = &sil->app.outputs;
   uint8_t b[REPLY_RECORD_LEN];
   size_t at = 0u;
@@ -441,6 +441,7 @@ static void send_reply(Sil *sil, uint16_t flags, uint64_t t_us) {
   put_u32(b, &at, sil->ins.ins.solutions_used);
   put_u32(b, &at, sil->ins.ins.solutions_rejected);
   put_u32(b, &at, vn_framer_bad_packets(&sil->ins.framer.stats) + sil->ins.decode_errors);
+  put_u32(b, &at, wait_us);
   {
     const ssize_t n = send(sil->channel_fd, b, at, MSG_NOSIGNAL | (sil->sim_clock ? 0 : MSG_DONTWAIT));
     if (n != (ssize_t)at && !(n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK))) {
@@ -483,10 +484,11 @@ static uint16_t gather_period_inputs(Sil *sil, const HaSilStep *st) {
   for (;;) {
     struct pollfd p[2];
     int np = 0;
-    const int want_cmd = (st->flags & HA_SIL_WAIT_COMMAND) != 0u &&
-                         !(sil->commands > 0u && sil->last_cmd_seq == st->cmd_seq);
-    const int want_vn = sil->vn_fd >= 0 && sil->ins.bytes_read < st->vn_bytes;
+    int want_cmd, want_vn;
     (void)drain_inputs(sil, sil->sim_now_us);
+    want_cmd = (st->flags & HA_SIL_WAIT_COMMAND) != 0u &&
+               !(sil->commands > 0u && sil->last_cmd_seq == st->cmd_seq);
+    want_vn = sil->vn_fd >= 0 && sil->ins.bytes_read < st->vn_bytes;
     if (!want_cmd && !want_vn) {
       return 0u;
     }
@@ -537,24 +539,27 @@ static int run_lockstep(Sil *sil, const HaBoard *board) {
       (void)drain_inputs(sil, sil->sim_now_us);
       ha_link_poll(&sil->link, sil->sim_now_us);
       on_negotiation(sil);
-      send_reply(sil, 0u, sil->sim_now_us);
+      send_reply(sil, 0u, sil->sim_now_us, 0u);
       continue;
     }
     {
       uint16_t flags;
+      double waited_s;
       /* The clock never runs backwards (the link requires it): a step to an earlier time is
        * taken as the current one. */
       if ((int32_t)((uint32_t)st.t_us - sil->sim_now_us) > 0) {
         sil->sim_now_us = (uint32_t)st.t_us;
       }
+      waited_s = wall_s();
       flags = gather_period_inputs(sil, &st);
+      waited_s = wall_s() - waited_s;
       take_board_inputs(sil, &st);
       ha_app_period(&sil->app, board);
       send_sensors(sil, sil->sim_now_us);
       ha_link_poll(&sil->link, sil->sim_now_us);
       on_negotiation(sil);
       report_link_errors(sil, sil->sim_now_us);
-      send_reply(sil, (uint16_t)(flags | HA_SIL_R_STEPPED), st.t_us);
+      send_reply(sil, (uint16_t)(flags | HA_SIL_R_STEPPED), st.t_us, (uint32_t)(waited_s * 1e6));
     }
   }
   return 0;
@@ -702,7 +707,7 @@ int main(int argc, char **argv) {
         ha_app_period(&sil.app, &board);
         send_sensors(&sil, now_us);
         if (sil.channel_fd >= 0) {
-          send_reply(&sil, HA_SIL_R_STEPPED, now_us);
+          send_reply(&sil, HA_SIL_R_STEPPED, now_us, 0u);
         }
       }
       usleep(200); /* poll the pty often: command latency is part of what the bench measures */

@@ -59,7 +59,7 @@ typedef struct {
   float battery_v;
 } HaSilStep;
 
-/* Layout: "<IHHQffffffffBBHIIIIfffIIII" (100 bytes). */
+/* Layout: "<IHHQ4f4fBBHIIIIfffIIIII" (100 bytes). */
 typedef struct {
   uint32_t magic;
   uint16_t version;
@@ -81,6 +81,7 @@ typedef struct {
   uint32_t ins_solutions_used;
   uint32_t ins_solutions_rejected;
   uint32_t ins_bad_packets;
+  uint32_t wait_us; /* wall time this period waited for its command and VN-200 bytes */
 } HaSilReply;
 
 #endif /* HA_SIL_CHANNEL_H */

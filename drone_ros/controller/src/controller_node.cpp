@@ -110,7 +110,7 @@ ControllerNode::ControllerNode(ros::NodeHandle &nh, ros::NodeHandle &pnh, const 
   diag_.add("performance controller", this, &ControllerNode::diagnose);
   pnh_.param("lockstep", lockstep_, false);
   if (lockstep_) {
-    clock_sub_ = nh.subscribe("/clock", 100, &ControllerNode::on_clock, this);
+    clock_sub_ = nh.subscribe("/clock", 100, &ControllerNode::on_clock, this, ros::TransportHints().tcpNoDelay());
   } else {
     timer_ = nh.createSteadyTimer(ros::WallDuration(params_.gnc.dt_s), &ControllerNode::on_timer, this);
   }
