@@ -161,7 +161,7 @@ class Simulation:
         self.ground_s = float(p("ground_s", 2.0))
         self.start_height_ft = float(p("start_height_ft", 200.0))
         self.start_airspeed_ftps = float(p("start_airspeed_ftps", 60.0))
-        self.wait_s = float(p("wait_s", 2.0))
+        self.wait_s = float(p("wait_s", 10.0))
         self.restart_wait_s = float(p("restart_wait_s", 60.0))
         self.mission_file = p("mission", os.path.join(self.aircraft_dir, "missions", "case_study.waypoints"))
         self.out_dir = p("out_dir", "/tmp")

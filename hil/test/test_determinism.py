@@ -18,6 +18,11 @@ def fly(seed, folder):
                         "--duration", DURATION_S, "--crash-at", CRASH_AT_S, "--folder", folder, "--quiet"],
                        env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=900)
     assert r.returncode == 0, r.stdout.decode(errors="replace")[-3000:]
+    import json
+    with open(os.path.join(folder, "summary.json")) as f:
+        events = [e["event"] for e in json.load(f)["events"]]
+    # A bounded wait that ran out is the one way wall-clock timing enters a lockstep flight.
+    assert not [e for e in events if "late" in e or "ran out" in e or "did not answer" in e], events
     return truth_log(os.path.join(folder, "flight.bag"))
 
 
