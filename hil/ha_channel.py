@@ -83,17 +83,22 @@ class HaChannel:
         self.conn.send(STEP.pack(MAGIC_STEP, VERSION, flags, 0, 0, 0, 0, *rc_pulses_us, 0,
                                  airspeed_ftps, battery_v))
 
-    def latest_reply(self):
-        """Real time: the newest reply waiting, or None."""
-        last = None
+    def pending_replies(self):
+        """Real time: every reply waiting, oldest first."""
+        out = []
         while True:
             try:
                 data = self.conn.recv(256, socket.MSG_DONTWAIT)
             except BlockingIOError:
-                return last
+                return out
             if not data:
                 raise ConnectionError("ha_sil closed the control channel")
-            last = decode_reply(data)
+            out.append(decode_reply(data))
+
+    def latest_reply(self):
+        """Real time: the newest reply waiting, or None."""
+        replies = self.pending_replies()
+        return replies[-1] if replies else None
 
     def close(self):
         for s in (self.conn, self.server):

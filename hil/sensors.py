@@ -164,6 +164,7 @@ class Vn200Port:
         self.next_index = None  # index of the next packet: sensor time = index * period
         self.packets = 0
         self.log = []
+        self.on_written = None  # on_written(index of the first packet, count) after each write
 
     def service_commands(self):
         """Answers whatever ASCII commands the driver wrote (any time, also while time stands)."""
@@ -205,6 +206,7 @@ class Vn200Port:
         out = bytearray()
         n = 0
         lat = self.latency_s()
+        first = self.packets
         while self.next_index / rate <= t_s + 1e-9:
             ts = self.next_index / rate
             sol = self.errors.solution(truth_at(ts - lat), ts, 1.0 / rate)
@@ -214,6 +216,8 @@ class Vn200Port:
         if out:
             self.pty.write(bytes(out))
             self.packets += n
+            if self.on_written is not None:
+                self.on_written(first, n)
         return n
 
     def close(self):

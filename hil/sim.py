@@ -79,6 +79,63 @@ class Waiter:
             return True
 
 
+class LatencyProbe:
+    """Real time: from a VN-200 packet written to the HP's port to the HA's servo output driven by
+    the first HP command computed after the `vn200` node delivered it. All times are this
+    machine's clocks: delivery and the command's stamp on the wall clock (in real time
+    ServoCommand.stamp is wall time), the packet's write and the servo output on the monotonic
+    clock, the one ha_sil's micros() counts (its reply's t_us is the period's time). Only while
+    the HP flies."""
+
+    def __init__(self):
+        self.lock = threading.Lock()
+        self.written = {}    # packet index -> wall time written
+        self.delivered = []  # wall time the vn200 node's last topic of packet i arrived here
+        self.commands = deque(maxlen=2000)  # (seq, stamp wall time, packet index used)
+        self.samples = []
+
+    def on_written(self, first, n):
+        now = time.monotonic()
+        with self.lock:
+            for i in range(first, first + n):
+                self.written[i] = now
+
+    def on_delivered(self):
+        with self.lock:
+            self.delivered.append(time.time())
+
+    def on_command(self, msg):
+        stamp = msg.stamp.to_sec()
+        with self.lock:
+            used = None
+            for i in range(len(self.delivered) - 1, -1, -1):
+                if self.delivered[i] <= stamp:
+                    used = i
+                    break
+            if used is not None:
+                self.commands.append((msg.seq, used))
+
+    def on_reply(self, reply, mono_now):
+        # ha_sil's period time: CLOCK_MONOTONIC in microseconds, wrapped at 2^32.
+        now_us = int(mono_now * 1e6)
+        now = (now_us - ((now_us - reply.t_us) % (1 << 32))) * 1e-6
+        with self.lock:
+            # Commands the HA has seen (or, after an HP restart restarted the sequence, never will).
+            while self.commands and (self.commands[0][0] <= reply.last_seq or
+                                     self.commands[0][0] > reply.last_seq + 100000):
+                seq, used = self.commands.popleft()
+                if (seq <= reply.last_seq and reply.controller == 0 and used in self.written and
+                        (not self.samples or self.samples[-1][0] != used)):
+                    self.samples.append((used, now - self.written[used]))
+
+    def summary(self):
+        lat = sorted(v for _, v in self.samples)
+        if not lat:
+            return None
+        q = lambda f: round(lat[min(len(lat) - 1, int(f * len(lat)))] * 1000.0, 2)  # noqa: E731
+        return {"packets": len(lat), "p50_ms": q(0.5), "p99_ms": q(0.99), "max_ms": round(lat[-1] * 1000.0, 2)}
+
+
 class PhaseTimer:
     """Where each step's wall time goes."""
 
@@ -182,9 +239,10 @@ class Simulation:
         warnings.filterwarnings("ignore", message="The publisher should be created with an explicit keyword")
         self.clock_pub = rospy.Publisher("/clock", Clock, queue_size=None)
         self.truth_pub = rospy.Publisher("/hil/truth", HilTruth, queue_size=None)
-        rospy.Subscriber("/vn200/temperature", Temperature, lambda m: self.waiter.hit("vn"), queue_size=1000, tcp_nodelay=True)
+        self.latency = LatencyProbe() if self.realtime else None
+        rospy.Subscriber("/vn200/temperature", Temperature, self.on_vn_delivered, queue_size=1000, tcp_nodelay=True)
         rospy.Subscriber("/decision_status", DecisionStatus, lambda m: self.waiter.hit("status", m), queue_size=1000, tcp_nodelay=True)
-        rospy.Subscriber("/servo_op", ServoCommand, lambda m: self.waiter.hit("servo_op", m), queue_size=1000, tcp_nodelay=True)
+        rospy.Subscriber("/servo_op", ServoCommand, self.on_servo_op, queue_size=1000, tcp_nodelay=True)
         rospy.Subscriber("/way", way, lambda m: self.waiter.hit("way", m), queue_size=10)
         rospy.Subscriber("/to_hil", hil_data, self.on_to_hil, queue_size=1000)
         self.waypoint_log = []  # (t_s, waypoint_index) on change
@@ -197,6 +255,8 @@ class Simulation:
             os.makedirs(os.path.dirname(v), exist_ok=True)
         os.makedirs(self.out_dir, exist_ok=True)
         self.hp_vn = sensors.Vn200Port(ports["hp_vn200_port"], 2, self.seed, sensors.HP_VN200_BAUD)
+        if self.latency is not None:
+            self.hp_vn.on_written = self.latency.on_written
         self.ha_vn = sensors.Vn200Port(ports["ha_vn200_port"], 1, self.seed, sensors.HA_VN200_BAUD,
                                        fixed_output=sensors.HA_OUTPUT_1)
         self.chan = ha_channel.HaChannel(ports["ha_channel"])
@@ -216,6 +276,16 @@ class Simulation:
         self.progress_path = os.path.join(self.out_dir, "progress")
 
     # --- callbacks -------------------------------------------------------------------------
+    def on_vn_delivered(self, _msg):
+        if self.latency is not None:
+            self.latency.on_delivered()
+        self.waiter.hit("vn")
+
+    def on_servo_op(self, msg):
+        if self.latency is not None:
+            self.latency.on_command(msg)
+        self.waiter.hit("servo_op", msg)
+
     def on_to_hil(self, msg):
         if not self.waypoint_log or self.waypoint_log[-1][1] != msg.waypoint_index:
             self.waypoint_log.append((round(self.sim_t_s, 3), int(msg.waypoint_index)))
@@ -364,7 +434,11 @@ class Simulation:
         tr = self.truth_at(t_s)
         self.chan.send_inputs((1100, 1500, 1500, 1500, 1000), True, self.ams.read_ftps(tr.airspeed_cal_mps),
                               self.battery.read_v(t_s, tr.servo.throttle))
-        reply = self.chan.latest_reply()
+        replies = self.chan.pending_replies()
+        now = time.monotonic()
+        for r in replies:
+            self.latency.on_reply(r, now)
+        reply = replies[-1] if replies else None
         if reply is not None:
             self.last_reply = reply
             if reply.flags & ha_channel.R_RESTART_REQUESTED:

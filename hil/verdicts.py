@@ -155,6 +155,7 @@ def summarize(sim):
         "step_time_ms": {k: round(v * 1000.0 / steps, 4) for k, v in sorted(t.items())
                          if k != "mission_upload_and_trim"},
         "mission_upload_and_trim_s": round(t.get("mission_upload_and_trim", 0.0), 3),
+        "sensor_to_servo_latency": None if sim.latency is None else sim.latency.summary(),
         "takeover": takeover,
         "hand_backs": handbacks,
         "who_flew": segs,

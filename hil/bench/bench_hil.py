@@ -13,6 +13,9 @@ each step's wall time goes, from the simulator's own phase timers:
   restart         time held while the supervisor restarted the controller
 
 One flight per rate, SECONDS of simulated time with the HP crash at a third of it and no bag.
+Then one flight of REALTIME_SECONDS in real time (no crash) for the latency through the whole
+chain: a VN-200 packet written to the HP's pty, the vn200 node, controller_DG808 (its timer),
+the arduino node, the HA's link and its next period driving the servos with that command.
 Wall time on a shared machine measures the neighbours too. Prints `metric: value unit` lines,
 then `machine: ...`."""
 import json
@@ -26,14 +29,16 @@ sys.path.insert(0, HERE)
 from bench_fdm import machine  # noqa: E402
 
 SECONDS = 60
+REALTIME_SECONDS = 30
 
 
-def flight(rate_hz):
+def flight(rate_hz, realtime=False):
     d = tempfile.mkdtemp(prefix="bench_hil_")
     folder = os.path.join(d, "flight")
+    args = ["--duration", str(REALTIME_SECONDS), "--crash-at", "-1", "--realtime"] if realtime else \
+        ["--duration", str(SECONDS), "--crash-at", str(SECONDS // 3)]
     r = subprocess.run([sys.executable, os.path.join(HERE, "..", "run_flight.py"), "--quiet", "--no-bag",
-                        "--duration", str(SECONDS), "--crash-at", str(SECONDS // 3),
-                        "--rate-hz", str(rate_hz), "--controller-hz", str(rate_hz), "--folder", folder],
+                        "--rate-hz", str(rate_hz), "--controller-hz", str(rate_hz), "--folder", folder] + args,
                        stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
     if r.returncode != 0:
         sys.stdout.write(r.stdout.decode(errors="replace")[-2000:])
@@ -52,6 +57,10 @@ def main():
         total = sum(s["step_time_ms"].values())
         for phase, ms in sorted(s["step_time_ms"].items(), key=lambda kv: -kv[1]):
             print("hil_step_%dhz_%s: %.3f ms (%.0f %%)" % (rate, phase, ms, 100.0 * ms / total if total else 0.0))
+    lat = flight(100, realtime=True)["sensor_to_servo_latency"]
+    print("hil_sensor_to_servo_latency_p50: %.2f ms" % lat["p50_ms"])
+    print("hil_sensor_to_servo_latency_p99: %.2f ms" % lat["p99_ms"])
+    print("hil_sensor_to_servo_latency_max: %.2f ms (%d packets, real time, 100 Hz)" % (lat["max_ms"], lat["packets"]))
     print("machine: %s" % header)
 
 
