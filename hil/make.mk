@@ -7,3 +7,10 @@ BENCH_TARGETS += bench-fdm
 
 bench-fdm: deps
 	@$(VENV)/bin/python $(HIL_DIR)/bench/bench_fdm.py
+
+#   make bench-hil   the whole HiL stack in lockstep: x real time at 100 Hz and 20 Hz, per-phase step cost
+.PHONY: bench-hil
+BENCH_TARGETS += bench-hil
+
+bench-hil: build
+	@$(ROSENV) $(VENV)/bin/python $(HIL_DIR)/bench/bench_hil.py

@@ -754,3 +754,25 @@ TEST(HaDecision, BoardIsServedEveryPeriod) {
 }
 
 }  // namespace
+
+// The HiL's Fig. 5.3 plots the safety controller's own output next to the HP's: the core reports
+// it every period, and it is what the HA flies once it takes over. (While the HP flies it tracks
+// the applied surfaces wherever its back-calculated integrators can, for a bumpless takeover.)
+TEST(HaDecision, SafetyControllerCommandIsReportedWhileTheHpFliesAndFlownAfterACrash) {
+  Timeline t;
+  t.Cruise();
+  t.ReachHp();
+  const HaOutputs& flying = t.StepWithGood(2.0f, -1.0f, 0.5f, 0.45f);
+  ASSERT_EQ(HA_CONTROLLER_HP, flying.controller);
+  EXPECT_TRUE(SurfacesFinite(flying.ha_command));
+  EXPECT_TRUE(SurfacesInside(t.cfg, flying.ha_command));
+  for (int k = 0; k < 200 && t.controller() == HA_CONTROLLER_HP; ++k) {
+    t.Step();  // the HP is gone
+  }
+  ASSERT_EQ(HA_CONTROLLER_HA, t.controller());
+  for (int k = 0; k < 300; ++k) {
+    t.Step();  // past the bumpless slew
+  }
+  EXPECT_FLOAT_EQ(t.out().ha_command.aileron_deg, t.out().surfaces.aileron_deg);
+  EXPECT_FLOAT_EQ(t.out().ha_command.elevator_deg, t.out().surfaces.elevator_deg);
+}

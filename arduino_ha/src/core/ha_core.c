@@ -322,6 +322,7 @@ void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *
   core->have_step = 1u;
   core->last_step_us = now_us;
   fill_outputs(core, &view, in, reasons, sx_max, su_max, out);
+  out->ha_command = ha_cmd;
 }
 
 void ha_inputs_put_hp_command(HaInputs *in, const HaHpCommand *cmd, uint32_t now_us) {

@@ -85,6 +85,9 @@ typedef struct {
 
 typedef struct {
   HaSurfaces surfaces; /* what goes to the servos: always finite and inside S_u */
+  /* The safety controller's own command this period, whoever flies (before any rate limit):
+   * what the HA would fly if it took over now. Reported, never driven from here. */
+  HaSurfaces ha_command;
   uint8_t controller;  /* HA_CONTROLLER_* */
   uint32_t reasons;    /* HA_REASON_* failing this period */
   uint32_t reasons_at_switch;

@@ -1,12 +1,35 @@
 #include "controller_node.h"
 
 #include <XmlRpcValue.h>
+#include <ros/callback_queue.h>
 
+#include <cmath>
+#include <functional>
 #include <stdexcept>
+#include <utility>
 
 #include "command_builder.h"
 
 namespace controller {
+
+namespace {
+// A function run from the node's callback queue, behind whatever is queued already.
+class QueuedCall : public ros::CallbackInterface {
+ public:
+  explicit QueuedCall(std::function<void()> fn) : fn_(std::move(fn)) {}
+  CallResult call() override {
+    fn_();
+    return Success;
+  }
+
+ private:
+  std::function<void()> fn_;
+};
+
+void queue_call(std::function<void()> fn) {
+  ros::getGlobalCallbackQueue()->addCallback(boost::make_shared<QueuedCall>(std::move(fn)));
+}
+}  // namespace
 
 bool load_params(const ros::NodeHandle &pnh, ControllerParams *params, ParamValues *values,
                  std::string *frame_id, std::string *error) {
@@ -38,6 +61,15 @@ ControllerNode::ControllerNode(ros::NodeHandle &nh, ros::NodeHandle &pnh, const 
   if (gnc_initialize(&params_.gnc) != 0) {
     throw std::runtime_error("the GNC refused its parameters");
   }
+  // Home is latched once per flight: a controller started again (HP restart) takes the home the
+  // first one latched, so /way keeps its origin, instead of latching where the aircraft is now.
+  double home[3];
+  if (pnh_.getParam("home/lat_deg", home[0]) && pnh_.getParam("home/lon_deg", home[1]) &&
+      pnh_.getParam("home/alt_m", home[2])) {
+    board_.set_home(home[0], home[1], home[2]);
+    home_saved_ = true;
+    ROS_INFO("home taken over from the parameter server: %.7f %.7f %.1f m", home[0], home[1], home[2]);
+  }
   // Queue of 1: only the newest sample matters to a controller stepping on its own clock.
   subs_.push_back(nh.subscribe<drone_ros::pwm>("/pwm", 1, [this](const drone_ros::pwm::ConstPtr &m) {
     board_.on_pwm(*m, now_s());
@@ -53,7 +85,10 @@ ControllerNode::ControllerNode(ros::NodeHandle &nh, ros::NodeHandle &pnh, const 
     }
   }));
   subs_.push_back(nh.subscribe<sensor_msgs::NavSatFix>(
-      "/gps_position", 1, [this](const sensor_msgs::NavSatFix::ConstPtr &m) { board_.on_gps_position(*m, now_s()); }));
+      "/gps_position", 1, [this](const sensor_msgs::NavSatFix::ConstPtr &m) {
+        board_.on_gps_position(*m, now_s());
+        save_home();
+      }));
   subs_.push_back(nh.subscribe<geometry_msgs::Twist>(
       "/gps_velocity", 1, [this](const geometry_msgs::Twist::ConstPtr &m) { board_.on_gps_velocity(*m, now_s()); }));
   subs_.push_back(nh.subscribe<sensor_msgs::Imu>(
@@ -73,8 +108,14 @@ ControllerNode::ControllerNode(ros::NodeHandle &nh, ros::NodeHandle &pnh, const 
 
   diag_.setHardwareID(std::string("controller_") + GNC_AIRCRAFT_NAME);
   diag_.add("performance controller", this, &ControllerNode::diagnose);
-  timer_ = nh.createSteadyTimer(ros::WallDuration(params_.gnc.dt_s), &ControllerNode::on_timer, this);
-  ROS_INFO("controller_%s stepping at %.1f Hz", GNC_AIRCRAFT_NAME, params_.rate_hz);
+  pnh_.param("lockstep", lockstep_, false);
+  if (lockstep_) {
+    clock_sub_ = nh.subscribe("/clock", 100, &ControllerNode::on_clock, this, ros::TransportHints().tcpNoDelay());
+  } else {
+    timer_ = nh.createSteadyTimer(ros::WallDuration(params_.gnc.dt_s), &ControllerNode::on_timer, this);
+  }
+  ROS_INFO("controller_%s stepping at %.1f Hz%s", GNC_AIRCRAFT_NAME, params_.rate_hz,
+           lockstep_ ? " on /clock (lockstep)" : "");
 }
 
 ControllerNode::~ControllerNode() {
@@ -145,17 +186,64 @@ void ControllerNode::on_decision(const drone_ros::DecisionStatus::ConstPtr &msg)
   hp_in_control_ = msg->controller == drone_ros::DecisionStatus::CONTROLLER_HP;
 }
 
+void ControllerNode::save_home() {
+  if (home_saved_ || !board_.home_valid()) {
+    return;
+  }
+  home_saved_ = true;
+  const SensorBoard::Home h = board_.home();
+  pnh_.setParam("home/lat_deg", h.lat_deg);
+  pnh_.setParam("home/lon_deg", h.lon_deg);
+  pnh_.setParam("home/alt_m", h.alt_m);
+}
+
 void ControllerNode::on_timer(const ros::SteadyTimerEvent &event) {
-  const double now = now_s();
-  ++steps_;
   // A step that starts more than one period after it was due means we fell behind.
   if ((event.current_real - event.current_expected).toSec() > params_.gnc.dt_s) {
     ++late_steps_;
   }
+  step(now_s(), ros::Time::now());
+}
+
+// Lockstep: the simulator publishes /clock once per simulation step and waits for this node's
+// /servo_op before it goes on. The step runs from the back of the callback queue, twice removed,
+// so that the sensor messages the simulator saw delivered before it advanced the clock (queued
+// here in the same or an earlier read of the sockets) are applied first.
+void ControllerNode::on_clock(const rosgraph_msgs::Clock::ConstPtr &msg) {
+  const int64_t dt_ns = static_cast<int64_t>(std::llround(params_.gnc.dt_s * 1e9));
+  const int64_t index = static_cast<int64_t>(msg->clock.toNSec()) / dt_ns;
+  if (index <= lockstep_index_) {
+    return;
+  }
+  if (lockstep_index_ >= 0 && index > lockstep_index_ + 1) {
+    ++late_steps_;  // the clock skipped a period of ours
+  }
+  if (lockstep_index_ < 0) {
+    // Whatever arrived before the first clock arrived at it, in whichever order it came.
+    lockstep_step_s_ = msg->clock.toSec();
+    board_.restamp_arrivals(lockstep_step_s_);
+  }
+  lockstep_index_ = index;
+  const ros::Time stamp = msg->clock;
+  queue_call([this, stamp]() {
+    queue_call([this, stamp]() {
+      step(stamp.toSec(), stamp);
+      lockstep_step_s_ = stamp.toSec();
+    });
+  });
+}
+
+void ControllerNode::step(double now, const ros::Time &stamp) {
+  ++steps_;
   board_.fill_input(&in_);
-  gnc_step(&in_, &out_);
+  // The estimator starts from its first input: a controller (re)started in flight that stepped
+  // before the pitot's first /pwm would take the whole ground speed for wind. Until every
+  // sensor has been heard from, the command goes out invalid (estimator not converged, links
+  // unhealthy) and the GNC waits.
+  if (board_.all_seen()) {
+    gnc_step(&in_, &out_);
+  }
   unhealthy_mask_ = board_.unhealthy_links(now);
-  const ros::Time stamp = ros::Time::now();
   const drone_ros::ServoCommand cmd = build_servo_command(seq_++, stamp, out_, unhealthy_mask_ == 0,
                                                           params_.gnc.throttle_min);
   if (!cmd.estimator_converged || !cmd.sensor_links_healthy) {

@@ -1,6 +1,8 @@
 // controller_<aircraft>: steps the aircraft's GNC on a monotonic timer and publishes the HP
 // command (/servo_op), the ground telemetry (/data) and the HiL record (/to_hil). Thin: the
 // sensor bookkeeping is SensorBoard, the message building command_builder, the flying the GNC.
+// With ~lockstep (a HiL flight whose simulator owns time) it steps instead each time /clock
+// crosses a multiple of dt, and measures sensor ages on that clock.
 #ifndef CONTROLLER_NODE_H
 #define CONTROLLER_NODE_H
 
@@ -8,6 +10,7 @@
 #include <drone_ros/DecisionStatus.h>
 #include <drone_ros/SetTunable.h>
 #include <ros/ros.h>
+#include <rosgraph_msgs/Clock.h>
 #include <sensor_msgs/BatteryState.h>
 #include <sensor_msgs/FluidPressure.h>
 
@@ -31,8 +34,13 @@ class ControllerNode {
   ~ControllerNode();
 
  private:
-  static double now_s() { return ros::SteadyTime::now().toSec(); }
+  // Arrival times of sensor messages: the monotonic clock in flight; in lockstep the time of the
+  // last step, so that when a message arrived in wall time between two steps changes nothing.
+  double now_s() const { return lockstep_ ? lockstep_step_s_ : ros::SteadyTime::now().toSec(); }
   void on_timer(const ros::SteadyTimerEvent &event);
+  void on_clock(const rosgraph_msgs::Clock::ConstPtr &msg);
+  void step(double now, const ros::Time &stamp);
+  void save_home();
   void on_decision(const drone_ros::DecisionStatus::ConstPtr &msg);
   void restart_gnc();
   // ~set_tunable: one tunable changed while running (the ground station's PARAM_SET).
@@ -47,6 +55,11 @@ class ControllerNode {
   std::vector<ros::Subscriber> subs_;
   ros::Publisher servo_pub_, data_pub_, hil_pub_;
   ros::SteadyTimer timer_;
+  bool lockstep_ = false;
+  ros::Subscriber clock_sub_;
+  int64_t lockstep_index_ = -1;   // the last period stepped: floor(clock / dt)
+  double lockstep_step_s_ = 0.0;  // its clock time
+  bool home_saved_ = false;
   ros::ServiceServer set_tunable_srv_;
   diagnostic_updater::Updater diag_;
   GncInput in_{};

@@ -82,6 +82,33 @@ bool SensorBoard::on_ins(const drone_ros::ins &msg, double now_s) {
   return true;
 }
 
+bool SensorBoard::all_seen() const {
+  for (uint32_t i = 0; i < kLinkCount; ++i) {
+    if (!seen_[i]) {
+      return false;
+    }
+  }
+  return true;
+}
+
+void SensorBoard::restamp_arrivals(double now_s) {
+  for (uint32_t i = 0; i < kLinkCount; ++i) {
+    if (seen_[i]) {
+      arrival_s_[i] = now_s;
+    }
+  }
+}
+
+void SensorBoard::set_home(double lat_deg, double lon_deg, double alt_m) {
+  if (home_valid_ || !finite({lat_deg, lon_deg, alt_m})) {
+    return;
+  }
+  home_valid_ = true;
+  home_lat_deg_ = lat_deg;
+  home_lon_deg_ = lon_deg;
+  home_alt_m_ = alt_m;
+}
+
 bool SensorBoard::on_gps_position(const sensor_msgs::NavSatFix &msg, double now_s) {
   if (!finite({msg.latitude, msg.longitude, msg.altitude})) {
     return drop();

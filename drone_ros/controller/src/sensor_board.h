@@ -66,6 +66,16 @@ class SensorBoard {
   double pressure_pa() const { return pressure_pa_; }
   double voltage_v() const { return voltage_v_; }
   bool home_valid() const { return home_valid_; }
+  struct Home {
+    double lat_deg, lon_deg, alt_m;
+  };
+  Home home() const { return {home_lat_deg_, home_lon_deg_, home_alt_m_}; }
+  // Home latched by an earlier run of the node (HP restart); ignored once home is latched.
+  void set_home(double lat_deg, double lon_deg, double alt_m);
+  // Every sensor link has delivered at least one message since the node started.
+  bool all_seen() const;
+  // Every message seen so far counts as arrived at now_s (a lockstep start).
+  void restamp_arrivals(double now_s);
   bool home_cmd() const { return params_.home_cmd; }
   uint32_t dropped_messages() const { return dropped_; }
   uint32_t dropped_waypoint_plans() const { return dropped_plans_; }

@@ -1,0 +1,193 @@
+#!/usr/bin/env python3
+"""hp_supervisor: the HP side's end of the HA's reset line, in software.
+
+When the HA asks for an HP restart (a rising edge of DecisionStatus.restart_requested on
+/decision_status), this node ends the controller process and starts a new one. A respawning
+launch node alone is not enough: a hung controller never exits, so nothing would respawn it. The
+process is found through the ROS master (lookupNode, then the node's own getPid), asked to stop
+with SIGTERM, killed with SIGKILL after ~kill_grace_s, and started again after ~boot_delay_s of ROS
+time (0 in flight; a HiL flight sets how long a reboot of the HP takes in simulated time). The
+new process gets the same node name, so it finds the private parameters the launch file loaded;
+it is this node's child and is stopped with it.
+
+Parameters: ~node (the node to supervise, default /controller_DG808), ~package and ~type (its
+executable, default drone_ros controller_DG808), ~kill_grace_s (1.0), ~boot_delay_s (0.0).
+"""
+import os
+import signal
+import socket
+import subprocess
+import threading
+import time
+import xmlrpc.client
+from urllib.parse import urlparse
+
+import rosgraph
+import roslib.packages
+import rospy
+from drone_ros.msg import DecisionStatus
+
+
+class TimeoutTransport(xmlrpc.client.Transport):
+    """A hung node accepts the connection and never answers: ask with a deadline."""
+
+    def __init__(self, timeout_s):
+        super().__init__()
+        self.timeout_s = timeout_s
+
+    def make_connection(self, host):
+        conn = super().make_connection(host)
+        conn.timeout = self.timeout_s
+        return conn
+
+
+def node_uri(master, node):
+    try:
+        return master.lookupNode(node)
+    except (rosgraph.MasterError, socket.error, xmlrpc.client.Error):
+        return None
+
+
+def ask_pid(uri, timeout_s=0.5):
+    """The node's own answer to getPid, or None (gone: connection refused; hung: no answer)."""
+    try:
+        code, _, pid = xmlrpc.client.ServerProxy(uri, transport=TimeoutTransport(timeout_s)).getPid(
+            rospy.get_name())
+    except (socket.error, socket.timeout, xmlrpc.client.Error, OSError):
+        return None
+    return pid if code == 1 else None
+
+
+def local(uri):
+    host = urlparse(uri).hostname
+    return host in ("localhost", "127.0.0.1", socket.gethostname(), rosgraph.network.get_host_name())
+
+
+def alive(pid):
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    # A dead child of roslaunch is a zombie until roslaunch reaps it.
+    try:
+        with open("/proc/%d/stat" % pid) as f:
+            return f.read().rsplit(")", 1)[1].split()[0] != "Z"
+    except OSError:
+        return False
+
+
+class Supervisor:
+    def __init__(self):
+        self.node = rospy.resolve_name(rospy.get_param("~node", "/controller_DG808"))
+        self.package = rospy.get_param("~package", "drone_ros")
+        self.type = rospy.get_param("~type", "controller_DG808")
+        self.kill_grace_s = float(rospy.get_param("~kill_grace_s", 1.0))
+        self.boot_delay_s = float(rospy.get_param("~boot_delay_s", 0.0))
+        self.master = rosgraph.Master(rospy.get_name())
+        self.children = []
+        self.requested = False
+        self.busy = threading.Lock()
+        self.restarts = 0
+        self.known = (None, None)  # (uri, pid) of the node while it answered
+        self.learner = threading.Thread(target=self.learn_pids, daemon=True)
+        self.learner.start()
+        rospy.Subscriber("/decision_status", DecisionStatus, self.on_status, queue_size=10)
+        rospy.loginfo("hp_supervisor: restarts %s when the HA asks (boot delay %.1f s)",
+                      self.node, self.boot_delay_s)
+
+    def on_status(self, msg):
+        rising = msg.restart_requested and not self.requested
+        self.requested = msg.restart_requested
+        if not rising:
+            return
+        if not self.busy.acquire(blocking=False):
+            rospy.logwarn("hp_supervisor: restart requested while one is under way; ignored")
+            return
+        threading.Thread(target=self.restart, daemon=True).start()
+
+    def learn_pids(self):
+        """Remembers the node's PID while it answers: a hung node cannot be asked."""
+        while not rospy.is_shutdown():
+            uri = node_uri(self.master, self.node)
+            if uri is not None and uri != self.known[0] and local(uri):
+                pid = ask_pid(uri)
+                if pid is not None:
+                    self.known = (uri, pid)
+            time.sleep(0.2)
+
+    def find_pid(self):
+        uri = node_uri(self.master, self.node)
+        if uri is None:
+            return None
+        if not local(uri):
+            rospy.logwarn("hp_supervisor: %s runs on %s, not here: cannot restart it", self.node, uri)
+            return None
+        pid = ask_pid(uri)
+        if pid is None and self.known[0] == uri:
+            pid = self.known[1]  # it does not answer (hung): the PID it had when it did
+        return pid
+
+    def stop_running(self):
+        pid = self.find_pid()
+        if pid is None or not alive(pid):
+            rospy.logwarn("hp_supervisor: %s is not running (crashed)", self.node)
+            return
+        rospy.logwarn("hp_supervisor: stopping %s (pid %d)", self.node, pid)
+        os.kill(pid, signal.SIGTERM)
+        deadline = time.monotonic() + self.kill_grace_s
+        while time.monotonic() < deadline and alive(pid):
+            time.sleep(0.01)
+        if alive(pid):
+            rospy.logwarn("hp_supervisor: %s did not stop within %.1f s (hung): SIGKILL",
+                          self.node, self.kill_grace_s)
+            os.kill(pid, signal.SIGKILL)
+            while alive(pid):
+                time.sleep(0.01)
+
+    def start_new(self):
+        found = roslib.packages.find_node(self.package, self.type)
+        if not found:
+            rospy.logerr("hp_supervisor: no executable %s in %s", self.type, self.package)
+            return
+        ns, name = rosgraph.names.namespace(self.node), self.node.rstrip("/").rsplit("/", 1)[-1]
+        child = subprocess.Popen([found[0], "__name:=" + name, "__ns:=" + ns])
+        self.children.append(child)
+        self.restarts += 1
+        rospy.logwarn("hp_supervisor: started %s again (pid %d, restart %d)", self.node,
+                      child.pid, self.restarts)
+
+    def restart(self):
+        try:
+            self.stop_running()
+            if self.boot_delay_s > 0.0:
+                rospy.sleep(self.boot_delay_s)
+            if not rospy.is_shutdown():
+                self.start_new()
+        except rospy.ROSInterruptException:
+            pass
+        finally:
+            self.busy.release()
+
+    def shutdown(self):
+        for child in self.children:
+            if child.poll() is None:
+                child.terminate()
+        for child in self.children:
+            try:
+                child.wait(timeout=3.0)
+            except subprocess.TimeoutExpired:
+                child.kill()
+                child.wait()
+
+
+def main():
+    rospy.init_node("hp_supervisor")
+    supervisor = Supervisor()
+    rospy.on_shutdown(supervisor.shutdown)
+    rospy.spin()
+
+
+if __name__ == "__main__":
+    main()

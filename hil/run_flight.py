@@ -1,0 +1,218 @@
+#!/usr/bin/env python3
+"""Flies one HiL flight: the thesis's case study by default (32-waypoint mission uploaded through
+microhard_gs, HP crash by SIGKILL at t = 100 s, HA takeover, restart, hand-back).
+
+    hil/run_flight.py [--seed N] [--realtime] [--duration S] [--crash-at S] [--rate-hz HZ]
+                      [--controller-hz HZ] [--out DIR] [--no-bag]
+
+Each flight gets its own ROS master (a free port on loopback), its own ptys and control socket
+(a temporary folder) and its own output folder hil/out/<YYYY-MM-DD_HHMMSS>-<aircraft>-<seed>/
+with flight.bag (HIL_INTERFACES.md section 3), summary.json and the logs. A progress bar goes to
+stderr. Every process started here is stopped at the end, on Ctrl-C and on error. --realtime
+flies on the wall clock, with the ground station's telemetry on UDP 14550 for QGroundControl.
+Needs the workspace sourced (make run does it)."""
+import argparse
+import datetime
+import json
+import os
+import shutil
+import signal
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+BAG_TOPICS = ["/hil/truth", "/decision_status", "/servo_op", "/pwm", "/ins", "/data", "/to_hil",
+              "/way", "/rosout_agg", "/diagnostics"]
+
+
+def free_port(kind=socket.SOCK_STREAM):
+    with socket.socket(socket.AF_INET, kind) as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+class Processes:
+    """Everything this run started, each in its own process group, stopped in reverse order."""
+
+    def __init__(self, env, log_dir):
+        self.env, self.log_dir, self.procs = env, log_dir, []
+
+    def start(self, name, argv):
+        log = open(os.path.join(self.log_dir, name + ".log"), "w")
+        p = subprocess.Popen(argv, env=self.env, stdout=log, stderr=subprocess.STDOUT,
+                             start_new_session=True)
+        self.procs.append((name, p, log))
+        return p
+
+    def stop_all(self):
+        for name, p, log in reversed(self.procs):
+            if p.poll() is None:
+                try:
+                    os.killpg(p.pid, signal.SIGINT)  # roslaunch and rosbag close cleanly on SIGINT
+                except ProcessLookupError:
+                    pass
+                try:
+                    p.wait(timeout=20)
+                except subprocess.TimeoutExpired:
+                    os.killpg(p.pid, signal.SIGKILL)
+                    p.wait()
+            log.close()
+        self.procs = []
+
+
+def leftovers(master_uri):
+    """Processes that talk to this run's master (a controller hp_supervisor started after its own
+    end, say): ours, whatever group they ended up in."""
+    found = []
+    for pid in os.listdir("/proc"):
+        if not pid.isdigit() or int(pid) == os.getpid():
+            continue
+        try:
+            with open("/proc/%s/environ" % pid, "rb") as f:
+                env = f.read().split(b"\0")
+        except OSError:
+            continue
+        if ("ROS_MASTER_URI=" + master_uri).encode() in env:
+            found.append(int(pid))
+    return found
+
+
+def progress_bar(t_s, total_s, wall_s):
+    width = 40
+    frac = max(0.0, min(1.0, t_s / total_s)) if total_s > 0 else 0.0
+    fill = int(round(frac * width))
+    speed = t_s / wall_s if wall_s > 0 else 0.0
+    return "\r[%s%s] %6.1f / %.0f s simulated  %5.1fx real time " % ("#" * fill, "-" * (width - fill),
+                                                                   t_s, total_s, speed)
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--aircraft", default="DG808")
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--realtime", action="store_true")
+    ap.add_argument("--duration", type=float, default=240.0)
+    ap.add_argument("--crash-at", type=float, default=100.0, help="when the HP fails (negative: never)")
+    ap.add_argument("--fault", choices=("crash", "hang"), default="crash",
+                    help="crash: SIGKILL of controller_DG808; hang: SIGSTOP (it stays up, silent)")
+    ap.add_argument("--rate-hz", type=float, default=100.0, help="the HA's control rate")
+    ap.add_argument("--controller-hz", type=float, default=None, help="default: the HA's rate")
+    ap.add_argument("--out", default=os.path.join(HERE, "out"), help="parent of the flight folder")
+    ap.add_argument("--folder", default=None, help="exact output folder (default: dated name)")
+    ap.add_argument("--no-bag", action="store_true")
+    ap.add_argument("--quiet", action="store_true", help="no progress bar")
+    args = ap.parse_args(argv)
+
+    stamp = datetime.datetime.utcnow().strftime("%Y-%m-%d_%H%M%S")
+    out = args.folder or os.path.join(args.out, "%s-%s-%d" % (stamp, args.aircraft, args.seed))
+    os.makedirs(out, exist_ok=True)
+    run_dir = tempfile.mkdtemp(prefix="hil-")  # short: the control socket path must fit sun_path
+    port = free_port()
+    master_uri = "http://127.0.0.1:%d" % port
+    env = dict(os.environ, ROS_MASTER_URI=master_uri, ROS_HOSTNAME="127.0.0.1", ROS_IP="127.0.0.1",
+               ROS_HOME=os.path.join(out, "ros"), ROS_LOG_DIR=os.path.join(out, "ros", "log"),
+               PYTHONUNBUFFERED="1")
+    env.pop("ROS_NAMESPACE", None)
+    procs = Processes(env, out)
+    controller_hz = args.controller_hz or args.rate_hz
+    gs_bind = free_port(socket.SOCK_DGRAM)
+    gs_remote = 14550 if args.realtime else free_port(socket.SOCK_DGRAM)
+    stop = {"now": False}
+
+    def on_signal(sig, _frame):
+        stop["now"] = True
+    signal.signal(signal.SIGINT, on_signal)
+    signal.signal(signal.SIGTERM, on_signal)
+    code = 1
+    try:
+        procs.start("roscore", ["roscore", "-p", str(port)])
+        deadline = time.monotonic() + 60.0
+        while not stop["now"]:
+            r = subprocess.run(["rosparam", "get", "/run_id"], env=env, stdout=subprocess.DEVNULL,
+                               stderr=subprocess.DEVNULL)
+            if r.returncode == 0:
+                break
+            if time.monotonic() > deadline:
+                raise RuntimeError("roscore did not come up on port %d" % port)
+            time.sleep(0.2)
+        if not args.no_bag:
+            procs.start("rosbag", ["rosbag", "record", "-O", os.path.join(out, "flight.bag"),
+                                   "__name:=flight_recorder"] + BAG_TOPICS)
+        launch = ["roslaunch", "--wait", "drone_ros", "%s_hil.launch" % args.aircraft,
+                  "run_dir:=" + run_dir, "out_dir:=" + out, "seed:=%d" % args.seed,
+                  "mode:=" + ("realtime" if args.realtime else "lockstep"),
+                  "rate_hz:=%g" % args.rate_hz, "dt:=%g" % (1.0 / controller_hz),
+                  "duration_s:=%g" % args.duration, "crash_at_s:=%g" % args.crash_at, "fault:=" + args.fault,
+                  "gs_udp_bind_port:=%d" % gs_bind, "gs_udp_remote_port:=%d" % gs_remote,
+                  "wait_for_recorder:=%s" % ("false" if args.no_bag else "true")]
+        launcher = procs.start("launch", launch)
+        t0 = time.monotonic()
+        done = os.path.join(out, "done")
+        while not stop["now"]:
+            if os.path.exists(done):
+                break
+            if launcher.poll() is not None:
+                raise RuntimeError("the launch ended before the flight did: see %s/launch.log" % out)
+            if not args.quiet:
+                try:
+                    with open(os.path.join(out, "progress")) as f:
+                        t_s, total = (float(v) for v in f.read().split())
+                    sys.stderr.write(progress_bar(t_s, total, time.monotonic() - t0))
+                    sys.stderr.flush()
+                except (OSError, ValueError):
+                    pass
+            time.sleep(0.25)
+        if not args.quiet:
+            sys.stderr.write("\n")
+        if stop["now"]:
+            print("run_flight: interrupted; stopping everything", file=sys.stderr)
+            return 130
+        with open(done) as f:
+            code = int(f.read().strip() or 1)
+    except RuntimeError as e:
+        print("run_flight: %s" % e, file=sys.stderr)
+        code = 1
+    finally:
+        procs.stop_all()
+        for pid in leftovers(master_uri):
+            try:
+                os.kill(pid, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
+        shutil.rmtree(run_dir, ignore_errors=True)
+    summary = os.path.join(out, "summary.json")
+    if code == 0 and os.path.exists(summary):
+        with open(summary) as f:
+            s = json.load(f)
+        report(s, out, bag=not args.no_bag)
+    elif os.path.exists(os.path.join(out, "error.txt")):
+        with open(os.path.join(out, "error.txt")) as f:
+            print("run_flight: the simulator stopped: %s" % f.read().strip(), file=sys.stderr)
+    return code
+
+
+def report(s, out, bag=True):
+    tk = s.get("takeover") or {}
+    print("flight: %s seed %d, %.0f s simulated in %.0f s (%.1fx real time)" % (
+        s["aircraft"], s["seed"], s["simulated_s"], s["wall_s"], s["x_real_time"] or 0.0))
+    for seg in s["who_flew"]:
+        print("  %7.2f .. %7.2f s  %-10s %s" % (seg["from_s"], seg["to_s"], seg["controller"],
+                                              " ".join(seg.get("why", [])) or ""))
+    if tk:
+        print("takeover: crash at %.2f s, HA at %s s (%s s after the deadline miss), HP back at %s s" % (
+            tk["crash_injected_s"], tk["takeover_s"], tk["latency_after_deadline_miss_s"], tk["hand_back_s"]))
+    m = s["margins"]
+    print("margins: min height %.0f ft, ceiling margin %.0f ft, stall margin %.1f ft/s" % (
+        m["min_height_above_home_ft"] or 0, m["min_ceiling_margin_ft"] or 0, m["min_stall_margin_ftps"] or 0))
+    print("servo commands outside S_u: %d of %d steps; state while the HA flies: max S_x row %s" % (
+        s["unsafe_servo_commands"]["outside_S_u"], s["unsafe_servo_commands"]["steps"],
+        s["state_while_ha_flies"]["max_S_x_row"]))
+    print("mission: %d of %d waypoints reached" % (s["mission"]["reached"], s["mission"]["waypoints"]))
+    print("output: %s (%ssummary.json; the report goes to %s/report/)" % (out, "flight.bag, " if bag else "", out))
+
+
+if __name__ == "__main__":
+    sys.exit(main())

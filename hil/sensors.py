@@ -1,0 +1,260 @@
+"""The aircraft's sensors at their real interfaces, from the flight-dynamics truth.
+
+- VN-200 port 2 (the HP's `vn200` node): a pty that answers the node's ASCII configuration as the
+  sensor does and streams the binary output the node writes (Binary Output 2, register 76),
+  with vn200_driver/scripts/vn200_emulation.py, the fake sensor's own packet and register code.
+- VN-200 port 1 (the HA): Binary Output 1 as configured once on the bench and saved to the
+  sensor's flash (arduino_ha/README.md, "VN-200"): Common YPR, angular rate, position, velocity
+  and INS status, and GPS fix, at 100 Hz, 115200 baud.
+- The HA's AMS5812 airspeed sensor, battery and RC receiver, as the Due's board layer reads them.
+
+Noise is seeded per stream (the same seed gives the same bytes). The VN-200 figures are the
+datasheet's headline accuracies (attitude 0.03 deg pitch/roll and 0.2 deg heading RMS, position
+1.0 m horizontal / 1.5 m vertical RMS, velocity 0.05 m/s RMS, gyro 0.0035 deg/s/sqrt(Hz), accel
+0.14 mg/sqrt(Hz)); the INS's errors are slow (a Kalman filter's output), so attitude, position
+and velocity errors are first-order Gauss-Markov processes with those RMS values, rates and
+accelerations white noise over the output bandwidth. Latency: a packet's solution is the truth at
+its sensor time minus the time its bytes take on the wire.
+"""
+import math
+import os
+import random
+import sys
+import tty
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "vn200_driver",
+                                "scripts"))
+from vn200_emulation import (INS_STATUS_TRACKING_FIX, NS_PER_WEEK, Registers, Solution,  # noqa: E402
+                             binary_packet, packet_length)
+
+FT_PER_M = 3.280839895
+G_MPS2 = 9.80665
+WGS84_A = 6378137.0
+WGS84_E2 = 6.69437999014e-3
+GPS_EPOCH_OFFSET_NS = 2390 * NS_PER_WEEK  # a GPS week of 2025; only its consistency matters
+SENSOR_STARTUP_S = 5.0  # the VN-200 was powered this long before simulation time 0
+
+# Binary Output 1, the HA's (arduino_ha/README.md): mode 1 (port 1), divisor 8 (100 Hz),
+# groups Common | GPS, Common YPR | angular rate | position | velocity | INS status, GPS fix.
+HA_OUTPUT_1 = (1, 8, 0x09, [0x0008 | 0x0020 | 0x0040 | 0x0080 | 0x1000, 0, 0, 0x0010, 0, 0])
+HA_VN200_BAUD = 115200  # DUE_VN200_BAUD
+HP_VN200_BAUD = 921600  # the flight launch's vn200_baud
+
+
+def radii_m(lat_deg):
+    """Meridian and prime-vertical radii of curvature of WGS84 at lat_deg."""
+    s = math.sin(math.radians(lat_deg))
+    w = math.sqrt(1.0 - WGS84_E2 * s * s)
+    return WGS84_A * (1.0 - WGS84_E2) / (w ** 3), WGS84_A / w
+
+
+class GaussMarkov:
+    """First-order Gauss-Markov error with stationary RMS sigma and time constant tau_s."""
+
+    def __init__(self, rng, sigma, tau_s):
+        self.rng, self.sigma, self.tau_s = rng, sigma, tau_s
+        self.x = rng.gauss(0.0, sigma)
+
+    def step(self, dt_s):
+        a = math.exp(-dt_s / self.tau_s)
+        self.x = a * self.x + self.sigma * math.sqrt(1.0 - a * a) * self.rng.gauss(0.0, 1.0)
+        return self.x
+
+
+class Vn200Errors:
+    """The errors of one VN-200 output stream (each port's stream draws its own)."""
+
+    def __init__(self, seed, name, rate_hz):
+        self.rng = random.Random("%s/%s" % (seed, name))
+        r = self.rng
+        self.att = [GaussMarkov(r, 0.2, 20.0), GaussMarkov(r, 0.03, 20.0), GaussMarkov(r, 0.03, 20.0)]
+        self.pos = [GaussMarkov(r, 1.0 / math.sqrt(2.0), 60.0), GaussMarkov(r, 1.0 / math.sqrt(2.0), 60.0),
+                    GaussMarkov(r, 1.5, 60.0)]
+        self.vel = [GaussMarkov(r, 0.05, 5.0) for _ in range(3)]
+        bw = math.sqrt(rate_hz / 2.0)
+        self.gyro_sigma = math.radians(0.0035) * bw
+        self.accel_sigma = 0.14e-3 * G_MPS2 * bw
+
+    def solution(self, truth, sensor_t_s, dt_s):
+        r = self.rng
+        att = [e.step(dt_s) for e in self.att]
+        pos = [e.step(dt_s) for e in self.pos]
+        vel = [e.step(dt_s) for e in self.vel]
+        rm, rn = radii_m(truth.lat_deg)
+        lat = truth.lat_deg + math.degrees(pos[0] / rm)
+        lon = truth.lon_deg + math.degrees(pos[1] / (rn * math.cos(math.radians(truth.lat_deg))))
+        ypr = ((truth.heading_deg + att[0]) % 360.0, truth.pitch_deg + att[1], truth.roll_deg + att[2])
+        if ypr[0] > 180.0:
+            ypr = (ypr[0] - 360.0, ypr[1], ypr[2])  # the VN-200 reports yaw in -180..180
+        rates = (truth.p_rad_s + r.gauss(0.0, self.gyro_sigma), truth.q_rad_s + r.gauss(0.0, self.gyro_sigma),
+                 truth.r_rad_s + r.gauss(0.0, self.gyro_sigma))
+        acc = tuple(a + r.gauss(0.0, self.accel_sigma) for a in truth.accel_body_mps2)
+        startup_ns = int(round((sensor_t_s + SENSOR_STARTUP_S) * 1e9))
+        return Solution(startup_ns=startup_ns, gps_ns=GPS_EPOCH_OFFSET_NS + startup_ns,
+                        ypr_deg=ypr, rate_radps=rates, lla=(lat, lon, truth.alt_msl_m + pos[2]),
+                        vel_ned_mps=(truth.vn_mps + vel[0], truth.ve_mps + vel[1], truth.vd_mps + vel[2]),
+                        accel_mps2=acc, mag_gauss=tuple(truth.mag_body_gauss),
+                        temp_c=truth.temperature_c, pressure_kpa=truth.pressure_pa / 1000.0,
+                        ins_status=INS_STATUS_TRACKING_FIX, num_sats=10, gps_fix=3)
+
+
+class Pty:
+    """A pseudo-terminal whose slave is published under link (a symlink), like a USB serial
+    device; the simulator holds the master end."""
+
+    def __init__(self, link):
+        self.link = link
+        self.master, self.slave = os.openpty()
+        tty.setraw(self.slave)
+        tty.setraw(self.master)
+        os.set_blocking(self.master, False)
+        tmp = link + ".tmp"
+        if os.path.lexists(tmp):
+            os.unlink(tmp)
+        os.symlink(os.ttyname(self.slave), tmp)
+        os.replace(tmp, link)
+        self.written = 0
+
+    def write(self, data):
+        """Writes all of data (the reader drains the pty every step; a full buffer is waited out)."""
+        view = memoryview(data)
+        while view:
+            try:
+                n = os.write(self.master, view)
+            except BlockingIOError:
+                n = 0
+            if n == 0:
+                import select
+                select.select([], [self.master], [], 0.05)
+                continue
+            view = view[n:]
+            self.written += n
+
+    def read(self):
+        try:
+            return os.read(self.master, 4096)
+        except (BlockingIOError, OSError):
+            return b""
+
+    def close(self):
+        for fd in (self.master, self.slave):
+            try:
+                os.close(fd)
+            except OSError:
+                pass
+        if os.path.lexists(self.link):
+            os.unlink(self.link)
+
+
+class Vn200Port:
+    """One of the VN-200's serial ports as a pty: answers ASCII commands (port 2, the HP's) and
+    streams the binary output routed to it at its rate, on simulation time."""
+
+    def __init__(self, link, port, seed, baud, fixed_output=None):
+        self.pty = Pty(link)
+        self.registers = Registers(port, baud=0, ha_owns_output_1=True)
+        if fixed_output is not None:
+            self.registers.outputs[75] = fixed_output
+            self.registers.divisor, self.registers.groups, self.registers.masks = fixed_output[1:]
+            self.registers.ascii_async = False
+        self.baud = baud
+        self.seed = seed
+        self.errors = None
+        self.inbuf = b""
+        self.next_index = None  # index of the next packet: sensor time = index * period
+        self.packets = 0
+        self.log = []
+        self.on_written = None  # on_written(index of the first packet, count) after each write
+
+    def service_commands(self):
+        """Answers whatever ASCII commands the driver wrote (any time, also while time stands)."""
+        data = self.pty.read()
+        if not data:
+            return
+        self.inbuf += data
+        while b"\n" in self.inbuf:
+            raw, self.inbuf = self.inbuf.split(b"\n", 1)
+            line = raw.decode(errors="replace").strip()
+            if line.startswith("$"):
+                reply, event = self.registers.handle(line)
+                self.pty.write(reply)
+                if event is not None and event[0] == "output":
+                    self.log.append(event[2])
+                    self.errors = None  # a new stream: errors drawn afresh for it
+
+    def configured(self):
+        divisor, groups, _ = self.registers.stream()
+        return bool(divisor and groups)
+
+    def rate_hz(self):
+        return 800.0 / self.registers.stream()[0]
+
+    def latency_s(self):
+        divisor, groups, masks = self.registers.stream()
+        return packet_length(groups, masks) * 10.0 / self.baud
+
+    def emit_until(self, t_s, truth_at):
+        """Writes the packets whose sensor time is in (last, t_s]; truth_at(t) gives the truth the
+        sensor had at time t. Returns the number of packets written."""
+        if not self.configured():
+            return 0
+        divisor, groups, masks = self.registers.stream()
+        rate = 800.0 / divisor
+        if self.errors is None:
+            self.errors = Vn200Errors(self.seed, "port%d/%d/%d" % (self.registers.port, divisor, groups), rate)
+            self.next_index = int(math.floor(t_s * rate + 1e-9))
+        out = bytearray()
+        n = 0
+        lat = self.latency_s()
+        first = self.packets
+        while self.next_index / rate <= t_s + 1e-9:
+            ts = self.next_index / rate
+            sol = self.errors.solution(truth_at(ts - lat), ts, 1.0 / rate)
+            out += binary_packet(groups, masks, sol)
+            self.next_index += 1
+            n += 1
+        if out:
+            self.pty.write(bytes(out))
+            self.packets += n
+            if self.on_written is not None:
+                self.on_written(first, n)
+        return n
+
+    def close(self):
+        self.pty.close()
+
+
+class Ams5812:
+    """The HA's differential-pressure airspeed sensor (AMS 5812-0003-D, 0..2068.43 Pa) as the
+    Due's board layer reads it: counts with an offset and noise, then the datasheet's transfer
+    function and v = sqrt(2 dp / rho0) (arduino_ha/src/board_due/ams5812.c)."""
+
+    P_MAX_PA = 2068.43
+    COUNTS_MIN, COUNTS_MAX = 3277, 29491
+    RHO0 = 1.225
+
+    def __init__(self, seed):
+        self.rng = random.Random("%s/ams5812" % seed)
+        self.offset_pa = self.rng.gauss(0.0, 2.0)
+        self.noise_pa = 0.5
+
+    def read_ftps(self, airspeed_cal_mps):
+        dp = 0.5 * self.RHO0 * airspeed_cal_mps * airspeed_cal_mps + self.offset_pa + self.rng.gauss(0.0, self.noise_pa)
+        counts = int(round(self.COUNTS_MIN + dp / self.P_MAX_PA * (self.COUNTS_MAX - self.COUNTS_MIN)))
+        counts = max(0, min(32767, counts))
+        dp_read = (counts - self.COUNTS_MIN) / float(self.COUNTS_MAX - self.COUNTS_MIN) * self.P_MAX_PA
+        if not dp_read > 0.0:
+            return 0.0
+        return math.sqrt(2.0 * dp_read / self.RHO0) * FT_PER_M
+
+
+class Battery:
+    """A 3S LiPo through the Due's 47k/10k divider and 12-bit ADC: slowly discharging."""
+
+    def __init__(self, seed):
+        self.rng = random.Random("%s/battery" % seed)
+
+    def read_v(self, t_s, throttle):
+        v = 12.6 - 0.002 * t_s - 0.4 * throttle + self.rng.gauss(0.0, 0.01)
+        counts = max(0, min(4095, int(round(v / 5.7 / 3.3 * 4095.0))))
+        return counts * 3.3 / 4095.0 * 5.7

@@ -1,0 +1,640 @@
+"""The HiL simulator node: the physical world around the real HP nodes and the HA in the loop.
+
+It steps the flight dynamics (hil.fdm), writes the VN-200's two serial ports (hil.sensors), feeds
+the HA its clock and board inputs over the control channel (hil.ha_channel), applies the servo
+outputs the HA drives, publishes the truth on /hil/truth, flies the scenario (mission upload as a
+ground station, HP crash) and writes summary.json.
+
+Lockstep (the default): the simulator owns time. Each step of the control period it
+ 1. writes the VN-200 packets due by then to both ports,
+ 2. waits until the `vn200` node has published them and the HA's /decision_status of the
+    previous step has gone out (so every HP node has this step's inputs),
+ 3. publishes /clock,
+ 4. on the controller's periods waits for its /servo_op (bounded: a dead or hung HP shows as the
+    wait running out, after which it is not waited for until it is back),
+ 5. steps the HA, which first takes that command from the real `arduino` node over its link,
+ 6. applies the servo outputs and advances the flight dynamics by one period.
+Nothing advances while a participant has not answered, so the same seed gives the same flight:
+the logged truth is identical bit for bit. When the HA asks for an HP restart, time stands until
+hp_supervisor has started the controller again and it is connected (so its return does not
+depend on how fast the machine is; in simulated time the restart takes no time).
+"""
+import json
+import math
+import os
+import signal
+import socket
+import sys
+import threading
+import time
+import warnings
+import xmlrpc.client
+from collections import deque
+
+import rosgraph
+import rospy
+import yaml
+from drone_ros.msg import DecisionStatus, HilTruth, ServoCommand, hil_data, way
+from rosgraph_msgs.msg import Clock
+from sensor_msgs.msg import Temperature
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+sys.path.insert(0, ROOT)
+from hil import ha_channel, mission, sensors, verdicts  # noqa: E402
+from hil.fdm import Fdm, FdmCrash, Surfaces, Wind  # noqa: E402
+
+FT_PER_M = sensors.FT_PER_M
+CONTROLLER_NAMES = {0: "HP", 1: "HA", 2: "RECOVERING", 3: "HA_LATCHED", 4: "MANUAL"}
+# What the controller subscribes to (drone_ros/controller/README.md): connected before a step.
+CONTROLLER_INPUTS = ["/clock", "/ins", "/attitude", "/gps_position", "/gps_velocity",
+                     "/imu_PQR_acceleration", "/pwm", "/decision_status", "/way"]
+
+
+class Waiter:
+    """Counters fed by subscriber threads, waited on by the stepping thread."""
+
+    def __init__(self):
+        self.cond = threading.Condition()
+        self.counts = {}
+        self.latest = {}
+
+    def hit(self, key, msg=None):
+        with self.cond:
+            self.counts[key] = self.counts.get(key, 0) + 1
+            self.latest[key] = msg
+            self.cond.notify_all()
+
+    def count(self, key):
+        with self.cond:
+            return self.counts.get(key, 0)
+
+    def wait_count(self, key, at_least, timeout_s):
+        deadline = time.monotonic() + timeout_s
+        with self.cond:
+            while self.counts.get(key, 0) < at_least:
+                left = deadline - time.monotonic()
+                if left <= 0.0 or rospy.is_shutdown():
+                    return False
+                self.cond.wait(min(left, 0.1))
+            return True
+
+
+class LatencyProbe:
+    """Real time: from a VN-200 packet written to the HP's port to the HA's servo output driven by
+    the first HP command computed after the `vn200` node delivered it. All times are this
+    machine's clocks: delivery and the command's stamp on the wall clock (in real time
+    ServoCommand.stamp is wall time), the packet's write and the servo output on the monotonic
+    clock, the one ha_sil's micros() counts (its reply's t_us is the period's time). Only while
+    the HP flies."""
+
+    def __init__(self):
+        self.lock = threading.Lock()
+        self.written = {}    # packet index -> wall time written
+        self.delivered = []  # wall time the vn200 node's last topic of packet i arrived here
+        self.commands = deque(maxlen=2000)  # (seq, stamp wall time, packet index used)
+        self.samples = []
+
+    def on_written(self, first, n):
+        now = time.monotonic()
+        with self.lock:
+            for i in range(first, first + n):
+                self.written[i] = now
+
+    def on_delivered(self):
+        with self.lock:
+            self.delivered.append(time.time())
+
+    def on_command(self, msg):
+        stamp = msg.stamp.to_sec()
+        with self.lock:
+            used = None
+            for i in range(len(self.delivered) - 1, -1, -1):
+                if self.delivered[i] <= stamp:
+                    used = i
+                    break
+            if used is not None:
+                self.commands.append((msg.seq, used))
+
+    def on_reply(self, reply, mono_now):
+        # ha_sil's period time: CLOCK_MONOTONIC in microseconds, wrapped at 2^32.
+        now_us = int(mono_now * 1e6)
+        now = (now_us - ((now_us - reply.t_us) % (1 << 32))) * 1e-6
+        with self.lock:
+            # Commands the HA has seen (or, after an HP restart restarted the sequence, never will).
+            while self.commands and (self.commands[0][0] <= reply.last_seq or
+                                     self.commands[0][0] > reply.last_seq + 100000):
+                seq, used = self.commands.popleft()
+                if (seq <= reply.last_seq and reply.controller == 0 and used in self.written and
+                        (not self.samples or self.samples[-1][0] != used)):
+                    self.samples.append((used, now - self.written[used]))
+
+    def summary(self):
+        lat = sorted(v for _, v in self.samples)
+        if not lat:
+            return None
+        q = lambda f: round(lat[min(len(lat) - 1, int(f * len(lat)))] * 1000.0, 2)  # noqa: E731
+        return {"packets": len(lat), "p50_ms": q(0.5), "p99_ms": q(0.99), "max_ms": round(lat[-1] * 1000.0, 2)}
+
+
+class PhaseTimer:
+    """Where each step's wall time goes."""
+
+    def __init__(self):
+        self.totals = {}
+        self.t = time.perf_counter()
+
+    def lap(self, name):
+        now = time.perf_counter()
+        self.totals[name] = self.totals.get(name, 0.0) + (now - self.t)
+        self.t = now
+
+
+def node_api(master, name):
+    try:
+        return master.lookupNode(name)
+    except Exception:  # noqa: BLE001 - not registered, master gone: either way no node
+        return None
+
+
+class TimeoutTransport(xmlrpc.client.Transport):
+    """A hung node accepts the connection and never answers: ask with a deadline."""
+
+    def __init__(self, timeout_s=0.5):
+        super().__init__()
+        self.timeout_s = timeout_s
+
+    def make_connection(self, host):
+        conn = super().make_connection(host)
+        conn.timeout = self.timeout_s
+        return conn
+
+
+def node_pid(master, name):
+    uri = node_api(master, name)
+    if uri is None:
+        return None
+    try:
+        code, _, pid = xmlrpc.client.ServerProxy(uri, transport=TimeoutTransport()).getPid("/hil_sim")
+        return pid if code == 1 else None
+    except (OSError, xmlrpc.client.Error):
+        return None
+
+
+def inbound_connected(master, name, topics):
+    """Whether node `name` has a live inbound connection on each of topics."""
+    uri = node_api(master, name)
+    if uri is None:
+        return False
+    try:
+        code, _, info = xmlrpc.client.ServerProxy(uri, transport=TimeoutTransport()).getBusInfo("/hil_sim")
+    except (OSError, xmlrpc.client.Error):
+        return False
+    if code != 1:
+        return False
+    got = {c[4] for c in info if c[2] == "i" and (len(c) < 6 or c[5])}
+    return all(t in got for t in topics)
+
+
+class Simulation:
+    def __init__(self):
+        p = lambda k, d: rospy.get_param("~" + k, d)  # noqa: E731
+        self.aircraft = p("aircraft", "DG808")
+        self.aircraft_dir = p("aircraft_dir", os.path.join(ROOT, "aircraft", self.aircraft))
+        self.seed = int(p("seed", 1))
+        self.mode = p("mode", "lockstep")
+        if self.mode not in ("lockstep", "realtime"):
+            raise RuntimeError("~mode must be lockstep or realtime, not %r" % self.mode)
+        self.realtime = self.mode == "realtime"
+        self.last_reply = None
+        self.rate_hz = float(p("rate_hz", 100.0))
+        self.controller_node = p("controller_node", "/controller_DG808")
+        self.controller_dt_s = float(rospy.get_param(self.controller_node + "/dt", 0.05))
+        self.reach_ft = float(rospy.get_param(self.controller_node + "/dist2b", 80.0))
+        self.duration_s = float(p("duration_s", 240.0))
+        self.crash_at_s = float(p("crash_at_s", 100.0))
+        self.fault = p("fault", "crash")  # crash: SIGKILL; hang: SIGSTOP (alive but silent)
+        if self.fault not in ("crash", "hang"):
+            raise RuntimeError("~fault must be crash or hang, not %r" % self.fault)
+        self.ground_s = float(p("ground_s", 2.0))
+        self.start_height_ft = float(p("start_height_ft", 200.0))
+        self.start_airspeed_ftps = float(p("start_airspeed_ftps", 60.0))
+        self.wait_s = float(p("wait_s", 10.0))
+        self.restart_wait_s = float(p("restart_wait_s", 60.0))
+        self.mission_file = p("mission", os.path.join(self.aircraft_dir, "missions", "case_study.waypoints"))
+        self.out_dir = p("out_dir", "/tmp")
+        self.wait_for_recorder = bool(p("wait_for_recorder", False))
+        self.gs_port = int(p("gs_udp_port", 14555))
+        self.wind = Wind(float(p("wind_from_deg", 0.0)), float(p("wind_mps", 0.0)), p("turbulence", "none"))
+        self.period_us = int(round(1e6 / self.rate_hz))
+        self.controller_period_us = int(round(self.controller_dt_s * 1e6))
+        with open(os.path.join(self.aircraft_dir, "limits.yaml")) as f:
+            self.limits = yaml.safe_load(f)
+        self.regions = verdicts.Regions(self.limits)
+        self.plan = mission.read_wpl(self.mission_file)
+
+        self.master = rosgraph.Master("/hil_sim")
+        self.waiter = Waiter()
+        # queue_size None: published in this thread before publish() returns, which is what
+        # makes "published" mean "on its way to every subscriber" in the stepping order.
+        warnings.filterwarnings("ignore", message="The publisher should be created with an explicit keyword")
+        self.clock_pub = rospy.Publisher("/clock", Clock, queue_size=None)
+        self.truth_pub = rospy.Publisher("/hil/truth", HilTruth, queue_size=None)
+        self.latency = LatencyProbe() if self.realtime else None
+        rospy.Subscriber("/vn200/temperature", Temperature, self.on_vn_delivered, queue_size=1000, tcp_nodelay=True)
+        rospy.Subscriber("/decision_status", DecisionStatus, lambda m: self.waiter.hit("status", m), queue_size=1000, tcp_nodelay=True)
+        rospy.Subscriber("/servo_op", ServoCommand, self.on_servo_op, queue_size=1000, tcp_nodelay=True)
+        rospy.Subscriber("/way", way, lambda m: self.waiter.hit("way", m), queue_size=10)
+        rospy.Subscriber("/to_hil", hil_data, self.on_to_hil, queue_size=1000)
+        self.waypoint_log = []  # (t_s, waypoint_index) on change
+        self.sim_t_s = 0.0
+
+        ports = {k: p(k, "") for k in ("hp_vn200_port", "ha_vn200_port", "ha_channel")}
+        for k, v in ports.items():
+            if not v:
+                raise RuntimeError("~%s is required" % k)
+            os.makedirs(os.path.dirname(v), exist_ok=True)
+        os.makedirs(self.out_dir, exist_ok=True)
+        self.hp_vn = sensors.Vn200Port(ports["hp_vn200_port"], 2, self.seed, sensors.HP_VN200_BAUD)
+        if self.latency is not None:
+            self.hp_vn.on_written = self.latency.on_written
+        self.ha_vn = sensors.Vn200Port(ports["ha_vn200_port"], 1, self.seed, sensors.HA_VN200_BAUD,
+                                       fixed_output=sensors.HA_OUTPUT_1)
+        self.chan = ha_channel.HaChannel(ports["ha_channel"])
+        self.ams = sensors.Ams5812(self.seed)
+        self.battery = sensors.Battery(self.seed)
+        self.fdm = Fdm(self.aircraft_dir, self.seed, dt_s=1.0 / 200.0, wind=self.wind)
+        self.history = deque(maxlen=400)
+        self.records = []
+        self.events = []
+        self.timer = PhaseTimer()
+        self.hp_alive = True
+        self.hp_pid = None
+        self.status_expected = 0
+        self.hp_packets = 0
+        self.last_cmd_seq = None
+        self.controller_index = -1
+        self.progress_path = os.path.join(self.out_dir, "progress")
+
+    # --- callbacks -------------------------------------------------------------------------
+    def on_vn_delivered(self, _msg):
+        if self.latency is not None:
+            self.latency.on_delivered()
+        self.waiter.hit("vn")
+
+    def on_servo_op(self, msg):
+        if self.latency is not None:
+            self.latency.on_command(msg)
+        self.waiter.hit("servo_op", msg)
+
+    def on_to_hil(self, msg):
+        if not self.waypoint_log or self.waypoint_log[-1][1] != msg.waypoint_index:
+            self.waypoint_log.append((round(self.sim_t_s, 3), int(msg.waypoint_index)))
+
+    # --- truth -----------------------------------------------------------------------------
+    def record_truth(self, t_s):
+        self.history.append((t_s, self.fdm.truth()))
+
+    def truth_at(self, t_s):
+        best = self.history[0][1]
+        for ts, tr in self.history:
+            if ts <= t_s + 1e-9:
+                best = tr
+            else:
+                break
+        return best
+
+    def advance(self, duration_s):
+        n = int(round(duration_s * 200.0))
+        t0 = self.history[-1][0]
+        for i in range(n):
+            self.fdm.advance(1.0 / 200.0)
+            self.record_truth(t0 + (i + 1) / 200.0)
+
+    def event(self, t_s, what):
+        self.events.append({"t_s": round(t_s, 3), "event": what})
+        rospy.loginfo("hil_sim: t=%.2f s: %s", t_s, what)
+
+    # --- participants ----------------------------------------------------------------------
+    def controller_connected(self):
+        return inbound_connected(self.master, self.controller_node, CONTROLLER_INPUTS) and \
+            inbound_connected(self.master, "/arduino", ["/servo_op"])
+
+    def service_while_waiting(self):
+        self.hp_vn.service_commands()
+        if self.realtime:
+            reply = self.chan.latest_reply()
+            self.last_reply = reply or self.last_reply
+            return self.last_reply or ha_channel.Reply(*([0, 0, (0.0,) * 4, (0.0,) * 4] + [0] * 15))
+        return self.chan.poll()
+
+    def wait_until(self, what, cond, timeout_s):
+        deadline = time.monotonic() + timeout_s
+        while not rospy.is_shutdown():
+            reply = self.service_while_waiting()
+            if cond(reply):
+                return reply
+            if time.monotonic() > deadline:
+                raise RuntimeError("gave up waiting for " + what)
+            time.sleep(0.02)
+        raise rospy.ROSInterruptException("shutdown")
+
+    def preflight(self):
+        rospy.loginfo("hil_sim: waiting for ha_sil on %s", self.chan.path)
+        deadline = time.monotonic() + 120.0
+        while not self.chan.accept(1.0):
+            if rospy.is_shutdown() or time.monotonic() > deadline:
+                raise RuntimeError("ha_sil never connected to the control channel")
+        self.wait_until("the HA link (arduino node <-> ha_sil)", lambda r: r.flags & ha_channel.R_LINK_CONNECTED, 120.0)
+        self.wait_until("the vn200 node's configuration of the VN-200", lambda r: self.hp_vn.configured(), 120.0)
+        inputs = CONTROLLER_INPUTS[1:] if self.realtime else CONTROLLER_INPUTS  # no /clock on the wall clock
+        self.wait_until("controller_DG808 subscribed to its inputs",
+                        lambda r: inbound_connected(self.master, self.controller_node, inputs) and
+                        inbound_connected(self.master, "/arduino", ["/servo_op"]), 120.0)
+        if self.wait_for_recorder:
+            self.wait_until("the flight recorder", lambda r: self.truth_pub.get_num_connections() > 0, 60.0)
+        for line in self.hp_vn.log:
+            rospy.loginfo("hil_sim: VN-200 port 2: %s", line)
+        self.hp_pid = node_pid(self.master, self.controller_node)
+
+    # --- one step --------------------------------------------------------------------------
+    def controller_steps_at(self, t_us):
+        index = t_us // self.controller_period_us
+        if index > self.controller_index:
+            self.controller_index = index
+            return True
+        return False
+
+    def step(self, k):
+        t_us = k * self.period_us
+        t_s = t_us * 1e-6
+        self.sim_t_s = t_s
+        tm = self.timer
+        if self.crash_at_s >= 0.0 and self.hp_alive and t_s >= self.crash_at_s and not hasattr(self, "crashed_at"):
+            self.crashed_at = t_s
+            self.kill_controller(t_s)
+        tm.lap("scenario")
+        self.hp_vn.service_commands()
+        self.hp_packets += self.hp_vn.emit_until(t_s, self.truth_at)
+        self.ha_vn.emit_until(t_s, self.truth_at)
+        tm.lap("sensors")
+        if not self.waiter.wait_count("vn", self.hp_packets, self.wait_s):
+            self.event(t_s, "vn200 node late: %d of %d packets published" % (self.waiter.count("vn"), self.hp_packets))
+        if not self.waiter.wait_count("status", self.status_expected, self.wait_s):
+            self.event(t_s, "arduino node late: /decision_status %d of %d" % (self.waiter.count("status"), self.status_expected))
+        tm.lap("wait_hp_inputs")
+        expect_command = self.controller_steps_at(t_us) and self.hp_alive
+        want = self.waiter.count("servo_op") + 1  # counted before the clock moves: it may answer at once
+        self.clock_pub.publish(Clock(clock=rospy.Time(t_us // 1000000, (t_us % 1000000) * 1000)))
+        cmd_seq = None
+        if expect_command:
+            if self.waiter.wait_count("servo_op", want, self.wait_s):
+                cmd_seq = self.waiter.latest["servo_op"].seq
+            else:
+                self.hp_alive = False
+                self.event(t_s, "controller did not answer within %.1f s: not waited for until it is back" % self.wait_s)
+        tm.lap("wait_controller")
+        tr = self.truth_at(t_s)
+        reply = self.chan.step(t_us, self.ha_vn.pty.written, cmd_seq, int(self.wait_s * 1000),
+                               (1100, 1500, 1500, 1500, 1000), True,
+                               self.ams.read_ftps(tr.airspeed_cal_mps),
+                               self.battery.read_v(t_s, tr.servo.throttle))
+        # The HA's share: the wall time it waited for the command to come through the arduino node.
+        tm.totals["ha_step"] = tm.totals.get("ha_step", 0.0) - reply.wait_us * 1e-6
+        tm.totals["ha_wait_command"] = tm.totals.get("ha_wait_command", 0.0) + reply.wait_us * 1e-6
+        tm.lap("ha_step")
+        if reply.flags & (ha_channel.R_COMMAND_TIMEOUT | ha_channel.R_VN_TIMEOUT):
+            self.event(t_s, "ha_sil wait ran out (flags %#x)" % reply.flags)
+        if reply.flags & ha_channel.R_LINK_CONNECTED:
+            self.status_expected += 1
+        el, ai, ru, th = reply.applied
+        self.fdm.set_surfaces(Surfaces(elevator_deg=el, aileron_deg=ai, rudder_deg=ru, throttle=th))
+        self.publish_truth(t_us, tr, reply, cmd_seq)
+        tm.lap("truth")
+        if reply.flags & ha_channel.R_RESTART_REQUESTED:
+            self.event(t_s, "HA requests an HP restart (restart %d)" % reply.restart_count)
+            self.await_restart(t_s)
+        tm.lap("restart")
+        return reply
+
+    def step_realtime(self, k):
+        """Real time: nobody is waited for; the SIL runs its own periods on the wall clock and the
+        latest servo outputs it reported are applied."""
+        t_us = k * self.period_us
+        t_s = t_us * 1e-6
+        self.sim_t_s = t_s
+        tm = self.timer
+        if self.crash_at_s >= 0.0 and t_s >= self.crash_at_s and not hasattr(self, "crashed_at"):
+            self.crashed_at = t_s
+            self.kill_controller(t_s)
+        tm.lap("scenario")
+        self.hp_vn.service_commands()
+        self.hp_vn.emit_until(t_s, self.truth_at)
+        self.ha_vn.emit_until(t_s, self.truth_at)
+        tm.lap("sensors")
+        tr = self.truth_at(t_s)
+        self.chan.send_inputs((1100, 1500, 1500, 1500, 1000), True, self.ams.read_ftps(tr.airspeed_cal_mps),
+                              self.battery.read_v(t_s, tr.servo.throttle))
+        replies = self.chan.pending_replies()
+        now = time.monotonic()
+        for r in replies:
+            self.latency.on_reply(r, now)
+        reply = replies[-1] if replies else None
+        if reply is not None:
+            self.last_reply = reply
+            if reply.flags & ha_channel.R_RESTART_REQUESTED:
+                self.event(t_s, "HA requests an HP restart (restart %d)" % reply.restart_count)
+        tm.lap("ha_step")
+        if self.last_reply is None:
+            return None
+        el, ai, ru, th = self.last_reply.applied
+        self.fdm.set_surfaces(Surfaces(elevator_deg=el, aileron_deg=ai, rudder_deg=ru, throttle=th))
+        self.publish_truth(t_us, tr, self.last_reply, None)
+        tm.lap("truth")
+        return self.last_reply
+
+    def publish_truth(self, t_us, tr, reply, cmd_seq):
+        m = HilTruth()
+        m.header.stamp = rospy.Time(t_us // 1000000, (t_us % 1000000) * 1000)
+        m.header.frame_id = "map"
+        m.latitude_deg, m.longitude_deg, m.altitude_msl_m = tr.lat_deg, tr.lon_deg, tr.alt_msl_m
+        n_ft, e_ft = self.regions.north_east_ft(self.home, tr.lat_deg, tr.lon_deg)
+        m.north_ft, m.east_ft = n_ft, e_ft
+        m.height_above_home_ft = (tr.alt_msl_m - self.home[2]) * FT_PER_M
+        m.roll_deg, m.pitch_deg, m.heading_deg = tr.roll_deg, tr.pitch_deg, tr.heading_deg
+        m.p_deg_s, m.q_deg_s, m.r_deg_s = (math.degrees(v) for v in (tr.p_rad_s, tr.q_rad_s, tr.r_rad_s))
+        m.accel_x_ft_s2, m.accel_y_ft_s2, m.accel_z_ft_s2 = (a * FT_PER_M for a in tr.accel_body_mps2)
+        m.airspeed_ftps = tr.airspeed_true_mps * FT_PER_M
+        m.groundspeed_ftps = math.hypot(tr.vn_mps, tr.ve_mps) * FT_PER_M
+        m.alpha_deg, m.beta_deg = tr.alpha_deg, tr.beta_deg
+        m.elevator_deg, m.aileron_deg = tr.servo.elevator_deg, tr.servo.aileron_deg
+        m.rudder_deg, m.throttle = tr.servo.rudder_deg, tr.servo.throttle
+        (m.ha_elevator_deg, m.ha_aileron_deg, m.ha_rudder_deg, m.ha_throttle) = reply.ha_command
+        m.controller = reply.controller
+        m.on_ground = bool(tr.on_ground)
+        self.truth_pub.publish(m)
+        self.records.append((t_us, m, reply, cmd_seq, tr.airspeed_cal_mps * FT_PER_M))
+
+    # --- faults and recovery ---------------------------------------------------------------
+    def kill_controller(self, t_s):
+        pid = node_pid(self.master, self.controller_node)
+        self.hp_alive = False
+        if pid is None:
+            self.event(t_s, "crash injection: controller not running")
+            return
+        if self.fault == "hang":
+            os.kill(pid, signal.SIGSTOP)  # hung: its process and its ROS connections stay up
+            self.event(t_s, "HP hang injected: SIGSTOP to controller_DG808 (pid %d)" % pid)
+            return
+        os.kill(pid, signal.SIGKILL)
+        deadline = time.monotonic() + 10.0
+        while os.path.exists("/proc/%d" % pid) and time.monotonic() < deadline:
+            with open("/proc/%d/stat" % pid) as f:
+                if f.read().rsplit(")", 1)[1].split()[0] == "Z":
+                    break
+            time.sleep(0.005)
+        self.event(t_s, "HP crash injected: SIGKILL to controller_DG808 (pid %d)" % pid)
+
+    def await_restart(self, t_s):
+        """Time stands until hp_supervisor has a new controller running and connected."""
+        old = self.hp_pid
+        t0 = time.monotonic()
+
+        def back(_reply):
+            pid = node_pid(self.master, self.controller_node)
+            return pid is not None and pid != old and self.controller_connected()
+        try:
+            self.wait_until("hp_supervisor to restart the controller", back, self.restart_wait_s)
+        except RuntimeError:
+            self.event(t_s, "the controller did not come back within %.0f s" % self.restart_wait_s)
+            return
+        self.hp_pid = node_pid(self.master, self.controller_node)
+        self.hp_alive = True
+        self.controller_index = -1
+        self.event(t_s, "controller restarted by hp_supervisor (pid %d, %.2f s wall)" % (self.hp_pid, time.monotonic() - t0))
+
+    # --- the flight ------------------------------------------------------------------------
+    def run(self):
+        home_lat, home_lon, ground_msl = self.plan.home
+        wp1 = self.plan.items[0]
+        heading = mission.bearing_deg(home_lat, home_lon, wp1.lat_deg, wp1.lon_deg)
+        self.fdm.reset_on_ground(home_lat, home_lon, ground_msl, heading)
+        self.record_truth(0.0)
+        parked = self.fdm.truth()
+        self.home = (home_lat, home_lon, parked.alt_msl_m)
+        self.preflight()
+        wall0 = time.monotonic()
+        self.timer.t = time.perf_counter()
+        steps = int(round(self.duration_s * self.rate_hz))
+        ground_steps = int(round(self.ground_s * self.rate_hz))
+        airborne = False
+        last_progress = 0.0
+        k = 0
+        try:
+            for k in range(steps + 1):
+                if rospy.is_shutdown():
+                    break
+                if k == ground_steps and not airborne:
+                    self.upload_mission(k * self.period_us * 1e-6)
+                    trim = self.fdm.reset_airborne(home_lat, home_lon, ground_msl,
+                                                   self.start_height_ft / FT_PER_M, heading,
+                                                   self.start_airspeed_ftps / FT_PER_M)
+                    self.history.clear()
+                    self.record_truth(k * self.period_us * 1e-6)
+                    self.fdm.set_surfaces(trim)
+                    airborne = True
+                    self.event(k * self.period_us * 1e-6, "airborne start: %.0f ft above home, %.0f ft/s, heading %.0f deg" %
+                               (self.start_height_ft, self.start_airspeed_ftps, heading))
+                    self.timer.lap("mission_upload_and_trim")
+                if self.realtime:
+                    if k == 0 or k == ground_steps:
+                        pace0 = time.monotonic() - k * self.period_us * 1e-6
+                    delay = pace0 + k * self.period_us * 1e-6 - time.monotonic()
+                    if delay > 0.0:
+                        time.sleep(delay)
+                    self.step_realtime(k)
+                else:
+                    self.step(k)
+                self.timer.lap("step")
+                if k < steps:
+                    try:
+                        self.advance(self.period_us * 1e-6)
+                    except FdmCrash as crash:
+                        self.event(k * self.period_us * 1e-6, "aircraft crashed: %s" % crash)
+                        break
+                self.timer.lap("fdm")
+                now = time.monotonic()
+                if now - last_progress > 0.5:
+                    last_progress = now
+                    self.write_progress(k * self.period_us * 1e-6)
+        finally:
+            self.wall_s = time.monotonic() - wall0
+            self.write_progress(k * self.period_us * 1e-6)
+
+    def upload_mission(self, t_s):
+        self.event(t_s, "uploading the mission (%d waypoints) through microhard_gs" % len(self.plan.items))
+        before = self.waiter.count("way")
+        result = None
+        deadline = time.monotonic() + 60.0
+        while time.monotonic() < deadline:
+            self.service_while_waiting()
+            result = mission.upload(self.plan, "127.0.0.1", self.gs_port, timeout_s=10.0)
+            if result == "MAV_MISSION_ACCEPTED":
+                break
+            time.sleep(0.5)
+        if result != "MAV_MISSION_ACCEPTED":
+            raise RuntimeError("mission upload refused: %s" % result)
+        self.wait_until("/way from microhard_gs", lambda r: self.waiter.count("way") > before, 30.0)
+        # The latched /way reached the controller over its own connection; give it a moment.
+        t_end = time.monotonic() + 0.5
+        while time.monotonic() < t_end:
+            self.service_while_waiting()
+            time.sleep(0.05)
+        self.event(t_s, "mission accepted; /way has %d waypoints" % self.waiter.latest["way"].fp)
+
+    def write_progress(self, t_s):
+        tmp = self.progress_path + ".tmp"
+        with open(tmp, "w") as f:
+            f.write("%.2f %.2f\n" % (t_s, self.duration_s))
+        os.replace(tmp, self.progress_path)
+
+    def summary(self):
+        return verdicts.summarize(self)
+
+    def close(self):
+        for c in (self.chan, self.hp_vn, self.ha_vn):
+            try:
+                c.close()
+            except OSError:
+                pass
+        self.fdm.close()
+
+
+def main():
+    # rospy's receive threads and this stepping thread share the GIL: a thread waiting on a
+    # condition another thread has just set waits for the switch interval (5 ms by default).
+    sys.setswitchinterval(1e-4)
+    rospy.init_node("hil_sim")
+    sim = Simulation()
+    code = 0
+    try:
+        sim.run()
+        summary = sim.summary()
+        path = os.path.join(sim.out_dir, "summary.json")
+        with open(path, "w") as f:
+            json.dump(summary, f, indent=2)
+        rospy.loginfo("hil_sim: summary in %s", path)
+    except (RuntimeError, ConnectionError, socket.timeout) as e:
+        rospy.logfatal("hil_sim: %s", e)
+        with open(os.path.join(sim.out_dir, "error.txt"), "w") as f:
+            f.write(str(e) + "\n")
+        code = 1
+    finally:
+        sim.close()
+        done = os.path.join(sim.out_dir, "done")
+        with open(done, "w") as f:
+            f.write("%d\n" % code)
+    return code
+
+
+if __name__ == "__main__":
+    sys.exit(main())

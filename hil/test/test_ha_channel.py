@@ -1,0 +1,99 @@
+"""The HA in the loop without ROS: ha_sil driven over its control channel, its VN-200 port fed by
+the simulator's sensor model, stepped on simulation time."""
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+import pytest
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+sys.path.insert(0, ROOT)
+from hil import ha_channel, sensors  # noqa: E402
+
+
+def ha_sil_path():
+    ws = os.environ.get("DRONE_ROS_WS", os.path.join(ROOT, ".build", "ws"))
+    path = os.path.join(ws, "devel", "lib", "drone_ros", "ha_sil")
+    if not os.path.exists(path):
+        pytest.fail("ha_sil is not built (%s): run make build" % path)
+    return path
+
+
+class Parked:
+    """Truth of an aircraft parked at a field (what the HA's INS sees before take-off)."""
+    lat_deg, lon_deg, alt_msl_m = 38.95, -95.26, 260.0
+    vn_mps = ve_mps = vd_mps = 0.0
+    roll_deg, pitch_deg, heading_deg = 0.0, 2.0, 30.0
+    p_rad_s = q_rad_s = r_rad_s = 0.0
+    accel_body_mps2 = (0.0, 0.0, -9.81)
+    mag_body_gauss = (0.2, 0.0, 0.45)
+    temperature_c, pressure_pa = 20.0, 98000.0
+
+
+@pytest.fixture
+def rig():
+    d = tempfile.mkdtemp(prefix="ha_channel_")
+    chan = ha_channel.HaChannel(os.path.join(d, "ctl"))
+    vn = sensors.Vn200Port(os.path.join(d, "ha_vn200"), 1, seed=7, baud=sensors.HA_VN200_BAUD,
+                           fixed_output=sensors.HA_OUTPUT_1)
+    proc = subprocess.Popen([ha_sil_path(), "--port", os.path.join(d, "ha_link"), "--vn200",
+                             os.path.join(d, "ha_vn200"), "--lockstep", os.path.join(d, "ctl")],
+                            stderr=subprocess.PIPE)
+    assert chan.accept(20.0), "ha_sil did not connect to the control channel"
+    yield chan, vn, proc
+    chan.close()
+    proc.terminate()
+    proc.wait(timeout=10)
+    vn.close()
+
+
+def step(chan, vn, k, truth, period_us=10000, airspeed=0.0):
+    t_us = k * period_us
+    vn.emit_until(t_us * 1e-6, lambda t: truth)
+    return chan.step(t_us, vn.pty.written, None, 2000, (1100, 1500, 1500, 1500, 1000), True,
+                     airspeed, 12.4)
+
+
+def test_ha_steps_on_simulation_time_and_latches_home_from_its_own_vn200(rig):
+    chan, vn, _ = rig
+    first = step(chan, vn, 0, Parked)
+    assert first.flags & ha_channel.R_STEPPED
+    for k in range(1, 50):
+        r = step(chan, vn, k, Parked)
+    assert r.t_us == 49 * 10000
+    assert r.vn_bytes_read == vn.pty.written  # every byte the sensor sent was taken this period
+    assert r.ins_solutions_used > 0 and r.ins_bad_packets == 0
+    assert r.flags & ha_channel.R_STATE_VALID
+    assert r.controller == 1  # no HP: the HA flies
+    assert all(math.isfinite(v) for v in r.applied + r.ha_command)
+    assert r.applied[3] == pytest.approx(0.0)  # parked: the motor idles
+
+
+def test_without_the_hp_the_ha_never_waits_and_without_an_ins_its_state_stays_invalid(rig):
+    chan, _, _ = rig
+    t0 = time.monotonic()
+    for k in range(20):
+        r = chan.step(k * 10000, 0, None, 2000, (1100, 1500, 1500, 1500, 1000), True, 60.0, 12.4)
+    assert time.monotonic() - t0 < 20.0
+    assert not r.flags & ha_channel.R_STATE_VALID
+    assert r.controller == 1
+
+
+def test_a_command_that_never_comes_is_waited_for_only_as_long_as_bounded(rig):
+    chan, _, _ = rig
+    r = chan.step(10000, 0, 12345, 50, (1100, 1500, 1500, 1500, 1000), True, 60.0, 12.4)
+    assert r.flags & ha_channel.R_COMMAND_TIMEOUT
+    assert r.commands_received == 0
+
+
+def test_pilot_switch_from_the_simulated_receiver_gives_the_pilot_the_servos(rig):
+    chan, vn, _ = rig
+    for k in range(40):
+        vn.emit_until(k * 0.01, lambda t: Parked)
+        r = chan.step(k * 10000, vn.pty.written, None, 2000, (1500, 1800, 1500, 1500, 2000), True,
+                      0.0, 12.4)
+    assert r.controller == 4  # MANUAL
+    assert r.applied[0] > 5.0  # the elevator stick at 1800 us

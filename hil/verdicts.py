@@ -1,0 +1,181 @@
+"""Verdicts of a HiL flight from the simulator's truth: the safety regions S_x and S_u built from
+limits.yaml by the same generator the HA's configuration comes from
+(arduino_ha/tools/gen_aircraft_config.py), and the flight's summary.json."""
+import math
+import os
+import sys
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+sys.path.insert(0, os.path.join(ROOT, "arduino_ha", "tools"))
+import gen_aircraft_config  # noqa: E402
+
+WGS84_A = 6378137.0
+WGS84_E2 = 6.69437999014e-3
+FT_PER_M = 3.280839895
+CONTROLLERS = {0: "HP", 1: "HA", 2: "RECOVERING", 3: "HA_LATCHED", 4: "MANUAL"}
+HA_SIDE = (1, 2, 3)  # the HA safety controller drives the servos (incl. recovering, latched)
+# A float32 surface value may sit a rounding step past a limit given in decimal.
+EPS = 1e-5
+
+
+class Regions:
+    def __init__(self, limits_doc):
+        c = gen_aircraft_config.build(limits_doc)
+        self.c = c
+        self.sx, self.x0 = c["sx"], c["x0"]
+        self.su, self.u0 = c["su"], c["u0"]
+        self.period_s = 1.0 / float(limits_doc["decision"]["rate_hz"])
+        self.stable_window_s = float(limits_doc["decision"]["stable_window_s"])
+        self.late_periods_tolerated = int(limits_doc["decision"]["late_periods_tolerated"])
+        self.stall_ftps = c["stall_speed_ftps"]
+        self.ceiling_ft = c["ceiling_agl_ft"]
+        self.airborne_ft = c["airborne_agl_ft"]
+
+    @staticmethod
+    def _max_row(rows, v, v0):
+        return max(sum(a * (x - x0) for a, x, x0 in zip(r, v, v0)) for r in rows)
+
+    def su_max(self, u):
+        """max_i (S_u (u - u0))_i for u = (elevator, aileron, rudder, throttle)."""
+        return self._max_row(self.su, u, self.u0)
+
+    def sx_max(self, m):
+        x = [m.alpha_deg, m.beta_deg, m.roll_deg, m.pitch_deg, m.p_deg_s, m.q_deg_s, m.r_deg_s,
+             m.height_above_home_ft]
+        return self._max_row(self.sx, x, self.x0)
+
+    @staticmethod
+    def north_east_ft(home, lat_deg, lon_deg):
+        """The stack's one flat-earth conversion: WGS84 radii of curvature at home's latitude."""
+        s = math.sin(math.radians(home[0]))
+        w = math.sqrt(1.0 - WGS84_E2 * s * s)
+        rm, rn = WGS84_A * (1.0 - WGS84_E2) / w ** 3, WGS84_A / w
+        n = math.radians(lat_deg - home[0]) * rm
+        e = math.radians(lon_deg - home[1]) * rn * math.cos(math.radians(home[0]))
+        return n * FT_PER_M, e * FT_PER_M
+
+
+def reason_names(mask):
+    """REASON_* names of msg/DecisionStatus.msg set in mask."""
+    from drone_ros.msg import DecisionStatus
+    return [n[len("REASON_"):] for n in dir(DecisionStatus)
+            if n.startswith("REASON_") and getattr(DecisionStatus, n) & mask]
+
+
+def segments(records):
+    """Who flew when: one entry per stretch of one controller, with the HA's reasons."""
+    out = []
+    for t_us, m, reply, _, _ in records:
+        t = t_us * 1e-6
+        if not out or out[-1]["controller"] != CONTROLLERS.get(reply.controller, str(reply.controller)):
+            if out:
+                out[-1]["to_s"] = round(t, 3)
+            out.append({"from_s": round(t, 3), "to_s": None,
+                        "controller": CONTROLLERS.get(reply.controller, str(reply.controller)),
+                        "reasons_at_switch": reply.reasons_at_switch,
+                        "why": reason_names(reply.reasons_at_switch if reply.controller != 0 else 0),
+                        "reasons": reply.reasons,
+                        "stable_for_s_at_switch": round(reply.stable_for_s, 3)})
+    if out:
+        out[-1]["to_s"] = round(records[-1][0] * 1e-6, 3)
+    return out
+
+
+def waypoint_progress(plan, home, records, regions, reach_ft):
+    """Closest approach of the true track to each waypoint, and which were reached."""
+    wps = [regions.north_east_ft(home, it.lat_deg, it.lon_deg) for it in plan.items]
+    best = [float("inf")] * len(wps)
+    first = [None] * len(wps)
+    for t_us, m, _, _, _ in records:
+        if m.on_ground:
+            continue
+        for i, (n, e) in enumerate(wps):
+            d = math.hypot(m.north_ft - n, m.east_ft - e)
+            if d < best[i]:
+                best[i] = d
+            if d <= reach_ft and first[i] is None:
+                first[i] = round(t_us * 1e-6, 2)
+    return [{"waypoint": i + 1, "closest_ft": round(b, 1), "first_reached_s": f}
+            for i, (b, f) in enumerate(zip(best, first))]
+
+
+def summarize(sim):
+    r = sim.regions
+    recs = sim.records
+    airborne = [x for x in recs if not x[1].on_ground and x[1].height_above_home_ft > r.airborne_ft]
+    unsafe_servo = [x for x in recs if r.su_max(x[2].applied) > 1.0 + EPS]
+    ha_flying = [x for x in recs if x[2].controller in HA_SIDE and x[0] * 1e-6 > sim.ground_s]
+    sx_ha = max((r.sx_max(x[1]) for x in ha_flying), default=None)
+    segs = segments(recs)
+    crash = getattr(sim, "crashed_at", None)
+    takeover = None
+    if crash is not None:
+        after = [x for x in recs if x[0] * 1e-6 >= crash - 1e-9]
+        first_miss_s = crash  # the first period with no fresh command
+        deadline_miss_s = first_miss_s + r.late_periods_tolerated * r.period_s
+        t_ha = next((x[0] * 1e-6 for x in after if x[2].controller != 0), None)
+        t_back = None
+        if t_ha is not None:
+            t_back = next((x[0] * 1e-6 for x in after if x[0] * 1e-6 > t_ha and x[2].controller == 0), None)
+        sw = next((s for s in segs if t_ha is not None and abs(s["from_s"] - round(t_ha, 3)) < 1e-6), None)
+        takeover = {
+            "crash_injected_s": round(crash, 3),
+            "first_missed_period_s": round(first_miss_s, 3),
+            "deadline_miss_s": round(deadline_miss_s, 3),
+            "takeover_s": None if t_ha is None else round(t_ha, 3),
+            "latency_after_crash_s": None if t_ha is None else round(t_ha - crash, 3) + 0.0,
+            "latency_after_deadline_miss_s": None if t_ha is None else round(t_ha - deadline_miss_s, 3) + 0.0,
+            "within_one_period_of_deadline_miss": t_ha is not None and t_ha - deadline_miss_s <= r.period_s + 1e-9,
+            "reasons_at_switch": None if sw is None else sw["reasons_at_switch"],
+            "hand_back_s": None if t_back is None else round(t_back, 3),
+        }
+    handbacks = []
+    prev = None
+    for t_us, m, reply, _, _ in recs:
+        if prev is not None and prev != 0 and reply.controller == 0:
+            handbacks.append({"t_s": round(t_us * 1e-6, 3), "stable_for_s": round(reply.stable_for_s, 3),
+                              "after_stable_window": reply.stable_for_s + 1e-6 >= r.stable_window_s})
+        prev = reply.controller
+    heights = [x[1].height_above_home_ft for x in airborne]
+    cal = [x[4] for x in airborne]
+    reach_ft = sim.reach_ft  # the controller's own "waypoint reached" distance (dist2b)
+    progress = waypoint_progress(sim.plan, sim.home, recs, r, reach_ft)
+    flown = len(recs) * sim.period_us * 1e-6
+    t = sim.timer.totals
+    steps = max(len(recs), 1)
+    return {
+        "aircraft": sim.aircraft,
+        "seed": sim.seed,
+        "mode": sim.mode,
+        "rate_hz": sim.rate_hz,
+        "controller_rate_hz": round(1.0 / sim.controller_dt_s, 3),
+        "simulated_s": round(flown, 3),
+        "wall_s": round(sim.wall_s, 3),
+        "x_real_time": round(flown / sim.wall_s, 2) if sim.wall_s > 0 else None,
+        "step_time_ms": {k: round(v * 1000.0 / steps, 4) for k, v in sorted(t.items())
+                         if k != "mission_upload_and_trim"},
+        "mission_upload_and_trim_s": round(t.get("mission_upload_and_trim", 0.0), 3),
+        "sensor_to_servo_latency": None if sim.latency is None else sim.latency.summary(),
+        "takeover": takeover,
+        "hand_backs": handbacks,
+        "who_flew": segs,
+        "margins": {
+            "min_height_above_home_ft": round(min(heights), 2) if heights else None,
+            "ceiling_ft": r.ceiling_ft,
+            "min_ceiling_margin_ft": round(r.ceiling_ft - max(heights), 2) if heights else None,
+            "stall_speed_ftps": r.stall_ftps,
+            "min_calibrated_airspeed_ftps": round(min(cal), 2) if cal else None,
+            "min_stall_margin_ftps": round(min(cal) - r.stall_ftps, 2) if cal else None,
+        },
+        "unsafe_servo_commands": {"steps": len(recs), "outside_S_u": len(unsafe_servo),
+                                  "max_S_u_row": round(max(r.su_max(x[2].applied) for x in recs), 5) if recs else None},
+        "state_while_ha_flies": {"steps": len(ha_flying),
+                                 "max_S_x_row": None if sx_ha is None else round(sx_ha, 4),
+                                 "inside_S_x": sx_ha is None or sx_ha <= 1.0},
+        "mission": {"waypoints": len(sim.plan.items),
+                    "reached_within_ft": reach_ft,
+                    "reached": sum(1 for p in progress if p["first_reached_s"] is not None),
+                    "per_waypoint": progress,
+                    "guidance_waypoint_index": sim.waypoint_log},
+        "events": sim.events,
+    }
