@@ -12,8 +12,8 @@ from pymavlink import mavutil  # noqa: E402
 Item = namedtuple("Item", "lat_deg lon_deg height_m")
 Plan = namedtuple("Plan", "home items")  # home: (lat_deg, lon_deg, alt_m)
 
-# Waypoint heights are above home. microhard_gs also takes MAV_FRAME_GLOBAL_RELATIVE_ALT (3).
-UPLOAD_FRAME = 6  # MAV_FRAME_GLOBAL_RELATIVE_ALT_INT
+# Waypoint heights are above home.
+UPLOAD_FRAME = 3  # MAV_FRAME_GLOBAL_RELATIVE_ALT, what QGroundControl puts in every waypoint
 
 
 def read_wpl(path):
