@@ -94,11 +94,13 @@ class MarkersStory(unittest.TestCase):
         plan.height[:3] = [300.0] * 3
         self.way.publish(plan)
 
-        self.decide(DecisionStatus.CONTROLLER_HP)
+        # Topics are not ordered with each other: the node must know who flies before the first
+        # position, or (correctly) that point is drawn as "unknown".
+        wait_for(lambda: self.decide(DecisionStatus.CONTROLLER_HP) or (
+            self.latest().get("decision") is not None
+            and self.latest()["decision"].text == "HP"), 30.0, "the text HP")
         # Parked at home until the node has placed it (a real flight's first fix is home).
         wait_for(lambda: self.fly_to(0.0, 0.0, 0.0, 90.0) or self.transforms, 30.0, "a pose on /tf")
-        wait_for(lambda: self.latest().get("decision") is not None
-                 and self.latest()["decision"].text == "HP", 30.0, "the text HP")
         for i in range(60):  # HP: 600 ft east at 300 ft, heading east
             self.fly_to(0.0, 10.0 * i, 300.0, 90.0)
         # Topics are not ordered with each other: let the HP's stretch land before the switch.
