@@ -76,15 +76,18 @@ def hp_alive(t_s):
     return t_s <= HP_CRASH_S + 1e-9 or t_s >= HP_BACK_S - 1e-9
 
 
-def write(path, with_truth=True, end_s=END_S, t0_s=T0_S, chunk_threshold=768 * 1024):
-    """Writes the flight; returns the number of messages."""
+def write(path, with_truth=True, end_s=END_S, t0_s=T0_S, chunk_threshold=768 * 1024,
+          received_after_s=0.0):
+    """Writes the flight; returns the number of messages. received_after_s puts the recorder's
+    receive times on another clock than the stamps (a lockstep HiL: stamps on the simulator's
+    clock from 0, receive times on the wall clock)."""
     count = 0
     steps = int(round(end_s * DECISION_HZ))
     last_seq = 0
     with rosbag.Bag(path, "w", chunk_threshold=chunk_threshold) as bag:
         def put(topic, message, t_s):
             nonlocal count
-            bag.write(topic, message, rospy.Time.from_sec(t0_s + t_s))
+            bag.write(topic, message, rospy.Time.from_sec(t0_s + t_s + received_after_s))
             count += 1
 
         plan = way(north=[0.0] * 32, east=[0.0] * 32, height=[0.0] * 32, velocity=[0.0] * 32,

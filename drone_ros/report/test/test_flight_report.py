@@ -134,6 +134,24 @@ def test_switch_list_matches_the_scripted_crash_takeover_and_hand_back(hil_fligh
     assert "HP command valid for 2.00 s" in rows[-1][4]
 
 
+def test_lockstep_log_keeps_the_simulators_clock_from_zero(tmp_path):
+    """The simulator's clock starts at 0, so the first stamps are 0.0 (ROS's "unset" elsewhere);
+    the recorder receives on the wall clock, and the mission plan carries no stamp at all."""
+    folder = tmp_path / "2026-11-23_101500-DG808-3"
+    folder.mkdir()
+    scripted_flight.write(str(folder / "flight.bag"), with_truth=True, t0_s=0.0,
+                          received_after_s=1.795e9)
+    result = run(str(folder / "flight.bag"))
+    assert result.returncode == 0, result.stderr
+    text, rows = page(folder / "report" / "index.html")
+    expected = expected_switches()
+    assert [float(row[1]) for row in rows] == pytest.approx(
+        [t_s + 0.002 for t_s, *_ in expected], abs=0.006), rows
+    assert float(rows[-1][5].split()[0]) == pytest.approx(expected[-1][4], abs=0.011), rows
+    assert "%.1f s" % scripted_flight.LAST_DECISION_S in text or \
+        "%.1f s" % scripted_flight.END_S in text
+
+
 def test_hil_report_draws_truth_and_names_its_source(hil_flight):
     text, _ = page(hil_flight / "index.html")
     assert "No simulator truth" not in text

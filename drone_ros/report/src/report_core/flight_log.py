@@ -58,11 +58,12 @@ def _field(record, path):
     return value
 
 
-def _stamp(record):
+def _stamp(record, zero_is_a_time=False):
+    """A zero stamp means "unset" in ROS, except on a simulator's clock, which starts at zero."""
     stamp = record.get("header", {}).get("stamp") if isinstance(record.get("header"), dict) else None
     if stamp is None:
         stamp = record.get("stamp")
-    if isinstance(stamp, (int, float)) and stamp > 0.0:
+    if isinstance(stamp, (int, float)) and (stamp > 0.0 or (zero_is_a_time and stamp == 0.0)):
         return float(stamp)
     return float(record["_t_bag"])
 
@@ -107,7 +108,8 @@ class LogBuilder:
     """Takes records one at a time and keeps only the columns the report draws (8 bytes a value),
     so an hour of flight fits in memory."""
 
-    def __init__(self):
+    def __init__(self, sim_time=False):
+        self.sim_time = sim_time  # a HiL log: every stamp is on the simulator's clock
         self.columns = {topic: {name: array("d") for name in ("t", *fields)}
                         for topic, fields in FIELD_TABLES.items()}
         self.last_plan = None
@@ -115,11 +117,12 @@ class LogBuilder:
         self.t_max = -math.inf
 
     def add(self, topic, record):
-        t = _stamp(record)
-        if topic == TOPIC_WAY:
+        if topic == TOPIC_WAY:  # a plan, not a time series: it has no stamp and spans no time
             if _flight_plan(record):
                 self.last_plan = record
-        elif topic in FIELD_TABLES:
+            return
+        t = _stamp(record, self.sim_time)
+        if topic in FIELD_TABLES:
             columns = self.columns[topic]
             values = []
             for name, path in FIELD_TABLES[topic].items():
