@@ -188,10 +188,25 @@ def main(argv=None):
         with open(summary) as f:
             s = json.load(f)
         report(s, out, bag=not args.no_bag)
+        if not args.no_bag:
+            code = write_report(out)
     elif os.path.exists(os.path.join(out, "error.txt")):
         with open(os.path.join(out, "error.txt")) as f:
             print("run_flight: the simulator stopped: %s" % f.read().strip(), file=sys.stderr)
     return code
+
+
+def write_report(out):
+    """The post-flight report of the flight's bag, by the same tool a real flight's log gets."""
+    tool = os.path.join(HERE, "..", "drone_ros", "report", "scripts", "flight_report")
+    folder = os.path.join(out, "report")
+    r = subprocess.run([sys.executable, tool, os.path.join(out, "flight.bag"), "--out", folder],
+                       stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    if r.returncode != 0:
+        print("run_flight: the report failed: %s" % r.stdout.strip(), file=sys.stderr)
+        return r.returncode
+    print("report: %s" % os.path.join(folder, "index.html"))
+    return 0
 
 
 def report(s, out, bag=True):
@@ -211,7 +226,7 @@ def report(s, out, bag=True):
         s["unsafe_servo_commands"]["outside_S_u"], s["unsafe_servo_commands"]["steps"],
         s["state_while_ha_flies"]["max_S_x_row"]))
     print("mission: %d of %d waypoints reached" % (s["mission"]["reached"], s["mission"]["waypoints"]))
-    print("output: %s (%ssummary.json; the report goes to %s/report/)" % (out, "flight.bag, " if bag else "", out))
+    print("output: %s (%ssummary.json)" % (out, "flight.bag, report/, " if bag else ""))
 
 
 if __name__ == "__main__":
