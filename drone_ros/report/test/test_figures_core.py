@@ -34,3 +34,21 @@ def test_a_stretch_without_messages_is_not_bridged_by_the_line():
     t2, y2 = figures._broken(t, np.ones_like(t))
     gap = np.flatnonzero(np.isnan(y2))
     assert len(gap) == 1 and t2[gap[0] - 1] < 30.0 < 45.0 <= t2[gap[0] + 1]
+
+
+def test_a_restarted_hps_commands_are_not_aged_against_its_predecessors():
+    """At 100 Hz the HP crashes at 100 s and its successor counts from 0 again; the HA's decisions
+    come stamped 5 ms before the command they judged (rosserial time sync in lockstep)."""
+    class Series:
+        def __init__(self, **columns):
+            self.__dict__.update(columns)
+
+    first = np.arange(0, 10000)
+    second = np.arange(0, 2000)
+    op_stamp = np.concatenate((first / 100.0, 100.02 + second / 100.0))
+    op_seq = np.concatenate((first, second)).astype(float)
+    log = Series(servo_op=Series(t=op_stamp, seq=op_seq, stamp=op_stamp),
+                 decision=Series(t=op_stamp - 0.005, last_seq=op_seq, stamp=op_stamp - 0.005))
+    t, age = figures.command_age_s(log, lead_s=0.01)
+    assert len(t) == len(op_stamp)
+    assert np.all(np.abs(age) < 0.01), age[np.abs(age) >= 0.01][:5]

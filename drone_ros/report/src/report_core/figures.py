@@ -320,9 +320,10 @@ def link_and_timing(log, limits, runs, switches, out_dir):
 
     timeout_ms = limits["decision"]["no_command_timeout_s"] * 1000.0
     period_ms = 1000.0 / limits["decision"]["rate_hz"]
-    age = command_age_s(log)
+    age = command_age_s(log, lead_s=period_ms / 1000.0)
     if age is not None:
-        ax_age.plot(*_thin(age[0], age[1] * 1000.0), ".", ms=2, label="age of the HP command the HA judged")
+        ax_age.plot(*_thin(age[0], age[1] * 1000.0), ".", ms=2,
+                    label="age of the HP command the HA judged (HA stamps: rosserial time sync)")
     if log.servo_op is not None and len(log.servo_op) > 1:
         ax_age.plot(*_thin(log.servo_op.t[1:], np.diff(log.servo_op.stamp) * 1000.0), ".", ms=2,
                     label="HP command period")
@@ -334,10 +335,13 @@ def link_and_timing(log, limits, runs, switches, out_dir):
     return _save(fig, out_dir, "link_timing.png")
 
 
-def command_age_s(log):
+def command_age_s(log, lead_s=0.0):
     """(t, age): for each decision, how old the HP command it judged (last_seq) was, from the
     command's stamp to the decision's. The command is the latest one with that sequence number
-    logged by then (a restarted HP counts afresh). None without /servo_op."""
+    logged by then (a restarted HP counts afresh). The HA's stamps come through rosserial's time
+    sync, which can put a decision up to lead_s (one HA period) before the command it judged; a
+    command that recent is looked for too, or a restarted HP's seq would match its predecessor's.
+    None without /servo_op."""
     if log.servo_op is None:
         return None
     op_t, op_seq, op_stamp = log.servo_op.t, log.servo_op.seq.astype(np.int64), log.servo_op.stamp
@@ -345,7 +349,7 @@ def command_age_s(log):
     j = 0
     t_out, age_out = [], []
     for t, seq, stamp in zip(log.decision.t, log.decision.last_seq.astype(np.int64), log.decision.stamp):
-        while j < len(op_t) and op_t[j] <= t:
+        while j < len(op_t) and op_t[j] <= t + lead_s:
             stamp_of_seq[int(op_seq[j])] = op_stamp[j]
             j += 1
         if int(seq) in stamp_of_seq:
