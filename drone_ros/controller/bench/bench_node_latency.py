@@ -38,7 +38,7 @@ def measure(dt_s):
     log = open(os.path.join("/tmp", "bench_controller_roslaunch_%d.log" % port), "w")
     launch = subprocess.Popen(
         ["roslaunch", "-p", str(port), os.path.join(ROOT, "launch", "DG808_flight.launch"),
-         "dt:=%g" % dt_s, "gs_transport:=udp", "gs_udp_remote_address:=127.0.0.1"], env=env, stdout=log, stderr=subprocess.STDOUT)
+         "dt:=%g" % dt_s, "gs_transport:=udp", "gs_udp_remote_address:=127.0.0.1", "record:=false"], env=env, stdout=log, stderr=subprocess.STDOUT)
     try:
         out = subprocess.run([sys.executable, os.path.abspath(__file__), "--client", str(dt_s)],
                              env=env, stdout=subprocess.PIPE, check=True, timeout=90)
