@@ -30,10 +30,13 @@ $(GS_FUZZ_DIR)/tunables/tunables_table.h: $(ROOT)/tools/gen_tunables.py $(ROOT)/
 	@$(VENV)/bin/python $(ROOT)/tools/gen_tunables.py $(ROOT)/aircraft/$(GS_FUZZ_AIRCRAFT)/tunables.yaml \
 	  $(ROOT)/aircraft/$(GS_FUZZ_AIRCRAFT)/controller_param.yaml $@
 
-$(GS_FUZZ_BIN): $(GS_FUZZ_SOURCES) $(wildcard $(GS_DIR)/src/core/*.h) $(GS_FUZZ_DIR)/mavlink/development/mavlink.h $(GS_FUZZ_DIR)/tunables/tunables_table.h
+$(GS_FUZZ_DIR)/generated/decision_status_names.h: $(ROOT)/tools/gen_decision_status.py $(ROOT)/msg/DecisionStatus.msg
+	@$(VENV)/bin/python $(ROOT)/tools/gen_decision_status.py --cpp $(ROOT)/msg/DecisionStatus.msg $@
+
+$(GS_FUZZ_BIN): $(GS_FUZZ_SOURCES) $(wildcard $(GS_DIR)/src/core/*.h) $(GS_FUZZ_DIR)/mavlink/development/mavlink.h $(GS_FUZZ_DIR)/tunables/tunables_table.h $(GS_FUZZ_DIR)/generated/decision_status_names.h
 	@test -n "$(GS_CLANGXX)" || { echo "fuzz-gs: clang++ not found (microhard_gs/apt-packages.txt)"; exit 1; }
 	$(GS_CLANGXX) -std=c++17 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
-	  -Wall -Wextra -Werror -I$(GS_DIR)/src/core -I$(GS_FUZZ_DIR)/tunables -I$(ROOT)/drone_ros/common/include -isystem $(GS_FUZZ_DIR)/mavlink $(GS_FUZZ_SOURCES) -o $@
+	  -Wall -Wextra -Werror -I$(GS_DIR)/src/core -I$(GS_FUZZ_DIR)/tunables -I$(GS_FUZZ_DIR)/generated -I$(ROOT)/drone_ros/common/include -isystem $(GS_FUZZ_DIR)/mavlink $(GS_FUZZ_SOURCES) -o $@
 
 # The full log goes to a file; the console gets the verdict and the run count, and on a crash the
 # log's tail with the reproducer's path.

@@ -1,6 +1,6 @@
 # arduino_ha/link targets (included by the root Makefile).
 #   make due-sketch-msgs   write the Due's generated message code into arduino_ha/src/link/generated/
-#                          (arduino-cli cannot run the generator; run this after any msg/ change,
+#                          and the core's DecisionStatus numbers into arduino_ha/src/core/ (arduino-cli cannot run the generator; run this after any msg/ change,
 #                          before compiling the sketch; CMake builds regenerate it on their own)
 #   make fuzz-link         libFuzzer (clang, ASan + UBSan) on the device link, the host framer and
 #                          the host's handling of announcements, logs and parameters,
@@ -29,7 +29,9 @@ FUZZ_SMOKE_TARGETS += fuzz-link-smoke
 
 due-sketch-msgs:
 	@$(LINK_GEN) $(ROOT)/arduino_ha/src/link/generated $(LINK_SEARCH) -- $(LINK_TYPES)
-	@echo "due-sketch-msgs: wrote arduino_ha/src/link/generated/"
+	@/usr/bin/python3 $(ROOT)/tools/gen_decision_status.py --c $(ROOT)/msg/DecisionStatus.msg \
+	  $(ROOT)/arduino_ha/src/core/ha_decision_status.h
+	@echo "due-sketch-msgs: wrote arduino_ha/src/link/generated/ and arduino_ha/src/core/ha_decision_status.h"
 
 fuzz-link-build:
 	@mkdir -p $(LINK_FUZZ_OUT)

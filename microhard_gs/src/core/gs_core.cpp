@@ -63,16 +63,12 @@ double heading_deg(double yaw_rad) {
 }  // namespace
 
 std::string reason_names(uint32_t reasons) {
-  static const char* const kNames[] = {
-      "NO_COMMAND", "DEADLINE_MISS", "NOT_FINITE", "ACTUATOR_REGION", "ALPHA_BETA",
-      "SENSOR_LINK", "STALL", "CEILING", "STATE_REGION", "FROZEN",
-      "INTEGRITY", "ESTIMATOR", "GROUND_COMMAND", "NO_HA_STATE"};
   std::string out;
   for (uint32_t bit = 0; bit < 32; ++bit) {
     if ((reasons & (1u << bit)) == 0) continue;
     if (!out.empty()) out += ",";
-    if (bit < sizeof kNames / sizeof kNames[0]) {
-      out += kNames[bit];
+    if (bit < kReasonBits && kReasonNames[bit] != nullptr) {
+      out += kReasonNames[bit];
     } else {
       out += "BIT" + std::to_string(bit);
     }
