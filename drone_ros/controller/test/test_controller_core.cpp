@@ -9,6 +9,7 @@
 
 #include "command_builder.h"
 #include "controller_params.h"
+#include "hp_command.h"
 #include "sensor_board.h"
 #include "yaml_lookup.h"
 
@@ -239,6 +240,31 @@ TEST(ServoCommand, CarriesDegreesAndAValidCrc) {
   auto corrupted = cmd;
   corrupted.rudder_deg += 1.0f;
   EXPECT_NE(corrupted.crc32, controller::servo_command_crc(corrupted));
+}
+
+TEST(ServoCommand, TheHaFindsTheCrcTheControllerSent) {
+  GncOutput out{};
+  out.throttle = 0.62;
+  out.aileron_rad = -0.07;
+  out.rudder_rad = 0.02;
+  out.beta_est_rad = 0.01;
+  out.estimator_converged = 1;
+  out.command_valid = 1;
+  out.inputs_finite = 1;
+  const auto cmd = controller::build_servo_command(4242, ros::Time(77, 5000), out, true, 0.0);
+  HaHpCommand ha{};  // as the Due decodes it (arduino_ha/src/link ha_link_command_from_msg)
+  ha.seq = cmd.seq;
+  ha.stamp_sec = cmd.stamp.sec;
+  ha.stamp_nsec = cmd.stamp.nsec;
+  ha.throttle = cmd.throttle;
+  ha.elevator_deg = cmd.elevator_deg;
+  ha.aileron_deg = cmd.aileron_deg;
+  ha.rudder_deg = cmd.rudder_deg;
+  ha.alpha_est_deg = cmd.alpha_est_deg;
+  ha.beta_est_deg = cmd.beta_est_deg;
+  ha.estimator_converged = cmd.estimator_converged ? 1 : 0;
+  ha.sensor_links_healthy = cmd.sensor_links_healthy ? 1 : 0;
+  EXPECT_EQ(cmd.crc32, ha_hp_command_compute_crc(&ha));
 }
 
 TEST(ServoCommand, NanFromTheGncNeverReachesTheWire) {
