@@ -14,6 +14,9 @@ BENCH_TARGETS :=
 FUZZ_TARGETS :=
 FUZZ_SMOKE_TARGETS :=
 -include $(sort $(wildcard $(ROOT)/*/make.mk $(ROOT)/*/*/make.mk))
+# The verify and fuzz kit: turns the components' declarations into verify-<c>-eva, fuzz-<c> and
+# fuzz-smoke-<c> (before the aggregate targets below, which list them).
+include $(ROOT)/tools/kit.mk
 
 .PHONY: help deps build test run lint verify bench fuzz fuzz-smoke clean
 help:
