@@ -4,10 +4,7 @@
 #   make bench-gs        telemetry rate held and CPU share of the node at 10 Hz and 50 Hz
 GS_DIR := $(ROOT)/microhard_gs
 GS_FUZZ_DIR := $(ROOT)/.build/fuzz/gs/gen
-GS_FUZZ_SOURCES := $(GS_DIR)/fuzz/fuzz_gs_core.cpp $(GS_DIR)/src/core/gs_core.cpp \
-  $(GS_DIR)/src/core/mission.cpp $(GS_DIR)/src/core/mission_frames.cpp $(GS_DIR)/src/core/modes.cpp \
-  $(GS_DIR)/src/core/geo.cpp $(GS_DIR)/src/core/params.cpp \
-  $(GS_DIR)/src/core/signing_key.cpp
+GS_FUZZ_SOURCES := $(GS_DIR)/fuzz/fuzz_gs_core.cpp $(sort $(wildcard $(GS_DIR)/src/core/*.cpp))
 
 .PHONY: bench-gs
 BENCH_TARGETS += bench-gs
