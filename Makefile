@@ -5,6 +5,9 @@ SHELL := /bin/bash
 ROOT := $(abspath $(dir $(lastword $(MAKEFILE_LIST))))
 WS := $(ROOT)/.build/ws
 VENV := $(ROOT)/.venv
+# catkin's PYTHON_EXECUTABLE: ROS's Python, which runs every generator (cmake/python.cmake). The
+# venv's Python (PyPI packages over Debian's) runs tests, benchmarks and mavgen.
+PYTHON := /usr/bin/python3
 JOBS ?= 2
 # Every ROS-aware command runs with the workspace sourced and the venv's Python first on PATH.
 ROSENV := source $(WS)/devel/setup.bash && export PATH=$(VENV)/bin:$$PATH &&
@@ -31,7 +34,7 @@ $(WS)/src/drone_ros:
 	@mkdir -p $(WS)/src && ln -sfn ../../.. $(WS)/src/drone_ros && touch $(ROOT)/.build/CATKIN_IGNORE
 
 build: deps $(WS)/src/drone_ros
-	@cd $(WS) && PATH=/usr/bin:$$PATH catkin_make -j$(JOBS) -DPYTHON_EXECUTABLE=/usr/bin/python3 \
+	@cd $(WS) && PATH=/usr/bin:$$PATH catkin_make -j$(JOBS) -DPYTHON_EXECUTABLE=$(PYTHON) \
 	  -DCATKIN_ENABLE_TESTING=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo > $(ROOT)/.build/build.log 2>&1 \
 	  || { tail -n 60 $(ROOT)/.build/build.log; echo "build failed: full log in .build/build.log"; exit 1; }
 	@echo "build: ok (log in .build/build.log)"

@@ -28,11 +28,11 @@ $(GS_FUZZ_DIR)/mavlink/development/mavlink.h:
 # The parameter table is the aircraft's tunables list, written by the controller's generator.
 GS_FUZZ_AIRCRAFT ?= DG808
 $(GS_FUZZ_DIR)/tunables/tunables_table.h: $(ROOT)/tools/gen_tunables.py $(ROOT)/aircraft/$(GS_FUZZ_AIRCRAFT)/tunables.yaml $(ROOT)/aircraft/$(GS_FUZZ_AIRCRAFT)/controller_param.yaml
-	@$(VENV)/bin/python $(ROOT)/tools/gen_tunables.py $(ROOT)/aircraft/$(GS_FUZZ_AIRCRAFT)/tunables.yaml \
+	@$(PYTHON) $(ROOT)/tools/gen_tunables.py $(ROOT)/aircraft/$(GS_FUZZ_AIRCRAFT)/tunables.yaml \
 	  $(ROOT)/aircraft/$(GS_FUZZ_AIRCRAFT)/controller_param.yaml $@
 
 $(GS_FUZZ_DIR)/generated/decision_status_names.h: $(ROOT)/tools/gen_decision_status.py $(ROOT)/msg/DecisionStatus.msg
-	@$(VENV)/bin/python $(ROOT)/tools/gen_decision_status.py --cpp $(ROOT)/msg/DecisionStatus.msg $@
+	@$(PYTHON) $(ROOT)/tools/gen_decision_status.py --cpp $(ROOT)/msg/DecisionStatus.msg $@
 
 bench-gs: build
 	@$(ROSENV) DRONE_ROS_WS=$(WS) $(VENV)/bin/python $(GS_DIR)/bench/bench_gs.py

@@ -11,7 +11,7 @@
 #                          for the Due's Cortex-M3 (-Werror, -pedantic, -Wconversion) with flash,
 #                          RAM and worst stack frame
 LINK_DIR := $(ROOT)/arduino_ha/link
-LINK_GEN := /usr/bin/python3 $(LINK_DIR)/gen/make_c99_msgs.py
+LINK_GEN := $(PYTHON) $(LINK_DIR)/gen/make_c99_msgs.py
 LINK_SEARCH := drone_ros=$(ROOT)/msg std_msgs=/usr/share/std_msgs/msg \
   geometry_msgs=/usr/share/geometry_msgs/msg rosserial_msgs=$(LINK_DIR)/gen/rosserial_msgs/msg
 LINK_TYPES = $(shell cat $(LINK_DIR)/gen/device_types.txt)
@@ -22,7 +22,7 @@ VERIFY_TARGETS += verify-link
 
 due-sketch-msgs:
 	@$(LINK_GEN) $(ROOT)/arduino_ha/src/link/generated $(LINK_SEARCH) -- $(LINK_TYPES)
-	@/usr/bin/python3 $(ROOT)/tools/gen_decision_status.py --c $(ROOT)/msg/DecisionStatus.msg \
+	@$(PYTHON) $(ROOT)/tools/gen_decision_status.py --c $(ROOT)/msg/DecisionStatus.msg \
 	  $(ROOT)/arduino_ha/src/core/ha_decision_status.h
 	@echo "due-sketch-msgs: wrote arduino_ha/src/link/generated/ and arduino_ha/src/core/ha_decision_status.h"
 
