@@ -1,5 +1,6 @@
 # The one front door. `make run` flies the main job; `make test` installs, builds and passes
-# every test. Components add their own targets in <folder>/make.mk (bench-*, verify-*, fuzz-*).
+# every test. Components add bench-<c> and verify-<c> in <folder>/make.mk and declare their EVA
+# and fuzz inputs there; tools/kit.mk makes verify-<c>-eva, fuzz-<c> and fuzz-smoke-<c>.
 SHELL := /bin/bash
 .DEFAULT_GOAL := help
 ROOT := $(abspath $(dir $(lastword $(MAKEFILE_LIST))))
