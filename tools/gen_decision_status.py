@@ -13,9 +13,10 @@ or the generator stops with the offending line.
 
 usage: gen_decision_status.py --c|--cpp DECISION_STATUS_MSG OUTPUT
 """
-import os
 import re
 import sys
+
+from generated_file import write_if_changed
 
 CONSTANT = re.compile(r"^\s*(uint8|uint32)\s+(CONTROLLER|REASON)_([A-Z0-9_]+)\s*=\s*(\d+)\s*(?:#.*)?$")
 
@@ -101,12 +102,7 @@ def main(argv):
         sys.stderr.write("".join(e + "\n" for e in errors))
         return 1
     text = (c_header if argv[1] == "--c" else cpp_header)(controllers, reasons)
-    os.makedirs(os.path.dirname(os.path.abspath(argv[3])), exist_ok=True)
-    # Rewritten only on change, so a rebuild does not recompile every includer.
-    if os.path.exists(argv[3]) and open(argv[3]).read() == text:
-        return 0
-    with open(argv[3], "w") as f:
-        f.write(text)
+    write_if_changed(argv[3], text)
     return 0
 
 

@@ -15,6 +15,8 @@ import sys
 
 import yaml
 
+from generated_file import write_if_changed
+
 DEFAULT_TABLE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "aircraft",
                              "limits_ranges.yaml")
 
@@ -78,11 +80,7 @@ def main(argv):
     except (RangeError, OSError, yaml.YAMLError) as e:
         sys.stderr.write("gen_limits_ranges: %s\n" % e)
         return 1
-    os.makedirs(os.path.dirname(os.path.abspath(argv[2])), exist_ok=True)
-    if os.path.exists(argv[2]) and open(argv[2]).read() == text:
-        return 0
-    with open(argv[2], "w") as f:
-        f.write(text)
+    write_if_changed(argv[2], text)
     return 0
 
 
