@@ -11,6 +11,7 @@
 #include "controller_params.h"
 #include "hp_command.h"
 #include "sensor_board.h"
+#include "servo_command_as_ha.h"
 #include "yaml_lookup.h"
 
 namespace {
@@ -252,18 +253,7 @@ TEST(ServoCommand, TheHaFindsTheCrcTheControllerSent) {
   out.command_valid = 1;
   out.inputs_finite = 1;
   const auto cmd = controller::build_servo_command(4242, ros::Time(77, 5000), out, true, 0.0);
-  HaHpCommand ha{};  // as the Due decodes it (arduino_ha/src/link ha_link_command_from_msg)
-  ha.seq = cmd.seq;
-  ha.stamp_sec = cmd.stamp.sec;
-  ha.stamp_nsec = cmd.stamp.nsec;
-  ha.throttle = cmd.throttle;
-  ha.elevator_deg = cmd.elevator_deg;
-  ha.aileron_deg = cmd.aileron_deg;
-  ha.rudder_deg = cmd.rudder_deg;
-  ha.alpha_est_deg = cmd.alpha_est_deg;
-  ha.beta_est_deg = cmd.beta_est_deg;
-  ha.estimator_converged = cmd.estimator_converged ? 1 : 0;
-  ha.sensor_links_healthy = cmd.sensor_links_healthy ? 1 : 0;
+  const HaHpCommand ha = servo_command_as_ha(cmd);  // as the Due decodes it
   EXPECT_EQ(cmd.crc32, ha_hp_command_compute_crc(&ha));
 }
 
