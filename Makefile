@@ -1,10 +1,14 @@
 # The one front door. `make run` flies the main job; `make test` installs, builds and passes
-# every test. Components add their own targets in <folder>/make.mk (bench-*, verify-*, fuzz-*).
+# every test. Components add bench-<c> and verify-<c> in <folder>/make.mk and declare their EVA
+# and fuzz inputs there; tools/kit.mk makes verify-<c>-eva, fuzz-<c> and fuzz-smoke-<c>.
 SHELL := /bin/bash
 .DEFAULT_GOAL := help
 ROOT := $(abspath $(dir $(lastword $(MAKEFILE_LIST))))
 WS := $(ROOT)/.build/ws
 VENV := $(ROOT)/.venv
+# catkin's PYTHON_EXECUTABLE: ROS's Python, which runs every generator (cmake/python.cmake). The
+# venv's Python (PyPI packages over Debian's) runs tests, benchmarks and mavgen.
+PYTHON := /usr/bin/python3
 JOBS ?= 2
 # Every ROS-aware command runs with the workspace sourced and the venv's Python first on PATH.
 ROSENV := source $(WS)/devel/setup.bash && export PATH=$(VENV)/bin:$$PATH &&
@@ -14,6 +18,9 @@ BENCH_TARGETS :=
 FUZZ_TARGETS :=
 FUZZ_SMOKE_TARGETS :=
 -include $(sort $(wildcard $(ROOT)/*/make.mk $(ROOT)/*/*/make.mk))
+# The verify and fuzz kit: turns the components' declarations into verify-<c>-eva, fuzz-<c> and
+# fuzz-smoke-<c> (before the aggregate targets below, which list them).
+include $(ROOT)/tools/kit.mk
 
 .PHONY: help deps build test run lint verify bench fuzz fuzz-smoke clean
 help:
@@ -28,7 +35,7 @@ $(WS)/src/drone_ros:
 	@mkdir -p $(WS)/src && ln -sfn ../../.. $(WS)/src/drone_ros && touch $(ROOT)/.build/CATKIN_IGNORE
 
 build: deps $(WS)/src/drone_ros
-	@cd $(WS) && PATH=/usr/bin:$$PATH catkin_make -j$(JOBS) -DPYTHON_EXECUTABLE=/usr/bin/python3 \
+	@cd $(WS) && PATH=/usr/bin:$$PATH catkin_make -j$(JOBS) -DPYTHON_EXECUTABLE=$(PYTHON) \
 	  -DCATKIN_ENABLE_TESTING=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo > $(ROOT)/.build/build.log 2>&1 \
 	  || { tail -n 60 $(ROOT)/.build/build.log; echo "build failed: full log in .build/build.log"; exit 1; }
 	@echo "build: ok (log in .build/build.log)"

@@ -12,12 +12,21 @@ HA_VERIFY_OUT := $(ROOT)/.build/arduino_ha_verify
 VERIFY_TARGETS += verify-ha
 BENCH_TARGETS += bench-ha
 
-.PHONY: verify-ha verify-ha-eva verify-ha-m3 verify-ha-board bench-ha
+.PHONY: verify-ha verify-ha-m3 verify-ha-board bench-ha
 
 verify-ha: verify-ha-eva verify-ha-m3 verify-ha-board
 
-verify-ha-eva: deps
-	@bash $(HA_DIR)/verify/run_eva.sh $(HA_VERIFY_OUT)/eva
+# EVA over every .c of the core, driven by verify/eva_main.c in two input modes (finite full
+# range; every bit pattern incl. NaN and inf), each over an unknown number of control periods;
+# the negative control must be flagged and every core function reached. HA_CORE_DIR: try a
+# patched copy of the core (verify/ALARMS.md).
+HA_CORE_DIR ?= $(HA_DIR)/src/core
+EVA_COMPONENTS += ha
+EVA_ha_SOURCES = $(sort $(wildcard $(HA_CORE_DIR)/*.c)) $(HA_DIR)/verify/eva_main.c
+EVA_ha_ARGS = -I $(HA_CORE_DIR) --negative $(HA_DIR)/verify/eva_negative_control.c --reach $(HA_CORE_DIR) \
+  --case finite-any-periods:main:1:non-finite:-DHA_EVA_STEPS=0 \
+  --case any-bits-any-periods:main:1:none:-DHA_EVA_ANY_BITS,-DHA_EVA_STEPS=0
+EVA_ha_DEPS = deps
 
 verify-ha-m3: deps
 	@bash $(HA_DIR)/verify/cross_size.sh $(HA_VERIFY_OUT)/m3

@@ -1,21 +1,22 @@
 # microhard_gs targets, included by the root Makefile.
-#   make fuzz-gs         libFuzzer (clang, ASan+UBSan) over the link bytes, GS_FUZZ_SECONDS long
-#   make fuzz-gs-smoke   the same for 20 s
+#   make fuzz-gs         libFuzzer (clang, ASan+UBSan) over the link bytes, FUZZ_SECONDS long (tools/kit.mk)
+#   make fuzz-smoke-gs   the same for FUZZ_SMOKE_SECONDS (CI)
 #   make bench-gs        telemetry rate held and CPU share of the node at 10 Hz and 50 Hz
 GS_DIR := $(ROOT)/microhard_gs
-GS_FUZZ_DIR ?= $(ROOT)/.build/fuzz_gs
-GS_FUZZ_BIN := $(GS_FUZZ_DIR)/fuzz_gs_core
-GS_CLANGXX ?= $(shell command -v clang++-14 || command -v clang++)
-GS_FUZZ_SECONDS ?= 300
-GS_FUZZ_SOURCES := $(GS_DIR)/fuzz/fuzz_gs_core.cpp $(GS_DIR)/src/core/gs_core.cpp \
-  $(GS_DIR)/src/core/mission.cpp $(GS_DIR)/src/core/mission_frames.cpp $(GS_DIR)/src/core/modes.cpp \
-  $(GS_DIR)/src/core/geo.cpp $(GS_DIR)/src/core/params.cpp \
-  $(GS_DIR)/src/core/signing_key.cpp
+GS_FUZZ_DIR := $(ROOT)/.build/fuzz/gs/gen
+GS_FUZZ_SOURCES := $(GS_DIR)/fuzz/fuzz_gs_core.cpp $(sort $(wildcard $(GS_DIR)/src/core/*.cpp))
 
-.PHONY: fuzz-gs fuzz-gs-smoke bench-gs
-FUZZ_TARGETS += fuzz-gs
-FUZZ_SMOKE_TARGETS += fuzz-gs-smoke
+.PHONY: bench-gs
 BENCH_TARGETS += bench-gs
+
+FUZZ_COMPONENTS += gs
+FUZZ_gs_HARNESSES := gs_core
+FUZZ_gs_gs_core_SOURCES := $(GS_FUZZ_SOURCES)
+FUZZ_gs_gs_core_FLAGS := -I$(GS_DIR)/src/core -I$(GS_FUZZ_DIR)/tunables -I$(GS_FUZZ_DIR)/generated \
+  -I$(ROOT)/drone_ros/common/include -isystem $(GS_FUZZ_DIR)/mavlink
+FUZZ_gs_gs_core_SEEDS := $(GS_DIR)/fuzz/corpus
+FUZZ_gs_DEPS = $(wildcard $(GS_DIR)/src/core/*.h) $(GS_FUZZ_DIR)/mavlink/development/mavlink.h \
+  $(GS_FUZZ_DIR)/tunables/tunables_table.h $(GS_FUZZ_DIR)/generated/decision_status_names.h
 
 # The MAVLink headers are generated from the installed pymavlink here too, never checked in.
 $(GS_FUZZ_DIR)/mavlink/development/mavlink.h:
@@ -27,27 +28,11 @@ $(GS_FUZZ_DIR)/mavlink/development/mavlink.h:
 # The parameter table is the aircraft's tunables list, written by the controller's generator.
 GS_FUZZ_AIRCRAFT ?= DG808
 $(GS_FUZZ_DIR)/tunables/tunables_table.h: $(ROOT)/tools/gen_tunables.py $(ROOT)/aircraft/$(GS_FUZZ_AIRCRAFT)/tunables.yaml $(ROOT)/aircraft/$(GS_FUZZ_AIRCRAFT)/controller_param.yaml
-	@$(VENV)/bin/python $(ROOT)/tools/gen_tunables.py $(ROOT)/aircraft/$(GS_FUZZ_AIRCRAFT)/tunables.yaml \
+	@$(PYTHON) $(ROOT)/tools/gen_tunables.py $(ROOT)/aircraft/$(GS_FUZZ_AIRCRAFT)/tunables.yaml \
 	  $(ROOT)/aircraft/$(GS_FUZZ_AIRCRAFT)/controller_param.yaml $@
 
-$(GS_FUZZ_BIN): $(GS_FUZZ_SOURCES) $(wildcard $(GS_DIR)/src/core/*.h) $(GS_FUZZ_DIR)/mavlink/development/mavlink.h $(GS_FUZZ_DIR)/tunables/tunables_table.h
-	@test -n "$(GS_CLANGXX)" || { echo "fuzz-gs: clang++ not found (microhard_gs/apt-packages.txt)"; exit 1; }
-	$(GS_CLANGXX) -std=c++17 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
-	  -Wall -Wextra -Werror -I$(GS_DIR)/src/core -I$(GS_FUZZ_DIR)/tunables -I$(ROOT)/drone_ros/common/include -isystem $(GS_FUZZ_DIR)/mavlink $(GS_FUZZ_SOURCES) -o $@
-
-# The full log goes to a file; the console gets the verdict and the run count, and on a crash the
-# log's tail with the reproducer's path.
-fuzz-gs: $(GS_FUZZ_BIN)
-	@mkdir -p $(GS_FUZZ_DIR)/corpus
-	@echo "fuzz-gs: gs_core for $(GS_FUZZ_SECONDS) s (log: $(GS_FUZZ_DIR)/fuzz.log)"
-	@$(GS_FUZZ_BIN) -max_total_time=$(GS_FUZZ_SECONDS) -print_final_stats=1 -artifact_prefix=$(GS_FUZZ_DIR)/ \
-	  $(GS_FUZZ_DIR)/corpus $(GS_DIR)/fuzz/corpus > $(GS_FUZZ_DIR)/fuzz.log 2>&1 \
-	  || { tail -n 40 $(GS_FUZZ_DIR)/fuzz.log; echo "fuzz-gs: crash, see $(GS_FUZZ_DIR)/fuzz.log"; exit 1; }
-	@grep -E 'stat::(number_of_executed_units|average_exec_per_sec)' $(GS_FUZZ_DIR)/fuzz.log | sed 's/^/  /'
-	@echo "fuzz-gs: no crash in $(GS_FUZZ_SECONDS) s"
-
-fuzz-gs-smoke:
-	@$(MAKE) --no-print-directory -f $(ROOT)/Makefile fuzz-gs GS_FUZZ_SECONDS=20
+$(GS_FUZZ_DIR)/generated/decision_status_names.h: $(ROOT)/tools/gen_decision_status.py $(ROOT)/msg/DecisionStatus.msg
+	@$(PYTHON) $(ROOT)/tools/gen_decision_status.py --cpp $(ROOT)/msg/DecisionStatus.msg $@
 
 bench-gs: build
 	@$(ROSENV) DRONE_ROS_WS=$(WS) $(VENV)/bin/python $(GS_DIR)/bench/bench_gs.py

@@ -14,6 +14,7 @@
 #include <drone_ros/way.h>
 
 #include "hp_command.h"
+#include "servo_command_as_ha.h"
 
 #include <cmath>
 #include <fstream>
@@ -133,18 +134,7 @@ TEST(ServoCommandCrc, HaPackingEqualsRosSerializationSoBothEndsAgree) {
   cmd.sensor_links_healthy = true;
   const auto ros_bytes = serialize(cmd);
 
-  HaHpCommand ha = {};
-  ha.seq = cmd.seq;
-  ha.stamp_sec = cmd.stamp.sec;
-  ha.stamp_nsec = cmd.stamp.nsec;
-  ha.throttle = cmd.throttle;
-  ha.elevator_deg = cmd.elevator_deg;
-  ha.aileron_deg = cmd.aileron_deg;
-  ha.rudder_deg = cmd.rudder_deg;
-  ha.alpha_est_deg = cmd.alpha_est_deg;
-  ha.beta_est_deg = cmd.beta_est_deg;
-  ha.estimator_converged = 1;
-  ha.sensor_links_healthy = 1;
+  const HaHpCommand ha = servo_command_as_ha(cmd);
   uint8_t packed[HA_HP_COMMAND_FIELDS_LEN];
   ha_hp_command_pack_fields(&ha, packed);
   EXPECT_EQ(std::vector<uint8_t>(ros_bytes.begin(), ros_bytes.begin() + HA_HP_COMMAND_FIELDS_LEN),

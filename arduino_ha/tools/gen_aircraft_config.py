@@ -9,9 +9,13 @@ converts times to integer microseconds and refuses a configuration that makes no
 usage: gen_aircraft_config.py <limits.yaml> <out.h>     (out '-' writes to stdout)
 """
 import math
+import os
 import sys
 
 import yaml
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
+import gen_limits_ranges  # noqa: E402  (the one table of ranges every component checks with)
 
 # Order of the state and actuator vectors: must match HA_X_* and HA_U_* in src/core/ha_config.h.
 X_NAMES = ["alpha_deg", "beta_deg", "roll_deg", "pitch_deg", "p_deg_s", "q_deg_s", "r_deg_s",
@@ -59,6 +63,16 @@ def need(section, key, low=None, high=None):
     if high is not None and value > high:
         raise ConfigError("%s = %g is above %g" % (key, value, high))
     return value
+
+
+RANGES = gen_limits_ranges.ranges()
+
+
+def ranged(doc, path):
+    """A key of aircraft/limits_ranges.yaml, checked against the range every component uses."""
+    section, key = path.split("/")
+    low, high = RANGES[path]
+    return need(doc[section], key, low, high)
 
 
 def positive(section, key):
@@ -110,24 +124,27 @@ def build(doc):
     c = {}
     c["aircraft"] = str(doc["aircraft"])
 
-    c["elevator_limit_deg"] = positive(act, "elevator_limit_deg")
-    c["aileron_limit_deg"] = positive(act, "aileron_limit_deg")
-    c["rudder_limit_deg"] = positive(act, "rudder_limit_deg")
-    c["throttle_min"] = need(act, "throttle_min", 0.0, 1.0)
-    c["throttle_max"] = need(act, "throttle_max", 0.0, 1.0)
+    c["elevator_limit_deg"] = ranged(doc, "actuators/elevator_limit_deg")
+    c["aileron_limit_deg"] = ranged(doc, "actuators/aileron_limit_deg")
+    c["rudder_limit_deg"] = ranged(doc, "actuators/rudder_limit_deg")
+    c["throttle_min"] = ranged(doc, "actuators/throttle_min")
+    c["throttle_max"] = ranged(doc, "actuators/throttle_max")
     if c["throttle_max"] <= c["throttle_min"]:
         raise ConfigError("throttle_max must exceed throttle_min")
     c["surface_rate_limit_deg_per_s"] = positive(act, "surface_rate_limit_deg_per_s")
     c["throttle_rate_limit_per_s"] = positive(act, "throttle_rate_limit_per_s")
 
-    c["alpha_limit_deg"] = need(st, "alpha_limit_deg", 1.0, 90.0)
-    c["beta_limit_deg"] = need(st, "beta_limit_deg", 1.0, 90.0)
-    roll = need(st, "roll_limit_deg", 1.0, 180.0)
-    pitch = need(st, "pitch_limit_deg", 1.0, 90.0)
+    c["alpha_limit_deg"] = ranged(doc, "state/alpha_limit_deg")
+    c["beta_limit_deg"] = ranged(doc, "state/beta_limit_deg")
+    roll = ranged(doc, "state/roll_limit_deg")
+    pitch = ranged(doc, "state/pitch_limit_deg")
     rate = positive(st, "body_rate_limit_deg_per_s")
-    c["stall_speed_ftps"] = positive(st, "stall_speed_ftps")
-    c["ceiling_agl_ft"] = positive(st, "ceiling_agl_ft")
-    c["airborne_agl_ft"] = need(st, "airborne_agl_ft", 0.0, c["ceiling_agl_ft"])
+    c["stall_speed_ftps"] = ranged(doc, "state/stall_speed_ftps")
+    c["ceiling_agl_ft"] = ranged(doc, "state/ceiling_agl_ft")
+    c["airborne_agl_ft"] = ranged(doc, "state/airborne_agl_ft")
+    if c["airborne_agl_ft"] > c["ceiling_agl_ft"]:
+        raise ConfigError("airborne_agl_ft = %g is above ceiling_agl_ft %g"
+                          % (c["airborne_agl_ft"], c["ceiling_agl_ft"]))
     c["landed_confirm_us"] = us(positive(st, "landed_confirm_s"), "landed_confirm_s")
     c["inner_region_fraction"] = need(st, "inner_region_fraction", 0.05, 0.99)
     c["max_airspeed_ftps"] = need(sen, "max_airspeed_ftps", c["stall_speed_ftps"])

@@ -1,9 +1,9 @@
 /* Frama-C EVA analysis driver for the HA core (arduino_ha/src/core). Not compiled into anything:
- * verify/run_eva.sh hands it to frama-c together with every .c of the core.
+ * make verify-ha-eva (tools/eva.sh) hands it to frama-c together with every .c of the core.
  *
  * Each period it draws every input from the whole range of its type and calls the core exactly
  * as the firmware does, through ha_app_period (the board functions below return unknown values)
- * and directly through ha_core_step. Two input modes, selected by run_eva.sh:
+ * and directly through ha_core_step. Two input modes, the cases arduino_ha/make.mk declares:
  *   default            every float input any finite value in [-FLT_MAX, FLT_MAX], every integer
  *                      any value of its type; EVA's default -warn-special-float non-finite then
  *                      raises an alarm for any operation in the core that could produce inf/NaN

@@ -5,4 +5,4 @@ BENCH_TARGETS += bench-link
 
 .PHONY: bench-link
 bench-link: build
-	@$(ROSENV) python $(ROOT)/drone_ros/arduino_link/bench/bench_link.py $(WS)
+	@$(ROSENV) $(VENV)/bin/python $(ROOT)/drone_ros/arduino_link/bench/bench_link.py $(WS)

@@ -4,5 +4,5 @@ BENCH_TARGETS += bench-controller
 .PHONY: bench-controller
 bench-controller: build
 	@$(ROSENV) $(WS)/devel/lib/drone_ros/bench_gnc
-	@$(ROSENV) python $(ROOT)/drone_ros/controller/bench/bench_node_latency.py
+	@$(ROSENV) $(VENV)/bin/python $(ROOT)/drone_ros/controller/bench/bench_node_latency.py
 	@echo "machine: $$(uname -srm), $$(nproc) cpu, $$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"

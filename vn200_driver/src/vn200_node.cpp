@@ -1,28 +1,16 @@
 #include "vn200_node.h"
 
-#include <drone_ros/ins.h>
-#include <geometry_msgs/Point.h>
-#include <geometry_msgs/TransformStamped.h>
-#include <geometry_msgs/Twist.h>
-#include <geometry_msgs/TwistStamped.h>
-#include <sensor_msgs/FluidPressure.h>
-#include <sensor_msgs/Imu.h>
-#include <sensor_msgs/MagneticField.h>
-#include <sensor_msgs/NavSatFix.h>
-#include <sensor_msgs/Temperature.h>
-
+#include <algorithm>
 #include <fstream>
 #include <thread>
 
-#include "conversions.h"
 #include "output_config.h"
+#include "packet_messages.h"
 #include "vn_command.h"
 
 namespace vn200 {
 
 namespace {
-
-constexpr uint64_t kNsPerWeek = 604800ull * 1000000000ull;
 
 SensorSession::Options sessionOptions(const NodeParams& p) {
   SensorSession::Options o;
@@ -34,21 +22,6 @@ SensorSession::Options sessionOptions(const NodeParams& p) {
 }
 
 double wallNow() { return ros::WallTime::now().toSec(); }
-
-void setQuat(geometry_msgs::Quaternion* m, const Quat& q) {
-  m->x = q[0];
-  m->y = q[1];
-  m->z = q[2];
-  m->w = q[3];
-}
-
-void setVec(geometry_msgs::Vector3* m, const Vec3& v) {
-  m->x = v[0];
-  m->y = v[1];
-  m->z = v[2];
-}
-
-Vec3 vec3(const float* f) { return {f[0], f[1], f[2]}; }
 
 }  // namespace
 
@@ -72,7 +45,10 @@ Vn200Node::Vn200Node(ros::NodeHandle nh, ros::NodeHandle pnh, const NodeParams& 
                                                   : "VN-200 replay " + params_.replay_file);
   diag_.add("VN-200 link", this, &Vn200Node::diagLink);
 
-  session_.on_binary = [this](const VnBinaryData& d, double) { publishPacket(d); };
+  session_.on_binary = [this](const VnBinaryData& d, double) {
+    if (!params_.replay_file.empty()) paceReplay(d);
+    publishPacket(d);
+  };
 }
 
 int Vn200Node::run() { return params_.replay_file.empty() ? runPort() : runReplay(); }
@@ -215,21 +191,22 @@ int Vn200Node::runReplay() {
   return 0;
 }
 
-void Vn200Node::publishPacket(const VnBinaryData& d) {
-  // Replay: hold each packet until its sensor time comes round again.
-  if (!params_.replay_file.empty() && (d.has & VN_HAS_TIME_STARTUP)) {
-    const double t = static_cast<double>(d.time_startup_ns) * 1e-9;
-    if (!replay_started_ || t < replay_t0_sensor_s_) {
-      replay_started_ = true;
-      replay_t0_sensor_s_ = t;
-      replay_t0_wall_s_ = wallNow();
-    }
-    const double due = replay_t0_wall_s_ + (t - replay_t0_sensor_s_) / params_.replay_speed;
-    const double wait = due - wallNow();
-    if (wait > 0) ros::WallDuration(std::min(wait, 10.0)).sleep();
+void Vn200Node::paceReplay(const VnBinaryData& d) {
+  // Hold each packet until its sensor time comes round again.
+  if (!(d.has & VN_HAS_TIME_STARTUP)) return;
+  const double t = static_cast<double>(d.time_startup_ns) * 1e-9;
+  if (!replay_started_ || t < replay_t0_sensor_s_) {
+    replay_started_ = true;
+    replay_t0_sensor_s_ = t;
+    replay_t0_wall_s_ = wallNow();
   }
-  link_up_ = true;
+  const double due = replay_t0_wall_s_ + (t - replay_t0_sensor_s_) / params_.replay_speed;
+  const double wait = due - wallNow();
+  if (wait > 0) ros::WallDuration(std::min(wait, 10.0)).sleep();
+}
 
+void Vn200Node::publishPacket(const VnBinaryData& d) {
+  link_up_ = true;
   ros::Time stamp = ros::Time::now();
   if (d.has & VN_HAS_TIME_STARTUP) {
     const double mapped =
@@ -237,115 +214,26 @@ void Vn200Node::publishPacket(const VnBinaryData& d) {
     if (mapped > 0 && mapped < 4.0e9) stamp = ros::Time(mapped);  // ros::Time throws outside
   }
 
-  const double roll = d.ypr_deg[2] * kDegToRad, pitch = d.ypr_deg[1] * kDegToRad,
-               yaw = d.ypr_deg[0] * kDegToRad;
-  Quat q_ned{d.quat_xyzw[0], d.quat_xyzw[1], d.quat_xyzw[2], d.quat_xyzw[3]};
-  if (!(d.has & VN_HAS_QUATERNION)) q_ned = quatFromYprNed(yaw, pitch, roll);
-
-  // --- Original topics -----------------------------------------------------------------------
-  drone_ros::ins ins;
-  ins.header.stamp = stamp;
-  ins.header.frame_id = params_.frame_id;
-  if (d.has & VN_HAS_GPS_TOW) {
-    ins.time = static_cast<double>(d.gps_tow_ns) * 1e-9;
-  } else if (d.has & VN_HAS_TIME_GPS) {
-    ins.time = static_cast<double>(d.time_gps_ns % kNsPerWeek) * 1e-9;
-  }
-  if (d.has & VN_HAS_GPS_WEEK) {
-    ins.week = d.gps_week;
-  } else if (d.has & VN_HAS_TIME_GPS) {
-    ins.week = static_cast<uint16_t>(d.time_gps_ns / kNsPerWeek);
-  }
-  ins.usbstatus = 1;
-  ins.ins_status = d.ins_status;
-  ins.num_sats = d.num_sats;
-  ins.gps_fix = d.gps_fix;
-  ins_pub_.publish(ins);
-
-  if (d.has & VN_HAS_YPR) {
-    geometry_msgs::Point att;  // phi, theta, psi [rad] as the thesis's controller reads them
-    att.x = roll;
-    att.y = pitch;
-    att.z = yaw;
-    attitude_pub_.publish(att);
-  }
-
-  sensor_msgs::NavSatFix fix;
-  fix.header.stamp = stamp;
-  fix.header.frame_id = params_.frame_id;
-  fix.status.status = d.gps_fix >= 2 ? sensor_msgs::NavSatStatus::STATUS_FIX
-                                     : sensor_msgs::NavSatStatus::STATUS_NO_FIX;
-  fix.status.service = sensor_msgs::NavSatStatus::SERVICE_GPS;
-  fix.latitude = d.lat_deg;
-  fix.longitude = d.lon_deg;
-  fix.altitude = d.alt_m;
-  if (d.has & VN_HAS_INS_POS_UNC) {
-    const double var = static_cast<double>(d.ins_pos_unc_m) * d.ins_pos_unc_m;
-    fix.position_covariance = {var, 0, 0, 0, var, 0, 0, 0, var};
-    fix.position_covariance_type = sensor_msgs::NavSatFix::COVARIANCE_TYPE_APPROXIMATED;
-  } else if (d.has & VN_HAS_GPS_POS_UNC) {
-    const Vec3 u = nedToEnu(vec3(d.gps_pos_unc_ned_m));
-    fix.position_covariance = {u[0] * u[0], 0, 0, 0, u[1] * u[1], 0, 0, 0, u[2] * u[2]};
-    fix.position_covariance_type = sensor_msgs::NavSatFix::COVARIANCE_TYPE_DIAGONAL_KNOWN;
-  }
+  // Original topics.
+  ins_pub_.publish(to_ins(d, stamp, params_.frame_id));
+  if (d.has & VN_HAS_YPR) attitude_pub_.publish(to_attitude(d));
   if (d.has & VN_HAS_POSITION_LLA) {
+    const sensor_msgs::NavSatFix fix = to_nav_sat_fix(d, stamp, params_.frame_id);
     gps_position_pub_.publish(fix);
     fix_pub_.publish(fix);
   }
-
   if (d.has & VN_HAS_VEL_NED) {
-    geometry_msgs::Twist v;  // north, east, down [m/s], the original convention
-    setVec(&v.linear, vec3(d.vel_ned_mps));
-    gps_velocity_pub_.publish(v);
-    geometry_msgs::TwistStamped ve;
-    ve.header.stamp = stamp;
-    ve.header.frame_id = params_.world_frame_id;
-    setVec(&ve.twist.linear, nedToEnu(vec3(d.vel_ned_mps)));
-    velocity_pub_.publish(ve);
+    gps_velocity_pub_.publish(to_gps_velocity(d));
+    velocity_pub_.publish(to_velocity_enu(d, stamp, params_.world_frame_id));
   }
+  if (d.has & VN_HAS_ANGULAR_RATE) imu_pqr_pub_.publish(to_imu_pqr(d, stamp, params_.frd_frame_id));
 
-  sensor_msgs::Imu pqr;  // body rates P, Q, R and specific force, in the sensor's own axes
-  pqr.header.stamp = stamp;
-  pqr.header.frame_id = params_.frd_frame_id;
-  setQuat(&pqr.orientation, q_ned);  // body relative to NED
-  setVec(&pqr.angular_velocity, vec3(d.angular_rate_radps));
-  setVec(&pqr.linear_acceleration, vec3(d.accel_mps2));
-  if (d.has & VN_HAS_ANGULAR_RATE) imu_pqr_pub_.publish(pqr);
-
-  // --- REP-103 topics -------------------------------------------------------------------------
-  const Quat q_enu = nedFrdToEnuFlu(q_ned);
-  sensor_msgs::Imu imu;
-  imu.header.stamp = stamp;
-  imu.header.frame_id = params_.frame_id;
-  setQuat(&imu.orientation, q_enu);
-  if (d.has & VN_HAS_YPR_UNC) {
-    const double r = d.ypr_unc_deg[2] * kDegToRad, p = d.ypr_unc_deg[1] * kDegToRad,
-                 y = d.ypr_unc_deg[0] * kDegToRad;
-    imu.orientation_covariance = {r * r, 0, 0, 0, p * p, 0, 0, 0, y * y};
-  }
-  setVec(&imu.angular_velocity, frdToFlu(vec3(d.angular_rate_radps)));
-  setVec(&imu.linear_acceleration, frdToFlu(vec3(d.accel_mps2)));
+  // REP-103 topics.
+  const sensor_msgs::Imu imu = to_imu(d, stamp, params_.frame_id);
   if (d.has & (VN_HAS_QUATERNION | VN_HAS_YPR)) imu_pub_.publish(imu);
-
-  if (d.has & VN_HAS_MAG) {
-    sensor_msgs::MagneticField mag;
-    mag.header = imu.header;
-    const Vec3 m = frdToFlu(vec3(d.mag_gauss));
-    setVec(&mag.magnetic_field, {m[0] * kGaussToTesla, m[1] * kGaussToTesla, m[2] * kGaussToTesla});
-    mag_pub_.publish(mag);
-  }
-  if (d.has & VN_HAS_PRESSURE) {
-    sensor_msgs::FluidPressure pr;
-    pr.header = imu.header;
-    pr.fluid_pressure = d.pressure_kpa * kKpaToPa;
-    pressure_pub_.publish(pr);
-  }
-  if (d.has & VN_HAS_TEMP) {
-    sensor_msgs::Temperature t;
-    t.header = imu.header;
-    t.temperature = d.temp_c;
-    temperature_pub_.publish(t);
-  }
+  if (d.has & VN_HAS_MAG) mag_pub_.publish(to_magnetic_field(d, imu.header));
+  if (d.has & VN_HAS_PRESSURE) pressure_pub_.publish(to_fluid_pressure(d, imu.header));
+  if (d.has & VN_HAS_TEMP) temperature_pub_.publish(to_temperature(d, imu.header));
 
   // tf: local ENU frame anchored where the INS first reported a tracking solution.
   if (params_.publish_tf && (d.has & VN_HAS_POSITION_LLA) && VN_INS_STATUS_MODE(d.ins_status) >= 1) {
@@ -355,17 +243,8 @@ void Vn200Node::publishPacket(const VnBinaryData& d) {
       ref_lon_deg_ = d.lon_deg;
       ref_alt_m_ = d.alt_m;
     }
-    geometry_msgs::TransformStamped tf;
-    tf.header.stamp = stamp;
-    tf.header.frame_id = params_.world_frame_id;
-    tf.child_frame_id = params_.frame_id;
-    const Vec3 p = llaToLocalEnu(d.lat_deg, d.lon_deg, d.alt_m, ref_lat_deg_, ref_lon_deg_,
-                                 ref_alt_m_);
-    tf.transform.translation.x = p[0];
-    tf.transform.translation.y = p[1];
-    tf.transform.translation.z = p[2];
-    setQuat(&tf.transform.rotation, q_enu);
-    tf_.sendTransform(tf);
+    tf_.sendTransform(to_transform(d, stamp, params_.world_frame_id, params_.frame_id, ref_lat_deg_,
+                                   ref_lon_deg_, ref_alt_m_));
   }
 }
 

@@ -27,6 +27,7 @@ class Vn200Node {
   int runReplay();
   void tryOpen(double now_s);
   void linkLost(const std::string& why, double now_s);
+  void paceReplay(const VnBinaryData& d);  // replay only: sleeps until the packet's sensor time
   void publishPacket(const VnBinaryData& d);
   void publishLinkDown();
   void diagLink(diagnostic_updater::DiagnosticStatusWrapper& stat);

@@ -1,5 +1,5 @@
 /* Frama-C EVA analysis driver for the VN-200 protocol core (vn200_driver/core). Not compiled
- * into anything: verify/run_eva.sh hands it to frama-c with every .c of the core.
+ * into anything: make verify-vn200-eva (tools/eva.sh) hands it to frama-c with every .c of the core.
  * Every input is unknown: the bytes the framer reads (in several reads of any length), the
  * packet and sentence bytes and lengths given to the decoders, and every field of the command
  * builders' arguments. EVA must then find no run-time error (overflow, out-of-bounds access,
@@ -82,7 +82,7 @@ static void drive_commands(void)
     (void)vn_cmd_async_off(cmd, cap, ck);
 }
 
-/* One entry point per part, so run_eva.sh analyses each with its own precision budget. */
+/* One entry point per part, so tools/eva.sh analyses each with its own precision budget. */
 int main_framer(void)
 {
     drive_framer();

@@ -1,44 +1,20 @@
 /* The HA core: one call per control period decides who drives the servos (HP, HA safety
  * controller, or the pilot) and what goes to them. Pure: time and inputs in, outputs out; no
- * board access, no heap, no recursion. The numeric values of CONTROLLER_* and REASON_* are those
- * of msg/DecisionStatus.msg, and HA_OP_* those of msg/OperatorCommand.msg. */
+ * board access, no heap, no recursion. CONTROLLER_* and REASON_* are generated from
+ * msg/DecisionStatus.msg (ha_decision_status.h); HA_OP_* are those of msg/OperatorCommand.msg. */
 #ifndef HA_CORE_H
 #define HA_CORE_H
 
 #include <stdint.h>
 
 #include "ha_config.h"
+#include "ha_decision_status.h"
 #include "ha_types.h"
 #include "hp_command.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
-
-/* msg/DecisionStatus.msg controller */
-enum {
-  HA_CONTROLLER_HP = 0,
-  HA_CONTROLLER_HA = 1,
-  HA_CONTROLLER_RECOVERING = 2,
-  HA_CONTROLLER_HA_LATCHED = 3,
-  HA_CONTROLLER_MANUAL = 4
-};
-
-/* msg/DecisionStatus.msg reasons */
-#define HA_REASON_NO_COMMAND 1u
-#define HA_REASON_DEADLINE_MISS 2u
-#define HA_REASON_NOT_FINITE 4u
-#define HA_REASON_ACTUATOR_REGION 8u
-#define HA_REASON_ALPHA_BETA 16u
-#define HA_REASON_SENSOR_LINK 32u
-#define HA_REASON_STALL 64u
-#define HA_REASON_CEILING 128u
-#define HA_REASON_STATE_REGION 256u
-#define HA_REASON_FROZEN 512u
-#define HA_REASON_INTEGRITY 1024u
-#define HA_REASON_ESTIMATOR 2048u
-#define HA_REASON_GROUND_COMMAND 4096u
-#define HA_REASON_NO_HA_STATE 8192u
 
 /* msg/OperatorCommand.msg command (0: no request) */
 enum {

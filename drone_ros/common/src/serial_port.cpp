@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 #include <string>
 
@@ -125,27 +126,28 @@ SerialPort::ReadResult SerialPort::read(uint8_t *buf, std::size_t cap, int timeo
 
 bool SerialPort::write_all(const void *data, std::size_t len) {
   const auto *p = static_cast<const uint8_t *>(data);
-  constexpr int kPollMs = 10;
-  int stalled_ms = 0;
+  // The stall is measured on the clock, not by counting polls: a signal ends a poll early, and
+  // counted as a whole poll a burst of signals would give up on a device that is draining.
+  using Clock = std::chrono::steady_clock;
+  Clock::time_point last_progress = Clock::now();
   while (len > 0) {
     if (fd_ < 0) return false;
     const ssize_t n = ::write(fd_, p, len);
     if (n > 0) {  // possibly partial: carry on with the rest
       p += n;
       len -= static_cast<std::size_t>(n);
-      stalled_ms = 0;
+      last_progress = Clock::now();
       continue;
     }
     if (n < 0 && errno == EINTR) continue;  // a signal, not the device: just retry
     if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {
       // The driver's buffer is full: wait for room, but not forever.
+      const auto stalled_ms =
+          std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - last_progress).count();
+      if (stalled_ms >= write_stall_ms_) return false;
       pollfd pfd{fd_, POLLOUT, 0};
-      const int r = ::poll(&pfd, 1, kPollMs);
+      const int r = ::poll(&pfd, 1, static_cast<int>(write_stall_ms_ - stalled_ms));
       if (r > 0 && (pfd.revents & (POLLHUP | POLLERR | POLLNVAL)) != 0) return false;
-      if (r <= 0) {
-        stalled_ms += kPollMs;
-        if (stalled_ms >= kWriteStallMs) return false;
-      }
       continue;
     }
     return false;  // EIO/ENXIO: the device is gone

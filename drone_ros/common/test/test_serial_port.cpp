@@ -3,6 +3,7 @@
 // apart from an unplug, whole writes through a full buffer, and every failure a reason, never a
 // crash.
 #include <gtest/gtest.h>
+#include <poll.h>
 #include <pty.h>
 #include <signal.h>
 #include <sys/ioctl.h>
@@ -39,10 +40,16 @@ struct Pty {
 };
 
 // Reads the pty's device end until `want` bytes came or nothing more arrives for a second.
+// Reads the device end until `want` bytes came, or until nothing has come for a generous while
+// (the writer gave up: the test then fails on what was seen instead of hanging).
 std::vector<uint8_t> drain(int master, std::size_t want) {
   std::vector<uint8_t> seen;
   uint8_t chunk[4096];
   while (seen.size() < want) {
+    pollfd pfd{master, POLLIN, 0};
+    const int ready = poll(&pfd, 1, 10000);
+    if (ready < 0 && errno == EINTR) continue;
+    if (ready <= 0) break;
     const ssize_t n = read(master, chunk, sizeof chunk);
     if (n > 0) {
       seen.insert(seen.end(), chunk, chunk + n);
@@ -234,6 +241,9 @@ TEST(SerialPort, LargeWriteArrivesWholeThroughPartialWritesWhileTheDeviceDrains)
   Pty pty;
   SerialPort port;
   ASSERT_TRUE(opened(&port, pty.name, 921600));
+  // The device thread drains when the scheduler lets it: on a loaded machine that can take
+  // longer than the default stall, which is not what this test is about.
+  port.set_write_stall_ms(10000);
   const std::vector<uint8_t> out = pattern(256 * 1024);
   std::vector<uint8_t> seen;
   std::thread device([&] { seen = drain(pty.master, out.size()); });
@@ -270,6 +280,7 @@ TEST(SerialPort, SignalsDuringReadAndWriteAreNotMistakenForUnplug) {
   SerialPort port;
   std::string error;
   const bool open_ok = port.open(pty.name, 250000, &error);
+  port.set_write_stall_ms(10000);  // a slow device thread on a loaded machine is not a signal
   uint8_t buf[16];
   std::size_t got = 0;
   const auto silent = port.read(buf, sizeof buf, 200, &got);

@@ -1,6 +1,9 @@
 #include "command_builder.h"
 
+#include <array>
 #include <cmath>
+
+#include <ros/serialization.h>
 
 #include "hp_command.h"
 
@@ -13,19 +16,14 @@ constexpr double kStandardGravityMps2 = 9.80665;
 }  // namespace
 
 uint32_t servo_command_crc(const drone_ros::ServoCommand &cmd) {
-  HaHpCommand c{};
-  c.seq = cmd.seq;
-  c.stamp_sec = cmd.stamp.sec;
-  c.stamp_nsec = cmd.stamp.nsec;
-  c.throttle = cmd.throttle;
-  c.elevator_deg = cmd.elevator_deg;
-  c.aileron_deg = cmd.aileron_deg;
-  c.rudder_deg = cmd.rudder_deg;
-  c.alpha_est_deg = cmd.alpha_est_deg;
-  c.beta_est_deg = cmd.beta_est_deg;
-  c.estimator_converged = cmd.estimator_converged ? 1 : 0;
-  c.sensor_links_healthy = cmd.sensor_links_healthy ? 1 : 0;
-  return ha_hp_command_compute_crc(&c);
+  // The CRC covers the message's own ROS serialization (msg/ServoCommand.msg), so it is computed
+  // from that, not from a second copy of the field list (the HA's is ha_link_command_from_msg).
+  std::array<uint8_t, HA_HP_COMMAND_FIELDS_LEN + sizeof cmd.crc32> bytes{};
+  static_assert(ros::message_traits::IsFixedSize<drone_ros::ServoCommand>::value,
+                "ServoCommand is fixed size: its serialization is the 38 CRC'd bytes and the CRC");
+  ros::serialization::OStream out(bytes.data(), static_cast<uint32_t>(bytes.size()));
+  ros::serialization::serialize(out, cmd);
+  return ha_crc32(bytes.data(), HA_HP_COMMAND_FIELDS_LEN);
 }
 
 drone_ros::ServoCommand build_servo_command(uint32_t seq, const ros::Time &stamp,

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "limits_ranges.h"
 #include "tunables_table.h"
 
 namespace controller {
@@ -26,6 +27,11 @@ class Reader {
       fail(s.str());
     }
     return v;
+  }
+
+  // A limits.yaml key, in the range every component accepts (aircraft/limits_ranges.yaml).
+  double get_limit(const limits_ranges::Range &range) {
+    return get(std::string("limits/") + range.key, range.min, range.max);
   }
 
   int32_t get_choice(const std::string &key, int32_t max_choice) {
@@ -81,15 +87,15 @@ bool build_controller_params(const ParamLookup &lookup, ControllerParams *params
   g.dt_s = r.get("dt", 0.01, 0.05);
   p.rate_hz = g.dt_s > 0.0 ? 1.0 / g.dt_s : 0.0;
 
-  g.elevator_limit_deg = r.get("limits/actuators/elevator_limit_deg", 1.0, 45.0);
-  g.aileron_limit_deg = r.get("limits/actuators/aileron_limit_deg", 1.0, 45.0);
-  g.rudder_limit_deg = r.get("limits/actuators/rudder_limit_deg", 1.0, 45.0);
-  g.throttle_min = r.get("limits/actuators/throttle_min", 0.0, 1.0);
-  g.throttle_max = r.get("limits/actuators/throttle_max", 0.0, 1.0);
+  g.elevator_limit_deg = r.get_limit(limits_ranges::kActuatorsElevatorLimitDeg);
+  g.aileron_limit_deg = r.get_limit(limits_ranges::kActuatorsAileronLimitDeg);
+  g.rudder_limit_deg = r.get_limit(limits_ranges::kActuatorsRudderLimitDeg);
+  g.throttle_min = r.get_limit(limits_ranges::kActuatorsThrottleMin);
+  g.throttle_max = r.get_limit(limits_ranges::kActuatorsThrottleMax);
   r.require(g.throttle_min < g.throttle_max, "limits: throttle_min must be below throttle_max");
-  g.stall_speed_ftps = r.get("limits/state/stall_speed_ftps", 1.0, 300.0);
-  const double roll_limit_deg = r.get("limits/state/roll_limit_deg", 1.0, 89.0);
-  const double pitch_limit_deg = r.get("limits/state/pitch_limit_deg", 1.0, 89.0);
+  g.stall_speed_ftps = r.get_limit(limits_ranges::kStateStallSpeedFtps);
+  const double roll_limit_deg = r.get_limit(limits_ranges::kStateRollLimitDeg);
+  const double pitch_limit_deg = r.get_limit(limits_ranges::kStatePitchLimitDeg);
 
   p.throttle_trim = r.get("throttle_trim", g.throttle_min, g.throttle_max);
   p.elevator_trim_rad = r.get("elevator_trim", -g.elevator_limit_deg * kPi / 180.0, g.elevator_limit_deg * kPi / 180.0);

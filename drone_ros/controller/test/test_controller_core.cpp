@@ -9,7 +9,9 @@
 
 #include "command_builder.h"
 #include "controller_params.h"
+#include "hp_command.h"
 #include "sensor_board.h"
+#include "servo_command_as_ha.h"
 #include "yaml_lookup.h"
 
 namespace {
@@ -239,6 +241,20 @@ TEST(ServoCommand, CarriesDegreesAndAValidCrc) {
   auto corrupted = cmd;
   corrupted.rudder_deg += 1.0f;
   EXPECT_NE(corrupted.crc32, controller::servo_command_crc(corrupted));
+}
+
+TEST(ServoCommand, TheHaFindsTheCrcTheControllerSent) {
+  GncOutput out{};
+  out.throttle = 0.62;
+  out.aileron_rad = -0.07;
+  out.rudder_rad = 0.02;
+  out.beta_est_rad = 0.01;
+  out.estimator_converged = 1;
+  out.command_valid = 1;
+  out.inputs_finite = 1;
+  const auto cmd = controller::build_servo_command(4242, ros::Time(77, 5000), out, true, 0.0);
+  const HaHpCommand ha = servo_command_as_ha(cmd);  // as the Due decodes it
+  EXPECT_EQ(cmd.crc32, ha_hp_command_compute_crc(&ha));
 }
 
 TEST(ServoCommand, NanFromTheGncNeverReachesTheWire) {

@@ -156,6 +156,10 @@ class GsCore {
     uint64_t finished_ms = 0;
   };
 
+  // One unit per MAVLink microservice defines these: gs_core.cpp (routing, schedule),
+  // gs_signing.cpp, gs_params.cpp, gs_missions.cpp, gs_commands.cpp, gs_telemetry.cpp,
+  // gs_statustext.cpp; emit() is in gs_core_emit.h.
+  void start_signing();
   void update_signing_clock(const Clock& now);
   void dispatch(const mavlink_message_t& msg, const Clock& now);
   bool addressed_to_us(uint8_t target_system, uint8_t target_component);

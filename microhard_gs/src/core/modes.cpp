@@ -5,27 +5,15 @@
 namespace microhard_gs {
 namespace {
 
-struct ModeSpec {
-  uint8_t controller;
-  const char* name;
-  bool selectable;  // by DO_SET_MODE from the ground
-};
-
-// Indexed by controller number (= custom_mode).
-constexpr ModeSpec kModes[kModeCount] = {
-    {kControllerHp, "HP", true},
-    {kControllerHa, "HA", true},
-    {kControllerRecovering, "RECOVERING", false},
-    {kControllerHaLatched, "HA_LATCHED", false},
-    {kControllerManual, "MANUAL", false},
-};
+// By DO_SET_MODE from the ground: the others are the decision logic's.
+bool selectable(uint8_t controller) { return controller == kControllerHp || controller == kControllerHa; }
 
 bool known(uint8_t controller) { return controller < kModeCount; }
 
 }  // namespace
 
 const char* controller_name(uint8_t controller) {
-  return known(controller) ? kModes[controller].name : "UNKNOWN";
+  return known(controller) ? kControllerNames[controller] : "UNKNOWN";
 }
 
 uint8_t heartbeat_base_mode(bool have_decision, uint8_t controller, bool airborne) {
@@ -53,14 +41,14 @@ uint8_t heartbeat_base_mode(bool have_decision, uint8_t controller, bool airborn
 
 bool available_mode(int mode_index, mavlink_available_modes_t* out) {
   if (mode_index < 1 || mode_index > kModeCount) return false;
-  const ModeSpec& spec = kModes[mode_index - 1];
+  const uint8_t controller = static_cast<uint8_t>(mode_index - 1);  // custom_mode
   mavlink_available_modes_t m{};
   m.number_modes = kModeCount;
   m.mode_index = static_cast<uint8_t>(mode_index);
   m.standard_mode = MAV_STANDARD_MODE_NON_STANDARD;  // none of them is a standard mode's behaviour
-  m.custom_mode = spec.controller;
-  m.properties = spec.selectable ? 0u : static_cast<uint32_t>(MAV_MODE_PROPERTY_NOT_USER_SELECTABLE);
-  std::strncpy(m.mode_name, spec.name, sizeof m.mode_name - 1);
+  m.custom_mode = controller;
+  m.properties = selectable(controller) ? 0u : static_cast<uint32_t>(MAV_MODE_PROPERTY_NOT_USER_SELECTABLE);
+  std::strncpy(m.mode_name, kControllerNames[controller], sizeof m.mode_name - 1);
   *out = m;
   return true;
 }

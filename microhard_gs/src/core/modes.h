@@ -5,18 +5,14 @@
 
 #include <cstdint>
 
+#include "decision_status_names.h"
 #include "mavlink_all.h"
 
 namespace microhard_gs {
 
-// Who flies, as DecisionStatus.CONTROLLER_* numbers it (the node checks they agree at compile
-// time; this core is ROS-free). These are the custom_mode values.
-constexpr uint8_t kControllerHp = 0;
-constexpr uint8_t kControllerHa = 1;
-constexpr uint8_t kControllerRecovering = 2;
-constexpr uint8_t kControllerHaLatched = 3;
-constexpr uint8_t kControllerManual = 4;
-constexpr int kModeCount = 5;
+// Who flies, as DecisionStatus.CONTROLLER_* numbers it (kController*, generated from the message:
+// this core is ROS-free). These are the custom_mode values.
+constexpr int kModeCount = kControllerCount;
 // custom_mode before the first DecisionStatus: no mode of the list.
 constexpr uint32_t kCustomModeUnknown = 0xFFFFFFFFu;
 

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "limits_ranges.h"
 #include "serial_transport.h"
 
 namespace microhard_gs {
@@ -27,6 +28,12 @@ bool in_range(const std::string& name, double v, double lo, double hi, std::stri
     return false;
   }
   return true;
+}
+
+// A limits.yaml key, in the range every component accepts (aircraft/limits_ranges.yaml).
+bool need_limit(const ros::NodeHandle& nh, const limits_ranges::Range& range, double* out, std::string* error) {
+  const std::string name = std::string("limits/") + range.key;
+  return need(nh, name, out, error) && in_range(name, *out, range.min, range.max, error);
 }
 
 }  // namespace
@@ -75,9 +82,9 @@ bool read_node_config(const ros::NodeHandle& nh, NodeConfig* c, std::string* err
       !need(nh, "mission/max_radius_ft", &radius_ft, error) ||
       !need(nh, "mission/default_speed_ftps", &speed_ftps, error) ||
       !need(nh, "mission/item_timeout_s", &timeout_s, error) || !need(nh, "mission/max_retries", &retries, error) ||
-      !need(nh, "limits/state/ceiling_agl_ft", &ceiling_ft, error) ||
-      !need(nh, "limits/state/stall_speed_ftps", &stall_ftps, error) ||
-      !need(nh, "limits/state/airborne_agl_ft", &airborne_ft, error)) {
+      !need_limit(nh, limits_ranges::kStateCeilingAglFt, &ceiling_ft, error) ||
+      !need_limit(nh, limits_ranges::kStateStallSpeedFtps, &stall_ftps, error) ||
+      !need_limit(nh, limits_ranges::kStateAirborneAglFt, &airborne_ft, error)) {
     return false;
   }
   if (!in_range("telemetry_rate_hz", rate_hz, 0.5, 100.0, error) ||

@@ -42,12 +42,15 @@ class SerialPort {
 
   // Writes all len bytes, resuming after partial writes and interruptions, and waiting while
   // the driver's buffer is full. Gives up (false) when the port is gone or accepts nothing for
-  // kWriteStallMs: a device that stopped draining must not hold the node up.
+  // the write stall time (kWriteStallMs unless set): a device that stopped draining must not
+  // hold the node up.
   static constexpr int kWriteStallMs = 100;
   bool write_all(const void *data, std::size_t len);
+  void set_write_stall_ms(int ms) { write_stall_ms_ = ms; }
 
  private:
   int fd_ = -1;
+  int write_stall_ms_ = kWriteStallMs;
 };
 
 }  // namespace drone_ros_common

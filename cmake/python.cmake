@@ -1,0 +1,40 @@
+# Which Python the build runs, decided here and nowhere else.
+#
+# Every generator (tools/gen_*.py, arduino_ha's config and message generators) needs only the
+# standard library and PyYAML (Debian python3-yaml), and runs with catkin's PYTHON_EXECUTABLE:
+# the Makefile passes -DPYTHON_EXECUTABLE=/usr/bin/python3, as a user's own workspace does with
+# `catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3` (ROS 1 on Debian 12 is Python 3).
+#
+# One step needs a PyPI package: mavgen (pymavlink, microhard_gs/requirements.txt) writes the
+# MAVLink headers. DRONE_ROS_PYMAVLINK_PYTHON is the first of -D${PROJECT_NAME}_PYMAVLINK_PYTHON,
+# PYTHON_EXECUTABLE and this clone's .venv (made by `make deps`) that imports pymavlink;
+# microhard_gs calls find_pymavlink_python(), so a build without it does not need pymavlink.
+if(NOT PYTHON_EXECUTABLE)
+  message(FATAL_ERROR "PYTHON_EXECUTABLE is unset: configure through catkin (find_package(catkin) sets it)")
+endif()
+
+set(${PROJECT_NAME}_PYMAVLINK_PYTHON "" CACHE FILEPATH
+    "Python with pymavlink for mavgen (found automatically when empty)")
+# Sets DRONE_ROS_PYMAVLINK_PYTHON and DRONE_ROS_PYMAVLINK_DIR (the package folder), or stops.
+function(find_pymavlink_python)
+  set(_candidates "${${PROJECT_NAME}_PYMAVLINK_PYTHON}" "${PYTHON_EXECUTABLE}" "${PROJECT_SOURCE_DIR}/.venv/bin/python")
+  set(_found "")
+  foreach(_candidate ${_candidates})
+    if(_found STREQUAL "" AND EXISTS "${_candidate}")
+      execute_process(
+        COMMAND ${_candidate} -c "import os, pymavlink; print(os.path.dirname(pymavlink.__file__))"
+        RESULT_VARIABLE _rc OUTPUT_VARIABLE _pymavlink_dir ERROR_QUIET OUTPUT_STRIP_TRAILING_WHITESPACE)
+      if(_rc EQUAL 0)
+        set(DRONE_ROS_PYMAVLINK_PYTHON ${_candidate} PARENT_SCOPE)
+        set(_found ${_candidate})
+        set(DRONE_ROS_PYMAVLINK_DIR ${_pymavlink_dir} PARENT_SCOPE)
+      endif()
+    endif()
+  endforeach()
+  if(_found STREQUAL "")
+    message(FATAL_ERROR "no Python with pymavlink (tried: ${_candidates}). Run `make deps` in the "
+      "source folder (it makes .venv from microhard_gs/requirements.txt) or pass "
+      "-D${PROJECT_NAME}_PYMAVLINK_PYTHON=/path/to/python.")
+  endif()
+  message(STATUS "${PROJECT_NAME}: generators with ${PYTHON_EXECUTABLE}, mavgen with ${_found}")
+endfunction()
