@@ -19,6 +19,8 @@ bool loadParams(const ros::NodeHandle& pnh, NodeParams* p, std::string* error) {
   pnh.param("replay_speed", p->replay_speed, p->replay_speed);
   pnh.param("replay_loop", p->replay_loop, p->replay_loop);
   pnh.param("replay_delay_s", p->replay_delay_s, p->replay_delay_s);
+  pnh.param("replay_wait_for_subscribers", p->replay_wait_for_subscribers,
+            p->replay_wait_for_subscribers);
   pnh.param("reconnect_period_s", p->reconnect_period_s, p->reconnect_period_s);
   pnh.param("data_timeout_s", p->data_timeout_s, p->data_timeout_s);
   pnh.param("response_timeout_s", p->response_timeout_s, p->response_timeout_s);

@@ -26,6 +26,7 @@ struct NodeParams {
   double replay_speed = 1.0;          // replay pacing: 1 = sensor time, 2 = twice as fast
   bool replay_loop = false;
   double replay_delay_s = 0.0;        // wait before replaying, so subscribers can connect
+  bool replay_wait_for_subscribers = false;  // and then until every data topic has one
   double reconnect_period_s = 1.0;    // between attempts to reopen a lost port
   double data_timeout_s = 1.0;        // silence after which the link is reported down
   double response_timeout_s = 0.5;    // per configuration command

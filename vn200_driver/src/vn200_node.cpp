@@ -150,6 +150,15 @@ int Vn200Node::runPort() {
   return 0;
 }
 
+bool Vn200Node::everyDataTopicSubscribed() const {
+  for (const ros::Publisher* pub : {&ins_pub_, &gps_position_pub_, &gps_velocity_pub_, &imu_pqr_pub_,
+                                    &attitude_pub_, &imu_pub_, &fix_pub_, &velocity_pub_, &mag_pub_,
+                                    &pressure_pub_, &temperature_pub_}) {
+    if (pub->getNumSubscribers() == 0) return false;
+  }
+  return true;
+}
+
 int Vn200Node::runReplay() {
   std::ifstream in(params_.replay_file, std::ios::binary);
   if (!in) {
@@ -158,7 +167,8 @@ int Vn200Node::runReplay() {
   }
   ROS_INFO("vn200: replaying %s at %.2fx", params_.replay_file.c_str(), params_.replay_speed);
   const ros::WallTime start_at = ros::WallTime::now() + ros::WallDuration(params_.replay_delay_s);
-  while (ros::ok() && ros::WallTime::now() < start_at) {
+  while (ros::ok() && (ros::WallTime::now() < start_at ||
+                       (params_.replay_wait_for_subscribers && !everyDataTopicSubscribed()))) {
     ros::spinOnce();
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }

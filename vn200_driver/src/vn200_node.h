@@ -40,6 +40,8 @@ class Vn200Node {
   diagnostic_updater::Updater diag_;
   tf2_ros::TransformBroadcaster tf_;
 
+  // A replay that must reach its subscribers whole starts only once they are all connected.
+  bool everyDataTopicSubscribed() const;
   ros::Publisher ins_pub_, gps_position_pub_, gps_velocity_pub_, imu_pqr_pub_, attitude_pub_;
   ros::Publisher imu_pub_, fix_pub_, velocity_pub_, mag_pub_, pressure_pub_, temperature_pub_;
 
