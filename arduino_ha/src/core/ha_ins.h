@@ -17,6 +17,7 @@
 
 #include <stdint.h>
 
+#include "geo_wgs84.h"
 #include "ha_config.h"
 #include "ha_core.h"
 
@@ -53,12 +54,9 @@ typedef struct {
 
 typedef struct {
   uint8_t home_latched;
-  double home_lat_deg;
-  double home_lon_deg;
-  double home_alt_m;
-  /* Flat-earth scale at the home latitude (see ha_ins.c), fixed when home is latched. */
-  double north_ft_per_deg;
-  double east_ft_per_deg;
+  /* Home and the flat earth's scale there (geo_wgs84.h), valid once home_latched. */
+  GeoRef home;
+  uint32_t home_seq; /* +1 every time home is set: the link republishes it on a change */
   uint32_t solutions_used;     /* solutions that made the state valid */
   uint32_t solutions_rejected; /* solutions that left it invalid (status, range, no home yet) */
 } HaIns;
