@@ -9,8 +9,11 @@ GS_CLANGXX ?= $(shell command -v clang++-14 || command -v clang++)
 GS_FUZZ_SECONDS ?= 300
 GS_FUZZ_SOURCES := $(GS_DIR)/fuzz/fuzz_gs_core.cpp $(GS_DIR)/src/core/gs_core.cpp \
   $(GS_DIR)/src/core/mission.cpp $(GS_DIR)/src/core/mission_frames.cpp $(GS_DIR)/src/core/modes.cpp \
-  $(GS_DIR)/src/core/geo.cpp $(GS_DIR)/src/core/params.cpp \
+  $(GS_DIR)/src/core/geo.cpp $(GS_DIR)/src/core/gs_home.cpp $(GS_DIR)/src/core/params.cpp \
   $(GS_DIR)/src/core/signing_key.cpp
+# The stack's one lat/lon <-> north/east module (C99, in the HA core), compiled as C.
+GS_GEO_C := $(ROOT)/arduino_ha/src/core/geo_wgs84.c
+GS_GEO_OBJ = $(GS_FUZZ_DIR)/geo_wgs84.o
 
 .PHONY: fuzz-gs fuzz-gs-smoke bench-gs
 FUZZ_TARGETS += fuzz-gs
@@ -30,10 +33,15 @@ $(GS_FUZZ_DIR)/tunables/tunables_table.h: $(ROOT)/tools/gen_tunables.py $(ROOT)/
 	@$(VENV)/bin/python $(ROOT)/tools/gen_tunables.py $(ROOT)/aircraft/$(GS_FUZZ_AIRCRAFT)/tunables.yaml \
 	  $(ROOT)/aircraft/$(GS_FUZZ_AIRCRAFT)/controller_param.yaml $@
 
-$(GS_FUZZ_BIN): $(GS_FUZZ_SOURCES) $(wildcard $(GS_DIR)/src/core/*.h) $(GS_FUZZ_DIR)/mavlink/development/mavlink.h $(GS_FUZZ_DIR)/tunables/tunables_table.h
+$(GS_GEO_OBJ): $(GS_GEO_C) $(ROOT)/arduino_ha/src/core/geo_wgs84.h
+	@mkdir -p $(GS_FUZZ_DIR)
+	$(subst clang++,clang,$(GS_CLANGXX)) -std=c99 -g -O1 -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all \
+	  -Wall -Wextra -Werror -c $(GS_GEO_C) -o $@
+
+$(GS_FUZZ_BIN): $(GS_FUZZ_SOURCES) $(GS_GEO_OBJ) $(wildcard $(GS_DIR)/src/core/*.h) $(GS_FUZZ_DIR)/mavlink/development/mavlink.h $(GS_FUZZ_DIR)/tunables/tunables_table.h
 	@test -n "$(GS_CLANGXX)" || { echo "fuzz-gs: clang++ not found (microhard_gs/apt-packages.txt)"; exit 1; }
 	$(GS_CLANGXX) -std=c++17 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
-	  -Wall -Wextra -Werror -I$(GS_DIR)/src/core -I$(GS_FUZZ_DIR)/tunables -I$(ROOT)/drone_ros/common/include -isystem $(GS_FUZZ_DIR)/mavlink $(GS_FUZZ_SOURCES) -o $@
+	  -Wall -Wextra -Werror -I$(GS_DIR)/src/core -I$(GS_FUZZ_DIR)/tunables -I$(ROOT)/drone_ros/common/include -I$(ROOT)/arduino_ha/src/core -isystem $(GS_FUZZ_DIR)/mavlink $(GS_FUZZ_SOURCES) $(GS_GEO_OBJ) -o $@
 
 # The full log goes to a file; the console gets the verdict and the run count, and on a crash the
 # log's tail with the reproducer's path.

@@ -5,6 +5,7 @@
 
 #include <drone_ros/DecisionStatus.h>
 #include <drone_ros/HilTruth.h>
+#include <drone_ros/HomePosition.h>
 #include <drone_ros/OperatorCommand.h>
 #include <drone_ros/ServoCommand.h>
 #include <drone_ros/data.h>
@@ -212,6 +213,22 @@ TEST(Messages, OperatorCommandRoundTripKeepsTheRequestAndItsId) {
   EXPECT_EQ(4000000001u, back.request_id);
 }
 
+// The Due sends home in doubles: a float would put it a metre off.
+TEST(Messages, HomePositionRoundTripKeepsFullDoublePrecision) {
+  drone_ros::HomePosition home;
+  home.stamp = ros::Time(1700000000, 7);
+  home.seq = 3;
+  home.latitude = 40.4237054;
+  home.longitude = -86.9211946;
+  home.altitude = 185.25;
+  EXPECT_EQ(36u, serialize(home).size());
+  const auto back = roundTrip(home);
+  EXPECT_EQ(3u, back.seq);
+  EXPECT_EQ(40.4237054, back.latitude);
+  EXPECT_EQ(-86.9211946, back.longitude);
+  EXPECT_EQ(185.25, back.altitude);
+}
+
 TEST(Messages, ReasonBitsAreDistinctSingleBits) {
   using S = drone_ros::DecisionStatus;
   const uint32_t bits[] = {S::REASON_NO_COMMAND, S::REASON_DEADLINE_MISS, S::REASON_NOT_FINITE,
@@ -300,6 +317,7 @@ TEST(Messages, Md5sumsArePinned) {
   expectPinned<drone_ros::DecisionStatus>(sums);
   expectPinned<drone_ros::HilTruth>(sums);
   expectPinned<drone_ros::OperatorCommand>(sums);
+  expectPinned<drone_ros::HomePosition>(sums);
 }
 
 int main(int argc, char** argv) {

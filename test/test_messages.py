@@ -74,6 +74,13 @@ def test_operator_command_round_trip_keeps_the_request_and_its_id():
     assert (back.stamp.secs, back.stamp.nsecs) == (1700000000, 5)
 
 
+def test_home_position_round_trip_keeps_full_double_precision():
+    home = drone_msgs.HomePosition(seq=2, latitude=40.4237054, longitude=-86.9211946, altitude=185.25)
+    raw, back = round_trip(home)
+    assert len(raw) == 8 + 4 + 3 * 8
+    assert (back.seq, back.latitude, back.longitude, back.altitude) == (2, 40.4237054, -86.9211946, 185.25)
+
+
 def test_way_carries_32_waypoints():
     way = drone_msgs.way(north=[float(i) for i in range(32)], east=[-1.0] * 32,
                          height=[300.0] * 32, velocity=[60.0] * 32, fp=32)
@@ -94,7 +101,7 @@ def test_data_round_trip_keeps_estimates():
     assert back.alphaest == pytest.approx(math.radians(4.0))
 
 
-@pytest.mark.parametrize("name", ["DecisionStatus", "HilTruth", "OperatorCommand", "ServoCommand", "data", "hil_data", "ins", "pwm", "way"])
+@pytest.mark.parametrize("name", ["DecisionStatus", "HilTruth", "HomePosition", "OperatorCommand", "ServoCommand", "data", "hil_data", "ins", "pwm", "way"])
 def test_md5sum_is_pinned(name):
     cls = getattr(drone_msgs, name)
     assert pinned_md5sums()[cls._type] == cls._md5sum, (

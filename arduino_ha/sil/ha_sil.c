@@ -253,6 +253,20 @@ static void unplug(Sil *sil) {
   sil->slave_fd = -1;
 }
 
+/* The HA owns home: the host hears it on a change and every few seconds (ha_link_offer_home). */
+static void send_home(HaLink *link, const HaIns *ins, HaRosTime stamp, uint32_t now_us) {
+  drone_ros_HomePosition home;
+  memset(&home, 0, sizeof home);
+  if (ins->home_latched) {
+    home.stamp = stamp;
+    home.seq = ins->home_seq;
+    home.latitude = ins->home.lat_deg;
+    home.longitude = ins->home.lon_deg;
+    home.altitude = ins->home.alt_m;
+  }
+  (void)ha_link_offer_home(link, &home, now_us);
+}
+
 static void send_sensors(Sil *sil, uint32_t now_us) {
   const HaOutputs *o = &sil->app.outputs;
   const HaInputs *in = &sil->app.inputs;
@@ -284,6 +298,7 @@ static void send_sensors(Sil *sil, uint32_t now_us) {
   st.aileron_deg = o->surfaces.aileron_deg;
   st.rudder_deg = o->surfaces.rudder_deg;
   (void)ha_link_publish_decision_status(&sil->link, &st);
+  send_home(&sil->link, &sil->ins.ins, stamp, now_us);
 }
 
 /* A (re)negotiated link says so in the host's log and asks for --param. */

@@ -90,9 +90,9 @@ TEST(HaLinkSession, HostTopicRequestIsAnsweredWithEveryTopicAndThenATimeRequest)
   Device d;
   d.rx(kTopicRequest, 1000u);
   const auto frames = d.tx.frames();
-  ASSERT_EQ(frames.size(), 5u);
+  ASSERT_EQ(frames.size(), 6u);
   std::vector<TopicInfoWire> infos;
-  for (size_t i = 0; i < 4; ++i) infos.push_back(parse_topic_info(frames[i].second));
+  for (size_t i = 0; i < 5; ++i) infos.push_back(parse_topic_info(frames[i].second));
   EXPECT_EQ(frames[0].first, 0u);  // ID_PUBLISHER
   EXPECT_EQ(infos[0].name, "pwm");
   EXPECT_EQ(infos[0].type, "drone_ros/pwm");
@@ -100,14 +100,18 @@ TEST(HaLinkSession, HostTopicRequestIsAnsweredWithEveryTopicAndThenATimeRequest)
   EXPECT_GE(infos[0].id, 100u);
   EXPECT_EQ(frames[1].first, 0u);
   EXPECT_EQ(infos[1].type, "drone_ros/DecisionStatus");
-  EXPECT_EQ(frames[2].first, 1u);  // ID_SUBSCRIBER
-  EXPECT_EQ(infos[2].name, "servo_op");
-  EXPECT_EQ(infos[2].md5, "aa3c1563aed64772cc32f85160797a04");
-  EXPECT_EQ(infos[2].buffer_size, 256);
-  EXPECT_EQ(frames[3].first, 1u);
-  EXPECT_EQ(infos[3].type, "drone_ros/OperatorCommand");
-  EXPECT_EQ(frames[4].first, 10u);  // std_msgs/Time request
-  EXPECT_EQ(frames[4].second.size(), 8u);
+  EXPECT_EQ(frames[2].first, 0u);
+  EXPECT_EQ(infos[2].name, "home");
+  EXPECT_EQ(infos[2].type, "drone_ros/HomePosition");
+  EXPECT_EQ(infos[2].md5, "79ae516de68762e84f4220889c161ec5");
+  EXPECT_EQ(frames[3].first, 1u);  // ID_SUBSCRIBER
+  EXPECT_EQ(infos[3].name, "servo_op");
+  EXPECT_EQ(infos[3].md5, "aa3c1563aed64772cc32f85160797a04");
+  EXPECT_EQ(infos[3].buffer_size, 256);
+  EXPECT_EQ(frames[4].first, 1u);
+  EXPECT_EQ(infos[4].type, "drone_ros/OperatorCommand");
+  EXPECT_EQ(frames[5].first, 10u);  // std_msgs/Time request
+  EXPECT_EQ(frames[5].second.size(), 8u);
   EXPECT_TRUE(ha_link_connected(&d.link));
 }
 
@@ -177,6 +181,37 @@ TEST(HaLinkSession, NothingIsPublishedBeforeTheHostAsksForTopics) {
   // Header (seq, stamp, empty frame_id) 16 bytes, PICCIC, 6 float64, usbstatus.
   EXPECT_EQ(frames[0].second.size(), 16u + 1u + 48u + 1u);
   EXPECT_EQ(frames[0].second[16], 1u);
+}
+
+// Home costs the link 44 bytes a time: sent at once when latched or moved and to a host that
+// (re)negotiates, then every 2 s, never every period.
+TEST(HaLinkSession, HomeIsSentWhenItChangesAndEveryTwoSecondsNotEveryPeriod) {
+  Device d;
+  drone_ros_HomePosition home{};
+  d.rx(kTopicRequest, 0u);
+  d.tx.bytes.clear();
+  auto homes_sent = [&d]() {
+    size_t n = 0;
+    for (const auto &f : d.tx.frames()) n += f.first == HA_LINK_TOPIC_HOME ? 1u : 0u;
+    return n;
+  };
+  uint32_t t = 0;
+  for (; t < 100000u; t += 10000u) ha_link_offer_home(&d.link, &home, t);  // seq 0: no home yet
+  EXPECT_EQ(homes_sent(), 0u);
+  home.seq = 1;
+  home.latitude = 40.4237054;
+  for (; t < 1000000u; t += 10000u) ha_link_offer_home(&d.link, &home, t);
+  EXPECT_EQ(homes_sent(), 1u);  // 90 periods, one frame
+  const auto frames = d.tx.frames();
+  EXPECT_EQ(frames.back().second.size(), 36u);
+  for (; t < 3100000u; t += 10000u) ha_link_offer_home(&d.link, &home, t);
+  EXPECT_EQ(homes_sent(), 2u);  // the repeat, 2 s after the first
+  home.seq = 2;  // moved (an accepted SET_HOME): at once
+  ha_link_offer_home(&d.link, &home, t);
+  EXPECT_EQ(homes_sent(), 3u);
+  d.rx(kTopicRequest, t + 10000u);  // the host came back: it hears home at once
+  ha_link_offer_home(&d.link, &home, t + 20000u);
+  EXPECT_EQ(homes_sent(), 4u);
 }
 
 TEST(HaLinkSession, SilentHostIsNoticedAndPublishingStopsUntilItAsksAgain) {

@@ -106,3 +106,5 @@ DueInsStats due_ins_stats(void) {
   stats.solutions_rejected = g_ins.solutions_rejected;
   return stats;
 }
+
+const HaIns *due_ins_state(void) { return &g_ins; }

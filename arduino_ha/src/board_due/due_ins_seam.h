@@ -46,4 +46,7 @@ void due_ins_sample_from_vn(const VnBinaryData *vn, HaInsSample *sample);
 
 DueInsStats due_ins_stats(void);
 
+/* The INS adapter's state: home (latched from this INS) for the link to publish. */
+const HaIns *due_ins_state(void);
+
 #endif /* DUE_INS_SEAM_H */

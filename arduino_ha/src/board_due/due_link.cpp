@@ -1,12 +1,14 @@
 #include "due_link.h"
 
 #include <Arduino.h>
+#include <string.h>
 
 /* ha_surfaces.h is a core-internal C header without C++ guards. */
 extern "C" {
 #include "../core/ha_surfaces.h"
 }
 #include "../link/ha_link.h"
+#include "due_ins_seam.h"
 #include "due_config.h"
 
 namespace {
@@ -98,6 +100,19 @@ void due_link_publish(const HaAircraftConfig *cfg, const HaInputs *inputs, const
   status.aileron_deg = out->surfaces.aileron_deg;
   status.rudder_deg = out->surfaces.rudder_deg;
   (void)ha_link_publish_decision_status(&g_link, &status);
+
+  // The HA owns home: the host hears it on a change and every few seconds, not every period.
+  drone_ros_HomePosition home;
+  memset(&home, 0, sizeof home);
+  const HaIns *ins = due_ins_state();
+  if (ins->home_latched) {
+    home.stamp = stamp;
+    home.seq = ins->home_seq;
+    home.latitude = ins->home.lat_deg;
+    home.longitude = ins->home.lon_deg;
+    home.altitude = ins->home.alt_m;
+  }
+  (void)ha_link_offer_home(&g_link, &home, now_us);
 
   /* The pilot's sticks, decoded with the same calibration the core uses in manual mode. */
   HaSurfaces rc;

@@ -110,6 +110,9 @@ class GsCore {
   void tick(const Clock& now);
 
   void set_telemetry(const Telemetry& t, const Clock& now);
+  // Home from its one owner, the HA (/home): the origin of /way and HOME_POSITION (gs_home.cpp).
+  // Returns false, keeping the old home, for a position that is not valid.
+  bool set_home(const GeoPoint& home);
   // Announces every change of the controller in charge, and the first status seen, as a
   // STATUSTEXT naming the reason.
   void set_decision(const DecisionInfo& d);

@@ -136,6 +136,22 @@ bool drone_ros_OperatorCommand_serialize(const drone_ros_OperatorCommand *msg, u
  * into in, so they live as long as in does. */
 bool drone_ros_OperatorCommand_deserialize(drone_ros_OperatorCommand *msg, const uint8_t *in, size_t len, size_t *consumed);
 
+/* drone_ros/HomePosition */
+#define DRONE_ROS_HOMEPOSITION_TYPE "drone_ros/HomePosition"
+#define DRONE_ROS_HOMEPOSITION_MD5 "79ae516de68762e84f4220889c161ec5"
+typedef struct {
+  HaRosTime stamp;
+  uint32_t seq;
+  double latitude;
+  double longitude;
+  double altitude;
+} drone_ros_HomePosition;
+/* Writes the ROS serialization into out[0..cap); false if it does not fit. */
+bool drone_ros_HomePosition_serialize(const drone_ros_HomePosition *msg, uint8_t *out, size_t cap, size_t *written);
+/* Reads in[0..len); false if truncated or an array exceeds its capacity. Strings point
+ * into in, so they live as long as in does. */
+bool drone_ros_HomePosition_deserialize(drone_ros_HomePosition *msg, const uint8_t *in, size_t len, size_t *consumed);
+
 /* std_msgs/Time */
 #define STD_MSGS_TIME_TYPE "std_msgs/Time"
 #define STD_MSGS_TIME_MD5 "cd7166c74c552c311fbcc2fe5a7bc289"
