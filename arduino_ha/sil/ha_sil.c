@@ -171,7 +171,15 @@ static void link_on_command(void *ctx, const HaHpCommand *cmd, uint32_t arrival_
 
 static void link_on_operator(void *ctx, const drone_ros_OperatorCommand *op, uint32_t arrival_us) {
   Sil *sil = (Sil *)ctx;
-  (void)arrival_us;
+  static const char *const kSetHome[] = {"SET_HOME: home moved", "SET_HOME refused: not parked on the ground",
+                                         "SET_HOME refused: position out of range"};
+  if (op->command == HA_OP_SET_HOME) { /* home is the INS adapter's, not the decision logic's */
+    const int r = ha_ins_set_home(&sil->ins.ins, &ha_aircraft_config, op->use_current ? 1u : 0u, op->latitude,
+                                  op->longitude, op->altitude, arrival_us);
+    (void)ha_link_log(&sil->link, r == HA_INS_SET_HOME_OK ? ROSSERIAL_MSGS_LOG_INFO : ROSSERIAL_MSGS_LOG_WARN,
+                      kSetHome[r >= 0 && r <= 2 ? r : 1]);
+    return;
+  }
   ha_inputs_put_operator(&sil->app.inputs, op->command, op->request_id);
 }
 

@@ -210,6 +210,10 @@ static void one_period(const HaBoard *board) {
     any_ins_sample(&sample);
     (void)ha_ins_update(&ins, &ha_aircraft_config, &sample, any_u32(), &app.inputs);
   }
+  if (Frama_C_nondet(0, 1)) { /* an operator's SET_HOME, any position, any time */
+    (void)ha_ins_set_home(&ins, &ha_aircraft_config, any_u8(), any_double(), any_double(),
+                          any_double(), any_u32());
+  }
   ha_app_period(&app, board);
   check_servo_command(&app.outputs.surfaces);
   check_decision(&app.outputs);

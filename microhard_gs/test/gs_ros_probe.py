@@ -43,7 +43,9 @@ def main():
               "height": list(msg.height[:n]), "velocity": list(msg.velocity[:n])})
 
     def on_command(msg):
-        emit({"topic": "operator_command", "command": msg.command, "request_id": msg.request_id})
+        emit({"topic": "operator_command", "command": msg.command, "request_id": msg.request_id,
+              "use_current": msg.use_current, "latitude": msg.latitude, "longitude": msg.longitude,
+              "altitude": msg.altitude})
 
     def on_diagnostics(msg):
         for status in msg.status:

@@ -3,6 +3,7 @@
 // and a silent or departing host noticed.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <string>
 
 #include "ha_link.h"
@@ -20,6 +21,7 @@ struct Device {
   link_test::Capture tx;
   std::vector<std::pair<HaHpCommand, uint32_t>> commands;
   std::vector<uint8_t> operator_requests;
+  drone_ros_OperatorCommand last_operator{};
   std::vector<int32_t> param_ints;
 
   Device() {
@@ -30,6 +32,7 @@ struct Device {
     };
     cb.on_operator = [](void *ctx, const drone_ros_OperatorCommand *op, uint32_t) {
       static_cast<Device *>(ctx)->operator_requests.push_back(op->command);
+      static_cast<Device *>(ctx)->last_operator = *op;
     };
     cb.on_param = [](void *ctx, const rosserial_msgs_RequestParamResponse *r) {
       for (uint32_t i = 0; i < r->ints_count; ++i) static_cast<Device *>(ctx)->param_ints.push_back(r->ints[i]);
@@ -288,6 +291,30 @@ TEST(HaLinkSession, OperatorRequestIsHandedOver) {
   link_test::put_u32(p, 6);
   p.push_back(2);  // SELECT_HA
   link_test::put_u32(p, 77);
+  p.push_back(0);  // use_current, then SET_HOME's latitude, longitude, altitude (unused)
+  for (int i = 0; i < 24; ++i) p.push_back(0);
   d.rx(frame(101, p), 0u);
   EXPECT_EQ(d.operator_requests, std::vector<uint8_t>{2});
+}
+
+TEST(HaLinkSession, SetHomeArrivesWithItsPositionInFullPrecision) {
+  Device d;
+  Bytes p;
+  link_test::put_u32(p, 5);
+  link_test::put_u32(p, 6);
+  p.push_back(5);  // SET_HOME
+  link_test::put_u32(p, 78);
+  p.push_back(0);
+  for (double v : {40.4237054, -86.9211946, 185.25}) {
+    uint8_t raw[8];
+    std::memcpy(raw, &v, 8);  // little-endian IEEE 754, as rosserial and the Due lay it out
+    p.insert(p.end(), raw, raw + 8);
+  }
+  d.rx(frame(101, p), 0u);
+  ASSERT_EQ(d.operator_requests, std::vector<uint8_t>{5});
+  EXPECT_EQ(d.last_operator.request_id, 78u);
+  EXPECT_EQ(d.last_operator.use_current, 0);
+  EXPECT_EQ(d.last_operator.latitude, 40.4237054);
+  EXPECT_EQ(d.last_operator.longitude, -86.9211946);
+  EXPECT_EQ(d.last_operator.altitude, 185.25);
 }

@@ -43,7 +43,15 @@ void link_command(void *ctx, const HaHpCommand *cmd, uint32_t arrival_us) {
 
 void link_operator(void *ctx, const drone_ros_OperatorCommand *cmd, uint32_t arrival_us) {
   (void)ctx;
-  (void)arrival_us;
+  if (cmd->command == HA_OP_SET_HOME) {  // home is the INS adapter's, not the decision logic's
+    const int r = due_ins_set_home(cmd->use_current ? 1u : 0u, cmd->latitude, cmd->longitude,
+                                   cmd->altitude, arrival_us);
+    (void)ha_link_log(&g_link, r == HA_INS_SET_HOME_OK ? ROSSERIAL_MSGS_LOG_INFO : ROSSERIAL_MSGS_LOG_WARN,
+                      r == HA_INS_SET_HOME_OK ? "SET_HOME: home moved"
+                      : r == HA_INS_SET_HOME_BAD_POSITION ? "SET_HOME refused: position out of range"
+                                                          : "SET_HOME refused: not parked on the ground");
+    return;
+  }
   ha_inputs_put_operator(g_inputs, cmd->command, cmd->request_id);
 }
 

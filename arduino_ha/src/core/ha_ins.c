@@ -136,8 +136,35 @@ int ha_ins_update(HaIns *ins, const HaAircraftConfig *cfg, const HaInsSample *s,
   /* The INS has no weight-on-wheels: parked and no higher than the airborne altitude. The core
    * adds its own airspeed check before it trusts this. */
   in->on_ground = (uint8_t)(parked(cfg, &c) && agl_ft <= cfg->airborne_agl_ft);
+  ins->last_lat_deg = c.lat_deg;
+  ins->last_lon_deg = c.lon_deg;
+  ins->last_alt_m = c.alt_m;
+  ins->last_on_ground = in->on_ground;
+  ins->last_used_us = now_us;
   in->state_valid = 1u;
   in->state_rx_us = now_us;
   ins->solutions_used += 1u;
   return 1;
+}
+
+int ha_ins_set_home(HaIns *ins, const HaAircraftConfig *cfg, uint8_t use_current, double lat_deg,
+                    double lon_deg, double alt_m, uint32_t now_us) {
+  GeoRef moved;
+  const int fresh = ins->solutions_used > 0u && now_us - ins->last_used_us <= cfg->state_timeout_us;
+  if (!ins->home_latched || !fresh || ins->last_on_ground == 0u) {
+    return HA_INS_SET_HOME_NOT_ON_GROUND;
+  }
+  if (use_current != 0u) {
+    lat_deg = ins->last_lat_deg;
+    lon_deg = ins->last_lon_deg;
+    alt_m = ins->last_alt_m;
+  }
+  /* geo_ref_init checks range and NaN; the INS's altitude bounds apply as to any solution. */
+  if (!in_range_d(alt_m, HA_INS_MIN_ALT_M, HA_INS_MAX_ALT_M) ||
+      !geo_ref_init(&moved, lat_deg, lon_deg, alt_m)) {
+    return HA_INS_SET_HOME_BAD_POSITION;
+  }
+  ins->home = moved;
+  ins->home_seq += 1u;
+  return HA_INS_SET_HOME_OK;
 }

@@ -250,6 +250,17 @@ class Node {
       c.request_id = ++request_id_;
       command_pub_.publish(c);
     }
+    for (const HomeRequest& r : core_.take_home_requests()) {
+      drone_ros::OperatorCommand c;
+      c.stamp = ros::Time::now();
+      c.command = drone_ros::OperatorCommand::SET_HOME;
+      c.request_id = ++request_id_;
+      c.use_current = r.use_current;
+      c.latitude = r.position.lat_deg;
+      c.longitude = r.position.lon_deg;
+      c.altitude = r.position.alt_m;
+      command_pub_.publish(c);
+    }
   }
 
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& s) {
