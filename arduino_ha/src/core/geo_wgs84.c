@@ -5,6 +5,8 @@
 /* Bounds of geo_ref_init's altitude: far beyond any INS report, they keep every sum finite. */
 #define GEO_MIN_ALT_M (-1.0e4)
 #define GEO_MAX_ALT_M 1.0e5
+/* Within about 1e-8 deg of a pole east has no usable scale: the inverse keeps the longitude. */
+#define GEO_MIN_EAST_M_PER_DEG 1.0e-3
 
 void geo_radii_m(double lat_deg, double *meridian_m, double *prime_vertical_m) {
   const double s = sin(lat_deg * GEO_RAD_PER_DEG);
@@ -73,7 +75,8 @@ void geo_from_neu_m(const GeoRef *ref, const double neu_m[3], double *lat_deg, d
   double lon;
   *lat_deg = ref->lat_deg + neu_m[0] / ref->north_m_per_deg;
   /* At a pole east has no scale: the longitude stays the reference's. */
-  lon = ref->east_m_per_deg > 0.0 ? ref->lon_deg + neu_m[1] / ref->east_m_per_deg : ref->lon_deg;
+  lon = ref->east_m_per_deg > GEO_MIN_EAST_M_PER_DEG ? ref->lon_deg + neu_m[1] / ref->east_m_per_deg
+                                                     : ref->lon_deg;
   if (lon > 180.0) {
     lon -= 360.0;
   } else if (lon < -180.0) {

@@ -149,7 +149,7 @@ int ha_ins_update(HaIns *ins, const HaAircraftConfig *cfg, const HaInsSample *s,
 
 int ha_ins_set_home(HaIns *ins, const HaAircraftConfig *cfg, uint8_t use_current, double lat_deg,
                     double lon_deg, double alt_m, uint32_t now_us) {
-  GeoRef moved;
+  GeoRef moved = ins->home; /* every field defined, whatever geo_ref_init does */
   const int fresh = ins->solutions_used > 0u && now_us - ins->last_used_us <= cfg->state_timeout_us;
   if (!ins->home_latched || !fresh || ins->last_on_ground == 0u) {
     return HA_INS_SET_HOME_NOT_ON_GROUND;
