@@ -280,6 +280,12 @@ void ControllerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper &stat)
   stat.add("rejected_gnc_inputs", out_.rejected_inputs);
   stat.add("estimator_converged", static_cast<int>(out_.estimator_converged));
   stat.add("home_valid", board_.home_valid());
+  if (board_.home_valid()) {  // the HA's home this controller flies /way from, to full precision
+    const SensorBoard::Home h = board_.home();
+    stat.addf("home_lat_deg", "%.9f", h.lat_deg);
+    stat.addf("home_lon_deg", "%.9f", h.lon_deg);
+    stat.addf("home_alt_m", "%.3f", h.alt_m);
+  }
   stat.add("waypoint_index", out_.waypoint_index);
   stat.add("guidance_mode", out_.guidance_mode);
 }
