@@ -22,9 +22,11 @@ from pymavlink import mavutil
 from tf2_msgs.msg import TFMessage
 
 FT_PER_M = 1.0 / 0.3048
-# How far the HA's home may sit from the truth's parked position: the VN-200 emulation's
-# position noise on the ground, with margin.
-HOME_TOLERANCE_M = 2.0
+# How far the HA's home may sit from the truth's parked position: three times the VN-200
+# emulation's position error (hil/sensors.py: 1.0 m horizontal, 1.5 m vertical RMS), which the HA
+# latches with the fix.
+HOME_TOLERANCE_HORIZONTAL_M = 3.0
+HOME_TOLERANCE_VERTICAL_M = 4.5
 # The tf against the truth at the nearest step (10 ms apart at 100 Hz; the aircraft flies about
 # 20 m/s), plus the INS's noise.
 TF_TOLERANCE_M = 3.0
@@ -52,14 +54,19 @@ class HomeAgreement(unittest.TestCase):
         rospy.Subscriber("/home", HomePosition, lambda m: cls._add(cls.homes, m), queue_size=100)
         rospy.Subscriber("/diagnostics", DiagnosticArray, cls._on_diagnostics, queue_size=1000)
         rospy.Subscriber("/tf", TFMessage, cls._on_tf, queue_size=100000)
+        # The ground station is asked while the flight runs: the launch ends with the simulator.
+        cls.home_position = None
         done = os.path.join(cls.out_dir, "done")
         deadline = time.monotonic() + 800.0
         while not os.path.exists(done) and time.monotonic() < deadline and not rospy.is_shutdown():
-            time.sleep(0.5)
+            with cls.lock:
+                flying = bool(cls.truth) and cls.truth[-1].header.stamp.to_sec() > 5.0
+            if flying and cls.home_position is None:
+                cls.home_position = cls._ask_ground_station()
+            time.sleep(0.2)
         time.sleep(1.0)  # the last messages
         with open(done) as f:
             cls.sim_exit = int(f.read().strip())
-        cls.home_position = cls._ask_ground_station()
 
     @classmethod
     def _add(cls, log, m):
@@ -85,10 +92,9 @@ class HomeAgreement(unittest.TestCase):
         conn = mavutil.mavlink_connection("udpout:127.0.0.1:%d" % cls.gs_port, source_system=255,
                                           source_component=190, dialect="development")
         try:
-            deadline = time.monotonic() + 30.0
-            while time.monotonic() < deadline:
+            for _ in range(20):
                 conn.mav.command_long_send(1, 1, mavutil.mavlink.MAV_CMD_GET_HOME_POSITION, 0, 0, 0, 0, 0, 0, 0, 0)
-                m = conn.recv_match(type="HOME_POSITION", blocking=True, timeout=1.0)
+                m = conn.recv_match(type="HOME_POSITION", blocking=True, timeout=0.5)
                 if m is not None:
                     return m
             return None
@@ -111,8 +117,8 @@ class HomeAgreement(unittest.TestCase):
     def test_2_the_ha_latched_home_once_where_the_aircraft_was_parked(self):
         h = self.ha_home()
         lat, lon, alt = self.truth_home()
-        self.assertLess(horizontal_m(lat, lon, h.latitude, h.longitude), HOME_TOLERANCE_M)
-        self.assertLess(abs(h.altitude - alt), HOME_TOLERANCE_M)
+        self.assertLess(horizontal_m(lat, lon, h.latitude, h.longitude), HOME_TOLERANCE_HORIZONTAL_M)
+        self.assertLess(abs(h.altitude - alt), HOME_TOLERANCE_VERTICAL_M)
         # Latched once and never moved: every /home the node relayed is the same point.
         self.assertEqual({1}, {m.seq for m in self.homes})
         self.assertEqual(1, len({(m.latitude, m.longitude, m.altitude) for m in self.homes}))
