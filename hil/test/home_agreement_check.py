@@ -135,7 +135,7 @@ class HomeAgreement(unittest.TestCase):
             self.assertAlmostEqual(h.longitude, float(v["home_lon_deg"]), places=8)
             self.assertAlmostEqual(h.altitude, float(v["home_alt_m"]), places=2)
         # It was a new process: its step counter started again from zero.
-        steps = [int(v["steps"]) for t, v in self.controller]
+        steps = [int(v["steps"]) for t, v in self.controller if "steps" in v]  # not in a stale report
         self.assertTrue(any(b < a for a, b in zip(steps, steps[1:])), "the controller was never restarted")
 
     def test_4_the_ground_stations_home_position_is_the_has_home(self):
