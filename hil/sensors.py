@@ -61,25 +61,55 @@ class GaussMarkov:
         return self.x
 
 
-class Vn200Errors:
-    """The errors of one VN-200 output stream (each port's stream draws its own)."""
+class InsSolutionErrors:
+    """The slow errors of the VN-200's one navigation filter (attitude, position, velocity), on a
+    grid of its 800 Hz IMU clock: both serial ports output the same solution, so both streams read
+    the same errors at the same sensor time (one home latched from port 1 is then the same point
+    port 2 measures from). Each grid step is drawn once, in order, whichever port asks first, so a
+    seed still fixes every byte."""
 
-    def __init__(self, seed, name, rate_hz):
-        self.rng = random.Random("%s/%s" % (seed, name))
-        r = self.rng
+    GRID_HZ = 800.0
+    KEEP = 4096  # grid steps remembered: far more than a step's packets on either port
+
+    def __init__(self, seed):
+        r = random.Random("%s/ins_solution" % seed)
         self.att = [GaussMarkov(r, 0.2, 20.0), GaussMarkov(r, 0.03, 20.0), GaussMarkov(r, 0.03, 20.0)]
         self.pos = [GaussMarkov(r, 1.0 / math.sqrt(2.0), 60.0), GaussMarkov(r, 1.0 / math.sqrt(2.0), 60.0),
                     GaussMarkov(r, 1.5, 60.0)]
         self.vel = [GaussMarkov(r, 0.05, 5.0) for _ in range(3)]
+        self.index = None  # grid index of the newest value
+        self.values = {}
+
+    def at(self, sensor_t_s):
+        """(attitude, position, velocity) errors at sensor time sensor_t_s."""
+        k = int(math.floor(sensor_t_s * self.GRID_HZ + 1e-6))
+        dt = 1.0 / self.GRID_HZ
+        if self.index is None:
+            self.index = self.first = k
+            self.values[k] = ([e.x for e in self.att], [e.x for e in self.pos], [e.x for e in self.vel])
+        while self.index < k:
+            self.index += 1
+            self.values[self.index] = ([e.step(dt) for e in self.att], [e.step(dt) for e in self.pos],
+                                       [e.step(dt) for e in self.vel])
+            self.values.pop(self.index - self.KEEP, None)
+        # Older than remembered (never in a flight) or than the first request: the oldest kept.
+        return self.values[max(k, self.first, self.index - self.KEEP + 1)]
+
+
+class Vn200Errors:
+    """The errors of one VN-200 output stream: the navigation filter's (shared by every stream,
+    InsSolutionErrors) plus the rate and acceleration noise of this stream's own samples."""
+
+    def __init__(self, seed, name, rate_hz, solution_errors):
+        self.rng = random.Random("%s/%s" % (seed, name))
+        self.shared = solution_errors
         bw = math.sqrt(rate_hz / 2.0)
         self.gyro_sigma = math.radians(0.0035) * bw
         self.accel_sigma = 0.14e-3 * G_MPS2 * bw
 
     def solution(self, truth, sensor_t_s, dt_s):
         r = self.rng
-        att = [e.step(dt_s) for e in self.att]
-        pos = [e.step(dt_s) for e in self.pos]
-        vel = [e.step(dt_s) for e in self.vel]
+        att, pos, vel = self.shared.at(sensor_t_s)
         rm, rn = radii_m(truth.lat_deg)
         lat = truth.lat_deg + math.degrees(pos[0] / rm)
         lon = truth.lon_deg + math.degrees(pos[1] / (rn * math.cos(math.radians(truth.lat_deg))))
@@ -150,7 +180,10 @@ class Vn200Port:
     """One of the VN-200's serial ports as a pty: answers ASCII commands (port 2, the HP's) and
     streams the binary output routed to it at its rate, on simulation time."""
 
-    def __init__(self, link, port, seed, baud, fixed_output=None):
+    def __init__(self, link, port, seed, baud, fixed_output=None, solution_errors=None):
+        """solution_errors: the INS's InsSolutionErrors, shared with the other port (one filter);
+        a port made alone gets its own."""
+        self.solution_errors = solution_errors if solution_errors is not None else InsSolutionErrors(seed)
         self.pty = Pty(link)
         self.registers = Registers(port, baud=0, ha_owns_output_1=True)
         if fixed_output is not None:
@@ -201,7 +234,8 @@ class Vn200Port:
         divisor, groups, masks = self.registers.stream()
         rate = 800.0 / divisor
         if self.errors is None:
-            self.errors = Vn200Errors(self.seed, "port%d/%d/%d" % (self.registers.port, divisor, groups), rate)
+            self.errors = Vn200Errors(self.seed, "port%d/%d/%d" % (self.registers.port, divisor, groups), rate,
+                                      self.solution_errors)
             self.next_index = int(math.floor(t_s * rate + 1e-9))
         out = bytearray()
         n = 0

@@ -254,11 +254,14 @@ class Simulation:
                 raise RuntimeError("~%s is required" % k)
             os.makedirs(os.path.dirname(v), exist_ok=True)
         os.makedirs(self.out_dir, exist_ok=True)
-        self.hp_vn = sensors.Vn200Port(ports["hp_vn200_port"], 2, self.seed, sensors.HP_VN200_BAUD)
+        # One VN-200: both ports carry its one navigation solution, errors included.
+        ins_errors = sensors.InsSolutionErrors(self.seed)
+        self.hp_vn = sensors.Vn200Port(ports["hp_vn200_port"], 2, self.seed, sensors.HP_VN200_BAUD,
+                                       solution_errors=ins_errors)
         if self.latency is not None:
             self.hp_vn.on_written = self.latency.on_written
         self.ha_vn = sensors.Vn200Port(ports["ha_vn200_port"], 1, self.seed, sensors.HA_VN200_BAUD,
-                                       fixed_output=sensors.HA_OUTPUT_1)
+                                       fixed_output=sensors.HA_OUTPUT_1, solution_errors=ins_errors)
         self.chan = ha_channel.HaChannel(ports["ha_channel"])
         self.ams = sensors.Ams5812(self.seed)
         self.battery = sensors.Battery(self.seed)

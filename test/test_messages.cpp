@@ -5,6 +5,7 @@
 
 #include <drone_ros/DecisionStatus.h>
 #include <drone_ros/HilTruth.h>
+#include <drone_ros/HomePosition.h>
 #include <drone_ros/OperatorCommand.h>
 #include <drone_ros/ServoCommand.h>
 #include <drone_ros/data.h>
@@ -189,17 +190,41 @@ TEST(Messages, DecisionStatusRoundTripKeepsReasonsAndCheckedValues) {
 }
 
 // The Due decodes this from the wire by position (its generated code), so the layout is part of
-// the contract: stamp, command, request id, 13 bytes.
+// the contract: stamp, command, request id, then SET_HOME's position, 38 bytes.
 TEST(Messages, OperatorCommandRoundTripKeepsTheRequestAndItsId) {
   drone_ros::OperatorCommand cmd;
   cmd.stamp = ros::Time(1700000000, 5);
   cmd.command = drone_ros::OperatorCommand::SELF_TEST;
   cmd.request_id = 4000000001u;
-  EXPECT_EQ(13u, serialize(cmd).size());
+  cmd.use_current = true;
+  cmd.latitude = 40.4237054;
+  cmd.longitude = -86.9211946;
+  cmd.altitude = 185.25;
+  EXPECT_EQ(38u, serialize(cmd).size());
   const auto back = roundTrip(cmd);
   EXPECT_EQ(ros::Time(1700000000, 5), back.stamp);
   EXPECT_EQ(drone_ros::OperatorCommand::SELF_TEST, back.command);
   EXPECT_EQ(4000000001u, back.request_id);
+  EXPECT_TRUE(back.use_current);
+  EXPECT_EQ(40.4237054, back.latitude);
+  EXPECT_EQ(-86.9211946, back.longitude);
+  EXPECT_EQ(185.25, back.altitude);
+}
+
+// The Due sends home in doubles: a float would put it a metre off.
+TEST(Messages, HomePositionRoundTripKeepsFullDoublePrecision) {
+  drone_ros::HomePosition home;
+  home.stamp = ros::Time(1700000000, 7);
+  home.seq = 3;
+  home.latitude = 40.4237054;
+  home.longitude = -86.9211946;
+  home.altitude = 185.25;
+  EXPECT_EQ(36u, serialize(home).size());
+  const auto back = roundTrip(home);
+  EXPECT_EQ(3u, back.seq);
+  EXPECT_EQ(40.4237054, back.latitude);
+  EXPECT_EQ(-86.9211946, back.longitude);
+  EXPECT_EQ(185.25, back.altitude);
 }
 
 TEST(Messages, ReasonBitsAreDistinctSingleBits) {
@@ -290,6 +315,7 @@ TEST(Messages, Md5sumsArePinned) {
   expectPinned<drone_ros::DecisionStatus>(sums);
   expectPinned<drone_ros::HilTruth>(sums);
   expectPinned<drone_ros::OperatorCommand>(sums);
+  expectPinned<drone_ros::HomePosition>(sums);
 }
 
 int main(int argc, char** argv) {

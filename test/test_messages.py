@@ -68,10 +68,25 @@ def test_operator_command_round_trip_keeps_the_request_and_its_id():
                                      request_id=4000000001)
     cmd.stamp.secs, cmd.stamp.nsecs = 1700000000, 5
     raw, back = round_trip(cmd)
-    assert len(raw) == 13  # the Due decodes it by position
+    assert len(raw) == 38  # the Due decodes it by position
     assert back.command == drone_msgs.OperatorCommand.RESTART_HP
     assert back.request_id == 4000000001
     assert (back.stamp.secs, back.stamp.nsecs) == (1700000000, 5)
+
+
+def test_operator_set_home_keeps_the_position_in_full_double_precision():
+    cmd = drone_msgs.OperatorCommand(command=drone_msgs.OperatorCommand.SET_HOME, request_id=9,
+                                     latitude=40.4237054, longitude=-86.9211946, altitude=185.25)
+    _, back = round_trip(cmd)
+    assert (back.command, back.use_current) == (5, False)
+    assert (back.latitude, back.longitude, back.altitude) == (40.4237054, -86.9211946, 185.25)
+
+
+def test_home_position_round_trip_keeps_full_double_precision():
+    home = drone_msgs.HomePosition(seq=2, latitude=40.4237054, longitude=-86.9211946, altitude=185.25)
+    raw, back = round_trip(home)
+    assert len(raw) == 8 + 4 + 3 * 8
+    assert (back.seq, back.latitude, back.longitude, back.altitude) == (2, 40.4237054, -86.9211946, 185.25)
 
 
 def test_way_carries_32_waypoints():
@@ -94,7 +109,7 @@ def test_data_round_trip_keeps_estimates():
     assert back.alphaest == pytest.approx(math.radians(4.0))
 
 
-@pytest.mark.parametrize("name", ["DecisionStatus", "HilTruth", "OperatorCommand", "ServoCommand", "data", "hil_data", "ins", "pwm", "way"])
+@pytest.mark.parametrize("name", ["DecisionStatus", "HilTruth", "HomePosition", "OperatorCommand", "ServoCommand", "data", "hil_data", "ins", "pwm", "way"])
 def test_md5sum_is_pinned(name):
     cls = getattr(drone_msgs, name)
     assert pinned_md5sums()[cls._type] == cls._md5sum, (

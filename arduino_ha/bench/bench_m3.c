@@ -8,6 +8,7 @@
 #include "bench_inputs.h"
 #include "ha_aircraft.h"
 #include "ha_core.h"
+#include "ha_ins.h"
 #include "insn_timer.h"
 #include "semihost.h"
 
@@ -79,6 +80,39 @@ static uint32_t stack_used_bytes(uintptr_t top) {
   return 0u;
 }
 
+/* The INS adapter per solution (not part of the step above: it runs as the VN-200's packets
+ * arrive): home latched, then solutions up to 3000 ft from home through the geodesy module. */
+static uint32_t ins_update_max_insns(void) {
+  static HaIns ins;
+  HaInsSample s;
+  HaInputs in;
+  uint32_t worst = 0u;
+  uint32_t k;
+  ha_ins_init(&ins);
+  for (k = 0u; k < 200u; ++k) {
+    uint32_t t0;
+    uint32_t n;
+    s.has = (uint8_t)(HA_INS_HAS_REQUIRED | HA_INS_HAS_GPS_FIX);
+    s.ypr_deg[0] = 10.0f;
+    s.ypr_deg[1] = 2.0f;
+    s.ypr_deg[2] = -5.0f;
+    s.angular_rate_radps[0] = s.angular_rate_radps[1] = s.angular_rate_radps[2] = 0.1f;
+    /* A square spiral out to 0.008 deg (about 3000 ft north, 2000 ft east at 40 deg). */
+    s.lat_deg = 40.4237054 + (k == 0u ? 0.0 : 0.00004 * (double)k * ((k & 1u) ? 1.0 : -1.0));
+    s.lon_deg = -86.9211946 + (k == 0u ? 0.0 : 0.00004 * (double)k * ((k & 2u) ? 1.0 : -1.0));
+    s.alt_m = 185.0 + (k == 0u ? 0.0 : 60.0);
+    s.vel_ned_mps[0] = k == 0u ? 0.0f : 18.0f;
+    s.vel_ned_mps[1] = s.vel_ned_mps[2] = 0.0f;
+    s.ins_status = 0x0006u;
+    s.gps_fix = 3u;
+    t0 = ha_insn_timer_read();
+    (void)ha_ins_update(&ins, &ha_aircraft_config, &s, 1000u * k, &in);
+    n = (t0 - ha_insn_timer_read()) * HA_INSN_PER_TICK;
+    worst = n > worst ? n : worst;
+  }
+  return worst;
+}
+
 int main(void) {
   uintptr_t painted_top;
   uint64_t sum = 0u;
@@ -128,6 +162,7 @@ int main(void) {
   metric("m3_insns_max_recovering", controller_max_insns[HA_CONTROLLER_RECOVERING], "instructions");
   metric("m3_insns_max_ha_latched", controller_max_insns[HA_CONTROLLER_HA_LATCHED], "instructions");
   metric("m3_insns_max_manual", controller_max_insns[HA_CONTROLLER_MANUAL], "instructions");
+  metric("m3_insns_ins_update_max", ins_update_max_insns(), "instructions");
   {
     char line[160] = "budget: worst case ";
     const uint32_t worst = insns[STEPS - 1u];

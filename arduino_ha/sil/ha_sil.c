@@ -171,7 +171,15 @@ static void link_on_command(void *ctx, const HaHpCommand *cmd, uint32_t arrival_
 
 static void link_on_operator(void *ctx, const drone_ros_OperatorCommand *op, uint32_t arrival_us) {
   Sil *sil = (Sil *)ctx;
-  (void)arrival_us;
+  static const char *const kSetHome[] = {"SET_HOME: home moved", "SET_HOME refused: not parked on the ground",
+                                         "SET_HOME refused: position out of range"};
+  if (op->command == HA_OP_SET_HOME) { /* home is the INS adapter's, not the decision logic's */
+    const int r = ha_ins_set_home(&sil->ins.ins, &ha_aircraft_config, op->use_current ? 1u : 0u, op->latitude,
+                                  op->longitude, op->altitude, arrival_us);
+    (void)ha_link_log(&sil->link, r == HA_INS_SET_HOME_OK ? ROSSERIAL_MSGS_LOG_INFO : ROSSERIAL_MSGS_LOG_WARN,
+                      kSetHome[r >= 0 && r <= 2 ? r : 1]);
+    return;
+  }
   ha_inputs_put_operator(&sil->app.inputs, op->command, op->request_id);
 }
 
@@ -253,6 +261,20 @@ static void unplug(Sil *sil) {
   sil->slave_fd = -1;
 }
 
+/* The HA owns home: the host hears it on a change and every few seconds (ha_link_offer_home). */
+static void send_home(HaLink *link, const HaIns *ins, HaRosTime stamp, uint32_t now_us) {
+  drone_ros_HomePosition home;
+  memset(&home, 0, sizeof home);
+  if (ins->home_latched) {
+    home.stamp = stamp;
+    home.seq = ins->home_seq;
+    home.latitude = ins->home.lat_deg;
+    home.longitude = ins->home.lon_deg;
+    home.altitude = ins->home.alt_m;
+  }
+  (void)ha_link_offer_home(link, &home, now_us);
+}
+
 static void send_sensors(Sil *sil, uint32_t now_us) {
   const HaOutputs *o = &sil->app.outputs;
   const HaInputs *in = &sil->app.inputs;
@@ -284,6 +306,7 @@ static void send_sensors(Sil *sil, uint32_t now_us) {
   st.aileron_deg = o->surfaces.aileron_deg;
   st.rudder_deg = o->surfaces.rudder_deg;
   (void)ha_link_publish_decision_status(&sil->link, &st);
+  send_home(&sil->link, &sil->ins.ins, stamp, now_us);
 }
 
 /* A (re)negotiated link says so in the host's log and asks for --param. */

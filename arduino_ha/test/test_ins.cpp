@@ -107,6 +107,59 @@ TEST_F(InsAdapter, HomeLatchedAtFirstFixOnTheGround) {
   EXPECT_NEAR(in.north_ft, 0.0005 * kMPerDegLatAt45 * kFtPerM, 0.5);
 }
 
+TEST_F(InsAdapter, SetHomeOnTheGroundMovesHomeAndTheStateFollows) {
+  ASSERT_EQ(Update(Parked(), 1000u), 1);
+  EXPECT_EQ(ins.home_seq, 1u);
+  // The operator puts home 0.001 deg north, 5 m higher.
+  ASSERT_EQ(ha_ins_set_home(&ins, &ha_aircraft_config, 0u, kHomeLatDeg + 0.001, kHomeLonDeg,
+                            kHomeAltM + 5.0, 2000u),
+            HA_INS_SET_HOME_OK);
+  EXPECT_EQ(ins.home_seq, 2u);  // the link republishes it at once
+  ASSERT_EQ(Update(Parked(), 3000u), 1);
+  EXPECT_NEAR(in.north_ft, -0.001 * kMPerDegLatAt45 * kFtPerM, 0.5);
+  EXPECT_NEAR(in.altitude_agl_ft, -5.0 * kFtPerM, 1e-3);
+  // "Here": the last solution's position.
+  HaInsSample moved = Parked();
+  moved.lon_deg += 0.0002;
+  ASSERT_EQ(Update(moved, 4000u), 1);
+  ASSERT_EQ(ha_ins_set_home(&ins, &ha_aircraft_config, 1u, 0.0, 0.0, 0.0, 5000u), HA_INS_SET_HOME_OK);
+  EXPECT_EQ(ins.home.lon_deg, kHomeLonDeg + 0.0002);
+  EXPECT_EQ(ins.home.alt_m, kHomeAltM);
+  ASSERT_EQ(Update(moved, 6000u), 1);
+  EXPECT_NEAR(in.east_ft, 0.0, 1e-3);
+}
+
+TEST_F(InsAdapter, SetHomeInFlightIsRefusedAndHomeStays) {
+  ASSERT_EQ(Update(Parked(), 1000u), 1);
+  ASSERT_EQ(Update(Flying(60.0, 0.001, 0.0), 2000u), 1);
+  EXPECT_EQ(ha_ins_set_home(&ins, &ha_aircraft_config, 1u, 0.0, 0.0, 0.0, 3000u),
+            HA_INS_SET_HOME_NOT_ON_GROUND);
+  EXPECT_EQ(ins.home_seq, 1u);
+  EXPECT_EQ(ins.home.lat_deg, kHomeLatDeg);
+  // Back on the ground but the INS gone quiet: it cannot tell, so it refuses too.
+  ASSERT_EQ(Update(Parked(), 4000u), 1);
+  EXPECT_EQ(ha_ins_set_home(&ins, &ha_aircraft_config, 1u, 0.0, 0.0, 0.0,
+                            4000u + ha_aircraft_config.state_timeout_us + 1u),
+            HA_INS_SET_HOME_NOT_ON_GROUND);
+  EXPECT_EQ(ins.home_seq, 1u);
+}
+
+TEST_F(InsAdapter, SetHomeBeforeAnyHomeOrToANonsensePositionIsRefused) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(ha_ins_set_home(&ins, &ha_aircraft_config, 0u, kHomeLatDeg, kHomeLonDeg, kHomeAltM, 10u),
+            HA_INS_SET_HOME_NOT_ON_GROUND);
+  EXPECT_EQ(ins.home_latched, 0u);
+  ASSERT_EQ(Update(Parked(), 1000u), 1);
+  EXPECT_EQ(ha_ins_set_home(&ins, &ha_aircraft_config, 0u, nan, kHomeLonDeg, kHomeAltM, 1100u),
+            HA_INS_SET_HOME_BAD_POSITION);
+  EXPECT_EQ(ha_ins_set_home(&ins, &ha_aircraft_config, 0u, kHomeLatDeg, 200.0, kHomeAltM, 1100u),
+            HA_INS_SET_HOME_BAD_POSITION);
+  EXPECT_EQ(ha_ins_set_home(&ins, &ha_aircraft_config, 0u, kHomeLatDeg, kHomeLonDeg, 1.0e6, 1100u),
+            HA_INS_SET_HOME_BAD_POSITION);
+  EXPECT_EQ(ins.home_seq, 1u);
+  EXPECT_EQ(ins.home.lat_deg, kHomeLatDeg);
+}
+
 TEST_F(InsAdapter, FirstFixInFlightDoesNotBecomeHome) {
   // Powered up in the air: no home, so no altitude AGL and no circle centre; the state stays
   // invalid (the HA keeps control) rather than circling wherever the fix happened.

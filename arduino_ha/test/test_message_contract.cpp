@@ -39,6 +39,7 @@ TEST(HaMessageContract, OperatorCommandNumbersMatch) {
   EXPECT_EQ(HA_OP_SELECT_HA, OperatorCommand::SELECT_HA);
   EXPECT_EQ(HA_OP_RESTART_HP, OperatorCommand::RESTART_HP);
   EXPECT_EQ(HA_OP_SELF_TEST, OperatorCommand::SELF_TEST);
+  EXPECT_EQ(HA_OP_SET_HOME, OperatorCommand::SET_HOME);
 }
 
 }  // namespace

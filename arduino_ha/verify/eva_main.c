@@ -21,6 +21,7 @@
 #include "ha_aircraft.h"
 #include "ha_app.h"
 #include "ha_core.h"
+#include "geo_wgs84.h"
 #include "ha_ins.h"
 
 #ifndef HA_EVA_STEPS
@@ -195,6 +196,29 @@ static void any_ins_sample(HaInsSample *s) {
   s->gps_fix = any_u8();
 }
 
+/* The geodesy module's HP-side uses (vn200 tf, microhard_gs, the GNC): a reference from any
+ * input, then points inside its documented domain (latitude, longitude, height in range; north,
+ * east, up within 1000 km). */
+static void any_geodesy_use(void) {
+  GeoRef ref;
+  double neu[3];
+  double lat;
+  double lon;
+  double alt;
+  /* A valid reference first, as every caller holds one (home) before it converts: EVA joins
+   * geo_ref_init's two exits, so the refused one must leave a reference behind. */
+  if (!geo_ref_init(&ref, 0.0, 0.0, 0.0)) {
+    return;
+  }
+  (void)geo_ref_init(&ref, any_double(), any_double(), any_double());
+  geo_to_neu_ft(&ref, Frama_C_double_interval(-90.0, 90.0), Frama_C_double_interval(-180.0, 180.0),
+                Frama_C_double_interval(-1.0e4, 1.0e5), neu);
+  neu[0] = Frama_C_double_interval(-1.0e6, 1.0e6);
+  neu[1] = Frama_C_double_interval(-1.0e6, 1.0e6);
+  neu[2] = Frama_C_double_interval(-1.0e6, 1.0e6);
+  geo_from_neu_ft(&ref, neu, &lat, &lon, &alt);
+}
+
 static HaApp app;
 static HaCore core;
 static HaIns ins;
@@ -210,6 +234,10 @@ static void one_period(const HaBoard *board) {
     any_ins_sample(&sample);
     (void)ha_ins_update(&ins, &ha_aircraft_config, &sample, any_u32(), &app.inputs);
   }
+  if (Frama_C_nondet(0, 1)) { /* an operator's SET_HOME, any position, any time */
+    (void)ha_ins_set_home(&ins, &ha_aircraft_config, any_u8(), any_double(), any_double(),
+                          any_double(), any_u32());
+  }
   ha_app_period(&app, board);
   check_servo_command(&app.outputs.surfaces);
   check_decision(&app.outputs);
@@ -218,6 +246,7 @@ static void one_period(const HaBoard *board) {
   ha_core_step(&core, &inputs, any_u32(), &outputs);
   check_servo_command(&outputs.surfaces);
   check_decision(&outputs);
+  any_geodesy_use();
 }
 
 int main(void) {

@@ -14,7 +14,7 @@ import threading
 
 import rospy
 from diagnostic_msgs.msg import DiagnosticArray
-from drone_ros.msg import DecisionStatus, OperatorCommand, data, way
+from drone_ros.msg import DecisionStatus, HomePosition, OperatorCommand, data, way
 
 
 def emit(obj):
@@ -33,6 +33,9 @@ def main():
     rospy.init_node("gs_ros_probe", anonymous=True, disable_signals=True)
     data_pub = rospy.Publisher("/data", data, queue_size=10)
     decision_pub = rospy.Publisher("/decision_status", DecisionStatus, queue_size=10, latch=True)
+    # Home as the HA's `arduino` node keeps it (latched); the ground station takes no other.
+    home_pub = rospy.Publisher("/home", HomePosition, queue_size=1, latch=True)
+    home_pub.publish(HomePosition(seq=1, latitude=args.lat, longitude=args.lon, altitude=args.alt))
 
     def on_way(msg):
         n = msg.fp
@@ -40,7 +43,9 @@ def main():
               "height": list(msg.height[:n]), "velocity": list(msg.velocity[:n])})
 
     def on_command(msg):
-        emit({"topic": "operator_command", "command": msg.command, "request_id": msg.request_id})
+        emit({"topic": "operator_command", "command": msg.command, "request_id": msg.request_id,
+              "use_current": msg.use_current, "latitude": msg.latitude, "longitude": msg.longitude,
+              "altitude": msg.altitude})
 
     def on_diagnostics(msg):
         for status in msg.status:

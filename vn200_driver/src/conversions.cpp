@@ -1,6 +1,6 @@
 #include "conversions.h"
 
-#include <drone_ros_common/wgs84.h>
+#include "geo_wgs84.h"
 
 #include <cmath>
 
@@ -47,13 +47,16 @@ Vec3 nedToEnu(const Vec3& v) { return {v[1], v[0], -v[2]}; }
 
 Vec3 llaToLocalEnu(double lat_deg, double lon_deg, double alt_m, double ref_lat_deg,
                    double ref_lon_deg, double ref_alt_m) {
-  // The same flat earth the HA, the controller and the ground station use, so the tf puts the
-  // aircraft where they do.
-  const drone_ros_common::Wgs84Radii r = drone_ros_common::wgs84_radii_at(ref_lat_deg);
-  const double north = (lat_deg - ref_lat_deg) * kDegToRad * r.meridian_m;
-  const double east =
-      (lon_deg - ref_lon_deg) * kDegToRad * r.prime_vertical_m * std::cos(ref_lat_deg * kDegToRad);
-  return {east, north, alt_m - ref_alt_m};
+  // The stack's one flat earth (geo_wgs84.h), so the tf puts the aircraft where the HA, the
+  // controller and the ground station do.
+  GeoRef ref{};
+  if (!geo_ref_init(&ref, ref_lat_deg, ref_lon_deg, ref_alt_m)) {
+    const double nan = std::nan("");
+    return {nan, nan, nan};
+  }
+  double neu[3];
+  geo_to_neu_m(&ref, lat_deg, lon_deg, alt_m, neu);
+  return {neu[1], neu[0], neu[2]};
 }
 
 }  // namespace vn200

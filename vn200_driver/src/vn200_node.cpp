@@ -40,6 +40,7 @@ Vn200Node::Vn200Node(ros::NodeHandle nh, ros::NodeHandle pnh, const NodeParams& 
   mag_pub_ = pnh_.advertise<sensor_msgs::MagneticField>("imu/mag", 10);
   pressure_pub_ = pnh_.advertise<sensor_msgs::FluidPressure>("pressure", 10);
   temperature_pub_ = pnh_.advertise<sensor_msgs::Temperature>("temperature", 10);
+  if (params_.publish_tf) home_sub_ = nh_.subscribe("/home", 1, &Vn200Node::onHome, this);
 
   diag_.setHardwareID(params_.replay_file.empty() ? "VN-200 on " + params_.port
                                                   : "VN-200 replay " + params_.replay_file);
@@ -245,16 +246,19 @@ void Vn200Node::publishPacket(const VnBinaryData& d) {
   if (d.has & VN_HAS_PRESSURE) pressure_pub_.publish(to_fluid_pressure(d, imu.header));
   if (d.has & VN_HAS_TEMP) temperature_pub_.publish(to_temperature(d, imu.header));
 
-  // tf: local ENU frame anchored where the INS first reported a tracking solution.
-  if (params_.publish_tf && (d.has & VN_HAS_POSITION_LLA) && VN_INS_STATUS_MODE(d.ins_status) >= 1) {
-    if (!have_ref_) {
-      have_ref_ = true;
-      ref_lat_deg_ = d.lat_deg;
-      ref_lon_deg_ = d.lon_deg;
-      ref_alt_m_ = d.alt_m;
-    }
-    tf_.sendTransform(to_transform(d, stamp, params_.world_frame_id, params_.frame_id, ref_lat_deg_,
-                                   ref_lon_deg_, ref_alt_m_));
+  // tf: local ENU frame anchored at home, the stack's one origin (/home, from the HA).
+  double ref_lat_deg, ref_lon_deg, ref_alt_m;
+  bool have_ref;
+  {
+    std::lock_guard<std::mutex> lock(ref_mutex_);
+    have_ref = have_ref_;
+    ref_lat_deg = ref_lat_deg_;
+    ref_lon_deg = ref_lon_deg_;
+    ref_alt_m = ref_alt_m_;
+  }
+  if (params_.publish_tf && have_ref && (d.has & VN_HAS_POSITION_LLA) && VN_INS_STATUS_MODE(d.ins_status) >= 1) {
+    tf_.sendTransform(to_transform(d, stamp, params_.world_frame_id, params_.frame_id, ref_lat_deg,
+                                   ref_lon_deg, ref_alt_m));
   }
 }
 
@@ -291,6 +295,19 @@ void Vn200Node::diagLink(diagnostic_updater::DiagnosticStatusWrapper& stat) {
   stat.add("link losses", link_losses_);
   stat.add("time offset resets", time_mapper_.resets());
   stat.add("last problem", last_problem_);
+}
+
+void Vn200Node::onHome(const drone_ros::HomePosition::ConstPtr& msg) {
+  if (!std::isfinite(msg->latitude) || !std::isfinite(msg->longitude) || !std::isfinite(msg->altitude) ||
+      std::fabs(msg->latitude) > 90.0 || std::fabs(msg->longitude) > 180.0) {
+    ROS_WARN("vn200: home %u dropped: not a valid position", msg->seq);
+    return;
+  }
+  std::lock_guard<std::mutex> lock(ref_mutex_);
+  have_ref_ = true;
+  ref_lat_deg_ = msg->latitude;
+  ref_lon_deg_ = msg->longitude;
+  ref_alt_m_ = msg->altitude;
 }
 
 }  // namespace vn200

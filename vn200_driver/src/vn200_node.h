@@ -3,10 +3,12 @@
 #pragma once
 
 #include <diagnostic_updater/diagnostic_updater.h>
+#include <drone_ros/HomePosition.h>
 #include <ros/ros.h>
 #include <tf2_ros/transform_broadcaster.h>
 
 #include <memory>
+#include <mutex>
 #include <string>
 
 #include "drone_ros_common/serial_port.h"
@@ -52,6 +54,10 @@ class Vn200Node {
   unsigned reconnects_ = 0;
   unsigned link_losses_ = 0;
   std::string last_problem_;
+  // The tf's origin is home, from its one owner (the HA, on the latched /home): no tf before it.
+  void onHome(const drone_ros::HomePosition::ConstPtr& msg);
+  ros::Subscriber home_sub_;
+  std::mutex ref_mutex_;
   bool have_ref_ = false;
   double ref_lat_deg_ = 0, ref_lon_deg_ = 0, ref_alt_m_ = 0;
   // Replay pacing.

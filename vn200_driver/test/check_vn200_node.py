@@ -115,8 +115,9 @@ class ValueChecks:
         self.check_tf(rec)
 
     def check_tf(self, rec):
-        """tf world -> body: the fake flies north (latitude rising) at constant height, so the
-        body moves along +y of the local ENU frame anchored at the first solution, and the
+        """tf world -> body: the fake flies north (latitude rising) at constant height from home
+        (/home, published at its start), so the body moves along +y of the local ENU frame
+        anchored at home, and the
         rotation is the REP-103 orientation published on ~imu/data at the same stamp."""
         def body_tfs():
             return [t for m in rec.get("/tf") for t in m.transforms if t.child_frame_id == "vn200"]
@@ -191,5 +192,9 @@ class Replay(unittest.TestCase, ValueChecks):
 if __name__ == "__main__":
     mode = next((a for a in sys.argv[1:] if a in ("live", "replay")), "live")
     rospy.init_node("check_vn200_node", anonymous=True)
+    # Home as the HA's `arduino` node keeps it (latched): where the fake flight starts.
+    from drone_ros.msg import HomePosition
+    HOME_PUB = rospy.Publisher("/home", HomePosition, queue_size=1, latch=True)
+    HOME_PUB.publish(HomePosition(seq=1, latitude=45.4642, longitude=9.1900, altitude=150.0))
     cls = LiveSensor if mode == "live" else Replay
     rostest.rosrun("drone_ros", "vn200_" + mode, cls, sys.argv)

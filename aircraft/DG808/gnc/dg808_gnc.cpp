@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "airdata_ekf.h"
+#include "geo_wgs84.h"
 #include "dg808_gnc_data.h"
 #include "guidance.h"
 #include "inner_loops.h"
@@ -16,12 +17,6 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kDegToRad = kPi / 180.0;
 constexpr double kFtPerM = 1.0 / 0.3048;
 constexpr double kMPerFt = 0.3048;
-// WGS84, as the HA and the ground station use: waypoints the operator places, the HA's safety
-// region and this guidance must agree on where a latitude/longitude is relative to home. Stated
-// here rather than taken from drone_ros_common/wgs84.h: generated GNC code stands alone, so a lab
-// can drop its own in without the project's headers.
-constexpr double kWgs84AM = 6378137.0;
-constexpr double kWgs84E2 = 6.69437999014e-3;  // first eccentricity squared
 // Beyond what the sensors can report (VN-200: +/-2000 deg/s, +/-16 g, 515 m/s; a pitot on this
 // airframe far beyond 1000 ft/s): a finite value out here is a corrupted message, not flight.
 constexpr double kMaxRateRadps = 35.0;
@@ -224,18 +219,19 @@ extern "C" void DG808_GNC_step(const DG808_GNC_Input *in, DG808_GNC_Output *out)
   o.wind_up_ftps = -est.wind_ned_mps.z() * kFtPerM;
   o.estimator_converged = est.converged ? 1 : 0;
 
-  // Flat earth around home, as the original's GPS-to-local block.
-  const bool home = in->home_valid != 0;
+  // Flat earth around home, as the original's GPS-to-local block, by the stack's one conversion
+  // (geo_wgs84.h, gnc.cmake links it): waypoints the operator places, the HA's safety region and
+  // this guidance agree on where a latitude/longitude is relative to home. A home the module
+  // refuses (an absurd height) is no home.
+  GeoRef ref{};
+  const bool home = in->home_valid != 0 &&
+                    geo_ref_init(&ref, in->home_lat_deg, in->home_lon_deg, in->home_alt_m) != 0;
   if (home) {
-    // Meridian and prime-vertical radii of curvature at home's latitude: a flat earth that is
-    // exact at home and off by well under a foot anywhere inside the mission radius.
-    const double lat0 = in->home_lat_deg * kDegToRad;
-    const double w2 = 1.0 - kWgs84E2 * std::sin(lat0) * std::sin(lat0);
-    const double meridian_m = kWgs84AM * (1.0 - kWgs84E2) / (w2 * std::sqrt(w2));
-    const double prime_vertical_m = kWgs84AM / std::sqrt(w2);
-    o.north_ft = (in->lat_deg - in->home_lat_deg) * kDegToRad * meridian_m * kFtPerM;
-    o.east_ft = (in->lon_deg - in->home_lon_deg) * kDegToRad * prime_vertical_m * std::cos(lat0) * kFtPerM;
-    o.height_ft = (in->alt_m - in->home_alt_m) * kFtPerM;
+    double neu_ft[3];
+    geo_to_neu_ft(&ref, in->lat_deg, in->lon_deg, in->alt_m, neu_ft);
+    o.north_ft = neu_ft[0];
+    o.east_ft = neu_ft[1];
+    o.height_ft = neu_ft[2];
   }
   const bool computer_flies = in->piccic == 1;
   const bool flying = computer_flies && est.converged && home;

@@ -8,7 +8,8 @@ add_library(${GNC_TARGET} STATIC
   ${GNC_DIR}/guidance.cpp
   ${GNC_DIR}/inner_loops.cpp)
 target_include_directories(${GNC_TARGET} PUBLIC ${GNC_DIR})
-target_link_libraries(${GNC_TARGET} PUBLIC Eigen3::Eigen)
+# geo_wgs84 (arduino_ha/src/core): the stack's one latitude/longitude <-> north/east conversion.
+target_link_libraries(${GNC_TARGET} PUBLIC Eigen3::Eigen geo_wgs84)
 set_target_properties(${GNC_TARGET} PROPERTIES POSITION_INDEPENDENT_CODE ON)
 strict_warnings(${GNC_TARGET})
 # The gains header design/design_gains.py writes; the controller's test reruns the script and

@@ -3,6 +3,7 @@
 // and a silent or departing host noticed.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <string>
 
 #include "ha_link.h"
@@ -20,6 +21,7 @@ struct Device {
   link_test::Capture tx;
   std::vector<std::pair<HaHpCommand, uint32_t>> commands;
   std::vector<uint8_t> operator_requests;
+  drone_ros_OperatorCommand last_operator{};
   std::vector<int32_t> param_ints;
 
   Device() {
@@ -30,6 +32,7 @@ struct Device {
     };
     cb.on_operator = [](void *ctx, const drone_ros_OperatorCommand *op, uint32_t) {
       static_cast<Device *>(ctx)->operator_requests.push_back(op->command);
+      static_cast<Device *>(ctx)->last_operator = *op;
     };
     cb.on_param = [](void *ctx, const rosserial_msgs_RequestParamResponse *r) {
       for (uint32_t i = 0; i < r->ints_count; ++i) static_cast<Device *>(ctx)->param_ints.push_back(r->ints[i]);
@@ -90,9 +93,9 @@ TEST(HaLinkSession, HostTopicRequestIsAnsweredWithEveryTopicAndThenATimeRequest)
   Device d;
   d.rx(kTopicRequest, 1000u);
   const auto frames = d.tx.frames();
-  ASSERT_EQ(frames.size(), 5u);
+  ASSERT_EQ(frames.size(), 6u);
   std::vector<TopicInfoWire> infos;
-  for (size_t i = 0; i < 4; ++i) infos.push_back(parse_topic_info(frames[i].second));
+  for (size_t i = 0; i < 5; ++i) infos.push_back(parse_topic_info(frames[i].second));
   EXPECT_EQ(frames[0].first, 0u);  // ID_PUBLISHER
   EXPECT_EQ(infos[0].name, "pwm");
   EXPECT_EQ(infos[0].type, "drone_ros/pwm");
@@ -100,14 +103,18 @@ TEST(HaLinkSession, HostTopicRequestIsAnsweredWithEveryTopicAndThenATimeRequest)
   EXPECT_GE(infos[0].id, 100u);
   EXPECT_EQ(frames[1].first, 0u);
   EXPECT_EQ(infos[1].type, "drone_ros/DecisionStatus");
-  EXPECT_EQ(frames[2].first, 1u);  // ID_SUBSCRIBER
-  EXPECT_EQ(infos[2].name, "servo_op");
-  EXPECT_EQ(infos[2].md5, "aa3c1563aed64772cc32f85160797a04");
-  EXPECT_EQ(infos[2].buffer_size, 256);
-  EXPECT_EQ(frames[3].first, 1u);
-  EXPECT_EQ(infos[3].type, "drone_ros/OperatorCommand");
-  EXPECT_EQ(frames[4].first, 10u);  // std_msgs/Time request
-  EXPECT_EQ(frames[4].second.size(), 8u);
+  EXPECT_EQ(frames[2].first, 0u);
+  EXPECT_EQ(infos[2].name, "home");
+  EXPECT_EQ(infos[2].type, "drone_ros/HomePosition");
+  EXPECT_EQ(infos[2].md5, "79ae516de68762e84f4220889c161ec5");
+  EXPECT_EQ(frames[3].first, 1u);  // ID_SUBSCRIBER
+  EXPECT_EQ(infos[3].name, "servo_op");
+  EXPECT_EQ(infos[3].md5, "aa3c1563aed64772cc32f85160797a04");
+  EXPECT_EQ(infos[3].buffer_size, 256);
+  EXPECT_EQ(frames[4].first, 1u);
+  EXPECT_EQ(infos[4].type, "drone_ros/OperatorCommand");
+  EXPECT_EQ(frames[5].first, 10u);  // std_msgs/Time request
+  EXPECT_EQ(frames[5].second.size(), 8u);
   EXPECT_TRUE(ha_link_connected(&d.link));
 }
 
@@ -177,6 +184,37 @@ TEST(HaLinkSession, NothingIsPublishedBeforeTheHostAsksForTopics) {
   // Header (seq, stamp, empty frame_id) 16 bytes, PICCIC, 6 float64, usbstatus.
   EXPECT_EQ(frames[0].second.size(), 16u + 1u + 48u + 1u);
   EXPECT_EQ(frames[0].second[16], 1u);
+}
+
+// Home costs the link 44 bytes a time: sent at once when latched or moved and to a host that
+// (re)negotiates, then every 2 s, never every period.
+TEST(HaLinkSession, HomeIsSentWhenItChangesAndEveryTwoSecondsNotEveryPeriod) {
+  Device d;
+  drone_ros_HomePosition home{};
+  d.rx(kTopicRequest, 0u);
+  d.tx.bytes.clear();
+  auto homes_sent = [&d]() {
+    size_t n = 0;
+    for (const auto &f : d.tx.frames()) n += f.first == HA_LINK_TOPIC_HOME ? 1u : 0u;
+    return n;
+  };
+  uint32_t t = 0;
+  for (; t < 100000u; t += 10000u) ha_link_offer_home(&d.link, &home, t);  // seq 0: no home yet
+  EXPECT_EQ(homes_sent(), 0u);
+  home.seq = 1;
+  home.latitude = 40.4237054;
+  for (; t < 1000000u; t += 10000u) ha_link_offer_home(&d.link, &home, t);
+  EXPECT_EQ(homes_sent(), 1u);  // 90 periods, one frame
+  const auto frames = d.tx.frames();
+  EXPECT_EQ(frames.back().second.size(), 36u);
+  for (; t < 3100000u; t += 10000u) ha_link_offer_home(&d.link, &home, t);
+  EXPECT_EQ(homes_sent(), 2u);  // the repeat, 2 s after the first
+  home.seq = 2;  // moved (an accepted SET_HOME): at once
+  ha_link_offer_home(&d.link, &home, t);
+  EXPECT_EQ(homes_sent(), 3u);
+  d.rx(kTopicRequest, t + 10000u);  // the host came back: it hears home at once
+  ha_link_offer_home(&d.link, &home, t + 20000u);
+  EXPECT_EQ(homes_sent(), 4u);
 }
 
 TEST(HaLinkSession, SilentHostIsNoticedAndPublishingStopsUntilItAsksAgain) {
@@ -253,6 +291,30 @@ TEST(HaLinkSession, OperatorRequestIsHandedOver) {
   link_test::put_u32(p, 6);
   p.push_back(2);  // SELECT_HA
   link_test::put_u32(p, 77);
+  p.push_back(0);  // use_current, then SET_HOME's latitude, longitude, altitude (unused)
+  for (int i = 0; i < 24; ++i) p.push_back(0);
   d.rx(frame(101, p), 0u);
   EXPECT_EQ(d.operator_requests, std::vector<uint8_t>{2});
+}
+
+TEST(HaLinkSession, SetHomeArrivesWithItsPositionInFullPrecision) {
+  Device d;
+  Bytes p;
+  link_test::put_u32(p, 5);
+  link_test::put_u32(p, 6);
+  p.push_back(5);  // SET_HOME
+  link_test::put_u32(p, 78);
+  p.push_back(0);
+  for (double v : {40.4237054, -86.9211946, 185.25}) {
+    uint8_t raw[8];
+    std::memcpy(raw, &v, 8);  // little-endian IEEE 754, as rosserial and the Due lay it out
+    p.insert(p.end(), raw, raw + 8);
+  }
+  d.rx(frame(101, p), 0u);
+  ASSERT_EQ(d.operator_requests, std::vector<uint8_t>{5});
+  EXPECT_EQ(d.last_operator.request_id, 78u);
+  EXPECT_EQ(d.last_operator.use_current, 0);
+  EXPECT_EQ(d.last_operator.latitude, 40.4237054);
+  EXPECT_EQ(d.last_operator.longitude, -86.9211946);
+  EXPECT_EQ(d.last_operator.altitude, 185.25);
 }

@@ -106,3 +106,11 @@ DueInsStats due_ins_stats(void) {
   stats.solutions_rejected = g_ins.solutions_rejected;
   return stats;
 }
+
+const HaIns *due_ins_state(void) { return &g_ins; }
+
+int due_ins_set_home(uint8_t use_current, double lat_deg, double lon_deg, double alt_m,
+                     uint32_t now_us) {
+  if (g_cfg == nullptr) return HA_INS_SET_HOME_NOT_ON_GROUND;  // before due_ins_begin
+  return ha_ins_set_home(&g_ins, g_cfg, use_current, lat_deg, lon_deg, alt_m, now_us);
+}

@@ -46,4 +46,11 @@ void due_ins_sample_from_vn(const VnBinaryData *vn, HaInsSample *sample);
 
 DueInsStats due_ins_stats(void);
 
+/* The INS adapter's state: home (latched from this INS) for the link to publish. */
+const HaIns *due_ins_state(void);
+
+/* The operator's SET_HOME, judged by the INS adapter (ha_ins_set_home). */
+int due_ins_set_home(uint8_t use_current, double lat_deg, double lon_deg, double alt_m,
+                     uint32_t now_us);
+
 #endif /* DUE_INS_SEAM_H */

@@ -1,12 +1,14 @@
 #include "due_link.h"
 
 #include <Arduino.h>
+#include <string.h>
 
 /* ha_surfaces.h is a core-internal C header without C++ guards. */
 extern "C" {
 #include "../core/ha_surfaces.h"
 }
 #include "../link/ha_link.h"
+#include "due_ins_seam.h"
 #include "due_config.h"
 
 namespace {
@@ -41,7 +43,15 @@ void link_command(void *ctx, const HaHpCommand *cmd, uint32_t arrival_us) {
 
 void link_operator(void *ctx, const drone_ros_OperatorCommand *cmd, uint32_t arrival_us) {
   (void)ctx;
-  (void)arrival_us;
+  if (cmd->command == HA_OP_SET_HOME) {  // home is the INS adapter's, not the decision logic's
+    const int r = due_ins_set_home(cmd->use_current ? 1u : 0u, cmd->latitude, cmd->longitude,
+                                   cmd->altitude, arrival_us);
+    (void)ha_link_log(&g_link, r == HA_INS_SET_HOME_OK ? ROSSERIAL_MSGS_LOG_INFO : ROSSERIAL_MSGS_LOG_WARN,
+                      r == HA_INS_SET_HOME_OK ? "SET_HOME: home moved"
+                      : r == HA_INS_SET_HOME_BAD_POSITION ? "SET_HOME refused: position out of range"
+                                                          : "SET_HOME refused: not parked on the ground");
+    return;
+  }
   ha_inputs_put_operator(g_inputs, cmd->command, cmd->request_id);
 }
 
@@ -98,6 +108,19 @@ void due_link_publish(const HaAircraftConfig *cfg, const HaInputs *inputs, const
   status.aileron_deg = out->surfaces.aileron_deg;
   status.rudder_deg = out->surfaces.rudder_deg;
   (void)ha_link_publish_decision_status(&g_link, &status);
+
+  // The HA owns home: the host hears it on a change and every few seconds, not every period.
+  drone_ros_HomePosition home;
+  memset(&home, 0, sizeof home);
+  const HaIns *ins = due_ins_state();
+  if (ins->home_latched) {
+    home.stamp = stamp;
+    home.seq = ins->home_seq;
+    home.latitude = ins->home.lat_deg;
+    home.longitude = ins->home.lon_deg;
+    home.altitude = ins->home.alt_m;
+  }
+  (void)ha_link_offer_home(&g_link, &home, now_us);
 
   /* The pilot's sticks, decoded with the same calibration the core uses in manual mode. */
   HaSurfaces rc;

@@ -22,7 +22,8 @@ enum {
   HA_OP_SELECT_HP = 1,
   HA_OP_SELECT_HA = 2,
   HA_OP_RESTART_HP = 3,
-  HA_OP_SELF_TEST = 4
+  HA_OP_SELF_TEST = 4,
+  HA_OP_SET_HOME = 5 /* not the decision logic's: the INS adapter's (ha_ins_set_home) */
 };
 
 typedef struct {

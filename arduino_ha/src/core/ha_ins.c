@@ -6,13 +6,8 @@
 #include "ha_num.h"
 
 /* Units. */
-#define HA_INS_FT_PER_M (1.0 / 0.3048) /* international foot, exact */
+#define HA_INS_FT_PER_M GEO_FT_PER_M
 #define HA_INS_DEG_PER_RAD 57.295779513082320876f
-#define HA_INS_RAD_PER_DEG 0.017453292519943295769
-
-/* WGS84 ellipsoid (NIMA TR8350.2): semi-major axis and first eccentricity squared. */
-#define HA_INS_WGS84_A_M 6378137.0
-#define HA_INS_WGS84_E2 0.00669437999014
 
 /* What the VN-200 can report at all (datasheet ranges); a value outside is a corrupt packet,
  * and the bounds keep every conversion below finite. */
@@ -97,29 +92,18 @@ static int parked(const HaAircraftConfig *cfg, const Checked *c) {
          ha_in_range(c->vel_ned_mps[2], -HA_INS_PARKED_VDOWN_MPS, HA_INS_PARKED_VDOWN_MPS);
 }
 
-/* THE FLAT-EARTH CONVERSION (the only one): north/east from home are the latitude/longitude
- * differences times the WGS84 meridian radius M and the parallel radius N cos(lat) at the home
- * latitude. Within the few miles the HA circles, the error against the ellipsoid is far below
- * the INS's own position uncertainty. */
+/* Home is the origin of the flat earth of geo_wgs84.h, the stack's one conversion. Only called
+ * on an in-range sample, which geo_ref_init accepts. */
 static void latch_home(HaIns *ins, const Checked *s) {
-  const double lat_rad = s->lat_deg * HA_INS_RAD_PER_DEG;
-  const double sin_lat = sin(lat_rad);
-  const double w = 1.0 - HA_INS_WGS84_E2 * sin_lat * sin_lat;
-  const double sqrt_w = sqrt(w);
-  const double meridian_m = HA_INS_WGS84_A_M * (1.0 - HA_INS_WGS84_E2) / (w * sqrt_w);
-  const double normal_m = HA_INS_WGS84_A_M / sqrt_w;
-  ins->home_lat_deg = s->lat_deg;
-  ins->home_lon_deg = s->lon_deg;
-  ins->home_alt_m = s->alt_m;
-  ins->north_ft_per_deg = meridian_m * HA_INS_RAD_PER_DEG * HA_INS_FT_PER_M;
-  ins->east_ft_per_deg = normal_m * cos(lat_rad) * HA_INS_RAD_PER_DEG * HA_INS_FT_PER_M;
-  ins->home_latched = 1u;
+  if (geo_ref_init(&ins->home, s->lat_deg, s->lon_deg, s->alt_m)) {
+    ins->home_latched = 1u;
+    ins->home_seq += 1u;
+  }
 }
 
 int ha_ins_update(HaIns *ins, const HaAircraftConfig *cfg, const HaInsSample *s,
                   uint32_t now_us, HaInputs *in) {
   Checked c;
-  double dlon_deg;
   float agl_ft;
   /* A rejected solution is dropped without touching the state: the last good one stays, and
    * the core's state timeout, not one bad packet, decides when it is too old to trust. */
@@ -137,13 +121,6 @@ int ha_ins_update(HaIns *ins, const HaAircraftConfig *cfg, const HaInsSample *s,
     ins->solutions_rejected += 1u;
     return 0;
   }
-  /* Shortest way round across the antimeridian. */
-  dlon_deg = c.lon_deg - ins->home_lon_deg;
-  if (dlon_deg > 180.0) {
-    dlon_deg -= 360.0;
-  } else if (dlon_deg < -180.0) {
-    dlon_deg += 360.0;
-  }
   in->heading_deg = c.yaw_deg;
   in->pitch_deg = c.pitch_deg;
   in->roll_deg = c.roll_deg;
@@ -151,17 +128,43 @@ int ha_ins_update(HaIns *ins, const HaAircraftConfig *cfg, const HaInsSample *s,
   in->p_deg_s = c.rate_radps[0] * HA_INS_DEG_PER_RAD;
   in->q_deg_s = c.rate_radps[1] * HA_INS_DEG_PER_RAD;
   in->r_deg_s = c.rate_radps[2] * HA_INS_DEG_PER_RAD;
-  agl_ft = (float)((c.alt_m - ins->home_alt_m) * HA_INS_FT_PER_M);
+  agl_ft = (float)(c.alt_m - ins->home.alt_m) * (float)HA_INS_FT_PER_M;
   in->altitude_agl_ft = agl_ft;
-  in->north_ft = (float)((c.lat_deg - ins->home_lat_deg) * ins->north_ft_per_deg);
-  in->east_ft = (float)(dlon_deg * ins->east_ft_per_deg);
+  geo_to_ne_ft_f(&ins->home, c.lat_deg, c.lon_deg, &in->north_ft, &in->east_ft);
   in->groundspeed_ftps = sqrtf(c.vel_ned_mps[0] * c.vel_ned_mps[0] +
                                c.vel_ned_mps[1] * c.vel_ned_mps[1]) * (float)HA_INS_FT_PER_M;
   /* The INS has no weight-on-wheels: parked and no higher than the airborne altitude. The core
    * adds its own airspeed check before it trusts this. */
   in->on_ground = (uint8_t)(parked(cfg, &c) && agl_ft <= cfg->airborne_agl_ft);
+  ins->last_lat_deg = c.lat_deg;
+  ins->last_lon_deg = c.lon_deg;
+  ins->last_alt_m = c.alt_m;
+  ins->last_on_ground = in->on_ground;
+  ins->last_used_us = now_us;
   in->state_valid = 1u;
   in->state_rx_us = now_us;
   ins->solutions_used += 1u;
   return 1;
+}
+
+int ha_ins_set_home(HaIns *ins, const HaAircraftConfig *cfg, uint8_t use_current, double lat_deg,
+                    double lon_deg, double alt_m, uint32_t now_us) {
+  GeoRef moved = ins->home; /* every field defined, whatever geo_ref_init does */
+  const int fresh = ins->solutions_used > 0u && now_us - ins->last_used_us <= cfg->state_timeout_us;
+  if (!ins->home_latched || !fresh || ins->last_on_ground == 0u) {
+    return HA_INS_SET_HOME_NOT_ON_GROUND;
+  }
+  if (use_current != 0u) {
+    lat_deg = ins->last_lat_deg;
+    lon_deg = ins->last_lon_deg;
+    alt_m = ins->last_alt_m;
+  }
+  /* geo_ref_init checks range and NaN; the INS's altitude bounds apply as to any solution. */
+  if (!in_range_d(alt_m, HA_INS_MIN_ALT_M, HA_INS_MAX_ALT_M) ||
+      !geo_ref_init(&moved, lat_deg, lon_deg, alt_m)) {
+    return HA_INS_SET_HOME_BAD_POSITION;
+  }
+  ins->home = moved;
+  ins->home_seq += 1u;
+  return HA_INS_SET_HOME_OK;
 }

@@ -17,6 +17,7 @@
 
 #include <stdint.h>
 
+#include "geo_wgs84.h"
 #include "ha_config.h"
 #include "ha_core.h"
 
@@ -53,12 +54,14 @@ typedef struct {
 
 typedef struct {
   uint8_t home_latched;
-  double home_lat_deg;
-  double home_lon_deg;
-  double home_alt_m;
-  /* Flat-earth scale at the home latitude (see ha_ins.c), fixed when home is latched. */
-  double north_ft_per_deg;
-  double east_ft_per_deg;
+  /* Home and the flat earth's scale there (geo_wgs84.h), valid once home_latched. */
+  GeoRef home;
+  uint32_t home_seq; /* +1 every time home is set: the link republishes it on a change */
+  /* The last solution used: where "here" is for a SET_HOME, and whether the aircraft is on the
+   * ground (parked, no higher than the airborne altitude). */
+  double last_lat_deg, last_lon_deg, last_alt_m;
+  uint8_t last_on_ground;
+  uint32_t last_used_us;
   uint32_t solutions_used;     /* solutions that made the state valid */
   uint32_t solutions_rejected; /* solutions that left it invalid (status, range, no home yet) */
 } HaIns;
@@ -74,6 +77,17 @@ void ha_ins_init(HaIns *ins);
  * cfg supplies the aircraft's stall speed and airborne altitude (on_ground, parked). */
 int ha_ins_update(HaIns *ins, const HaAircraftConfig *cfg, const HaInsSample *sample,
                   uint32_t now_us, HaInputs *inputs);
+
+/* The operator's SET_HOME (MAV_CMD_DO_SET_HOME through the ground station): moves home to
+ * (lat_deg, lon_deg, alt_m), or to where the aircraft is when use_current is nonzero. Accepted
+ * (returns HA_INS_SET_HOME_OK, home_seq advances) only on the ground: home latched, the last used
+ * solution no older than cfg->state_timeout_us at now_us and taken parked below the airborne
+ * altitude. Otherwise home stays where it is and the return value says why. */
+#define HA_INS_SET_HOME_OK 0
+#define HA_INS_SET_HOME_NOT_ON_GROUND 1 /* flying, or no fresh solution to tell */
+#define HA_INS_SET_HOME_BAD_POSITION 2  /* not finite or out of range */
+int ha_ins_set_home(HaIns *ins, const HaAircraftConfig *cfg, uint8_t use_current, double lat_deg,
+                    double lon_deg, double alt_m, uint32_t now_us);
 
 #ifdef __cplusplus
 }

@@ -14,6 +14,7 @@ static const HaLinkTopic kTopics[HA_LINK_TOPIC_COUNT] = {
     {HA_LINK_TOPIC_PWM, true, "pwm", DRONE_ROS_PWM_TYPE, DRONE_ROS_PWM_MD5},
     {HA_LINK_TOPIC_DECISION_STATUS, true, "decision_status", DRONE_ROS_DECISIONSTATUS_TYPE,
      DRONE_ROS_DECISIONSTATUS_MD5},
+    {HA_LINK_TOPIC_HOME, true, "home", DRONE_ROS_HOMEPOSITION_TYPE, DRONE_ROS_HOMEPOSITION_MD5},
     {HA_LINK_TOPIC_SERVO_OP, false, "servo_op", DRONE_ROS_SERVOCOMMAND_TYPE, DRONE_ROS_SERVOCOMMAND_MD5},
     {HA_LINK_TOPIC_OPERATOR_COMMAND, false, "operator_command", DRONE_ROS_OPERATORCOMMAND_TYPE,
      DRONE_ROS_OPERATORCOMMAND_MD5},
@@ -71,6 +72,7 @@ static void negotiate_topics(HaLink *link, uint32_t now_us) {
   }
   link->counters.topic_requests++;
   link->configured = true;
+  link->home_sent_seq = 0u; /* a (re)connected host hears home at once */
   link->last_sync_reply_us = now_us; /* the host just spoke: give it a full sync window */
   request_time(link, now_us);
 }
@@ -244,6 +246,25 @@ bool ha_link_publish_decision_status(HaLink *link, const drone_ros_DecisionStatu
   size_t n = 0u;
   const bool ok = drone_ros_DecisionStatus_serialize(msg, link->scratch, sizeof link->scratch, &n);
   return publish_scratch(link, HA_LINK_TOPIC_DECISION_STATUS, ok, n);
+}
+
+bool ha_link_publish_home(HaLink *link, const drone_ros_HomePosition *msg) {
+  size_t n = 0u;
+  const bool ok = drone_ros_HomePosition_serialize(msg, link->scratch, sizeof link->scratch, &n);
+  return publish_scratch(link, HA_LINK_TOPIC_HOME, ok, n);
+}
+
+bool ha_link_offer_home(HaLink *link, const drone_ros_HomePosition *msg, uint32_t now_us) {
+  if (msg->seq == 0u || !link->configured ||
+      (msg->seq == link->home_sent_seq && now_us - link->home_sent_us < HA_LINK_HOME_REPEAT_US)) {
+    return false;
+  }
+  if (!ha_link_publish_home(link, msg)) {
+    return false;
+  }
+  link->home_sent_seq = msg->seq;
+  link->home_sent_us = now_us;
+  return true;
 }
 
 bool ha_link_log(HaLink *link, uint8_t level, const char *text) {

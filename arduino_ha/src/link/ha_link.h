@@ -25,11 +25,14 @@ extern "C" {
 #define HA_LINK_TOPIC_OPERATOR_COMMAND 101u
 #define HA_LINK_TOPIC_PWM 125u
 #define HA_LINK_TOPIC_DECISION_STATUS 126u
-#define HA_LINK_TOPIC_COUNT 4u
+#define HA_LINK_TOPIC_HOME 127u
+#define HA_LINK_TOPIC_COUNT 5u
 
 /* How often the device asks the host for the time, and how long without an answer before it
  * considers the host gone and stops publishing until the host asks for topics again. */
 #define HA_LINK_SYNC_PERIOD_US 500000u
+/* Home is repeated this often while latched, so a restarted host hears it within a few seconds. */
+#define HA_LINK_HOME_REPEAT_US 2000000u
 #define HA_LINK_SYNC_LOST_US 1500000u
 /* A frame taking longer than this from its sync byte is dropped (at 115200 baud, 256 bytes
  * take 22 ms; the clock is in microseconds like the core's). */
@@ -81,6 +84,8 @@ typedef struct {
   HaRosTime ros_at_sync;         /* host time at sync_local_us */
   uint32_t sync_local_us;
   HaLinkCounters counters;
+  uint32_t home_sent_seq;        /* the home last sent (0: none since the last negotiation) */
+  uint32_t home_sent_us;
   uint8_t tx[HA_LINK_TX_MAX];
   uint8_t scratch[HA_LINK_MAX_PAYLOAD];
 } HaLink;
@@ -105,6 +110,12 @@ HaRosTime ha_link_ros_time(const HaLink *link, uint32_t now_us);
 /* Publishing works only while connected (as in ros_lib); false when dropped. */
 bool ha_link_publish_pwm(HaLink *link, const drone_ros_pwm *msg);
 bool ha_link_publish_decision_status(HaLink *link, const drone_ros_DecisionStatus *msg);
+/* Home (topic "home"): sent when it changes and every HA_LINK_HOME_REPEAT_US, never every period
+ * (28 bytes a time: the link's budget goes to pwm and decision_status). */
+bool ha_link_publish_home(HaLink *link, const drone_ros_HomePosition *msg);
+/* Calls ha_link_publish_home when msg->seq (0: no home yet, nothing sent) differs from the home
+ * last sent since the host negotiated, or HA_LINK_HOME_REPEAT_US after it. Call every period. */
+bool ha_link_offer_home(HaLink *link, const drone_ros_HomePosition *msg, uint32_t now_us);
 
 /* level: ROSSERIAL_MSGS_LOG_* ; the host forwards it to rosout. */
 bool ha_link_log(HaLink *link, uint8_t level, const char *text);

@@ -1,5 +1,6 @@
 #include "arduino_link_node.h"
 
+#include <drone_ros/HomePosition.h>
 #include <drone_ros/pwm.h>
 #include <ros/names.h>
 #include <ros/serialization.h>
@@ -180,9 +181,12 @@ void ArduinoLinkNode::on_publisher_info(const Frame &f) {
       ep.is_pwm = true;
       ep.pub = pwm_pub_;
     } else {
+      // Home is sent rarely (on a change, every few seconds): latched, so a node started or
+      // restarted later (the controller after an HP restart) has it at once.
+      const bool latch = ep.type == ros::message_traits::DataType<drone_ros::HomePosition>::value();
       topic_tools::ShapeShifter shape;
-      shape.morph(ep.md5, ep.type, ep.definition(), "false");
-      ep.pub = shape.advertise(nh_, ep.name, 10);
+      shape.morph(ep.md5, ep.type, ep.definition(), latch ? "true" : "false");
+      ep.pub = shape.advertise(nh_, ep.name, 10, latch);
     }
   } catch (const ros::Exception &e) {
     // Whatever else roscpp refuses (validated names can still clash with remappings, say).

@@ -62,12 +62,13 @@ TEST(HostFramer, HandshakeBothWaysWithTheDueSide) {
   ha_link_receive(&link, request.data(), request.size(), 0u);
   Host host;
   host.feed(wire.bytes);
-  ASSERT_EQ(host.frames.size(), 5u);
+  ASSERT_EQ(host.frames.size(), 6u);  // pwm, decision_status, home; servo_op, operator_command; time
   EXPECT_EQ(host.frames[0].topic_id, 0u);
-  EXPECT_EQ(host.frames[2].topic_id, 1u);
-  EXPECT_EQ(host.frames[4].topic_id, 10u);
+  EXPECT_EQ(host.frames[2].topic_id, 0u);
+  EXPECT_EQ(host.frames[3].topic_id, 1u);
+  EXPECT_EQ(host.frames[5].topic_id, 10u);
   // TopicInfo starts with the uint16 topic id, then the topic name as a ROS string.
-  const Bytes &info = host.frames[2].payload;
+  const Bytes &info = host.frames[3].payload;
   EXPECT_EQ(info[0] | info[1] << 8, 100);
   EXPECT_EQ(std::string(info.begin() + 6, info.begin() + 14), "servo_op");
   // And the host's time reply is accepted by the device.

@@ -94,6 +94,7 @@ def run_client(dt_s):
     for p in feeder.pubs.values():
         p.unregister()
     feeder.way_pub.unregister()
+    feeder.home_pub.unregister()
     if not state["lat"]:
         raise RuntimeError("no /servo_op received at dt=%g" % dt_s)
     rospy.signal_shutdown("done")

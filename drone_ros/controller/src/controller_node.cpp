@@ -61,15 +61,16 @@ ControllerNode::ControllerNode(ros::NodeHandle &nh, ros::NodeHandle &pnh, const 
   if (gnc_initialize(&params_.gnc) != 0) {
     throw std::runtime_error("the GNC refused its parameters");
   }
-  // Home is latched once per flight: a controller started again (HP restart) takes the home the
-  // first one latched, so /way keeps its origin, instead of latching where the aircraft is now.
-  double home[3];
-  if (pnh_.getParam("home/lat_deg", home[0]) && pnh_.getParam("home/lon_deg", home[1]) &&
-      pnh_.getParam("home/alt_m", home[2])) {
-    board_.set_home(home[0], home[1], home[2]);
-    home_saved_ = true;
-    ROS_INFO("home taken over from the parameter server: %.7f %.7f %.1f m", home[0], home[1], home[2]);
-  }
+  // Home has one owner, the HA, which latches it from its own INS; the `arduino` node keeps it
+  // on the latched /home, so a controller started again (HP restart) has the same home at once.
+  subs_.push_back(nh.subscribe<drone_ros::HomePosition>(
+      "/home", 1, [this](const drone_ros::HomePosition::ConstPtr &m) {
+        if (board_.on_home(m->latitude, m->longitude, m->altitude)) {
+          ROS_INFO("home %u from the HA: %.7f %.7f %.1f m", m->seq, m->latitude, m->longitude, m->altitude);
+        } else {
+          ROS_WARN("home %u dropped: position not finite or out of range", m->seq);
+        }
+      }));
   // Queue of 1: only the newest sample matters to a controller stepping on its own clock.
   subs_.push_back(nh.subscribe<drone_ros::pwm>("/pwm", 1, [this](const drone_ros::pwm::ConstPtr &m) {
     board_.on_pwm(*m, now_s());
@@ -87,7 +88,6 @@ ControllerNode::ControllerNode(ros::NodeHandle &nh, ros::NodeHandle &pnh, const 
   subs_.push_back(nh.subscribe<sensor_msgs::NavSatFix>(
       "/gps_position", 1, [this](const sensor_msgs::NavSatFix::ConstPtr &m) {
         board_.on_gps_position(*m, now_s());
-        save_home();
       }));
   subs_.push_back(nh.subscribe<geometry_msgs::Twist>(
       "/gps_velocity", 1, [this](const geometry_msgs::Twist::ConstPtr &m) { board_.on_gps_velocity(*m, now_s()); }));
@@ -186,17 +186,6 @@ void ControllerNode::on_decision(const drone_ros::DecisionStatus::ConstPtr &msg)
   hp_in_control_ = msg->controller == drone_ros::DecisionStatus::CONTROLLER_HP;
 }
 
-void ControllerNode::save_home() {
-  if (home_saved_ || !board_.home_valid()) {
-    return;
-  }
-  home_saved_ = true;
-  const SensorBoard::Home h = board_.home();
-  pnh_.setParam("home/lat_deg", h.lat_deg);
-  pnh_.setParam("home/lon_deg", h.lon_deg);
-  pnh_.setParam("home/alt_m", h.alt_m);
-}
-
 void ControllerNode::on_timer(const ros::SteadyTimerEvent &event) {
   // A step that starts more than one period after it was due means we fell behind.
   if ((event.current_real - event.current_expected).toSec() > params_.gnc.dt_s) {
@@ -291,6 +280,12 @@ void ControllerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper &stat)
   stat.add("rejected_gnc_inputs", out_.rejected_inputs);
   stat.add("estimator_converged", static_cast<int>(out_.estimator_converged));
   stat.add("home_valid", board_.home_valid());
+  if (board_.home_valid()) {  // the HA's home this controller flies /way from, to full precision
+    const SensorBoard::Home h = board_.home();
+    stat.addf("home_lat_deg", "%.9f", h.lat_deg);
+    stat.addf("home_lon_deg", "%.9f", h.lon_deg);
+    stat.addf("home_alt_m", "%.3f", h.alt_m);
+  }
   stat.add("waypoint_index", out_.waypoint_index);
   stat.add("guidance_mode", out_.guidance_mode);
 }

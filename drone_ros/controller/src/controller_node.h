@@ -8,6 +8,7 @@
 
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <drone_ros/DecisionStatus.h>
+#include <drone_ros/HomePosition.h>
 #include <drone_ros/SetTunable.h>
 #include <ros/ros.h>
 #include <rosgraph_msgs/Clock.h>
@@ -40,7 +41,6 @@ class ControllerNode {
   void on_timer(const ros::SteadyTimerEvent &event);
   void on_clock(const rosgraph_msgs::Clock::ConstPtr &msg);
   void step(double now, const ros::Time &stamp);
-  void save_home();
   void on_decision(const drone_ros::DecisionStatus::ConstPtr &msg);
   void restart_gnc();
   // ~set_tunable: one tunable changed while running (the ground station's PARAM_SET).
@@ -59,7 +59,6 @@ class ControllerNode {
   ros::Subscriber clock_sub_;
   int64_t lockstep_index_ = -1;   // the last period stepped: floor(clock / dt)
   double lockstep_step_s_ = 0.0;  // its clock time
-  bool home_saved_ = false;
   ros::ServiceServer set_tunable_srv_;
   diagnostic_updater::Updater diag_;
   GncInput in_{};

@@ -99,14 +99,15 @@ void SensorBoard::restamp_arrivals(double now_s) {
   }
 }
 
-void SensorBoard::set_home(double lat_deg, double lon_deg, double alt_m) {
-  if (home_valid_ || !finite({lat_deg, lon_deg, alt_m})) {
-    return;
+bool SensorBoard::on_home(double lat_deg, double lon_deg, double alt_m) {
+  if (!finite({lat_deg, lon_deg, alt_m}) || std::fabs(lat_deg) > 90.0 || std::fabs(lon_deg) > 180.0) {
+    return drop();
   }
   home_valid_ = true;
   home_lat_deg_ = lat_deg;
   home_lon_deg_ = lon_deg;
   home_alt_m_ = alt_m;
+  return true;
 }
 
 bool SensorBoard::on_gps_position(const sensor_msgs::NavSatFix &msg, double now_s) {
@@ -114,13 +115,6 @@ bool SensorBoard::on_gps_position(const sensor_msgs::NavSatFix &msg, double now_
     return drop();
   }
   gps_position_ = msg;
-  if (!home_valid_ && msg.status.status >= sensor_msgs::NavSatStatus::STATUS_FIX) {
-    // Home is the first fix: the origin of /way's local frame. It survives HP restarts.
-    home_valid_ = true;
-    home_lat_deg_ = msg.latitude;
-    home_lon_deg_ = msg.longitude;
-    home_alt_m_ = msg.altitude;
-  }
   arrived(kLinkGpsPosition, now_s);
   return true;
 }

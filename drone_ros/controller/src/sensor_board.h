@@ -70,8 +70,10 @@ class SensorBoard {
     double lat_deg, lon_deg, alt_m;
   };
   Home home() const { return {home_lat_deg_, home_lon_deg_, home_alt_m_}; }
-  // Home latched by an earlier run of the node (HP restart); ignored once home is latched.
-  void set_home(double lat_deg, double lon_deg, double alt_m);
+  // Home from its one owner, the HA (/home, latched): the origin of /way's frame. It replaces
+  // any earlier home (a SET_HOME on the ground); a position that is not finite or out of range
+  // is dropped and the old home kept. Returns whether it was taken.
+  bool on_home(double lat_deg, double lon_deg, double alt_m);
   // Every sensor link has delivered at least one message since the node started.
   bool all_seen() const;
   // Every message seen so far counts as arrived at now_s (a lockstep start).

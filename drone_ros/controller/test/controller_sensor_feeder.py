@@ -5,7 +5,7 @@ Private parameters: rate_hz (default 50), stop_after_s (0 = never)."""
 import math
 
 import rospy
-from drone_ros.msg import ins, pwm, way
+from drone_ros.msg import HomePosition, ins, pwm, way
 from geometry_msgs.msg import Point, Twist
 from sensor_msgs.msg import BatteryState, FluidPressure, Imu, NavSatFix, NavSatStatus
 
@@ -34,6 +34,9 @@ class SensorFeeder:
             plan.north[i], plan.east[i], plan.height[i], plan.velocity[i] = n, e, 200.0, 60.0
         plan.fp = 4
         self.way_pub.publish(plan)
+        # Home as the HA's `arduino` node keeps it: latched on /home.
+        self.home_pub = rospy.Publisher("/home", HomePosition, queue_size=1, latch=True)
+        self.home_pub.publish(HomePosition(seq=1, latitude=40.0, longitude=-83.0, altitude=250.0))
 
     def publish(self, t):
         """Publishes one sample of every sensor topic for time t [s] since start."""

@@ -57,6 +57,7 @@ void feed_all(controller::SensorBoard &board, double now_s, uint8_t piccic = 1) 
   board.on_gps_velocity(geometry_msgs::Twist(), now_s);
   board.on_imu(sensor_msgs::Imu(), now_s);
   board.on_attitude(geometry_msgs::Point(), now_s);
+  board.on_home(40.0, -83.0, 250.0);  // the HA's home, from /home
 }
 
 TEST(ControllerParams, AircraftFilesAreAcceptedAndRateFollowsDt) {
@@ -222,6 +223,36 @@ TEST(SensorBoard, PilotInCommandCapturesRcTrimsAndComputerKeepsThem) {
   board.fill_input(&in);
   EXPECT_DOUBLE_EQ(in.elevator_trim_rad, 0.02);
   EXPECT_EQ(in.home_valid, 1);
+}
+
+TEST(SensorBoard, HomeComesFromItsOwnerNeverFromTheFirstFix) {
+  const auto p = aircraft();
+  controller::SensorBoard board(p);
+  sensor_msgs::NavSatFix fix;
+  fix.status.status = sensor_msgs::NavSatStatus::STATUS_FIX;
+  fix.latitude = 41.0;
+  fix.longitude = -84.0;
+  fix.altitude = 300.0;
+  board.on_gps_position(fix, 1.0);
+  EXPECT_FALSE(board.home_valid());  // a fix is where the aircraft is, not home
+  ASSERT_TRUE(board.on_home(40.0, -83.0, 250.0));
+  EXPECT_TRUE(board.home_valid());
+  EXPECT_DOUBLE_EQ(board.home().lat_deg, 40.0);
+  board.on_gps_position(fix, 2.0);
+  EXPECT_DOUBLE_EQ(board.home().lat_deg, 40.0);
+  // A SET_HOME the HA accepted on the ground moves it.
+  ASSERT_TRUE(board.on_home(40.001, -83.002, 251.0));
+  EXPECT_DOUBLE_EQ(board.home().lon_deg, -83.002);
+  // A corrupt home is dropped and the old one kept.
+  const uint32_t dropped = board.dropped_messages();
+  EXPECT_FALSE(board.on_home(std::nan(""), -83.0, 250.0));
+  EXPECT_FALSE(board.on_home(91.0, -83.0, 250.0));
+  EXPECT_EQ(board.dropped_messages(), dropped + 2);
+  EXPECT_DOUBLE_EQ(board.home().lat_deg, 40.001);
+  GncInput in{};
+  board.fill_input(&in);
+  EXPECT_EQ(in.home_valid, 1);
+  EXPECT_DOUBLE_EQ(in.home_alt_m, 251.0);
 }
 
 TEST(ServoCommand, CarriesDegreesAndAValidCrc) {

@@ -1,35 +1,38 @@
 #include "geo.h"
 
-#include <drone_ros_common/wgs84.h>
-
 #include <cmath>
+
+#include "geo_wgs84.h"
 
 namespace microhard_gs {
 namespace {
-constexpr double kPi = 3.14159265358979323846;
-using drone_ros_common::wgs84_radii_at;
+// The stack's one flat earth (arduino_ha/src/core/geo_wgs84.h). A home that geo_ref_init refuses
+// is never used: the node only takes a home is_valid_position() accepts.
+GeoRef ref_of(const GeoPoint& home) {
+  GeoRef r{};
+  if (!geo_ref_init(&r, home.lat_deg, home.lon_deg, home.alt_m)) {
+    geo_ref_init(&r, home.lat_deg, home.lon_deg, 0.0);  // an absurd height: the plane still holds
+  }
+  return r;
+}
 }  // namespace
 
 NorthEastFt geodetic_to_north_east_ft(const GeoPoint& home, double lat_deg, double lon_deg) {
-  const drone_ros_common::Wgs84Radii r = wgs84_radii_at(home.lat_deg);
-  double dlon_deg = lon_deg - home.lon_deg;
-  // Take the short way round across the antimeridian.
-  if (dlon_deg > 180.0) dlon_deg -= 360.0;
-  if (dlon_deg < -180.0) dlon_deg += 360.0;
+  const GeoRef r = ref_of(home);
+  double neu_ft[3];
+  geo_to_neu_ft(&r, lat_deg, lon_deg, home.alt_m, neu_ft);
   NorthEastFt ne;
-  ne.north_ft = (lat_deg - home.lat_deg) * kPi / 180.0 * r.meridian_m * kFeetPerMetre;
-  ne.east_ft = dlon_deg * kPi / 180.0 * r.prime_vertical_m * std::cos(home.lat_deg * kPi / 180.0) *
-               kFeetPerMetre;
+  ne.north_ft = neu_ft[0];
+  ne.east_ft = neu_ft[1];
   return ne;
 }
 
 void north_east_ft_to_geodetic(const GeoPoint& home, const NorthEastFt& ne, double* lat_deg,
                                double* lon_deg) {
-  const drone_ros_common::Wgs84Radii r = wgs84_radii_at(home.lat_deg);
-  *lat_deg = home.lat_deg + ne.north_ft / kFeetPerMetre / r.meridian_m * 180.0 / kPi;
-  *lon_deg = home.lon_deg + ne.east_ft / kFeetPerMetre /
-                                (r.prime_vertical_m * std::cos(home.lat_deg * kPi / 180.0)) *
-                                180.0 / kPi;
+  const GeoRef r = ref_of(home);
+  const double neu_ft[3] = {ne.north_ft, ne.east_ft, 0.0};
+  double alt_m;
+  geo_from_neu_ft(&r, neu_ft, lat_deg, lon_deg, &alt_m);
 }
 
 bool is_valid_position(double lat_deg, double lon_deg) {

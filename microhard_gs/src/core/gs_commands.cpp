@@ -56,6 +56,7 @@ void GsCore::on_command(const mavlink_message_t& msg, uint16_t command, const fl
 //   ACTUATOR_TEST -> SELF_TEST (the HA's whole surface self-test; refused while airborne)
 //   REQUEST_MESSAGE (AUTOPILOT_VERSION, HOME_POSITION), REQUEST_AUTOPILOT_CAPABILITIES,
 //   GET_HOME_POSITION
+//   DO_SET_HOME -> SET_HOME (on the ground only; gs_home.cpp)
 // ACCEPTED for an operator request means "forwarded to the HA": the HA's checks still decide.
 uint8_t GsCore::execute_command(uint16_t command, const float params[7]) {
   switch (command) {
@@ -84,6 +85,9 @@ uint8_t GsCore::execute_command(uint16_t command, const float params[7]) {
       }
       operator_requests_.push_back(OperatorRequest::kSelfTest);
       return MAV_RESULT_ACCEPTED;
+    case MAV_CMD_DO_SET_HOME:
+      return command_int_ ? set_home_command(params[0], command_int_x_ * 1e-7, command_int_y_ * 1e-7, params[6])
+                          : set_home_command(params[0], params[4], params[5], params[6]);
     case MAV_CMD_REQUEST_AUTOPILOT_CAPABILITIES:
     case MAV_CMD_GET_HOME_POSITION:
       if (command == MAV_CMD_GET_HOME_POSITION && !home_known_) return MAV_RESULT_TEMPORARILY_REJECTED;

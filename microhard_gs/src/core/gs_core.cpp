@@ -100,7 +100,11 @@ void GsCore::dispatch(const mavlink_message_t& msg, const Clock& now) {
       mavlink_msg_command_int_decode(&msg, &c);
       const float p[7] = {c.param1, c.param2, c.param3, c.param4, static_cast<float>(c.x),
                           static_cast<float>(c.y), c.z};
+      command_int_ = true;
+      command_int_x_ = c.x;
+      command_int_y_ = c.y;
       on_command(msg, c.command, p, c.target_system, c.target_component);
+      command_int_ = false;
       break;
     }
     default:

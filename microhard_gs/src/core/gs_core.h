@@ -65,6 +65,13 @@ struct DecisionInfo {
 // Operator requests; values match drone_ros/OperatorCommand's constants.
 enum class OperatorRequest : uint8_t { kSelectHp = 1, kSelectHa = 2, kRestartHp = 3, kSelfTest = 4 };
 
+// A SET_HOME for the HA to decide (OperatorCommand SET_HOME): to a position, or where the HA's
+// INS says the aircraft is (use_current).
+struct HomeRequest {
+  bool use_current = false;
+  GeoPoint position;
+};
+
 // A PARAM_SET for the controller to decide (the node calls its ~set_tunable), answered with
 // param_set_answered().
 struct ParamSetRequest {
@@ -110,6 +117,9 @@ class GsCore {
   void tick(const Clock& now);
 
   void set_telemetry(const Telemetry& t, const Clock& now);
+  // Home from its one owner, the HA (/home): the origin of /way and HOME_POSITION (gs_home.cpp).
+  // Returns false, keeping the old home, for a position that is not valid.
+  bool set_home(const GeoPoint& home);
   // Announces every change of the controller in charge, and the first status seen, as a
   // STATUSTEXT naming the reason.
   void set_decision(const DecisionInfo& d);
@@ -118,6 +128,7 @@ class GsCore {
   std::vector<std::vector<uint8_t>> take_frames();
   std::vector<WayPlan> take_way_plans();
   std::vector<OperatorRequest> take_operator_requests();
+  std::vector<HomeRequest> take_home_requests();
   std::vector<ParamSetRequest> take_param_set_requests();
   // The controller's answer to a request: PARAM_VALUE with the value now in force, plus a
   // STATUSTEXT naming the reason when refused. An answer after the timeout (the GCS has already
@@ -185,6 +196,8 @@ class GsCore {
                   uint8_t target_sys, uint8_t target_comp);
   void send_command_ack(const mavlink_message_t& msg, uint16_t command, uint8_t result);
   uint8_t execute_command(uint16_t command, const float params[7]);
+  // MAV_CMD_DO_SET_HOME (gs_home.cpp); lat/lon in degrees, exact from COMMAND_INT.
+  uint8_t set_home_command(float use_current, double lat_deg, double lon_deg, float alt_m);
 
   void send_heartbeat();
   void send_telemetry_set(const Clock& now);
@@ -233,6 +246,10 @@ class GsCore {
   std::vector<std::vector<uint8_t>> frames_;
   std::vector<WayPlan> way_plans_;
   std::vector<OperatorRequest> operator_requests_;
+  std::vector<HomeRequest> home_requests_;
+  // COMMAND_INT's x/y as sent (deg x 1e7): a float param would put a new home a metre off.
+  bool command_int_ = false;
+  int32_t command_int_x_ = 0, command_int_y_ = 0;
   struct PendingParamSet {
     uint32_t id = 0;
     size_t index = 0;

@@ -39,14 +39,6 @@ void GsCore::set_telemetry(const Telemetry& t, const Clock& now) {
   telemetry_ = t;
   have_telemetry_ = true;
   telemetry_ms_ = now.mono_ms;
-  if (!home_known_ && is_valid_position(t.lat_deg, t.lon_deg) && std::isfinite(t.alt_m)) {
-    home_.lat_deg = t.lat_deg;
-    home_.lon_deg = t.lon_deg;
-    home_.alt_m = t.alt_m;
-    home_known_ = true;
-    send_home_position();
-    send_statustext(MAV_SEVERITY_INFO, "Home set from first GPS fix");
-  }
 }
 
 void GsCore::send_autopilot_version() {

@@ -2,6 +2,7 @@
 // /way, /operator_command and diagnostics, and moves bytes between the link and the core.
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <drone_ros/DecisionStatus.h>
+#include <drone_ros/HomePosition.h>
 #include <drone_ros/OperatorCommand.h>
 #include <drone_ros/SetTunable.h>
 #include <drone_ros/data.h>
@@ -146,6 +147,7 @@ class Node {
     command_pub_ = nh.advertise<drone_ros::OperatorCommand>("/operator_command", 10);
     data_sub_ = nh.subscribe("/data", 10, &Node::on_data, this);
     decision_sub_ = nh.subscribe("/decision_status", 10, &Node::on_decision, this);
+    home_sub_ = nh.subscribe("/home", 1, &Node::on_home, this);  // latched by the `arduino` node
     updater_.setHardwareID(link_->describe());
     updater_.add("link", this, &Node::diagnose);
   }
@@ -174,6 +176,16 @@ class Node {
 
  private:
   void on_data(const drone_ros::data::ConstPtr& msg) { core_.set_telemetry(to_telemetry(*msg), now_clock()); }
+
+  void on_home(const drone_ros::HomePosition::ConstPtr& msg) {
+    GeoPoint h;
+    h.lat_deg = msg->latitude;
+    h.lon_deg = msg->longitude;
+    h.alt_m = msg->altitude;
+    if (!core_.set_home(h)) {
+      ROS_WARN("microhard_gs: home %u dropped: not a valid position", msg->seq);
+    }
+  }
 
   void on_decision(const drone_ros::DecisionStatus::ConstPtr& msg) {
     DecisionInfo d;
@@ -238,6 +250,17 @@ class Node {
       c.request_id = ++request_id_;
       command_pub_.publish(c);
     }
+    for (const HomeRequest& r : core_.take_home_requests()) {
+      drone_ros::OperatorCommand c;
+      c.stamp = ros::Time::now();
+      c.command = drone_ros::OperatorCommand::SET_HOME;
+      c.request_id = ++request_id_;
+      c.use_current = r.use_current;
+      c.latitude = r.position.lat_deg;
+      c.longitude = r.position.lon_deg;
+      c.altitude = r.position.alt_m;
+      command_pub_.publish(c);
+    }
   }
 
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& s) {
@@ -294,6 +317,7 @@ class Node {
   ros::Publisher command_pub_;
   ros::Subscriber data_sub_;
   ros::Subscriber decision_sub_;
+  ros::Subscriber home_sub_;
   diagnostic_updater::Updater updater_;
   uint32_t request_id_ = 0;
   uint64_t send_failures_ = 0;

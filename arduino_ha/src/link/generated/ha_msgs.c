@@ -207,6 +207,10 @@ bool drone_ros_OperatorCommand_serialize(const drone_ros_OperatorCommand *msg, u
   if (!ha_put_time(out, cap, &pos, &msg->stamp)) { return false; }
   if (!ha_put_u8(out, cap, &pos, msg->command)) { return false; }
   if (!ha_put_u32(out, cap, &pos, msg->request_id)) { return false; }
+  if (!ha_put_u8(out, cap, &pos, msg->use_current)) { return false; }
+  if (!ha_put_f64(out, cap, &pos, msg->latitude)) { return false; }
+  if (!ha_put_f64(out, cap, &pos, msg->longitude)) { return false; }
+  if (!ha_put_f64(out, cap, &pos, msg->altitude)) { return false; }
   *written = pos;
   return true;
 }
@@ -225,6 +229,48 @@ bool drone_ros_OperatorCommand_deserialize(drone_ros_OperatorCommand *msg, const
   if (!ha_get_time(in, len, &pos, &msg->stamp)) { return false; }
   if (!ha_get_u8(in, len, &pos, &msg->command)) { return false; }
   if (!ha_get_u32(in, len, &pos, &msg->request_id)) { return false; }
+  if (!ha_get_u8(in, len, &pos, &msg->use_current)) { return false; }
+  if (!ha_get_f64(in, len, &pos, &msg->latitude)) { return false; }
+  if (!ha_get_f64(in, len, &pos, &msg->longitude)) { return false; }
+  if (!ha_get_f64(in, len, &pos, &msg->altitude)) { return false; }
+  *consumed = pos;
+  return true;
+}
+
+bool drone_ros_HomePosition_serialize(const drone_ros_HomePosition *msg, uint8_t *out, size_t cap, size_t *written) {
+  size_t pos = 0u;
+  size_t step = 0u;
+  uint32_t i = 0u;
+  (void)i;
+  (void)step;
+  (void)msg;
+  (void)out;
+  (void)cap;
+  if (!ha_put_time(out, cap, &pos, &msg->stamp)) { return false; }
+  if (!ha_put_u32(out, cap, &pos, msg->seq)) { return false; }
+  if (!ha_put_f64(out, cap, &pos, msg->latitude)) { return false; }
+  if (!ha_put_f64(out, cap, &pos, msg->longitude)) { return false; }
+  if (!ha_put_f64(out, cap, &pos, msg->altitude)) { return false; }
+  *written = pos;
+  return true;
+}
+
+bool drone_ros_HomePosition_deserialize(drone_ros_HomePosition *msg, const uint8_t *in, size_t len, size_t *consumed) {
+  size_t pos = 0u;
+  size_t step = 0u;
+  uint32_t i = 0u;
+  uint32_t count = 0u;
+  (void)i;
+  (void)step;
+  (void)count;
+  (void)msg;
+  (void)in;
+  (void)len;
+  if (!ha_get_time(in, len, &pos, &msg->stamp)) { return false; }
+  if (!ha_get_u32(in, len, &pos, &msg->seq)) { return false; }
+  if (!ha_get_f64(in, len, &pos, &msg->latitude)) { return false; }
+  if (!ha_get_f64(in, len, &pos, &msg->longitude)) { return false; }
+  if (!ha_get_f64(in, len, &pos, &msg->altitude)) { return false; }
   *consumed = pos;
   return true;
 }

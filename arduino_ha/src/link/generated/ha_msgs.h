@@ -120,21 +120,42 @@ bool drone_ros_ServoCommand_deserialize(drone_ros_ServoCommand *msg, const uint8
 
 /* drone_ros/OperatorCommand */
 #define DRONE_ROS_OPERATORCOMMAND_TYPE "drone_ros/OperatorCommand"
-#define DRONE_ROS_OPERATORCOMMAND_MD5 "388f4cd8f1c498d979c53397e456c183"
+#define DRONE_ROS_OPERATORCOMMAND_MD5 "675f8441a9987cd3bbfb83e11786115b"
 #define DRONE_ROS_OPERATORCOMMAND_SELECT_HP (1u)
 #define DRONE_ROS_OPERATORCOMMAND_SELECT_HA (2u)
 #define DRONE_ROS_OPERATORCOMMAND_RESTART_HP (3u)
 #define DRONE_ROS_OPERATORCOMMAND_SELF_TEST (4u)
+#define DRONE_ROS_OPERATORCOMMAND_SET_HOME (5u)
 typedef struct {
   HaRosTime stamp;
   uint8_t command;
   uint32_t request_id;
+  uint8_t use_current;
+  double latitude;
+  double longitude;
+  double altitude;
 } drone_ros_OperatorCommand;
 /* Writes the ROS serialization into out[0..cap); false if it does not fit. */
 bool drone_ros_OperatorCommand_serialize(const drone_ros_OperatorCommand *msg, uint8_t *out, size_t cap, size_t *written);
 /* Reads in[0..len); false if truncated or an array exceeds its capacity. Strings point
  * into in, so they live as long as in does. */
 bool drone_ros_OperatorCommand_deserialize(drone_ros_OperatorCommand *msg, const uint8_t *in, size_t len, size_t *consumed);
+
+/* drone_ros/HomePosition */
+#define DRONE_ROS_HOMEPOSITION_TYPE "drone_ros/HomePosition"
+#define DRONE_ROS_HOMEPOSITION_MD5 "79ae516de68762e84f4220889c161ec5"
+typedef struct {
+  HaRosTime stamp;
+  uint32_t seq;
+  double latitude;
+  double longitude;
+  double altitude;
+} drone_ros_HomePosition;
+/* Writes the ROS serialization into out[0..cap); false if it does not fit. */
+bool drone_ros_HomePosition_serialize(const drone_ros_HomePosition *msg, uint8_t *out, size_t cap, size_t *written);
+/* Reads in[0..len); false if truncated or an array exceeds its capacity. Strings point
+ * into in, so they live as long as in does. */
+bool drone_ros_HomePosition_deserialize(drone_ros_HomePosition *msg, const uint8_t *in, size_t len, size_t *consumed);
 
 /* std_msgs/Time */
 #define STD_MSGS_TIME_TYPE "std_msgs/Time"

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "dg808_gnc_data.h"
-#include "drone_ros_common/wgs84.h"
+#include "geo_wgs84.h"
 
 namespace dg808sim {
 namespace {
@@ -157,13 +157,16 @@ void Sim::sense(DG808_GNC_Input &in) {
   auto noise = [this, k](double sigma) { return k * sigma * unit_(rng_); };
   const Eigen::Matrix3d r_nb = body_to_ned(euler_);
   const Eigen::Vector3d v_ned = r_nb * vel_body_mps_;
-  // The ellipsoid's radii at home: the test flies in WGS84 as the real sensor reports it.
-  const double lat0 = config_.home_lat_deg * kPi / 180.0;
-  const drone_ros_common::Wgs84Radii r = drone_ros_common::wgs84_radii_at(config_.home_lat_deg);
-  in.lat_deg = config_.home_lat_deg + pos_ned_m_.x() / r.meridian_m * 180.0 / kPi + noise(2e-6);
-  in.lon_deg = config_.home_lon_deg +
-               pos_ned_m_.y() / (r.prime_vertical_m * std::cos(lat0)) * 180.0 / kPi + noise(2e-6);
-  in.alt_m = config_.home_alt_m - pos_ned_m_.z() + noise(0.3);
+  // The stack's flat earth about home (geo_wgs84.h): the test flies in WGS84 as the real sensor
+  // reports it.
+  GeoRef home{};
+  geo_ref_init(&home, config_.home_lat_deg, config_.home_lon_deg, config_.home_alt_m);
+  const double neu_m[3] = {pos_ned_m_.x(), pos_ned_m_.y(), -pos_ned_m_.z()};
+  double lat_deg, lon_deg, alt_m;
+  geo_from_neu_m(&home, neu_m, &lat_deg, &lon_deg, &alt_m);
+  in.lat_deg = lat_deg + noise(2e-6);
+  in.lon_deg = lon_deg + noise(2e-6);
+  in.alt_m = alt_m + noise(0.3);
   in.vel_north_mps = v_ned.x() + noise(0.05);
   in.vel_east_mps = v_ned.y() + noise(0.05);
   in.vel_down_mps = v_ned.z() + noise(0.05);

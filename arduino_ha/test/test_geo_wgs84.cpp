@@ -1,0 +1,165 @@
+// The stack's one latitude/longitude <-> north/east/up conversion (core/geo_wgs84.c), against
+// published WGS84 arc lengths and an exact ellipsoid (ECEF -> local east/north) computation.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "geo_wgs84.h"
+
+namespace {
+
+constexpr double kFtPerM = 1.0 / 0.3048;
+
+// Length of one degree of latitude / longitude on WGS84 (the standard table, e.g. the NGA's
+// and Wikipedia's "Latitude" article), in metres, at 0, 15, ..., 75 deg.
+struct ArcRow {
+  double lat_deg, lat_arc_m, lon_arc_m;
+};
+constexpr ArcRow kPublished[] = {
+    {0.0, 110574.0, 111320.0},  {15.0, 110649.0, 107551.0}, {30.0, 110852.0, 96486.0},
+    {45.0, 111132.0, 78847.0},  {60.0, 111412.0, 55800.0},  {75.0, 111618.0, 28902.0},
+};
+
+struct Ecef {
+  long double x, y, z;
+};
+Ecef ecef(long double lat_deg, long double lon_deg, long double h_m) {
+  const long double la = lat_deg * 3.14159265358979323846264L / 180.0L;
+  const long double lo = lon_deg * 3.14159265358979323846264L / 180.0L;
+  const long double n = GEO_WGS84_A_M / std::sqrt(1.0L - GEO_WGS84_E2 * std::sin(la) * std::sin(la));
+  return {(n + h_m) * std::cos(la) * std::cos(lo), (n + h_m) * std::cos(la) * std::sin(lo),
+          (n * (1.0L - GEO_WGS84_E2) + h_m) * std::sin(la)};
+}
+// Exact local north/east [m] of a point seen from a reference on the ellipsoid.
+void exact_north_east_m(double lat0, double lon0, double lat, double lon, double* n, double* e) {
+  const Ecef a = ecef(lat0, lon0, 0.0L), b = ecef(lat, lon, 0.0L);
+  const long double dx = b.x - a.x, dy = b.y - a.y, dz = b.z - a.z;
+  const long double la = lat0 * 3.14159265358979323846264L / 180.0L;
+  const long double lo = lon0 * 3.14159265358979323846264L / 180.0L;
+  *e = static_cast<double>(-std::sin(lo) * dx + std::cos(lo) * dy);
+  *n = static_cast<double>(-std::sin(la) * std::cos(lo) * dx - std::sin(la) * std::sin(lo) * dy +
+                           std::cos(la) * dz);
+}
+
+GeoRef ref_at(double lat, double lon, double alt = 0.0) {
+  GeoRef r{};
+  EXPECT_EQ(geo_ref_init(&r, lat, lon, alt), 1);
+  return r;
+}
+
+// Worst horizontal error [ft] over every direction at distance_ft from a reference.
+double worst_error_ft(double lat0, double distance_ft, bool single_precision) {
+  const GeoRef r = ref_at(lat0, -97.5);
+  double worst = 0.0;
+  for (int az = 0; az < 360; az += 5) {
+    const double a = az * M_PI / 180.0;
+    const double neu[3] = {distance_ft * std::cos(a), distance_ft * std::sin(a), 0.0};
+    double lat, lon, alt;
+    geo_from_neu_ft(&r, neu, &lat, &lon, &alt);
+    double n_m, e_m;
+    exact_north_east_m(lat0, -97.5, lat, lon, &n_m, &e_m);
+    double n_ft, e_ft;
+    if (single_precision) {
+      float nf, ef;
+      geo_to_ne_ft_f(&r, lat, lon, &nf, &ef);
+      n_ft = nf;
+      e_ft = ef;
+    } else {
+      double out[3];
+      geo_to_neu_ft(&r, lat, lon, 0.0, out);
+      n_ft = out[0];
+      e_ft = out[1];
+    }
+    worst = std::max(worst, std::hypot(n_ft - n_m * kFtPerM, e_ft - e_m * kFtPerM));
+  }
+  return worst;
+}
+
+}  // namespace
+
+TEST(GeoWgs84, OneDegreeMatchesThePublishedArcLengths) {
+  for (const ArcRow& row : kPublished) {
+    const GeoRef r = ref_at(row.lat_deg, 10.0);
+    double neu[3];
+    // Half a degree either side: the arc the table gives, centred on its latitude.
+    double south[3];
+    geo_to_neu_m(&r, row.lat_deg + 0.5, 10.5, 0.0, neu);
+    geo_to_neu_m(&r, row.lat_deg - 0.5, 9.5, 0.0, south);
+    EXPECT_NEAR(neu[0] - south[0], row.lat_arc_m, 2.0) << row.lat_deg;
+    EXPECT_NEAR(neu[1] - south[1], row.lon_arc_m, 2.0) << row.lat_deg;
+  }
+}
+
+TEST(GeoWgs84, RadiiAreTheTextbookValuesAtEquatorAndPole) {
+  double m, n;
+  geo_radii_m(0.0, &m, &n);
+  EXPECT_NEAR(m, 6335439.327, 0.01);  // a (1 - e2)
+  EXPECT_NEAR(n, 6378137.0, 1e-6);    // a
+  geo_radii_m(90.0, &m, &n);
+  EXPECT_NEAR(m, 6399593.626, 0.01);  // a / sqrt(1 - e2), both
+  EXPECT_NEAR(n, 6399593.626, 0.01);
+}
+
+TEST(GeoWgs84, ErrorAt3000FtFromHomeIsAFractionOfAFoot) {
+  // Double precision (the HP side) and the single-precision path the Due flies with.
+  EXPECT_LT(worst_error_ft(45.0, 3000.0, false), 0.26);
+  EXPECT_LT(worst_error_ft(60.0, 3000.0, false), 0.44);
+  EXPECT_LT(worst_error_ft(45.0, 3000.0, true), 0.26);
+  // The float scaling itself: the Due's figures against the double ones.
+  const GeoRef r = ref_at(45.0, -97.5);
+  const double neu[3] = {-2121.0, 2121.0, 0.0};
+  double lat, lon, alt;
+  geo_from_neu_ft(&r, neu, &lat, &lon, &alt);
+  float nf, ef;
+  geo_to_ne_ft_f(&r, lat, lon, &nf, &ef);
+  EXPECT_NEAR(nf, -2121.0, 1e-3);
+  EXPECT_NEAR(ef, 2121.0, 1e-3);
+}
+
+TEST(GeoWgs84, RoundTripReturnsThePointAndItsHeight) {
+  const GeoRef r = ref_at(40.4237, -86.9212, 185.0);
+  const double neu_ft[3] = {1234.5, -876.25, 300.0};
+  double lat, lon, alt;
+  geo_from_neu_ft(&r, neu_ft, &lat, &lon, &alt);
+  double back[3];
+  geo_to_neu_ft(&r, lat, lon, alt, back);
+  EXPECT_NEAR(back[0], 1234.5, 1e-6);
+  EXPECT_NEAR(back[1], -876.25, 1e-6);
+  EXPECT_NEAR(back[2], 300.0, 1e-6);
+  EXPECT_NEAR(alt, 185.0 + 300.0 * 0.3048, 1e-9);
+}
+
+TEST(GeoWgs84, HomeIsTheOrigin) {
+  const GeoRef r = ref_at(-33.9, 151.2, 20.0);
+  double neu[3];
+  geo_to_neu_m(&r, -33.9, 151.2, 20.0, neu);
+  EXPECT_EQ(neu[0], 0.0);
+  EXPECT_EQ(neu[1], 0.0);
+  EXPECT_EQ(neu[2], 0.0);
+}
+
+TEST(GeoWgs84, AcrossTheAntimeridianTakesTheShortWayRound) {
+  const GeoRef r = ref_at(0.0, 179.999);
+  double neu[3];
+  geo_to_neu_m(&r, 0.0, -179.999, 0.0, neu);
+  EXPECT_NEAR(neu[1], 0.002 * 111319.49, 0.01);
+  const double west[3] = {0.0, 300.0, 0.0};
+  double lat, lon, alt;
+  geo_from_neu_m(&r, west, &lat, &lon, &alt);
+  EXPECT_LT(lon, -179.99);
+}
+
+TEST(GeoWgs84, AReferenceOutOfRangeOrNotANumberIsRefusedAndTheOldOneKept) {
+  GeoRef r = ref_at(45.0, 7.0, 100.0);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(geo_ref_init(&r, 90.5, 7.0, 0.0), 0);
+  EXPECT_EQ(geo_ref_init(&r, 45.0, -180.5, 0.0), 0);
+  EXPECT_EQ(geo_ref_init(&r, nan, 7.0, 0.0), 0);
+  EXPECT_EQ(geo_ref_init(&r, 45.0, nan, 0.0), 0);
+  EXPECT_EQ(geo_ref_init(&r, 45.0, 7.0, nan), 0);
+  EXPECT_EQ(geo_ref_init(&r, 45.0, 7.0, 2.0e5), 0);
+  EXPECT_EQ(r.lat_deg, 45.0);
+  EXPECT_EQ(r.lon_deg, 7.0);
+  EXPECT_EQ(r.alt_m, 100.0);
+}
