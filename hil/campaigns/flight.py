@@ -21,7 +21,8 @@ TOKEN_VAR = "HIL_CAMPAIGN_FLIGHT"
 # The row's columns, in order (the CSV's header).
 COLUMNS = ["flight_id", "fault_class", "seed", "fault_at_s", "fault_duration_s", "fault_params",
            "status", "reason", "took_effect", "ok", "broke_property", "unsafe_commands",
-           "envelope_violations_under_ha_s", "max_sx_row_under_ha", "takeover_latency_s",
+           "envelope_violations_under_ha_s", "sx_inherited_from_hp_s", "sx_left_under_ha_s",
+           "max_sx_row_under_ha", "takeover_latency_s", "takeover_within_one_period", "aircraft_crashed",
            "recovery_s", "latched", "min_height_agl_ft", "min_airspeed_margin_ftps",
            "mission_progress", "simulated_s", "flight_duration_s", "wall_s", "x_real_time",
            "exit_code", "leftovers_killed", "worker", "folder", "command"]
@@ -181,18 +182,25 @@ def run(flight, argv, folder, wall_limit_s, term_grace_s=30.0, env=None):
     if timed_out:
         row["status"] = "timeout"
         row["reason"] = "past the wall-clock limit of %g s: killed whole" % wall_limit_s
-    elif summary is None or code != 0:
-        row["status"] = "died"
-        row["reason"] = _death_reason(folder, code)
+    elif summary is None or code != 0 or summary.get("status") in ("died", "timeout"):
+        # run_flight.py says why in a summary of its own when it can (its own --timeout-s too).
+        s = summary or {}
+        row["status"] = "timeout" if s.get("status") == "timeout" else "died"
+        row["reason"] = ("exit %s: %s" % (code, s["error"])) if s.get("error") else _death_reason(folder, code)
     else:
         row["status"] = summary.get("status") or "ok"
-    if summary is not None and not timed_out:
+    if row["status"] not in ("died", "timeout"):
         v, f = verdict_of(summary), fault_of(summary)
         row["took_effect"] = f.get("took_effect")
         for k in ("ok", "unsafe_commands", "envelope_violations_under_ha_s", "takeover_latency_s", "recovery_s",
                   "latched", "min_height_agl_ft", "min_airspeed_margin_ftps", "mission_progress"):
             row[k] = _num(v.get(k)) if k != "envelope_violations_under_ha_s" else v.get(k)
-        row["max_sx_row_under_ha"] = (summary.get("state_while_ha_flies") or {}).get("max_S_x_row")
+        env = v.get("envelope_under_ha") or {}
+        row["sx_inherited_from_hp_s"] = env.get("inherited_from_hp_s")
+        row["sx_left_under_ha_s"] = env.get("left_under_ha_s")
+        row["max_sx_row_under_ha"] = env.get("max_S_x_row", (summary.get("state_while_ha_flies") or {}).get("max_S_x_row"))
+        row["takeover_within_one_period"] = v.get("takeover_within_one_period")
+        row["aircraft_crashed"] = v.get("aircraft_crashed")
         row["simulated_s"] = summary.get("simulated_s")
         row["x_real_time"] = summary.get("x_real_time")
         if row["status"] == "ok" and row["took_effect"] is False:

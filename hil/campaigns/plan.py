@@ -88,26 +88,55 @@ def discover(run_flight=RUN_FLIGHT):
                      has_params="--fault-param" in text)
 
 
+SURFACES = ("elevator", "aileron", "rudder", "throttle")
+# What a campaign varies per class, within what each injector documents (hil/faults/<class>.py);
+# a class not named here flies with its injector's defaults. ("u", lo, hi): uniform; a tuple of
+# values: one of them.
+PARAM_SPACE = {
+    "deadline_miss": {"delay_periods": ("u", 0.5, 3.0), "repeat_every_periods": (0, 0, 5, 20)},
+    "nan": {"surface": SURFACES},
+    "out_of_range": {"surface": SURFACES},
+    "gs_request_hp": {"surface": SURFACES},
+    "stale_replay": {"age_s": ("u", 0.2, 3.0)},
+    "divergence": {"rate_deg_s": ("u", 5.0, 40.0)},
+    "pitot_failure": {"mode": ("dead", "zero", "stuck")},
+    "pic_switch": {"switch_after_s": ("u", 0.3, 3.0), "switch_s": ("u", 1.0, 5.0)},
+    "climb": {"pitch_deg": ("u", 8.0, 15.0)},
+}
+# Faults that steer the aircraft need time to take it anywhere; a crash has no duration.
+LONG_FAULTS = ("climb", "stall", "bank", "divergence")
+NO_DURATION = ("crash", "pic_switch")
+
+
 def _class_params(fault_class, rng):
-    """Parameters the faults package draws for a class (a module function `draw_params(rng)` or a
-    package function `draw_params(name, rng)`), as sorted (key, value) string pairs."""
-    pkg = _faults_package()
-    if pkg is None:
-        return ()
-    draw = None
-    try:
-        mod = importlib.import_module("hil.faults." + fault_class.replace("-", "_"))
-        draw = getattr(mod, "draw_params", None)
-        if draw is not None:
-            params = draw(rng)
-    except ImportError:
-        mod = None
-    if draw is None:
-        f = getattr(pkg, "draw_params", None)
-        if f is None:
-            return ()
-        params = f(fault_class, rng)
+    """The flight's parameters for its class: the faults package's own draw_params(rng) when a
+    class module has one, else PARAM_SPACE; sorted (key, value) string pairs."""
+    mod = None
+    if _faults_package() is not None:
+        try:
+            mod = importlib.import_module("hil.faults." + fault_class)
+        except ImportError:
+            mod = None
+    if mod is not None and callable(getattr(mod, "draw_params", None)):
+        params = mod.draw_params(rng)
+    else:
+        params = {}
+        for key, space in sorted(PARAM_SPACE.get(fault_class, {}).items()):
+            if space and space[0] == "u":
+                params[key] = round(rng.uniform(space[1], space[2]), 2)
+            else:
+                params[key] = rng.choice(space)
     return tuple(sorted((str(k), _fmt(v)) for k, v in (params or {}).items()))
+
+
+def _duration(fault_class, rng, window):
+    if fault_class in NO_DURATION:
+        return -1.0
+    if fault_class in LONG_FAULTS:
+        return round(rng.uniform(8.0, 20.0), 2)
+    if rng.random() < 0.2:
+        return -1.0  # never ends by itself (a hang never resumed, a link never back)
+    return round(rng.uniform(*window), 2)
 
 
 def _fmt(v):
@@ -120,7 +149,8 @@ def make_plan(flights, seed, classes, duration_s=45.0, fault_window_s=(8.0, 20.0
               fault_duration_s=(0.5, 6.0), interface=None):
     """flights: how many; seed: the campaign seed; classes: the fault classes to deal from.
     A fault starts in fault_window_s (after the HP has taken control, leaving time for the
-    recovery) on the HA's 10 ms grid; a fault with a duration lasts fault_duration_s."""
+    recovery) on the HA's 10 ms grid; a fault lasts fault_duration_s (steering faults 8-20 s; a
+    fifth of the others never end by themselves; a crash has no duration)."""
     if flights < 1:
         raise ValueError("a campaign needs at least one flight")
     if not classes:
@@ -136,7 +166,7 @@ def make_plan(flights, seed, classes, duration_s=45.0, fault_window_s=(8.0, 20.0
         # Each flight draws from its own stream, so flight i is the same whatever N is.
         frng = random.Random("campaign:%d:flight:%d" % (seed, i))
         at = round(frng.uniform(*fault_window_s), 2)
-        dur = round(frng.uniform(*fault_duration_s), 2) if has_duration else -1.0
+        dur = _duration(cls, frng, fault_duration_s) if has_duration else -1.0
         params = _class_params(cls, frng) if has_params else ()
         plan.append(Flight(flight_id=i, fault_class=cls, seed=frng.randrange(1, 2 ** 31 - 1),
                            fault_at_s=at, fault_duration_s=dur, params=params, duration_s=duration_s))

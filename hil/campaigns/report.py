@@ -12,10 +12,10 @@ import numpy as np
 
 STATUSES = ("ok", "fault_not_effective", "died", "timeout")
 NUMERIC = ("fault_at_s", "fault_duration_s", "unsafe_commands", "envelope_violations_under_ha_s",
-           "max_sx_row_under_ha", "takeover_latency_s", "recovery_s", "min_height_agl_ft",
+           "max_sx_row_under_ha", "takeover_latency_s", "sx_inherited_from_hp_s", "sx_left_under_ha_s", "recovery_s", "min_height_agl_ft",
            "min_airspeed_margin_ftps", "mission_progress", "simulated_s", "flight_duration_s", "wall_s",
            "x_real_time", "exit_code", "leftovers_killed", "seed", "flight_id")
-BOOLS = ("took_effect", "ok", "broke_property", "latched")
+BOOLS = ("took_effect", "ok", "broke_property", "latched", "takeover_within_one_period", "aircraft_crashed")
 
 
 def read_rows(path):
@@ -65,6 +65,9 @@ def class_stats(rows):
             "unsafe_commands": int(sum(r["unsafe_commands"] or 0 for r in flown)),
             # nan: the flight left S_x under the HA (the first summary does not say how long)
             "envelope_violations_under_ha_s": float(sum(env)) if env else 0.0,
+            # of which the HA itself let the aircraft out (the rest: outside already at the takeover)
+            "sx_left_under_ha_s": float(sum(_vals(flown, "sx_left_under_ha_s"))),
+            "crashed": sum(1 for r in flown if r.get("aircraft_crashed")),
             "recovered": len(rec),
             "recovery_p50_s": pct(rec, 50), "recovery_p99_s": pct(rec, 99),
             "recovery_max_s": max(rec) if rec else None,
@@ -84,7 +87,9 @@ COLS = [("class", "class", "%s"), ("flights", "flights", "%d"), ("ok", "ok", "%d
         ("broke_property", "BROKE", "%d"), ("takeovers", "takeovers", "%d"),
         ("takeover_p50_ms", "tk p50 ms", "%.0f"), ("takeover_p99_ms", "tk p99 ms", "%.0f"),
         ("takeover_max_ms", "tk max ms", "%.0f"), ("unsafe_commands", "unsafe cmds", "%d"),
-        ("envelope_violations_under_ha_s", "S_x out (HA) s", "%.2f"), ("recovered", "recovered", "%d"),
+        ("envelope_violations_under_ha_s", "S_x out (HA) s", "%.2f"),
+        ("sx_left_under_ha_s", "of it left by HA s", "%.2f"), ("crashed", "crashed", "%d"),
+        ("recovered", "recovered", "%d"),
         ("recovery_p50_s", "rec p50 s", "%.2f"), ("recovery_p99_s", "rec p99 s", "%.2f"),
         ("recovery_max_s", "rec max s", "%.2f"), ("latched", "latched", "%d"),
         ("min_height_agl_ft", "min h ft", "%.0f"), ("min_airspeed_margin_ftps", "min V-Vs ft/s", "%.1f")]
@@ -212,7 +217,9 @@ def write(rows, out_dir, title="HiL fault campaign", notes=()):
                                and s[k] else "", esc(_cell(s[k], fmt))) for k, _, fmt in COLS))
     parts.append("</table><p>takeover: from the deadline miss to the HA's command on the servos; recovery: "
                  "from the fault to the HP back in control (simulated time); min h: lowest height above "
-                 "home; min V-Vs: smallest calibrated airspeed above the 1 g stall.</p>")
+                 "home; min V-Vs: smallest calibrated airspeed above the 1 g stall; S_x out (HA): time outside S_x "
+                 "while the HA flew, of which left by HA: after the HA had taken over with the aircraft inside "
+                 "(the rest it inherited outside from the HP).</p>")
     for path in files:
         parts.append("<h2>%s</h2><img src='%s'>" % (esc(os.path.basename(path)[:-4].replace("_", " ")),
                                                    esc(os.path.basename(path))))
@@ -244,7 +251,8 @@ def _why(r):
         why.append("%d servo commands outside S_u" % r["unsafe_commands"])
     env = r["envelope_violations_under_ha_s"]
     if env is None or math.isnan(env) or env > 0:
-        why.append("outside S_x while the HA flew (%s s, max row %s)" % (env, r.get("max_sx_row_under_ha")))
+        why.append("outside S_x while the HA flew (%s s, of which %s s after it had taken over inside; max row %s)" % (
+            env, r.get("sx_left_under_ha_s"), r.get("max_sx_row_under_ha")))
     if not why and r["ok"] is False:
         why.append("its verdict is not ok")
     return "; ".join(why)

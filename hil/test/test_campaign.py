@@ -123,6 +123,19 @@ def test_a_flight_that_dies_is_reported_as_died_with_its_reason():
     assert "--fault-param bits=2" in row["command"]
 
 
+def test_a_real_flight_whose_launch_fails_is_reported_as_died_with_run_flights_reason():
+    folder = os.path.join(tempfile.mkdtemp(prefix="campaign_real_die_"), "flight")
+    iface = plan_mod.discover()
+    fl = plan_mod.make_plan(1, 3, ("crash",), duration_s=20.0, interface=iface)[0]
+    # An aircraft with no launch file: roscore comes up, roslaunch ends at once.
+    argv = plan_mod.command(fl, folder, iface) + ["--aircraft", "NO_SUCH_AIRCRAFT"]
+    row = flight_mod.run(fl, argv, folder, wall_limit_s=600.0)
+    assert row["status"] == "died", row
+    assert "launch ended before the flight did" in row["reason"]
+    assert row["unsafe_commands"] is None and row["broke_property"] is False
+    assert row["leftovers_killed"] == 0  # run_flight.py stopped its roscore itself
+
+
 def test_rows_reach_the_table_as_flights_finish_and_none_is_dropped(monkeypatch):
     out = tempfile.mkdtemp(prefix="campaign_stream_")
     release = os.path.join(out, "release")
