@@ -5,6 +5,7 @@ ended, takeover latency p50/p99/max, unsafe commands, time outside S_x under the
 property, died or ran out of time, each with the command that replays it."""
 import csv
 import html
+import json
 import math
 import os
 
@@ -135,13 +136,14 @@ def plots(rows, out_dir, ha_period_s=0.01):
     classes = sorted({r["fault_class"] for r in rows})
     flown = [r for r in rows if r["status"] in ("ok", "fault_not_effective")]
     files = []
+    colors = {c: plt.cm.tab20(i % 20) for i, c in enumerate(classes)}  # 17+ classes: 20 colours
 
     fig, ax = plt.subplots(figsize=(7, 4))
     data = [[r["takeover_latency_s"] * 1000.0 for r in flown if r["fault_class"] == c and r["takeover_latency_s"] is not None]
             for c in classes]
     if any(data):
-        ax.hist([d for d in data], bins=20, stacked=True, label=classes)
-        ax.legend(fontsize=7)
+        ax.hist([d for d in data], bins=20, stacked=True, label=classes, color=[colors[c] for c in classes])
+        ax.legend(fontsize=6, ncol=2)
     ax.axvline(ha_period_s * 1000.0, color="r", ls="--", lw=1)
     ax.text(ha_period_s * 1000.0, ax.get_ylim()[1] * 0.95, " one HA period", color="r", fontsize=8, va="top")
     ax.set_xlabel("takeover latency after the deadline miss (ms)")
@@ -149,20 +151,23 @@ def plots(rows, out_dir, ha_period_s=0.01):
     ax.set_title("Takeover latency (%d takeovers)" % sum(len(d) for d in data))
     files.append(_save(fig, out_dir, "takeover_latency.png"))
 
-    fig, ax = plt.subplots(figsize=(7, 4))
+    fig, ax = plt.subplots(figsize=(8, 5))
     rec = [[r["recovery_s"] for r in flown if r["fault_class"] == c and r["recovery_s"] is not None] for c in classes]
     for i, d in enumerate(rec):
         if d:
             ax.boxplot([d], positions=[i], widths=0.5, showfliers=False)
             jitter = np.linspace(-0.15, 0.15, len(d)) if len(d) > 1 else [0.0]
-            ax.plot(np.full(len(d), i) + jitter, d, ".", alpha=0.6)
-        latched = sum(1 for r in flown if r["fault_class"] == classes[i] and r["latched"])
-        if latched:
-            ax.text(i, 0, "%d latched" % latched, ha="center", va="bottom", fontsize=7, color="r")
+            ax.plot(np.full(len(d), i) + jitter, d, ".", alpha=0.6, color=colors[classes[i]])
+    labels = []
+    for c in classes:
+        n = sum(1 for r in flown if r["fault_class"] == c)
+        latched = sum(1 for r in flown if r["fault_class"] == c and r["latched"])
+        labels.append("%s (%d/%d%s)" % (c, sum(1 for r in flown if r["fault_class"] == c and r["recovery_s"] is not None),
+                                        n, ", %d latched" % latched if latched else ""))
     ax.set_xticks(range(len(classes)))
-    ax.set_xticklabels(classes, rotation=30, ha="right", fontsize=8)
+    ax.set_xticklabels(labels, rotation=35, ha="right", fontsize=7)
     ax.set_ylabel("fault to HP back in control (s, simulated)")
-    ax.set_title("Recovery time per fault class")
+    ax.set_title("Recovery time per fault class (recovered/flights, latched)")
     fig.tight_layout()
     files.append(_save(fig, out_dir, "recovery_per_class.png"))
 
@@ -171,14 +176,14 @@ def plots(rows, out_dir, ha_period_s=0.01):
         pts = [(r["min_airspeed_margin_ftps"], r["min_height_agl_ft"]) for r in flown
                if r["fault_class"] == c and r["min_airspeed_margin_ftps"] is not None and r["min_height_agl_ft"] is not None]
         if pts:
-            ax.scatter(*zip(*pts), s=14, label=c)
+            ax.scatter(*zip(*pts), s=14, label=c, color=colors[c])
     ax.axvline(0.0, color="r", ls="--", lw=1)
     ax.axhline(0.0, color="r", ls="--", lw=1)
     ax.set_xlabel("smallest airspeed margin above the stall (ft/s)")
     ax.set_ylabel("lowest height above home (ft)")
     ax.set_title("Envelope margins, one point per flight")
     if classes:
-        ax.legend(fontsize=7)
+        ax.legend(fontsize=6, ncol=2)
     fig.tight_layout()
     files.append(_save(fig, out_dir, "envelope_margins.png"))
     return files
@@ -192,8 +197,22 @@ def _save(fig, out_dir, name):
     return path
 
 
-def write(rows, out_dir, title="HiL fault campaign", notes=()):
+def campaign_notes(out_dir):
+    """What campaign.json (the runner's) says about the campaign, as lines for the page."""
+    try:
+        with open(os.path.join(out_dir, "campaign.json")) as f:
+            c = json.load(f)
+    except (OSError, ValueError):
+        return ()
+    return ("%d flights (%s s simulated each) over %s fault classes on %s, in %.0f s wall; the table: flights.csv" % (
+        c["flights"], "/".join("%g" % d for d in c.get("flight_duration_s", [])) or "?",
+        len(c["classes"]) if "classes" in c else "?", c.get("scheduler", "?"), c.get("wall_s", 0.0)),)
+
+
+def write(rows, out_dir, title="HiL fault campaign", notes=None):
     """Writes report.html, table.md and the PNGs into out_dir/report; returns (stats, text)."""
+    if notes is None:
+        notes = campaign_notes(out_dir)
     rdir = os.path.join(out_dir, "report")
     os.makedirs(rdir, exist_ok=True)
     stats = class_stats(rows)

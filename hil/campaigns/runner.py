@@ -84,10 +84,11 @@ def _hms(s):
 def local_cluster(workers=None):
     from distributed import LocalCluster
     workers = workers or os.cpu_count() or 1
-    # One flight at a time per worker process; loopback only; no dashboard (no port of ours open
-    # beyond the scheduler's and the workers' own on 127.0.0.1).
+    # One flight at a time per worker process, everything on loopback: the scheduler's and the
+    # workers' HTTP servers too (with no address given, the scheduler's listens on every interface).
     return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, host="127.0.0.1",
-                        dashboard_address=None, silence_logs=40)
+                        dashboard_address="127.0.0.1:0", worker_dashboard_address="127.0.0.1:0",
+                        silence_logs=40)
 
 
 def run_campaign(plan, interface, out_dir, scheduler=None, workers=None, wall_limit_s=None,
@@ -146,6 +147,8 @@ def run_campaign(plan, interface, out_dir, scheduler=None, workers=None, wall_li
     wall = time.monotonic() - t0
     with open(os.path.join(out_dir, "campaign.json"), "w") as f:
         json.dump({"flights": len(plan), "wall_s": round(wall, 2),
+                   "classes": sorted({fl.fault_class for fl in plan}),
+                   "flight_duration_s": sorted({fl.duration_s for fl in plan}),
                    "scheduler": scheduler or "LocalCluster(%d workers)" % (workers or os.cpu_count() or 1)},
                   f, indent=1)
     return [rows[fl.flight_id] for fl in plan]

@@ -6,6 +6,7 @@ campaign_fake_flight.py (run_flight.py's command line, one way of ending per fau
 import csv
 import json
 import os
+import subprocess
 import sys
 import tempfile
 import time
@@ -60,6 +61,33 @@ def my_children():
                 except OSError:
                     continue
                 out.append(int(pid))
+    return out
+
+
+def descendants(root):
+    parent = {}
+    for pid in os.listdir("/proc"):
+        if pid.isdigit():
+            try:
+                with open("/proc/%s/stat" % pid) as f:
+                    parent[int(pid)] = int(f.read().rsplit(")", 1)[1].split()[1])
+            except OSError:
+                continue
+    out, todo = set(), [root]
+    while todo:
+        p = todo.pop()
+        out.add(p)
+        todo += [c for c, pp in parent.items() if pp == p and c not in out]
+    return out
+
+
+def listening_addresses(pids):
+    """Local addresses of the TCP sockets these processes listen on (ss -ltnp)."""
+    r = subprocess.run(["ss", "-ltnpH"], stdout=subprocess.PIPE, universal_newlines=True, check=True)
+    out = []
+    for line in r.stdout.splitlines():
+        if any("pid=%d," % p in line for p in pids):
+            out.append(line.split()[3])
     return out
 
 
@@ -143,7 +171,7 @@ def test_rows_reach_the_table_as_flights_finish_and_none_is_dropped(monkeypatch)
     plan = [plan_mod.Flight(0, "quick", 11, 10.0, 1.0, (), 40.0),
             plan_mod.Flight(1, "die", 12, 10.0, 1.0, (), 40.0),
             plan_mod.Flight(2, "wait", 13, 10.0, 1.0, (), 40.0)]
-    seen = []
+    seen, listening = [], []
 
     def on_row(row):
         seen.append(row["fault_class"])
@@ -153,10 +181,15 @@ def test_rows_reach_the_table_as_flights_finish_and_none_is_dropped(monkeypatch)
         assert [r["fault_class"] for r in table] == seen
         if len(seen) == 2:
             assert "wait" not in seen
+            # The scheduler, the workers and their HTTP servers listen on loopback only.
+            addresses = listening_addresses(descendants(os.getpid()))
+            listening.extend(addresses)
             open(release, "w").close()
 
     rows = runner.run_campaign(plan, AGREED, out, workers=2, progress=False, on_row=on_row, run_flight=FAKE)
     assert seen[-1] == "wait"
+    assert len(listening) >= 3  # the scheduler and two workers at least
+    assert all(a.startswith("127.0.0.1:") for a in listening), listening
     assert [r["status"] for r in rows] == ["ok", "died", "ok"]
     table = {r["flight_id"]: r for r in report_mod.read_rows(os.path.join(out, "flights.csv"))}
     assert sorted(table) == [0, 1, 2]
