@@ -199,6 +199,23 @@ def test_rows_reach_the_table_as_flights_finish_and_none_is_dropped(monkeypatch)
     wait_for(lambda: not my_children(), "the Dask workers stopped", bound_s=60.0)
 
 
+def test_the_same_campaign_runs_on_a_scheduler_given_by_its_address():
+    from distributed import LocalCluster
+    out = tempfile.mkdtemp(prefix="campaign_sched_")
+    plan = [plan_mod.Flight(i, "quick", 20 + i, 10.0, 1.0, (), 40.0) for i in range(3)]
+    # A cluster that is already there, as a lab's would be: the campaign only knows its address.
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=True, host="127.0.0.1",
+                      dashboard_address="127.0.0.1:0", silence_logs=40) as cluster:
+        rows = runner.run_campaign(plan, AGREED, out, scheduler=cluster.scheduler_address, progress=False,
+                                   run_flight=FAKE)
+        assert [r["status"] for r in rows] == ["ok"] * 3
+        with open(os.path.join(out, "campaign.json")) as f:
+            assert json.load(f)["scheduler"] == cluster.scheduler_address
+        # The campaign left the cluster running: it was not its own.
+        assert cluster.status.name == "running"
+    wait_for(lambda: not my_children(), "the test's cluster stopped", bound_s=60.0)
+
+
 def test_the_report_gives_nearest_rank_percentiles_and_lists_the_flights_that_broke_the_property():
     out = tempfile.mkdtemp(prefix="campaign_report_")
     rows = []
