@@ -679,9 +679,12 @@ def main():
         code = 1
     finally:
         sim.close()
+        # Atomic: run_flight.py reads it as soon as the name exists, and an empty file read
+        # mid-write counted as a failed flight (and its summary was overwritten).
         done = os.path.join(sim.out_dir, "done")
-        with open(done, "w") as f:
+        with open(done + ".tmp", "w") as f:
             f.write("%d\n" % code)
+        os.replace(done + ".tmp", done)
     return code
 
 

@@ -226,7 +226,7 @@ def _death_reason(folder, code):
         tail = "no output"
     if code is not None and code < 0:
         return "killed by signal %d: %s" % (-code, tail)
-    return "exit %s: %s" % (code, tail)
+    return "exit %s: %s (logs: %s)" % (code, tail, folder)
 
 
 def _quote(a):
