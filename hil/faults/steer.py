@@ -20,14 +20,16 @@ class SteeringFault(CommandFault):
         return max(-lim, min(lim, v))
 
     def toward(self, start, target, t_s):
-        """The bad HP's target: from where it was at at_s towards target at ramp_deg_s (default
-        5 deg/s): a slow drift, the hard case, not a violent manoeuvre the rate limits catch."""
-        step = self.param("ramp_deg_s", 5.0) * (t_s - self.at_s)
+        """The bad HP's target: from where it was when it started (at at_s, and again each time a
+        restarted controller is given control) towards target at ramp_deg_s (default 5 deg/s): a
+        slow drift, the hard case, not a violent manoeuvre the rate limits catch at once."""
+        step = self.param("ramp_deg_s", 5.0) * (t_s - self.start_s)
         return min(target, start + step) if target >= start else max(target, start - step)
 
     def corrupt(self, t_s, m):
         tr = self.ctx.truth_at(t_s)
-        if not hasattr(self, "start"):
+        if getattr(self, "start_pid", None) != self.ctx.hp_pid:  # this controller's first bad command
+            self.start_pid, self.start_s = self.ctx.hp_pid, t_s
             self.start = (tr.pitch_deg, tr.roll_deg)
         if self.TARGET_PITCH_DEG is not None:  # elevator trailing edge down pitches down; q damps
             pitch = self.toward(self.start[0], self.param("pitch_deg", self.TARGET_PITCH_DEG), t_s)
