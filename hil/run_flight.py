@@ -123,6 +123,7 @@ def main(argv=None):
     try:
         fault_params = faults.parse_params(args.fault_param)
         relay = args.fault != "none" and faults.needs_relay(args.fault)
+        link_relay = args.fault != "none" and faults.needs_link_relay(args.fault)
     except ValueError as e:
         ap.error(str(e))
     if any(" " in str(v) for v in fault_params.values()):
@@ -173,6 +174,7 @@ def main(argv=None):
                   "fault_at_s:=%g" % fault_at, "fault_duration_s:=%g" % args.fault_duration,
                   "fault_params:=" + " ".join("%s=%s" % kv for kv in sorted(fault_params.items())),
                   "servo_relay:=%s" % ("true" if relay else "false"),
+                  "link_relay:=%s" % ("true" if link_relay else "false"),
                   "gs_udp_bind_port:=%d" % gs_bind, "gs_udp_remote_port:=%d" % gs_remote,
                   "wait_for_recorder:=%s" % ("false" if args.no_bag else "true")]
         launcher = procs.start("launch", launch)

@@ -40,7 +40,7 @@ from sensor_msgs.msg import Temperature
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 sys.path.insert(0, ROOT)
-from hil import faults, ha_channel, mission, sensors, verdicts  # noqa: E402
+from hil import faults, ha_channel, link_relay, mission, sensors, verdicts  # noqa: E402
 from hil.faults.base import RC_NEUTRAL, Board  # noqa: E402
 from hil.fdm import Fdm, FdmCrash, Surfaces, Wind  # noqa: E402
 
@@ -290,8 +290,15 @@ class Simulation:
         self.last_cmd_seq = None
         self.controller_index = -1
         self.progress_path = os.path.join(self.out_dir, "progress")
+        # A man in the middle on the HP-HA link: the arduino node opens ~ha_link, ha_sil serves
+        # ~ha_link_sil (DG808_hil.launch's link_relay).
+        self.link_relay = None
+        if p("ha_link_sil", ""):
+            self.link_relay = link_relay.LinkRelay(p("ha_link", ""), p("ha_link_sil", ""))
         self.fault = None
         if self.fault_name != "none" and self.fault_at_s >= 0.0:
+            if faults.needs_link_relay(self.fault_name) and self.link_relay is None:
+                raise RuntimeError("fault %s needs the link relay (link_relay:=true)" % self.fault_name)
             if self.realtime and faults.needs_relay(self.fault_name):
                 raise RuntimeError("fault %s corrupts the HP's commands: lockstep only" % self.fault_name)
             if faults.needs_relay(self.fault_name) and self.relay_pub is None:
@@ -374,6 +381,8 @@ class Simulation:
         while not self.chan.accept(1.0):
             if rospy.is_shutdown() or time.monotonic() > deadline:
                 raise RuntimeError("ha_sil never connected to the control channel")
+        if self.link_relay is not None:
+            self.wait_until("ha_sil's link pty for the relay", lambda r: self.link_relay.connect(), 60.0)
         self.wait_until("the HA link (arduino node <-> ha_sil)", lambda r: r.flags & ha_channel.R_LINK_CONNECTED, 120.0)
         self.wait_until("the vn200 node's configuration of the VN-200", lambda r: self.hp_vn.configured(), 120.0)
         inputs = CONTROLLER_INPUTS[1:] if self.realtime else CONTROLLER_INPUTS  # no /clock on the wall clock
@@ -650,7 +659,7 @@ class Simulation:
         return verdicts.summarize(self)
 
     def close(self):
-        for c in (self.chan, self.hp_vn, self.ha_vn):
+        for c in (self.chan, self.hp_vn, self.ha_vn) + ((self.link_relay,) if self.link_relay else ()):
             try:
                 c.close()
             except OSError:

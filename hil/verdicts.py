@@ -127,7 +127,8 @@ def fault_verdict(sim, progress):
         if out and not prev_out:
             excursion_from_hp = x[2].controller == 0
         if x[2].controller in HA_SIDE:
-            max_row = row if max_row is None else max(max_row, row)
+            if max_row is None or row > max_row:
+                max_row, worst = row, x
             if out:
                 outside_ha += 1
                 inherited += 1 if excursion_from_hp else 0
@@ -165,7 +166,8 @@ def fault_verdict(sim, progress):
         "envelope_violations_under_ha_s": env_s,
         "envelope_under_ha": {"outside_S_x_s": env_s, "inherited_from_hp_s": round(inherited * period, 4),
                               "left_under_ha_s": round((outside_ha - inherited) * period, 4),
-                              "max_S_x_row": None if max_row is None else round(max_row, 4)},
+                              "max_S_x_row": None if max_row is None else round(max_row, 4),
+                              "worst": None if max_row is None else worst_state(worst)},
         "takeover_due_s": None if due_s is None else round(due_s, 4),
         "takeover_due_by": None if due_s is None else ("fault" if due is not None and due_s == due else "truth"),
         "takeover_s": None if took is None else round(took, 4),
@@ -180,6 +182,16 @@ def fault_verdict(sim, progress):
         "mission_progress": round(sum(1 for p in progress if p["first_reached_s"] is not None) / float(len(progress)), 4)
         if progress else 0.0,
     }
+
+
+def worst_state(x):
+    """Where the state was at the step of the largest S_x row under the HA."""
+    m = x[1]
+    return {"t_s": round(x[0] * 1e-6, 3), "controller": CONTROLLERS.get(x[2].controller),
+            "alpha_deg": round(m.alpha_deg, 2), "beta_deg": round(m.beta_deg, 2), "roll_deg": round(m.roll_deg, 2),
+            "pitch_deg": round(m.pitch_deg, 2), "p_deg_s": round(m.p_deg_s, 1), "q_deg_s": round(m.q_deg_s, 1),
+            "r_deg_s": round(m.r_deg_s, 1), "height_ft": round(m.height_above_home_ft, 1),
+            "calibrated_airspeed_ftps": round(x[4], 2)}
 
 
 def fault_record(sim):

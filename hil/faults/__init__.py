@@ -13,7 +13,7 @@ import importlib
 
 CLASSES = ("crash", "hang", "deadline_miss", "nan", "out_of_range", "frozen", "stale_replay",
            "climb", "stall", "bank", "divergence", "hp_vn200_loss", "ha_vn200_loss", "pitot_failure",
-           "rc_loss", "pic_switch", "gs_request_hp")
+           "rc_loss", "pic_switch", "gs_request_hp", "link_bitflip")
 
 
 def module(name):
@@ -22,12 +22,21 @@ def module(name):
     return importlib.import_module("hil.faults." + name)
 
 
-def needs_relay(name):
-    """Whether the class corrupts the HP's commands, so they must pass through the simulator."""
+def _needs(name, what):
     from hil.faults.base import Fault
     m = module(name)
-    return any(isinstance(v, type) and issubclass(v, Fault) and v.__module__ == m.__name__ and v.NEEDS_RELAY
+    return any(isinstance(v, type) and issubclass(v, Fault) and v.__module__ == m.__name__ and getattr(v, what)
                for v in vars(m).values())
+
+
+def needs_relay(name):
+    """Whether the class corrupts the HP's commands, so they must pass through the simulator."""
+    return _needs(name, "NEEDS_RELAY")
+
+
+def needs_link_relay(name):
+    """Whether the class works on the bytes of the HP-HA link (hil/link_relay.py in the middle)."""
+    return _needs(name, "NEEDS_LINK_RELAY")
 
 
 def inject(name, ctx, at_s, duration_s, params):

@@ -54,6 +54,7 @@ def finite_command(m):
 
 class Fault:
     NEEDS_RELAY = False
+    NEEDS_LINK_RELAY = False
 
     def __init__(self, ctx, at_s, duration_s, params):
         self.ctx = ctx
