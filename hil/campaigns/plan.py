@@ -102,6 +102,7 @@ PARAM_SPACE = {
     "pitot_failure": {"mode": ("dead", "zero", "stuck")},
     "pic_switch": {"switch_after_s": ("u", 0.3, 3.0), "switch_s": ("u", 1.0, 5.0)},
     "climb": {"pitch_deg": ("u", 8.0, 15.0)},
+    "link_bitflip": {"target": ("payload", "crc"), "every_n": (1, 1, 3, 10)},
 }
 # Faults that steer the aircraft need time to take it anywhere; a crash has no duration.
 LONG_FAULTS = ("climb", "stall", "bank", "divergence")
