@@ -11,7 +11,7 @@ MAGIC_POLL = 0x4C505348
 MAGIC_REPLY = 0x4C505248
 VERSION = 1
 
-WAIT_COMMAND, AIRSPEED_OK, BATTERY_OK, RC_VALID = 1, 2, 4, 8
+WAIT_COMMAND, AIRSPEED_OK, BATTERY_OK, RC_VALID, WAIT_COUNT = 1, 2, 4, 8, 16
 R_LINK_CONNECTED, R_COMMAND_TIMEOUT, R_VN_TIMEOUT, R_STATE_VALID = 1, 2, 4, 8
 R_HP_RESET, R_RESTART_REQUESTED, R_STEPPED = 16, 32, 64
 
@@ -66,9 +66,12 @@ class HaChannel:
                               timeout_s)
 
     def step(self, t_us, vn_bytes, cmd_seq, wait_ms, rc_pulses_us, rc_valid, airspeed_ftps,
-             battery_v, airspeed_ok=True, battery_ok=True, timeout_s=30.0):
-        """One period. cmd_seq None: no HP command to wait for."""
+             battery_v, airspeed_ok=True, battery_ok=True, timeout_s=30.0, wait_count=False):
+        """One period. cmd_seq None: no HP command to wait for. wait_count: cmd_seq is the number
+        of HP commands the link must have delivered since the start (a relay may repeat or
+        replay sequence numbers), not a sequence number."""
         flags = (WAIT_COMMAND if cmd_seq is not None else 0) | (RC_VALID if rc_valid else 0) | \
+            (WAIT_COUNT if wait_count and cmd_seq is not None else 0) | \
             (AIRSPEED_OK if airspeed_ok else 0) | (BATTERY_OK if battery_ok else 0)
         rec = STEP.pack(MAGIC_STEP, VERSION, flags, t_us, vn_bytes,
                         (cmd_seq or 0) & 0xFFFFFFFF, wait_ms, *rc_pulses_us, 0, airspeed_ftps, battery_v)

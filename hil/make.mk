@@ -8,9 +8,15 @@ BENCH_TARGETS += bench-fdm
 bench-fdm: deps
 	@$(VENV)/bin/python $(HIL_DIR)/bench/bench_fdm.py
 
-#   make bench-hil   the whole HiL stack in lockstep: x real time at 100 Hz and 20 Hz, per-phase step cost
+#   make bench-hil   the whole HiL stack in lockstep: x real time at 100 Hz and 20 Hz, per-phase step cost,
+#                    then a seeded campaign of 100 fault flights on Dask (BENCH_HIL_FLIGHTS=N for another size)
 .PHONY: bench-hil
 BENCH_TARGETS += bench-hil
 
 bench-hil: build
 	@$(ROSENV) $(VENV)/bin/python $(HIL_DIR)/bench/bench_hil.py
+
+#   make campaign ARGS="--flights 200 --seed 7"   a seeded fault campaign on Dask (hil/campaign.py)
+.PHONY: campaign
+campaign: build
+	@$(ROSENV) $(VENV)/bin/python $(HIL_DIR)/campaign.py $(ARGS)

@@ -4,6 +4,13 @@ microhard_gs, HP crash by SIGKILL at t = 100 s, HA takeover, restart, hand-back)
 
     hil/run_flight.py [--seed N] [--realtime] [--duration S] [--crash-at S] [--rate-hz HZ]
                       [--controller-hz HZ] [--out DIR] [--no-bag]
+                      [--fault CLASS --fault-at S --fault-duration S --fault-param KEY=VALUE ...]
+                      [--folder DIR] [--quiet] [--timeout-s S]
+
+--fault names a class of hil/faults (crash by default, at --crash-at: the case study); the
+summary's "fault", "verdict" and "status" say whether it took effect and whether the Simplex
+property held. Exit code 0 when the flight ran and its verdict was computed; otherwise the
+summary still says why ("died": the simulator stopped, "timeout": past --timeout-s of wall time).
 
 Each flight gets its own ROS master (a free port on loopback), its own ptys and control socket
 (a temporary folder) and its own output folder hil/out/<YYYY-MM-DD_HHMMSS>-<aircraft>-<seed>/
@@ -24,6 +31,8 @@ import tempfile
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.dirname(HERE))
+from hil import faults  # noqa: E402
 BAG_TOPICS = ["/hil/truth", "/decision_status", "/servo_op", "/pwm", "/ins", "/data", "/to_hil",
               "/way", "/rosout_agg", "/diagnostics"]
 
@@ -96,8 +105,13 @@ def main(argv=None):
     ap.add_argument("--realtime", action="store_true")
     ap.add_argument("--duration", type=float, default=240.0)
     ap.add_argument("--crash-at", type=float, default=100.0, help="when the HP fails (negative: never)")
-    ap.add_argument("--fault", choices=("crash", "hang"), default="crash",
-                    help="crash: SIGKILL of controller_DG808; hang: SIGSTOP (it stays up, silent)")
+    ap.add_argument("--fault", choices=faults.CLASSES + ("none",), default="crash",
+                    help="a fault class of hil/faults (crash: SIGKILL of controller_DG808; hang: SIGSTOP, ...)")
+    ap.add_argument("--fault-at", type=float, default=None, help="when the fault starts (default: --crash-at)")
+    ap.add_argument("--fault-duration", type=float, default=-1.0, help="how long it lasts (negative: to the end)")
+    ap.add_argument("--fault-param", action="append", default=[], metavar="KEY=VALUE",
+                    help="a parameter of the fault class (its module's docstring lists them)")
+    ap.add_argument("--timeout-s", type=float, default=None, help="wall-clock limit: stop the flight past it (status timeout)")
     ap.add_argument("--rate-hz", type=float, default=100.0, help="the HA's control rate")
     ap.add_argument("--controller-hz", type=float, default=None, help="default: the HA's rate")
     ap.add_argument("--out", default=os.path.join(HERE, "out"), help="parent of the flight folder")
@@ -105,6 +119,15 @@ def main(argv=None):
     ap.add_argument("--no-bag", action="store_true")
     ap.add_argument("--quiet", action="store_true", help="no progress bar")
     args = ap.parse_args(argv)
+    fault_at = args.crash_at if args.fault_at is None else args.fault_at
+    try:
+        fault_params = faults.parse_params(args.fault_param)
+        relay = args.fault != "none" and faults.needs_relay(args.fault)
+        link_relay = args.fault != "none" and faults.needs_link_relay(args.fault)
+    except ValueError as e:
+        ap.error(str(e))
+    if any(" " in str(v) for v in fault_params.values()):
+        ap.error("fault parameter values may not contain spaces")
 
     stamp = datetime.datetime.utcnow().strftime("%Y-%m-%d_%H%M%S")
     out = args.folder or os.path.join(args.out, "%s-%s-%d" % (stamp, args.aircraft, args.seed))
@@ -127,6 +150,8 @@ def main(argv=None):
     signal.signal(signal.SIGINT, on_signal)
     signal.signal(signal.SIGTERM, on_signal)
     code = 1
+    status = "died"
+    error = None
     try:
         procs.start("roscore", ["roscore", "-p", str(port)])
         deadline = time.monotonic() + 60.0
@@ -146,6 +171,10 @@ def main(argv=None):
                   "mode:=" + ("realtime" if args.realtime else "lockstep"),
                   "rate_hz:=%g" % args.rate_hz, "dt:=%g" % (1.0 / controller_hz),
                   "duration_s:=%g" % args.duration, "crash_at_s:=%g" % args.crash_at, "fault:=" + args.fault,
+                  "fault_at_s:=%g" % fault_at, "fault_duration_s:=%g" % args.fault_duration,
+                  "fault_params:=" + " ".join("%s=%s" % kv for kv in sorted(fault_params.items())),
+                  "servo_relay:=%s" % ("true" if relay else "false"),
+                  "link_relay:=%s" % ("true" if link_relay else "false"),
                   "gs_udp_bind_port:=%d" % gs_bind, "gs_udp_remote_port:=%d" % gs_remote,
                   "wait_for_recorder:=%s" % ("false" if args.no_bag else "true")]
         launcher = procs.start("launch", launch)
@@ -156,6 +185,9 @@ def main(argv=None):
                 break
             if launcher.poll() is not None:
                 raise RuntimeError("the launch ended before the flight did: see %s/launch.log" % out)
+            if args.timeout_s is not None and time.monotonic() - t0 > args.timeout_s:
+                status = "timeout"
+                raise RuntimeError("past the wall-clock limit of %.0f s: stopped" % args.timeout_s)
             if not args.quiet:
                 try:
                     with open(os.path.join(out, "progress")) as f:
@@ -174,6 +206,7 @@ def main(argv=None):
             code = int(f.read().strip() or 1)
     except RuntimeError as e:
         print("run_flight: %s" % e, file=sys.stderr)
+        error = str(e)
         code = 1
     finally:
         procs.stop_all()
@@ -184,15 +217,25 @@ def main(argv=None):
                 pass
         shutil.rmtree(run_dir, ignore_errors=True)
     summary = os.path.join(out, "summary.json")
-    if code == 0 and os.path.exists(summary):
-        with open(summary) as f:
-            s = json.load(f)
-        report(s, out, bag=not args.no_bag)
-        if not args.no_bag:
-            code = write_report(out)
-    elif os.path.exists(os.path.join(out, "error.txt")):
-        with open(os.path.join(out, "error.txt")) as f:
-            print("run_flight: the simulator stopped: %s" % f.read().strip(), file=sys.stderr)
+    if code != 0 or not os.path.exists(summary):
+        # The flight did not finish: say so in the summary, never leave it missing.
+        if os.path.exists(os.path.join(out, "error.txt")):
+            with open(os.path.join(out, "error.txt")) as f:
+                error = "the simulator stopped: " + f.read().strip()
+        failed = {"aircraft": args.aircraft, "seed": args.seed, "status": status, "error": error,
+                  "fault": {"class": args.fault, "at_s": fault_at, "duration_s": args.fault_duration,
+                            "params": fault_params, "took_effect": False, "evidence": "the flight did not finish"},
+                  "verdict": None}
+        with open(summary, "w") as f:
+            json.dump(failed, f, indent=2)
+        if error:
+            print("run_flight: %s" % error, file=sys.stderr)
+        return code or 1
+    with open(summary) as f:
+        s = json.load(f)
+    report(s, out, bag=not args.no_bag)
+    if not args.no_bag:
+        code = write_report(out)
     return code
 
 
@@ -226,6 +269,14 @@ def report(s, out, bag=True):
         s["unsafe_servo_commands"]["outside_S_u"], s["unsafe_servo_commands"]["steps"],
         s["state_while_ha_flies"]["max_S_x_row"]))
     print("mission: %d of %d waypoints reached" % (s["mission"]["reached"], s["mission"]["waypoints"]))
+    f, v = s["fault"], s["verdict"]
+    print("fault: %s at %s s for %s s %s: %s" % (f["class"], f["at_s"], f["duration_s"], f["params"] or "",
+                                                 "took effect" if f["took_effect"] else "DID NOT TAKE EFFECT"))
+    print("  %s" % f["evidence"])
+    print("verdict: %s (unsafe commands %d, %.2f s outside S_x under the HA, takeover latency %s s, "
+          "recovery %s s%s), status %s" % ("ok" if v["ok"] else "PROPERTY BROKEN", v["unsafe_commands"],
+                                            v["envelope_violations_under_ha_s"], v["takeover_latency_s"],
+                                            v["recovery_s"], ", latched" if v["latched"] else "", s["status"]))
     print("output: %s (%ssummary.json)" % (out, "flight.bag, report/, " if bag else ""))
 
 

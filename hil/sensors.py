@@ -254,6 +254,18 @@ class Vn200Port:
                 self.on_written(first, n)
         return n
 
+    def skip_until(self, t_s):
+        """The packets whose sensor time is in (last, t_s] are lost (a cut serial line): none is
+        written, and the stream goes on from t_s as if they had been."""
+        if not self.configured() or self.next_index is None:
+            return 0
+        rate = self.rate_hz()
+        n = 0
+        while self.next_index / rate <= t_s + 1e-9:
+            self.next_index += 1
+            n += 1
+        return n
+
     def close(self):
         self.pty.close()
 

@@ -40,7 +40,8 @@ from sensor_msgs.msg import Temperature
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 sys.path.insert(0, ROOT)
-from hil import ha_channel, mission, sensors, verdicts  # noqa: E402
+from hil import faults, ha_channel, link_relay, mission, sensors, verdicts  # noqa: E402
+from hil.faults.base import RC_NEUTRAL, Board  # noqa: E402
 from hil.fdm import Fdm, FdmCrash, Surfaces, Wind  # noqa: E402
 
 FT_PER_M = sensors.FT_PER_M
@@ -211,10 +212,18 @@ class Simulation:
         self.controller_dt_s = float(rospy.get_param(self.controller_node + "/dt", 0.05))
         self.reach_ft = float(rospy.get_param(self.controller_node + "/dist2b", 80.0))
         self.duration_s = float(p("duration_s", 240.0))
+        # The fault (hil/faults): a class, when (negative: none), for how long (negative: to the
+        # end), its parameters ("key=value key=value"). crash_at_s is the case study's name for when.
         self.crash_at_s = float(p("crash_at_s", 100.0))
-        self.fault = p("fault", "crash")  # crash: SIGKILL; hang: SIGSTOP (alive but silent)
-        if self.fault not in ("crash", "hang"):
-            raise RuntimeError("~fault must be crash or hang, not %r" % self.fault)
+        self.fault_name = p("fault", "crash")
+        if self.fault_name not in faults.CLASSES + ("none",):
+            raise RuntimeError("~fault must be one of %s or none, not %r" % (", ".join(faults.CLASSES), self.fault_name))
+        self.fault_at_s = float(p("fault_at_s", self.crash_at_s))
+        self.fault_duration_s = float(p("fault_duration_s", -1.0))
+        self.fault_params = faults.parse_params(str(p("fault_params", "")).split())
+        # Commands the HP corrupts pass through here: the arduino node then forwards
+        # ~servo_relay_topic instead of /servo_op (DG808_hil.launch's servo_relay).
+        self.relay_topic = p("servo_relay_topic", "") or None
         self.ground_s = float(p("ground_s", 2.0))
         self.start_height_ft = float(p("start_height_ft", 200.0))
         self.start_airspeed_ftps = float(p("start_airspeed_ftps", 60.0))
@@ -245,6 +254,13 @@ class Simulation:
         rospy.Subscriber("/servo_op", ServoCommand, self.on_servo_op, queue_size=1000, tcp_nodelay=True)
         rospy.Subscriber("/way", way, lambda m: self.waiter.hit("way", m), queue_size=10)
         rospy.Subscriber("/to_hil", hil_data, self.on_to_hil, queue_size=1000)
+        self.relay_pub = None if self.relay_topic is None else \
+            rospy.Publisher(self.relay_topic, ServoCommand, queue_size=None, tcp_nodelay=True)
+        self.arduino_input = self.relay_topic or "/servo_op"
+        self.relayed = 0        # commands the HA's link must have delivered (relay)
+        self.relayed_last = None
+        self.relay_verified = False
+        self.ha_commands = 0    # the HA's count of commands received, as of its last reply
         self.waypoint_log = []  # (t_s, waypoint_index) on change
         self.sim_t_s = 0.0
 
@@ -277,6 +293,20 @@ class Simulation:
         self.last_cmd_seq = None
         self.controller_index = -1
         self.progress_path = os.path.join(self.out_dir, "progress")
+        # A man in the middle on the HP-HA link: the arduino node opens ~ha_link, ha_sil serves
+        # ~ha_link_sil (DG808_hil.launch's link_relay).
+        self.link_relay = None
+        if p("ha_link_sil", ""):
+            self.link_relay = link_relay.LinkRelay(p("ha_link", ""), p("ha_link_sil", ""))
+        self.fault = None
+        if self.fault_name != "none" and self.fault_at_s >= 0.0:
+            if faults.needs_link_relay(self.fault_name) and self.link_relay is None:
+                raise RuntimeError("fault %s needs the link relay (link_relay:=true)" % self.fault_name)
+            if self.realtime and faults.needs_relay(self.fault_name):
+                raise RuntimeError("fault %s corrupts the HP's commands: lockstep only" % self.fault_name)
+            if faults.needs_relay(self.fault_name) and self.relay_pub is None:
+                raise RuntimeError("fault %s needs the command relay (servo_relay:=true)" % self.fault_name)
+            self.fault = faults.inject(self.fault_name, self, self.fault_at_s, self.fault_duration_s, self.fault_params)
 
     # --- callbacks -------------------------------------------------------------------------
     def on_vn_delivered(self, _msg):
@@ -306,6 +336,13 @@ class Simulation:
                 break
         return best
 
+    def truth_since(self, t_s):
+        """(t_s, HilTruth) of every step from t_s on."""
+        return [(t_us * 1e-6, m) for t_us, m, _, _, _ in self.records if t_us * 1e-6 >= t_s - 1e-9]
+
+    def controller_pid(self):
+        return node_pid(self.master, self.controller_node)
+
     def advance(self, duration_s):
         n = int(round(duration_s * 200.0))
         t0 = self.history[-1][0]
@@ -320,7 +357,7 @@ class Simulation:
     # --- participants ----------------------------------------------------------------------
     def controller_connected(self):
         return inbound_connected(self.master, self.controller_node, CONTROLLER_INPUTS) and \
-            inbound_connected(self.master, "/arduino", ["/servo_op"])
+            inbound_connected(self.master, "/arduino", [self.arduino_input])
 
     def service_while_waiting(self):
         self.hp_vn.service_commands()
@@ -347,12 +384,20 @@ class Simulation:
         while not self.chan.accept(1.0):
             if rospy.is_shutdown() or time.monotonic() > deadline:
                 raise RuntimeError("ha_sil never connected to the control channel")
+        if self.link_relay is not None:
+            self.wait_until("ha_sil's link pty for the relay", lambda r: self.link_relay.connect(), 60.0)
         self.wait_until("the HA link (arduino node <-> ha_sil)", lambda r: r.flags & ha_channel.R_LINK_CONNECTED, 120.0)
         self.wait_until("the vn200 node's configuration of the VN-200", lambda r: self.hp_vn.configured(), 120.0)
         inputs = CONTROLLER_INPUTS[1:] if self.realtime else CONTROLLER_INPUTS  # no /clock on the wall clock
         self.wait_until("controller_DG808 subscribed to its inputs",
                         lambda r: inbound_connected(self.master, self.controller_node, inputs) and
-                        inbound_connected(self.master, "/arduino", ["/servo_op"]), 120.0)
+                        inbound_connected(self.master, "/arduino", [self.arduino_input]), 120.0)
+        # With the relay, what reaches the HA must be what the relay sends, and nothing else.
+        self.relay_verified = self.relay_topic is not None and \
+            inbound_connected(self.master, "/arduino", [self.relay_topic]) and \
+            not inbound_connected(self.master, "/arduino", ["/servo_op"])
+        if self.relay_topic is not None and not self.relay_verified:
+            raise RuntimeError("the arduino node does not take its commands from the relay %s only" % self.relay_topic)
         if self.wait_for_recorder:
             self.wait_until("the flight recorder", lambda r: self.truth_pub.get_num_connections() > 0, 60.0)
         for line in self.hp_vn.log:
@@ -372,13 +417,11 @@ class Simulation:
         t_s = t_us * 1e-6
         self.sim_t_s = t_s
         tm = self.timer
-        if self.crash_at_s >= 0.0 and self.hp_alive and t_s >= self.crash_at_s and not hasattr(self, "crashed_at"):
-            self.crashed_at = t_s
-            self.kill_controller(t_s)
+        fault = self.fault
+        if fault is not None:
+            fault.on_step(t_s)
         tm.lap("scenario")
-        self.hp_vn.service_commands()
-        self.hp_packets += self.hp_vn.emit_until(t_s, self.truth_at)
-        self.ha_vn.emit_until(t_s, self.truth_at)
+        self.emit_sensors(t_s)
         tm.lap("sensors")
         if not self.waiter.wait_count("vn", self.hp_packets, self.wait_s):
             self.event(t_s, "vn200 node late: %d of %d packets published" % (self.waiter.count("vn"), self.hp_packets))
@@ -389,18 +432,32 @@ class Simulation:
         want = self.waiter.count("servo_op") + 1  # counted before the clock moves: it may answer at once
         self.clock_pub.publish(Clock(clock=rospy.Time(t_us // 1000000, (t_us % 1000000) * 1000)))
         cmd_seq = None
+        msg = None
         if expect_command:
             if self.waiter.wait_count("servo_op", want, self.wait_s):
-                cmd_seq = self.waiter.latest["servo_op"].seq
+                msg = self.waiter.latest["servo_op"]
+                cmd_seq = msg.seq
             else:
                 self.hp_alive = False
                 self.event(t_s, "controller did not answer within %.1f s: not waited for until it is back" % self.wait_s)
+        wait_count = False
+        if fault is not None:
+            out = fault.command(t_s, msg)
+            if self.relay_pub is not None:
+                for c in out:
+                    self.relay_pub.publish(c)
+                    self.relayed_last = c
+                self.relayed = self.ha_commands + len(out)
+                cmd_seq, wait_count = (self.relayed, True) if out else (None, False)
         tm.lap("wait_controller")
         tr = self.truth_at(t_s)
+        board = self.board_inputs(t_s, tr)
         reply = self.chan.step(t_us, self.ha_vn.pty.written, cmd_seq, int(self.wait_s * 1000),
-                               (1100, 1500, 1500, 1500, 1000), True,
-                               self.ams.read_ftps(tr.airspeed_cal_mps),
-                               self.battery.read_v(t_s, tr.servo.throttle))
+                               board.rc_pulses_us, board.rc_valid, board.airspeed_ftps, board.battery_v,
+                               airspeed_ok=board.airspeed_ok, battery_ok=board.battery_ok, wait_count=wait_count)
+        self.ha_commands = reply.commands_received
+        if fault is not None:
+            fault.after_step(t_s, reply)
         # The HA's share: the wall time it waited for the command to come through the arduino node.
         tm.totals["ha_step"] = tm.totals.get("ha_step", 0.0) - reply.wait_us * 1e-6
         tm.totals["ha_wait_command"] = tm.totals.get("ha_wait_command", 0.0) + reply.wait_us * 1e-6
@@ -426,17 +483,15 @@ class Simulation:
         t_s = t_us * 1e-6
         self.sim_t_s = t_s
         tm = self.timer
-        if self.crash_at_s >= 0.0 and t_s >= self.crash_at_s and not hasattr(self, "crashed_at"):
-            self.crashed_at = t_s
-            self.kill_controller(t_s)
+        if self.fault is not None:
+            self.fault.on_step(t_s)
         tm.lap("scenario")
-        self.hp_vn.service_commands()
-        self.hp_vn.emit_until(t_s, self.truth_at)
-        self.ha_vn.emit_until(t_s, self.truth_at)
+        self.emit_sensors(t_s)
         tm.lap("sensors")
         tr = self.truth_at(t_s)
-        self.chan.send_inputs((1100, 1500, 1500, 1500, 1000), True, self.ams.read_ftps(tr.airspeed_cal_mps),
-                              self.battery.read_v(t_s, tr.servo.throttle))
+        board = self.board_inputs(t_s, tr)
+        self.chan.send_inputs(board.rc_pulses_us, board.rc_valid, board.airspeed_ftps, board.battery_v,
+                              airspeed_ok=board.airspeed_ok, battery_ok=board.battery_ok)
         replies = self.chan.pending_replies()
         now = time.monotonic()
         for r in replies:
@@ -444,6 +499,8 @@ class Simulation:
         reply = replies[-1] if replies else None
         if reply is not None:
             self.last_reply = reply
+            if self.fault is not None:
+                self.fault.after_step(t_s, reply)
             if reply.flags & ha_channel.R_RESTART_REQUESTED:
                 self.event(t_s, "HA requests an HP restart (restart %d)" % reply.restart_count)
         tm.lap("ha_step")
@@ -478,24 +535,25 @@ class Simulation:
         self.records.append((t_us, m, reply, cmd_seq, tr.airspeed_cal_mps * FT_PER_M))
 
     # --- faults and recovery ---------------------------------------------------------------
-    def kill_controller(self, t_s):
-        pid = node_pid(self.master, self.controller_node)
-        self.hp_alive = False
-        if pid is None:
-            self.event(t_s, "crash injection: controller not running")
-            return
-        if self.fault == "hang":
-            os.kill(pid, signal.SIGSTOP)  # hung: its process and its ROS connections stay up
-            self.event(t_s, "HP hang injected: SIGSTOP to controller_DG808 (pid %d)" % pid)
-            return
-        os.kill(pid, signal.SIGKILL)
-        deadline = time.monotonic() + 10.0
-        while os.path.exists("/proc/%d" % pid) and time.monotonic() < deadline:
-            with open("/proc/%d/stat" % pid) as f:
-                if f.read().rsplit(")", 1)[1].split()[0] == "Z":
-                    break
-            time.sleep(0.005)
-        self.event(t_s, "HP crash injected: SIGKILL to controller_DG808 (pid %d)" % pid)
+    def emit_sensors(self, t_s):
+        """This period's VN-200 packets on both ports; a fault may keep a port silent (its packets
+        are lost, not delayed)."""
+        self.hp_vn.service_commands()
+        f = self.fault
+        if f is None or f.hp_vn_ok(t_s):
+            self.hp_packets += self.hp_vn.emit_until(t_s, self.truth_at)
+        else:
+            self.hp_vn.skip_until(t_s)
+        if f is None or f.ha_vn_ok(t_s):
+            self.ha_vn.emit_until(t_s, self.truth_at)
+        else:
+            self.ha_vn.skip_until(t_s)
+
+    def board_inputs(self, t_s, tr):
+        """What the Due's board layer reads this period; a fault may change it."""
+        b = Board(RC_NEUTRAL, True, self.ams.read_ftps(tr.airspeed_cal_mps), True,
+                  self.battery.read_v(t_s, tr.servo.throttle), True)
+        return b if self.fault is None else self.fault.board(t_s, b)
 
     def await_restart(self, t_s):
         """Time stands until hp_supervisor has a new controller running and connected."""
@@ -604,7 +662,7 @@ class Simulation:
         return verdicts.summarize(self)
 
     def close(self):
-        for c in (self.chan, self.hp_vn, self.ha_vn):
+        for c in (self.chan, self.hp_vn, self.ha_vn) + ((self.link_relay,) if self.link_relay else ()):
             try:
                 c.close()
             except OSError:
@@ -633,9 +691,12 @@ def main():
         code = 1
     finally:
         sim.close()
+        # Atomic: run_flight.py reads it as soon as the name exists, and an empty file read
+        # mid-write counted as a failed flight (and its summary was overwritten).
         done = os.path.join(sim.out_dir, "done")
-        with open(done, "w") as f:
+        with open(done + ".tmp", "w") as f:
             f.write("%d\n" % code)
+        os.replace(done + ".tmp", done)
     return code
 
 

@@ -99,11 +99,116 @@ def waypoint_progress(plan, home, records, regions, reach_ft):
             for i, (b, f) in enumerate(zip(best, first))]
 
 
+def unsafe(regions, applied):
+    """A servo output outside S_u, or not a number at all."""
+    return not all(math.isfinite(v) for v in applied) or regions.su_max(applied) > 1.0 + EPS
+
+
+def fault_verdict(sim, progress):
+    """The Simplex property for this flight, from the simulator's truth: what the servos were
+    driven with (S_u), where the aircraft was while the HA flew (S_x), and when the HA took the
+    servos against when it had to (the fault class's own deadline, or the truth leaving S_x,
+    passing the ceiling or falling to the stall while the HP flew)."""
+    r = sim.regions
+    recs = [x for x in sim.records if x[0] * 1e-6 > sim.ground_s]
+    period = r.period_s
+    f = sim.fault
+    at = f.at_s if f is not None else None
+    unsafe_n = sum(1 for x in sim.records if unsafe(r, x[2].applied))
+    # Time outside S_x while the HA's safety controller drives the servos, split by whether the
+    # excursion began while the HP flew (the HA inherited it) or under the HA itself.
+    outside_ha = inherited = 0
+    excursion_from_hp = False
+    prev_out = False
+    max_row = None
+    for x in recs:
+        row = r.sx_max(x[1])
+        out = row > 1.0
+        if out and not prev_out:
+            excursion_from_hp = x[2].controller == 0
+        if x[2].controller in HA_SIDE:
+            if max_row is None or row > max_row:
+                max_row, worst = row, x
+            if out:
+                outside_ha += 1
+                inherited += 1 if excursion_from_hp else 0
+        prev_out = out
+    due = f.takeover_due_s() if f is not None else None
+    truth_due = None
+    if at is not None:
+        for x in recs:
+            t = x[0] * 1e-6
+            m = x[1]
+            if t < at - 1e-9 or x[2].controller != 0 or m.on_ground:
+                continue
+            airborne = m.height_above_home_ft > r.airborne_ft
+            if r.sx_max(m) > 1.0 or m.height_above_home_ft > r.ceiling_ft or (airborne and x[4] <= r.stall_ftps):
+                truth_due = t
+                break
+    dues = [d for d in (due, truth_due) if d is not None]
+    due_s = min(dues) if dues else None
+    took = lat = None
+    if due_s is not None:
+        took = next((x[0] * 1e-6 for x in recs if x[0] * 1e-6 >= due_s - 1e-9 and x[2].controller != 0), None)
+        lat = None if took is None else round(took - due_s, 4) + 0.0
+    off = back = None
+    if at is not None:
+        off = next((x[0] * 1e-6 for x in recs if x[0] * 1e-6 >= at - 1e-9 and x[2].controller != 0), None)
+        if off is not None:
+            back = next((x[0] * 1e-6 for x in recs if x[0] * 1e-6 > off and x[2].controller == 0), None)
+    airborne = [x for x in recs if not x[1].on_ground]
+    crashed = any("aircraft crashed" in e["event"] for e in sim.events)
+    env_s = round(outside_ha * period, 4)
+    takeover_ok = due_s is None or (lat is not None and lat <= period + 1e-9)
+    return {
+        "ok": unsafe_n == 0 and outside_ha == 0 and takeover_ok and not crashed,
+        "unsafe_commands": unsafe_n,
+        "envelope_violations_under_ha_s": env_s,
+        "envelope_under_ha": {"outside_S_x_s": env_s, "inherited_from_hp_s": round(inherited * period, 4),
+                              "left_under_ha_s": round((outside_ha - inherited) * period, 4),
+                              "max_S_x_row": None if max_row is None else round(max_row, 4),
+                              "worst": None if max_row is None else worst_state(worst)},
+        "takeover_due_s": None if due_s is None else round(due_s, 4),
+        "takeover_due_by": None if due_s is None else ("fault" if due is not None and due_s == due else "truth"),
+        "takeover_s": None if took is None else round(took, 4),
+        "takeover_latency_s": lat,
+        "takeover_within_one_period": takeover_ok,
+        "hp_lost_control_s": None if off is None else round(off, 4),
+        "recovery_s": None if back is None else round(back - at, 4),
+        "latched": any(x[2].controller == 3 for x in recs),
+        "aircraft_crashed": crashed,
+        "min_height_agl_ft": round(min(x[1].height_above_home_ft for x in airborne), 2) if airborne else None,
+        "min_airspeed_margin_ftps": round(min(x[4] for x in airborne) - r.stall_ftps, 2) if airborne else None,
+        "mission_progress": round(sum(1 for p in progress if p["first_reached_s"] is not None) / float(len(progress)), 4)
+        if progress else 0.0,
+    }
+
+
+def worst_state(x):
+    """Where the state was at the step of the largest S_x row under the HA."""
+    m = x[1]
+    return {"t_s": round(x[0] * 1e-6, 3), "controller": CONTROLLERS.get(x[2].controller),
+            "alpha_deg": round(m.alpha_deg, 2), "beta_deg": round(m.beta_deg, 2), "roll_deg": round(m.roll_deg, 2),
+            "pitch_deg": round(m.pitch_deg, 2), "p_deg_s": round(m.p_deg_s, 1), "q_deg_s": round(m.q_deg_s, 1),
+            "r_deg_s": round(m.r_deg_s, 1), "height_ft": round(m.height_above_home_ft, 1),
+            "calibrated_airspeed_ftps": round(x[4], 2)}
+
+
+def fault_record(sim):
+    f = sim.fault
+    if f is None:
+        return {"class": "none", "at_s": None, "duration_s": None, "params": {}, "took_effect": True,
+                "evidence": "no fault injected"}
+    took, evidence = f.effect()
+    return {"class": f.name, "at_s": f.at_s, "duration_s": f.duration_s, "params": f.params,
+            "took_effect": bool(took), "evidence": evidence, "notes": f.notes}
+
+
 def summarize(sim):
     r = sim.regions
     recs = sim.records
     airborne = [x for x in recs if not x[1].on_ground and x[1].height_above_home_ft > r.airborne_ft]
-    unsafe_servo = [x for x in recs if r.su_max(x[2].applied) > 1.0 + EPS]
+    unsafe_servo = [x for x in recs if unsafe(r, x[2].applied)]
     ha_flying = [x for x in recs if x[2].controller in HA_SIDE and x[0] * 1e-6 > sim.ground_s]
     sx_ha = max((r.sx_max(x[1]) for x in ha_flying), default=None)
     segs = segments(recs)
@@ -140,6 +245,8 @@ def summarize(sim):
     cal = [x[4] for x in airborne]
     reach_ft = sim.reach_ft  # the controller's own "waypoint reached" distance (dist2b)
     progress = waypoint_progress(sim.plan, sim.home, recs, r, reach_ft)
+    fault = fault_record(sim)
+    verdict = fault_verdict(sim, progress)
     flown = len(recs) * sim.period_us * 1e-6
     t = sim.timer.totals
     steps = max(len(recs), 1)
@@ -178,4 +285,7 @@ def summarize(sim):
                     "per_waypoint": progress,
                     "guidance_waypoint_index": sim.waypoint_log},
         "events": sim.events,
+        "fault": fault,
+        "verdict": verdict,
+        "status": "ok" if fault["took_effect"] else "fault_not_effective",
     }

@@ -509,8 +509,12 @@ static uint16_t gather_period_inputs(Sil *sil, const HaSilStep *st) {
     int np = 0;
     int want_cmd, want_vn;
     (void)drain_inputs(sil, sil->sim_now_us);
-    want_cmd = (st->flags & HA_SIL_WAIT_COMMAND) != 0u &&
-               !(sil->commands > 0u && sil->last_cmd_seq == st->cmd_seq);
+    if ((st->flags & HA_SIL_WAIT_COUNT) != 0u) {
+      want_cmd = (st->flags & HA_SIL_WAIT_COMMAND) != 0u && sil->commands < st->cmd_seq;
+    } else {
+      want_cmd = (st->flags & HA_SIL_WAIT_COMMAND) != 0u &&
+                 !(sil->commands > 0u && sil->last_cmd_seq == st->cmd_seq);
+    }
     want_vn = sil->vn_fd >= 0 && sil->ins.bytes_read < st->vn_bytes;
     if (!want_cmd && !want_vn) {
       return 0u;

@@ -34,6 +34,9 @@
 #define HA_SIL_AIRSPEED_OK 2u  /* the AMS5812 read succeeded (else the core gets -1) */
 #define HA_SIL_BATTERY_OK 4u
 #define HA_SIL_RC_VALID 8u     /* every RC channel captured recently */
+/* With HA_SIL_WAIT_COMMAND: cmd_seq counts the HP commands the link must have delivered since the
+ * start, not a sequence number (a fault relay may repeat or replay sequence numbers). */
+#define HA_SIL_WAIT_COUNT 16u
 
 /* HaSilReply.flags */
 #define HA_SIL_R_LINK_CONNECTED 1u /* the host negotiated topics: /pwm and /decision_status go out */

@@ -16,6 +16,8 @@ One flight per rate, SECONDS of simulated time with the HP crash at a third of i
 Then one flight of REALTIME_SECONDS in real time (no crash) for the latency through the whole
 chain: a VN-200 packet written to the HP's pty, the vn200 node, controller_DG808 (its timer),
 the arduino node, the HA's link and its next period driving the servos with that command.
+Then a seeded fault campaign of 100 flights over every fault class on Dask (bench_campaign.py:
+the Simplex property over all of them, flights per hour, the campaign's speed).
 Wall time on a shared machine measures the neighbours too. Prints `metric: value unit` lines,
 then `machine: ...`."""
 import json
@@ -27,6 +29,7 @@ import tempfile
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 from bench_fdm import machine  # noqa: E402
+import bench_campaign  # noqa: E402
 
 SECONDS = 60
 REALTIME_SECONDS = 30
@@ -61,6 +64,9 @@ def main():
     print("hil_sensor_to_servo_latency_p50: %.2f ms" % lat["p50_ms"])
     print("hil_sensor_to_servo_latency_p99: %.2f ms" % lat["p99_ms"])
     print("hil_sensor_to_servo_latency_max: %.2f ms (%d packets, real time, 100 Hz)" % (lat["max_ms"], lat["packets"]))
+    sys.stdout.flush()
+    for name, value in bench_campaign.run():
+        print("hil_campaign_%s: %s" % (name, value))
     print("machine: %s" % header)
 
 

@@ -1,0 +1,238 @@
+"""One flight of a campaign under its own wall-clock limit, and its row of the campaign table.
+
+The flight (hil/run_flight.py) runs in its own process group and session; the processes it starts
+(roscore, roslaunch and every node, a controller hp_supervisor restarts) each get their own group,
+so the flight is told apart by a token in the environment every one of them inherits. Past the
+wall-clock limit the flight gets SIGTERM (run_flight.py stops what it started), then every process
+group holding the token gets SIGKILL, until none is left: Dask cannot cancel a running task, so
+this wrapper is what enforces the limit. A flight that dies or runs out of time gives a row all
+the same, with its status and reason."""
+import json
+import math
+import os
+import signal
+import socket
+import subprocess
+import sys
+import time
+import uuid
+
+TOKEN_VAR = "HIL_CAMPAIGN_FLIGHT"
+# The row's columns, in order (the CSV's header).
+COLUMNS = ["flight_id", "fault_class", "seed", "fault_at_s", "fault_duration_s", "fault_params",
+           "status", "reason", "took_effect", "ok", "broke_property", "unsafe_commands",
+           "envelope_violations_under_ha_s", "sx_inherited_from_hp_s", "sx_left_under_ha_s",
+           "max_sx_row_under_ha", "takeover_latency_s", "takeover_within_one_period", "aircraft_crashed",
+           "recovery_s", "latched", "min_height_agl_ft", "min_airspeed_margin_ftps",
+           "mission_progress", "simulated_s", "flight_duration_s", "wall_s", "x_real_time",
+           "exit_code", "leftovers_killed", "worker", "folder", "command"]
+
+
+def holders(token):
+    """pid -> process group of every process whose environment holds this flight's token."""
+    needle = ("%s=%s" % (TOKEN_VAR, token)).encode()
+    found = {}
+    me = os.getpid()
+    for pid in os.listdir("/proc"):
+        if not pid.isdigit() or int(pid) == me:
+            continue
+        try:
+            with open("/proc/%s/environ" % pid, "rb") as f:
+                env = f.read().split(b"\0")
+            if needle in env:
+                found[int(pid)] = os.getpgid(int(pid))
+        except (OSError, ProcessLookupError):
+            continue
+    return found
+
+
+def kill_all(token, popen=None, bound_s=30.0):
+    """SIGKILL every process group of the flight until no process holds its token; returns how
+    many processes were found. The flight's own group first (its leader may be a zombie until
+    reaped, which is why it is reaped here)."""
+    killed = set()
+    deadline = time.monotonic() + bound_s
+    while True:
+        if popen is not None and popen.poll() is None:  # reaped: its pid may be another's
+            try:
+                os.killpg(popen.pid, signal.SIGKILL)
+            except (ProcessLookupError, PermissionError):
+                pass
+        found = holders(token)
+        for pid, pgid in found.items():
+            killed.add(pid)
+            for target in (lambda: os.killpg(pgid, signal.SIGKILL), lambda: os.kill(pid, signal.SIGKILL)):
+                try:
+                    target()
+                except (ProcessLookupError, PermissionError):
+                    pass
+        if popen is not None and popen.returncode is None:
+            try:
+                popen.wait(timeout=0.2)
+            except subprocess.TimeoutExpired:
+                pass
+        # Zombies still show their environment until their parent reaps them; a zombie is dead.
+        if not [p for p in holders(token) if not _zombie(p)]:
+            return len(killed)
+        if time.monotonic() > deadline:
+            return len(killed)
+        time.sleep(0.1)
+
+
+def _zombie(pid):
+    try:
+        with open("/proc/%d/stat" % pid) as f:
+            return f.read().rsplit(")", 1)[1].split()[0] in ("Z", "X")
+    except OSError:
+        return True
+
+
+def _num(v):
+    return None if v is None or (isinstance(v, float) and math.isnan(v)) else v
+
+
+def verdict_of(summary):
+    """The agreed per-flight verdict: summary["verdict"] when run_flight.py writes it, else the
+    same quantities from the fields the first lockstep flight writes."""
+    v = dict(summary.get("verdict") or {})
+    tk = summary.get("takeover") or {}
+    if "unsafe_commands" not in v:
+        v["unsafe_commands"] = (summary.get("unsafe_servo_commands") or {}).get("outside_S_u")
+    if "envelope_violations_under_ha_s" not in v:
+        inside = (summary.get("state_while_ha_flies") or {}).get("inside_S_x")
+        # The first summary says whether S_x was left while the HA flew, not for how long.
+        v["envelope_violations_under_ha_s"] = None if inside is None else (0.0 if inside else float("nan"))
+    if "takeover_latency_s" not in v:
+        v["takeover_latency_s"] = tk.get("latency_after_deadline_miss_s")
+    if "recovery_s" not in v:
+        back, at = tk.get("hand_back_s"), tk.get("crash_injected_s")
+        v["recovery_s"] = None if back is None or at is None else round(back - at, 3)
+    if "latched" not in v:
+        v["latched"] = any(s.get("controller") == "HA_LATCHED" for s in summary.get("who_flew") or [])
+    m = summary.get("margins") or {}
+    if "min_height_agl_ft" not in v:
+        v["min_height_agl_ft"] = m.get("min_height_above_home_ft")
+    if "min_airspeed_margin_ftps" not in v:
+        v["min_airspeed_margin_ftps"] = m.get("min_stall_margin_ftps")
+    if "mission_progress" not in v:
+        mi = summary.get("mission") or {}
+        v["mission_progress"] = round(mi["reached"] / mi["waypoints"], 3) if mi.get("waypoints") else None
+    if "ok" not in v:
+        env = v["envelope_violations_under_ha_s"]
+        v["ok"] = (v["unsafe_commands"] == 0) and env is not None and not math.isnan(env) and env == 0.0
+    return v
+
+
+def fault_of(summary):
+    f = dict(summary.get("fault") or {})
+    if "took_effect" not in f:
+        events = [e.get("event", "") for e in summary.get("events") or []]
+        f["took_effect"] = any("injected" in e and "not running" not in e for e in events)
+    return f
+
+
+def broke_property(row):
+    """The Simplex property: no servo command outside S_u, the aircraft inside S_x while the HA
+    flies (and the flight's own verdict, when it gives one)."""
+    if row["status"] not in ("ok", "fault_not_effective"):
+        return False  # not known: such flights are listed as died / timed out
+    env = row["envelope_violations_under_ha_s"]
+    return bool((row["unsafe_commands"] or 0) > 0 or env is None or (isinstance(env, float) and math.isnan(env))
+                or env > 0 or row["ok"] is False)
+
+
+def run(flight, argv, folder, wall_limit_s, term_grace_s=30.0, env=None):
+    """Flies one flight (argv: its command) and returns its row. Never raises for what the flight
+    does: a flight that fails gives a row with status died or timeout."""
+    os.makedirs(folder, exist_ok=True)
+    token = uuid.uuid4().hex
+    env = dict(env if env is not None else os.environ)
+    env[TOKEN_VAR] = token
+    row = {c: None for c in COLUMNS}
+    row.update(flight_id=flight.flight_id, fault_class=flight.fault_class, seed=flight.seed,
+               fault_at_s=flight.fault_at_s, fault_duration_s=flight.fault_duration_s,
+               fault_params=json.dumps(dict(flight.params), sort_keys=True),
+               flight_duration_s=flight.duration_s, folder=folder,
+               command=" ".join(_quote(a) for a in argv), worker=socket.gethostname())
+    t0 = time.monotonic()
+    timed_out = False
+    with open(os.path.join(folder, "campaign_flight.log"), "wb") as log:
+        p = subprocess.Popen(argv, env=env, stdout=log, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
+                             start_new_session=True)
+        try:
+            code = p.wait(timeout=wall_limit_s)
+        except subprocess.TimeoutExpired:
+            timed_out = True
+            try:
+                os.killpg(p.pid, signal.SIGTERM)
+                p.wait(timeout=term_grace_s)
+            except (ProcessLookupError, subprocess.TimeoutExpired):
+                pass
+            kill_all(token, p)
+            code = p.wait()
+    row["leftovers_killed"] = kill_all(token)
+    row["wall_s"] = round(time.monotonic() - t0, 2)
+    row["exit_code"] = code
+    summary = None
+    try:
+        with open(os.path.join(folder, "summary.json")) as f:
+            summary = json.load(f)
+    except (OSError, ValueError):
+        pass
+    if timed_out:
+        row["status"] = "timeout"
+        row["reason"] = "past the wall-clock limit of %g s: killed whole" % wall_limit_s
+    elif summary is None or code != 0 or summary.get("status") in ("died", "timeout"):
+        # run_flight.py says why in a summary of its own when it can (its own --timeout-s too).
+        s = summary or {}
+        row["status"] = "timeout" if s.get("status") == "timeout" else "died"
+        row["reason"] = ("exit %s: %s" % (code, s["error"])) if s.get("error") else _death_reason(folder, code)
+    else:
+        row["status"] = summary.get("status") or "ok"
+    if row["status"] not in ("died", "timeout"):
+        v, f = verdict_of(summary), fault_of(summary)
+        row["took_effect"] = f.get("took_effect")
+        for k in ("ok", "unsafe_commands", "envelope_violations_under_ha_s", "takeover_latency_s", "recovery_s",
+                  "latched", "min_height_agl_ft", "min_airspeed_margin_ftps", "mission_progress"):
+            row[k] = _num(v.get(k)) if k != "envelope_violations_under_ha_s" else v.get(k)
+        env = v.get("envelope_under_ha") or {}
+        row["sx_inherited_from_hp_s"] = env.get("inherited_from_hp_s")
+        row["sx_left_under_ha_s"] = env.get("left_under_ha_s")
+        row["max_sx_row_under_ha"] = env.get("max_S_x_row", (summary.get("state_while_ha_flies") or {}).get("max_S_x_row"))
+        row["takeover_within_one_period"] = v.get("takeover_within_one_period")
+        row["aircraft_crashed"] = v.get("aircraft_crashed")
+        row["simulated_s"] = summary.get("simulated_s")
+        row["x_real_time"] = summary.get("x_real_time")
+        if row["status"] == "ok" and row["took_effect"] is False:
+            row["status"] = "fault_not_effective"
+        if row["status"] != "ok" and not row["reason"]:
+            row["reason"] = (summary.get("fault") or {}).get("evidence") or row["status"]
+    row["broke_property"] = broke_property(row)
+    return row
+
+
+def _death_reason(folder, code):
+    for name in ("error.txt",):
+        try:
+            with open(os.path.join(folder, name)) as f:
+                return "exit %s: %s" % (code, f.read().strip()[:300])
+        except OSError:
+            pass
+    try:
+        with open(os.path.join(folder, "campaign_flight.log"), errors="replace") as f:
+            lines = [ln.strip() for ln in f.read().splitlines() if ln.strip()]
+        tail = lines[-1][:300] if lines else "no output"
+    except OSError:
+        tail = "no output"
+    if code is not None and code < 0:
+        return "killed by signal %d: %s" % (-code, tail)
+    return "exit %s: %s (logs: %s)" % (code, tail, folder)
+
+
+def _quote(a):
+    import shlex
+    return shlex.quote(a)
+
+
+if __name__ == "__main__":
+    sys.exit("hil/campaigns/flight.py is a module: hil/campaign.py runs campaigns")

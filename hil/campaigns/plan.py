@@ -1,0 +1,195 @@
+"""A campaign's flights, drawn from one campaign seed: the fault class of each (the classes dealt
+round-robin in a seeded order, so every class gets its share), the flight's own seed, when the
+fault starts, how long it lasts and its parameters. The same campaign seed, flight count, classes
+and flight length give the same plan, and each flight's command line reproduces that flight.
+
+The classes and their parameter spaces come from the faults package (hil/faults) when it is there,
+else from the `--fault` choices of hil/run_flight.py."""
+import dataclasses
+import importlib
+import json
+import os
+import random
+import re
+import shlex
+import subprocess
+import sys
+
+HIL = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ROOT = os.path.dirname(HIL)
+RUN_FLIGHT = os.path.join(HIL, "run_flight.py")
+FALLBACK_CLASSES = ("crash", "hang")
+
+
+@dataclasses.dataclass(frozen=True)
+class Flight:
+    flight_id: int
+    fault_class: str
+    seed: int
+    fault_at_s: float
+    fault_duration_s: float  # < 0: the fault never ends by itself
+    params: tuple            # ((key, value), ...) as strings, sorted by key
+    duration_s: float
+
+    def params_dict(self):
+        return dict(self.params)
+
+
+@dataclasses.dataclass(frozen=True)
+class Interface:
+    """What this checkout's run_flight.py takes: the agreed fault interface (--fault-at,
+    --fault-duration, --fault-param) or only the first one (--crash-at)."""
+    classes: tuple
+    fault_at_flag: str          # --fault-at or --crash-at
+    has_duration: bool
+    has_params: bool
+
+
+def _help_text(run_flight):
+    r = subprocess.run([sys.executable, run_flight, "--help"], stdout=subprocess.PIPE,
+                       stderr=subprocess.STDOUT, timeout=120)
+    return r.stdout.decode(errors="replace")
+
+
+def _faults_package():
+    """hil.faults when this checkout has it (None otherwise)."""
+    if ROOT not in sys.path:
+        sys.path.insert(0, ROOT)
+    try:
+        return importlib.import_module("hil.faults")
+    except ImportError:
+        return None
+
+
+def _package_classes(pkg):
+    for attr in ("CLASSES", "FAULTS", "REGISTRY"):
+        v = getattr(pkg, attr, None)
+        if v:
+            return tuple(sorted(v))
+    for attr in ("classes", "names", "available"):
+        f = getattr(pkg, attr, None)
+        if callable(f):
+            return tuple(sorted(f()))
+    return ()
+
+
+def discover(run_flight=RUN_FLIGHT):
+    text = _help_text(run_flight)
+    classes = ()
+    pkg = _faults_package()
+    if pkg is not None:
+        classes = _package_classes(pkg)
+    if not classes:
+        m = re.search(r"--fault \{([^}]*)\}", text)
+        classes = tuple(sorted(m.group(1).split(","))) if m else FALLBACK_CLASSES
+    return Interface(classes=classes,
+                     fault_at_flag="--fault-at" if "--fault-at" in text else "--crash-at",
+                     has_duration="--fault-duration" in text,
+                     has_params="--fault-param" in text)
+
+
+SURFACES = ("elevator", "aileron", "rudder", "throttle")
+# What a campaign varies per class, within what each injector documents (hil/faults/<class>.py);
+# a class not named here flies with its injector's defaults. ("u", lo, hi): uniform; a tuple of
+# values: one of them.
+PARAM_SPACE = {
+    "deadline_miss": {"delay_periods": ("u", 0.5, 3.0), "repeat_every_periods": (0, 0, 5, 20)},
+    "nan": {"surface": SURFACES},
+    "out_of_range": {"surface": SURFACES},
+    "gs_request_hp": {"surface": SURFACES},
+    "stale_replay": {"age_s": ("u", 0.2, 3.0)},
+    "divergence": {"rate_deg_s": ("u", 5.0, 40.0)},
+    "pitot_failure": {"mode": ("dead", "zero", "stuck")},
+    "pic_switch": {"switch_after_s": ("u", 0.3, 3.0), "switch_s": ("u", 1.0, 5.0)},
+    "climb": {"pitch_deg": ("u", 8.0, 15.0)},
+    "link_bitflip": {"target": ("payload", "crc"), "every_n": (1, 1, 3, 10)},
+}
+# Faults that steer the aircraft need time to take it anywhere; a crash has no duration.
+LONG_FAULTS = ("climb", "stall", "bank", "divergence")
+NO_DURATION = ("crash", "pic_switch")
+
+
+def _class_params(fault_class, rng):
+    """The flight's parameters for its class: the faults package's own draw_params(rng) when a
+    class module has one, else PARAM_SPACE; sorted (key, value) string pairs."""
+    mod = None
+    if _faults_package() is not None:
+        try:
+            mod = importlib.import_module("hil.faults." + fault_class)
+        except ImportError:
+            mod = None
+    if mod is not None and callable(getattr(mod, "draw_params", None)):
+        params = mod.draw_params(rng)
+    else:
+        params = {}
+        for key, space in sorted(PARAM_SPACE.get(fault_class, {}).items()):
+            if space and space[0] == "u":
+                params[key] = round(rng.uniform(space[1], space[2]), 2)
+            else:
+                params[key] = rng.choice(space)
+    return tuple(sorted((str(k), _fmt(v)) for k, v in (params or {}).items()))
+
+
+def _duration(fault_class, rng, window):
+    if fault_class in NO_DURATION:
+        return -1.0
+    if fault_class in LONG_FAULTS:
+        return round(rng.uniform(8.0, 20.0), 2)
+    if rng.random() < 0.2:
+        return -1.0  # never ends by itself (a hang never resumed, a link never back)
+    return round(rng.uniform(*window), 2)
+
+
+def _fmt(v):
+    if isinstance(v, float):
+        return "%.6g" % v
+    return str(v)
+
+
+def make_plan(flights, seed, classes, duration_s=45.0, fault_window_s=(8.0, 20.0),
+              fault_duration_s=(0.5, 6.0), interface=None):
+    """flights: how many; seed: the campaign seed; classes: the fault classes to deal from.
+    A fault starts in fault_window_s (after the HP has taken control, leaving time for the
+    recovery) on the HA's 10 ms grid; a fault lasts fault_duration_s (steering faults 8-20 s; a
+    fifth of the others never end by themselves; a crash has no duration)."""
+    if flights < 1:
+        raise ValueError("a campaign needs at least one flight")
+    if not classes:
+        raise ValueError("a campaign needs at least one fault class")
+    rng = random.Random("campaign:%d" % seed)
+    order = list(classes)
+    rng.shuffle(order)
+    has_duration = interface is None or interface.has_duration
+    has_params = interface is None or interface.has_params
+    plan = []
+    for i in range(flights):
+        cls = order[i % len(order)]
+        # Each flight draws from its own stream, so flight i is the same whatever N is.
+        frng = random.Random("campaign:%d:flight:%d" % (seed, i))
+        at = round(frng.uniform(*fault_window_s), 2)
+        dur = _duration(cls, frng, fault_duration_s) if has_duration else -1.0
+        params = _class_params(cls, frng) if has_params else ()
+        plan.append(Flight(flight_id=i, fault_class=cls, seed=frng.randrange(1, 2 ** 31 - 1),
+                           fault_at_s=at, fault_duration_s=dur, params=params, duration_s=duration_s))
+    return plan
+
+
+def command(flight, folder, interface, run_flight=RUN_FLIGHT, python=None):
+    """The command that flies this flight (also the replay command a report prints)."""
+    argv = [python or sys.executable, run_flight, "--seed", str(flight.seed), "--fault", flight.fault_class,
+            interface.fault_at_flag, "%g" % flight.fault_at_s]
+    if interface.has_duration:
+        argv += ["--fault-duration", "%g" % flight.fault_duration_s]
+    if interface.has_params:
+        for k, v in flight.params:
+            argv += ["--fault-param", "%s=%s" % (k, v)]
+    argv += ["--duration", "%g" % flight.duration_s, "--folder", folder, "--no-bag", "--quiet"]
+    return argv
+
+
+def shell(argv):
+    return " ".join(shlex.quote(a) for a in argv)
+
+
+def to_json(plan):
+    return json.dumps([dict(dataclasses.asdict(f), params=dict(f.params)) for f in plan], indent=1)

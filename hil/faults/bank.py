@@ -1,0 +1,15 @@
+"""An HP that banks past the roll limit: aileron loop to roll_deg (default 80 deg, beyond
+limits.yaml's roll_limit_deg), every command valid."""
+from hil.faults.steer import SteeringFault
+
+
+class Bank(SteeringFault):
+    TARGET_ROLL_DEG = 80.0
+
+    def extreme(self):
+        r = [abs(m.roll_deg) for t, m in self.ctx.truth_since(self.at_s)]
+        return "max |roll| %.1f deg" % max(r) if r else ""
+
+
+def inject(ctx, at_s, duration_s, params):
+    return Bank(ctx, at_s, duration_s, params)

@@ -1,0 +1,16 @@
+"""An HP that climbs through the 400 ft ceiling: full throttle, nose held at pitch_deg (default
+12 deg), every command valid."""
+from hil.faults.steer import SteeringFault
+
+
+class Climb(SteeringFault):
+    TARGET_PITCH_DEG = 12.0
+    THROTTLE = 1.0
+
+    def extreme(self):
+        h = [m.height_above_home_ft for t, m in self.ctx.truth_since(self.at_s)]
+        return "max height %.0f ft above home" % max(h) if h else ""
+
+
+def inject(ctx, at_s, duration_s, params):
+    return Climb(ctx, at_s, duration_s, params)

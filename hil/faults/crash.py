@@ -1,0 +1,66 @@
+"""HP controller crash: SIGKILL of controller_DG808 at at_s (duration ignored: hp_supervisor
+restarts it when the HA asks). Took effect when the process is gone (reaped or a zombie)."""
+import os
+import signal
+import time
+
+from hil.faults.base import Fault
+
+
+def proc_state(pid):
+    try:
+        with open("/proc/%d/stat" % pid) as f:
+            return f.read().rsplit(")", 1)[1].split()[0]
+    except OSError:
+        return None  # gone
+
+
+class Crash(Fault):
+    SIGNAL = signal.SIGKILL
+
+    def __init__(self, *a):
+        super().__init__(*a)
+        self.pid = None
+        self.done = False
+        self.confirmed = None
+
+    def on_step(self, t_s):
+        if self.done or t_s < self.at_s - 1e-9:
+            return
+        self.done = True
+        ctx = self.ctx
+        pid = ctx.controller_pid()
+        ctx.hp_alive = False
+        ctx.crashed_at = t_s
+        if pid is None:
+            self.note(t_s, "controller_DG808 not running: nothing to signal")
+            return
+        self.pid = pid
+        self.signal_controller(t_s, pid)
+
+    def signal_controller(self, t_s, pid):
+        os.kill(pid, signal.SIGKILL)
+        deadline = time.monotonic() + 10.0
+        while proc_state(pid) not in (None, "Z") and time.monotonic() < deadline:
+            time.sleep(0.005)
+        st = proc_state(pid)
+        self.confirmed = st in (None, "Z")
+        self.note(t_s, "SIGKILL to controller_DG808 (pid %d): %s" % (pid, "gone" if self.confirmed else "still running"))
+        self.ctx.event(t_s, "HP crash injected: SIGKILL to controller_DG808 (pid %d)" % pid)
+
+    def effect(self):
+        if not self.confirmed:
+            return False, "; ".join(self.notes) or "the flight ended before %.2f s" % self.at_s
+        return True, "; ".join(self.notes)
+
+    def takeover_due_s(self):
+        """The first period without a command is the crash's; the HA tolerates
+        late_periods_tolerated of them, so the deadline is that many periods later."""
+        if not self.confirmed:
+            return None
+        r = self.ctx.regions
+        return self.ctx.crashed_at + r.late_periods_tolerated * r.period_s
+
+
+def inject(ctx, at_s, duration_s, params):
+    return Crash(ctx, at_s, duration_s, params)

@@ -1,0 +1,58 @@
+"""HP controller hang: SIGSTOP of controller_DG808 at at_s (its process and ROS connections stay
+up, it only stops answering). With a duration >= 0 it gets SIGCONT after it (if it still exists:
+hp_supervisor kills a hung controller when the HA asks for a restart); negative: never.
+Took effect when /proc shows the process stopped (state T)."""
+import os
+import signal
+import time
+
+from hil.faults.base import Fault
+from hil.faults.crash import proc_state
+
+
+class Hang(Fault):
+    def __init__(self, *a):
+        super().__init__(*a)
+        self.pid = None
+        self.done = False
+        self.confirmed = False
+        self.resumed = False
+
+    def on_step(self, t_s):
+        ctx = self.ctx
+        if not self.done and t_s >= self.at_s - 1e-9:
+            self.done = True
+            pid = ctx.controller_pid()
+            ctx.hp_alive = False
+            ctx.crashed_at = t_s
+            if pid is None:
+                self.note(t_s, "controller_DG808 not running: nothing to stop")
+                return
+            self.pid = pid
+            os.kill(pid, signal.SIGSTOP)
+            deadline = time.monotonic() + 10.0
+            while proc_state(pid) not in ("T", "t", None) and time.monotonic() < deadline:
+                time.sleep(0.005)
+            self.confirmed = proc_state(pid) in ("T", "t")
+            self.note(t_s, "SIGSTOP to controller_DG808 (pid %d): state %s" % (pid, proc_state(pid)))
+            ctx.event(t_s, "HP hang injected: SIGSTOP to controller_DG808 (pid %d)" % pid)
+        elif self.done and self.pid and not self.resumed and self.ended(t_s):
+            self.resumed = True
+            if proc_state(self.pid) in ("T", "t"):
+                os.kill(self.pid, signal.SIGCONT)
+                self.note(t_s, "SIGCONT to controller_DG808 (pid %d)" % self.pid)
+            else:
+                self.note(t_s, "no SIGCONT: pid %d is gone (hp_supervisor restarted it)" % self.pid)
+
+    def effect(self):
+        return self.confirmed, "; ".join(self.notes) or "the flight ended before %.2f s" % self.at_s
+
+    def takeover_due_s(self):
+        if not self.confirmed:
+            return None
+        r = self.ctx.regions
+        return self.ctx.crashed_at + r.late_periods_tolerated * r.period_s
+
+
+def inject(ctx, at_s, duration_s, params):
+    return Hang(ctx, at_s, duration_s, params)

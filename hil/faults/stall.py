@@ -1,0 +1,16 @@
+"""An HP that flies the aircraft into a stall: throttle closed, nose held at pitch_deg (default
+20 deg) until the speed is gone, every command valid."""
+from hil.faults.steer import SteeringFault
+
+
+class Stall(SteeringFault):
+    TARGET_PITCH_DEG = 20.0
+    THROTTLE = 0.0
+
+    def extreme(self):
+        v = [m.airspeed_ftps for t, m in self.ctx.truth_since(self.at_s)]
+        return "min true airspeed %.1f ft/s" % min(v) if v else ""
+
+
+def inject(ctx, at_s, duration_s, params):
+    return Stall(ctx, at_s, duration_s, params)

@@ -1,0 +1,70 @@
+#!/usr/bin/env python3
+"""A stand-in for hil/run_flight.py in the campaign runner's tests: the same command line, and per
+fault class one way a flight ends, so the runner's handling of each can be shown quickly:
+  quick    writes a summary.json like the lockstep flight's and exits 0
+  wait     the same once the file CAMPAIGN_TEST_RELEASE names exists (a flight still flying)
+  die      writes error.txt and exits 3, no summary (a flight that died)
+  stuck    starts two processes in sessions of their own, as run_flight.py starts roscore and
+           roslaunch, one of them ignoring SIGTERM, and never ends (a flight past its limit);
+           the pids go to <folder>/pids as they start"""
+import argparse
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+
+STUCK_CHILD = ("import signal, time\n"
+               "signal.signal(signal.SIGTERM, signal.SIG_IGN)\n"
+               "while True: time.sleep(1)\n")
+
+
+def summary(args):
+    return {"seed": args.seed, "simulated_s": args.duration, "wall_s": 1.0, "x_real_time": 1.0,
+            "takeover": {"crash_injected_s": args.fault_at, "latency_after_deadline_miss_s": 0.01,
+                         "hand_back_s": args.fault_at + 4.5},
+            "who_flew": [{"controller": "HP"}, {"controller": "HA"}, {"controller": "HP"}],
+            "margins": {"min_height_above_home_ft": 150.0, "min_stall_margin_ftps": 12.0},
+            "unsafe_servo_commands": {"outside_S_u": 0, "steps": 100},
+            "state_while_ha_flies": {"inside_S_x": True, "max_S_x_row": 0.4},
+            "mission": {"reached": 3, "waypoints": 32},
+            "events": [{"t_s": args.fault_at, "event": "HP crash injected: SIGKILL"}]}
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    for flag in ("--seed",):
+        ap.add_argument(flag, type=int)
+    for flag in ("--fault-at", "--fault-duration", "--duration"):
+        ap.add_argument(flag, type=float)
+    ap.add_argument("--fault")
+    ap.add_argument("--fault-param", action="append", default=[])
+    ap.add_argument("--folder")
+    ap.add_argument("--no-bag", action="store_true")
+    ap.add_argument("--quiet", action="store_true")
+    args = ap.parse_args()
+    os.makedirs(args.folder, exist_ok=True)
+    if args.fault == "die":
+        with open(os.path.join(args.folder, "error.txt"), "w") as f:
+            f.write("the simulator stopped: test death\n")
+        return 3
+    if args.fault == "stuck":
+        signal.signal(signal.SIGTERM, signal.SIG_IGN)
+        with open(os.path.join(args.folder, "pids"), "w") as f:
+            for _ in range(2):
+                p = subprocess.Popen([sys.executable, "-c", STUCK_CHILD], start_new_session=True)
+                f.write("%d\n" % p.pid)
+                f.flush()
+        while True:
+            time.sleep(1)
+    if args.fault == "wait":
+        while not os.path.exists(os.environ["CAMPAIGN_TEST_RELEASE"]):
+            time.sleep(0.05)
+    with open(os.path.join(args.folder, "summary.json"), "w") as f:
+        json.dump(summary(args), f)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,266 @@
+"""The campaign runner (hil/campaign.py, hil/campaigns/): the plan comes back the same from its
+seed; a flight past its wall-clock limit is killed whole and reported as timed out; a flight that
+dies is reported as died; rows reach the table as flights finish; a small real campaign on a
+LocalCluster of two workers gives the table and the report. The quick cases fly
+campaign_fake_flight.py (run_flight.py's command line, one way of ending per fault class)."""
+import csv
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+import pytest
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+sys.path.insert(0, ROOT)
+from hil.campaigns import flight as flight_mod  # noqa: E402
+from hil.campaigns import plan as plan_mod  # noqa: E402
+from hil.campaigns import report as report_mod  # noqa: E402
+from hil.campaigns import runner  # noqa: E402
+
+FAKE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "campaign_fake_flight.py")
+AGREED = plan_mod.Interface(classes=("quick", "wait", "die", "stuck"), fault_at_flag="--fault-at",
+                            has_duration=True, has_params=True)
+
+
+def gone(pid):
+    try:
+        with open("/proc/%d/stat" % pid) as f:
+            return f.read().rsplit(")", 1)[1].split()[0] in ("Z", "X")
+    except OSError:
+        return True
+
+
+def wait_for(cond, what, bound_s=120.0):
+    end = time.monotonic() + bound_s
+    while not cond():
+        if time.monotonic() > end:
+            raise AssertionError("still not the case after %g s: %s" % (bound_s, what))
+        time.sleep(0.05)
+
+
+def my_children():
+    """Live child processes of this test process, less multiprocessing's resource tracker (it
+    serves every later multiprocessing user and ends when this process does)."""
+    me = str(os.getpid())
+    out = []
+    for pid in os.listdir("/proc"):
+        if pid.isdigit():
+            try:
+                with open("/proc/%s/stat" % pid) as f:
+                    fields = f.read().rsplit(")", 1)[1].split()
+            except OSError:
+                continue
+            if fields[1] == me and fields[0] not in ("Z", "X"):
+                try:
+                    with open("/proc/%s/cmdline" % pid, "rb") as f:
+                        if b"resource_tracker" in f.read():
+                            continue
+                except OSError:
+                    continue
+                out.append(int(pid))
+    return out
+
+
+def descendants(root):
+    parent = {}
+    for pid in os.listdir("/proc"):
+        if pid.isdigit():
+            try:
+                with open("/proc/%s/stat" % pid) as f:
+                    parent[int(pid)] = int(f.read().rsplit(")", 1)[1].split()[1])
+            except OSError:
+                continue
+    out, todo = set(), [root]
+    while todo:
+        p = todo.pop()
+        out.add(p)
+        todo += [c for c, pp in parent.items() if pp == p and c not in out]
+    return out
+
+
+def listening_addresses(pids):
+    """Local addresses of the TCP sockets these processes listen on (ss -ltnp)."""
+    r = subprocess.run(["ss", "-ltnpH"], stdout=subprocess.PIPE, universal_newlines=True, check=True)
+    out = []
+    for line in r.stdout.splitlines():
+        if any("pid=%d," % p in line for p in pids):
+            out.append(line.split()[3])
+    return out
+
+
+def test_the_same_campaign_seed_gives_the_same_flights_and_commands():
+    classes = ("crash", "hang", "nan_surface")
+    a = plan_mod.make_plan(30, 7, classes, duration_s=40.0)
+    b = plan_mod.make_plan(30, 7, classes, duration_s=40.0)
+    assert a == b
+    assert plan_mod.make_plan(30, 8, classes, duration_s=40.0) != a
+    # Every class gets its share, and flight i is the same whatever the campaign's length.
+    assert sorted({f.fault_class for f in a}) == sorted(classes)
+    assert all(sum(f.fault_class == c for f in a) == 10 for c in classes)
+    assert plan_mod.make_plan(12, 7, classes, duration_s=40.0) == a[:12]
+    assert len({f.seed for f in a}) == len(a)
+    f = a[4]
+    argv = plan_mod.command(f, "/tmp/flight4", AGREED, python="python3")
+    assert argv[:2] == ["python3", plan_mod.RUN_FLIGHT]
+    assert argv[argv.index("--seed") + 1] == str(f.seed)
+    assert argv[argv.index("--fault") + 1] == f.fault_class
+    assert float(argv[argv.index("--fault-at") + 1]) == f.fault_at_s
+    assert float(argv[argv.index("--fault-duration") + 1]) == f.fault_duration_s
+    # The first lockstep flight's interface: the fault time goes to --crash-at, nothing else.
+    first = plan_mod.Interface(classes=("crash", "hang"), fault_at_flag="--crash-at", has_duration=False,
+                               has_params=False)
+    argv = plan_mod.command(plan_mod.make_plan(2, 7, ("crash",), interface=first)[1], "/tmp/f", first)
+    assert "--fault-duration" not in argv and float(argv[argv.index("--crash-at") + 1]) > 0
+
+
+def test_the_classes_come_from_this_checkouts_run_flight():
+    iface = plan_mod.discover()
+    assert {"crash", "hang"} <= set(iface.classes)
+    assert iface.fault_at_flag in ("--fault-at", "--crash-at")
+
+
+def test_a_flight_past_its_wall_limit_is_killed_whole_and_reported_as_timed_out():
+    folder = tempfile.mkdtemp(prefix="campaign_stuck_")
+    fl = plan_mod.Flight(0, "stuck", 5, 10.0, 1.0, (), 40.0)
+    argv = plan_mod.command(fl, folder, AGREED, run_flight=FAKE)
+    row = flight_mod.run(fl, argv, folder, wall_limit_s=15.0, term_grace_s=1.0)
+    assert row["status"] == "timeout", row
+    assert "killed whole" in row["reason"]
+    with open(os.path.join(folder, "pids")) as f:
+        pids = [int(p) for p in f.read().split()]
+    assert len(pids) == 2, "the stuck flight had not started its processes within the limit"
+    # Its processes in sessions of their own, one ignoring SIGTERM, are gone with it.
+    for pid in pids:
+        wait_for(lambda: gone(pid), "process %d of the timed-out flight gone" % pid, bound_s=30.0)
+    assert row["exit_code"] == -9
+    assert row["leftovers_killed"] == 0  # nothing of it was left for the sweep after the kill
+    assert row["broke_property"] is False
+
+
+def test_a_flight_that_dies_is_reported_as_died_with_its_reason():
+    folder = tempfile.mkdtemp(prefix="campaign_die_")
+    fl = plan_mod.Flight(3, "die", 9, 10.0, 1.0, (("bits", "2"),), 40.0)
+    row = flight_mod.run(fl, plan_mod.command(fl, folder, AGREED, run_flight=FAKE), folder, wall_limit_s=300.0)
+    assert row["status"] == "died"
+    assert row["exit_code"] == 3
+    assert "test death" in row["reason"]
+    assert json.loads(row["fault_params"]) == {"bits": "2"}
+    assert "--fault-param bits=2" in row["command"]
+
+
+def test_a_real_flight_whose_launch_fails_is_reported_as_died_with_run_flights_reason():
+    folder = os.path.join(tempfile.mkdtemp(prefix="campaign_real_die_"), "flight")
+    iface = plan_mod.discover()
+    fl = plan_mod.make_plan(1, 3, ("crash",), duration_s=20.0, interface=iface)[0]
+    # An aircraft with no launch file: roscore comes up, roslaunch ends at once.
+    argv = plan_mod.command(fl, folder, iface) + ["--aircraft", "NO_SUCH_AIRCRAFT"]
+    row = flight_mod.run(fl, argv, folder, wall_limit_s=600.0)
+    assert row["status"] == "died", row
+    assert "launch ended before the flight did" in row["reason"]
+    assert row["unsafe_commands"] is None and row["broke_property"] is False
+    assert row["leftovers_killed"] == 0  # run_flight.py stopped its roscore itself
+
+
+def test_rows_reach_the_table_as_flights_finish_and_none_is_dropped(monkeypatch):
+    out = tempfile.mkdtemp(prefix="campaign_stream_")
+    release = os.path.join(out, "release")
+    monkeypatch.setenv("CAMPAIGN_TEST_RELEASE", release)
+    plan = [plan_mod.Flight(0, "quick", 11, 10.0, 1.0, (), 40.0),
+            plan_mod.Flight(1, "die", 12, 10.0, 1.0, (), 40.0),
+            plan_mod.Flight(2, "wait", 13, 10.0, 1.0, (), 40.0)]
+    seen, listening = [], []
+
+    def on_row(row):
+        seen.append(row["fault_class"])
+        with open(os.path.join(out, "flights.csv")) as f:
+            table = list(csv.DictReader(f))
+        # What has finished is in the table while the "wait" flight is still flying.
+        assert [r["fault_class"] for r in table] == seen
+        if len(seen) == 2:
+            assert "wait" not in seen
+            # The scheduler, the workers and their HTTP servers listen on loopback only.
+            addresses = listening_addresses(descendants(os.getpid()))
+            listening.extend(addresses)
+            open(release, "w").close()
+
+    rows = runner.run_campaign(plan, AGREED, out, workers=2, progress=False, on_row=on_row, run_flight=FAKE)
+    assert seen[-1] == "wait"
+    assert len(listening) >= 3  # the scheduler and two workers at least
+    assert all(a.startswith("127.0.0.1:") for a in listening), listening
+    assert [r["status"] for r in rows] == ["ok", "died", "ok"]
+    table = {r["flight_id"]: r for r in report_mod.read_rows(os.path.join(out, "flights.csv"))}
+    assert sorted(table) == [0, 1, 2]
+    assert table[0]["recovery_s"] == pytest.approx(4.5) and table[2]["takeover_latency_s"] == pytest.approx(0.01)
+    assert table[1]["status"] == "died" and table[1]["recovery_s"] is None
+    # The LocalCluster's workers are stopped with the campaign.
+    wait_for(lambda: not my_children(), "the Dask workers stopped", bound_s=60.0)
+
+
+def test_the_same_campaign_runs_on_a_scheduler_given_by_its_address():
+    from distributed import LocalCluster
+    out = tempfile.mkdtemp(prefix="campaign_sched_")
+    plan = [plan_mod.Flight(i, "quick", 20 + i, 10.0, 1.0, (), 40.0) for i in range(3)]
+    # A cluster that is already there, as a lab's would be: the campaign only knows its address.
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=True, host="127.0.0.1",
+                      dashboard_address="127.0.0.1:0", silence_logs=40) as cluster:
+        rows = runner.run_campaign(plan, AGREED, out, scheduler=cluster.scheduler_address, progress=False,
+                                   run_flight=FAKE)
+        assert [r["status"] for r in rows] == ["ok"] * 3
+        with open(os.path.join(out, "campaign.json")) as f:
+            assert json.load(f)["scheduler"] == cluster.scheduler_address
+        # The campaign left the cluster running: it was not its own.
+        assert cluster.status.name == "running"
+    wait_for(lambda: not my_children(), "the test's cluster stopped", bound_s=60.0)
+
+
+def test_the_report_gives_nearest_rank_percentiles_and_lists_the_flights_that_broke_the_property():
+    out = tempfile.mkdtemp(prefix="campaign_report_")
+    rows = []
+    for i in range(101):
+        rows.append({c: None for c in flight_mod.COLUMNS})
+        rows[-1].update(flight_id=float(i), fault_class="crash" if i < 60 else "hang", seed=float(100 + i),
+                        fault_at_s=10.0, status="ok", took_effect=True, ok=True, unsafe_commands=0.0,
+                        envelope_violations_under_ha_s=0.0, takeover_latency_s=0.01 if i != 7 else 0.05,
+                        recovery_s=float(i % 10), latched=False, min_height_agl_ft=100.0,
+                        min_airspeed_margin_ftps=10.0, broke_property=False, command="replay %d" % i)
+    rows[70].update(unsafe_commands=3.0, broke_property=True, ok=False)
+    rows[80].update(status="timeout", takeover_latency_s=None, recovery_s=None, reason="past the limit")
+    stats, text = report_mod.write(rows, out)
+    by = {s["class"]: s for s in stats}
+    assert by["all"]["flights"] == 101 and by["all"]["timeout"] == 1 and by["all"]["takeovers"] == 100
+    assert by["all"]["takeover_p50_ms"] == pytest.approx(10.0)
+    assert by["all"]["takeover_p99_ms"] == pytest.approx(10.0)  # one slow flight in 99 is the max, not p99
+    assert by["all"]["takeover_max_ms"] == pytest.approx(50.0)
+    assert by["crash"]["recovery_p50_s"] == 4.0 and by["crash"]["recovery_max_s"] == 9.0
+    assert by["hang"]["unsafe_commands"] == 3 and by["hang"]["broke_property"] == 1
+    assert "#70 hang seed 170" in text and "replay: replay 70" in text
+    assert "#80 hang seed 180: timeout" in text
+    for name in ("report.html", "table.md", "takeover_latency.png", "recovery_per_class.png",
+                 "envelope_margins.png"):
+        assert os.path.getsize(os.path.join(out, "report", name)) > 0
+    with open(os.path.join(out, "report", "report.html")) as f:
+        page = f.read()
+    assert "replay 70" in page and "<img src='takeover_latency.png'>" in page
+
+
+def test_a_small_real_campaign_on_two_workers_gives_the_table_and_the_report():
+    out = tempfile.mkdtemp(prefix="campaign_real_")
+    iface = plan_mod.discover()
+    plan = plan_mod.make_plan(3, 5, ("crash", "hang"), duration_s=20.0, fault_window_s=(8.0, 10.0),
+                              interface=iface)
+    rows = runner.run_campaign(plan, iface, out, workers=2, progress=False)
+    assert [r["status"] for r in rows] == ["ok"] * 3, [(r["status"], r["reason"]) for r in rows]
+    for r in rows:
+        assert r["took_effect"] is True
+        assert r["unsafe_commands"] == 0 and r["broke_property"] is False
+        assert r["takeover_latency_s"] is not None and r["recovery_s"] is not None
+    stats, text = report_mod.write(report_mod.read_rows(os.path.join(out, "flights.csv")), out)
+    by = {s["class"]: s for s in stats}
+    assert by["all"]["flights"] == 3 and by["all"]["takeovers"] == 3
+    assert by["crash"]["flights"] + by["hang"]["flights"] == 3
+    assert "flights that broke the property: 0" in text
+    assert os.path.exists(os.path.join(out, "report", "report.html"))
+    wait_for(lambda: not my_children(), "the Dask workers stopped", bound_s=60.0)
