@@ -196,6 +196,20 @@ def inbound_connected(master, name, topics):
     return all(t in got for t in topics)
 
 
+def publisher_connected(master, name, topic, publisher):
+    """Whether node `name` has a live inbound connection on topic from node `publisher` (rospy
+    names an inbound connection by the publisher's XML-RPC URI)."""
+    uri, pub = node_api(master, name), node_api(master, publisher)
+    if uri is None or pub is None:
+        return False
+    try:
+        code, _, info = xmlrpc.client.ServerProxy(uri, transport=TimeoutTransport()).getBusInfo("/hil_sim")
+    except (OSError, xmlrpc.client.Error):
+        return False
+    return code == 1 and any(c[2] == "i" and c[4] == topic and (len(c) < 6 or c[5]) and c[1].rstrip("/") == pub.rstrip("/")
+                             for c in info)
+
+
 class Simulation:
     def __init__(self):
         p = lambda k, d: rospy.get_param("~" + k, d)  # noqa: E731
@@ -356,8 +370,12 @@ class Simulation:
 
     # --- participants ----------------------------------------------------------------------
     def controller_connected(self):
+        """The controller takes every input, the arduino node takes its commands, and so does this
+        node: a restarted controller's first command would otherwise go by before this node's
+        subscriber has connected to it, and the step would wait it out as an HP that is gone."""
         return inbound_connected(self.master, self.controller_node, CONTROLLER_INPUTS) and \
-            inbound_connected(self.master, "/arduino", [self.arduino_input])
+            inbound_connected(self.master, "/arduino", [self.arduino_input]) and \
+            publisher_connected(self.master, "/hil_sim", "/servo_op", self.controller_node)
 
     def service_while_waiting(self):
         self.hp_vn.service_commands()
