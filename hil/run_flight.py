@@ -235,15 +235,16 @@ def main(argv=None):
         s = json.load(f)
     report(s, out, bag=not args.no_bag)
     if not args.no_bag:
-        code = write_report(out)
+        code = write_report(out, args.aircraft)
     return code
 
 
-def write_report(out):
+def write_report(out, aircraft):
     """The post-flight report of the flight's bag, by the same tool a real flight's log gets."""
     tool = os.path.join(HERE, "..", "drone_ros", "report", "scripts", "flight_report")
     folder = os.path.join(out, "report")
-    r = subprocess.run([sys.executable, tool, os.path.join(out, "flight.bag"), "--out", folder],
+    r = subprocess.run([sys.executable, tool, os.path.join(out, "flight.bag"), "--out", folder,
+                        "--aircraft", aircraft],
                        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     if r.returncode != 0:
         print("run_flight: the report failed: %s" % r.stdout.strip(), file=sys.stderr)

@@ -19,11 +19,13 @@ the logged truth is identical bit for bit. When the HA asks for an HP restart, t
 hp_supervisor has started the controller again and it is connected (so its return does not
 depend on how fast the machine is; in simulated time the restart takes no time).
 """
+import io
 import json
 import math
 import os
 import signal
 import socket
+import struct
 import sys
 import threading
 import time
@@ -284,6 +286,9 @@ class Simulation:
                 raise RuntimeError("~%s is required" % k)
             os.makedirs(os.path.dirname(v), exist_ok=True)
         os.makedirs(self.out_dir, exist_ok=True)
+        # Every step's truth as /hil/truth serializes it (4-byte length, then the bytes): the bag
+        # may drop messages when a loaded machine starves its recorder; this log never does.
+        self.truth_log = open(os.path.join(self.out_dir, "truth.bin"), "wb")
         # One VN-200: both ports carry its one navigation solution, errors included.
         ins_errors = sensors.InsSolutionErrors(self.seed)
         self.hp_vn = sensors.Vn200Port(ports["hp_vn200_port"], 2, self.seed, sensors.HP_VN200_BAUD,
@@ -550,6 +555,9 @@ class Simulation:
         m.controller = reply.controller
         m.on_ground = bool(tr.on_ground)
         self.truth_pub.publish(m)
+        buf = io.BytesIO()
+        m.serialize(buf)
+        self.truth_log.write(struct.pack("<I", buf.tell()) + buf.getvalue())
         self.records.append((t_us, m, reply, cmd_seq, tr.airspeed_cal_mps * FT_PER_M))
 
     # --- faults and recovery ---------------------------------------------------------------
@@ -680,6 +688,7 @@ class Simulation:
         return verdicts.summarize(self)
 
     def close(self):
+        self.truth_log.close()
         for c in (self.chan, self.hp_vn, self.ha_vn) + ((self.link_relay,) if self.link_relay else ()):
             try:
                 c.close()

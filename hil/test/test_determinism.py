@@ -1,7 +1,9 @@
 """Lockstep is deterministic: two flights with one seed log the same truth, bit for bit (every
-/hil/truth message's serialized bytes, HP crash and restart included); another seed differs.
+/hil/truth message's serialized bytes, as the simulator logs them in truth.bin, HP crash and
+restart included); another seed differs.
 Each flight is a full hil/run_flight.py run: its own ROS master, ptys, every HP node."""
 import os
+import struct
 import subprocess
 import sys
 import tempfile
@@ -23,15 +25,20 @@ def fly(seed, folder):
         events = [e["event"] for e in json.load(f)["events"]]
     # A bounded wait that ran out is the one way wall-clock timing enters a lockstep flight.
     assert not [e for e in events if "late" in e or "ran out" in e or "did not answer" in e], events
-    return truth_log(os.path.join(folder, "flight.bag"))
+    return truth_log(os.path.join(folder, "truth.bin"))
 
 
-def truth_log(bag_path):
-    import rosbag
+def truth_log(path):
+    """The simulator's own log of every /hil/truth message's serialized bytes (the bag's recorder
+    may drop messages on a loaded machine; this log is written in the step itself)."""
     out = []
-    with rosbag.Bag(bag_path) as bag:
-        for _, msg, _ in bag.read_messages(topics=["/hil/truth"], raw=True):
-            out.append(bytes(msg[1]))
+    with open(path, "rb") as f:
+        data = f.read()
+    i = 0
+    while i < len(data):
+        (n,) = struct.unpack_from("<I", data, i)
+        out.append(data[i + 4:i + 4 + n])
+        i += 4 + n
     return out
 
 
