@@ -73,11 +73,11 @@ def descendants(root):
                     parent[int(pid)] = int(f.read().rsplit(")", 1)[1].split()[1])
             except OSError:
                 continue
-    out, todo = set(), [root]
-    while todo:
-        p = todo.pop()
+    out, pending = set(), [root]
+    while pending:
+        p = pending.pop()
         out.add(p)
-        todo += [c for c, pp in parent.items() if pp == p and c not in out]
+        pending += [c for c, pp in parent.items() if pp == p and c not in out]
     return out
 
 
