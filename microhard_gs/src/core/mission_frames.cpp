@@ -42,7 +42,9 @@ bool height_above_home_ft(uint8_t frame, float z_m, const GeoPoint& home, double
   return false;
 }
 
-MissionItem from_item_int(const mavlink_mission_item_int_t& m) {
+// The fields both item messages carry alike; only x/y (x1e7 or degrees) differ.
+template <typename Item>
+MissionItem common_fields(const Item& m) {
   MissionItem it;
   it.seq = m.seq;
   it.frame = m.frame;
@@ -53,6 +55,11 @@ MissionItem from_item_int(const mavlink_mission_item_int_t& m) {
   it.param2 = m.param2;
   it.param3 = m.param3;
   it.param4 = m.param4;
+  return it;
+}
+
+MissionItem from_item_int(const mavlink_mission_item_int_t& m) {
+  MissionItem it = common_fields(m);
   it.x = m.x;
   it.y = m.y;
   it.z = m.z;
@@ -60,16 +67,7 @@ MissionItem from_item_int(const mavlink_mission_item_int_t& m) {
 }
 
 MissionItem from_item_float(const mavlink_mission_item_t& m) {
-  MissionItem it;
-  it.seq = m.seq;
-  it.frame = m.frame;
-  it.command = m.command;
-  it.current = m.current;
-  it.autocontinue = m.autocontinue;
-  it.param1 = m.param1;
-  it.param2 = m.param2;
-  it.param3 = m.param3;
-  it.param4 = m.param4;
+  MissionItem it = common_fields(m);
   if (is_global_frame(m.frame)) {
     it.x = degrees_to_e7(static_cast<double>(m.x));
     it.y = degrees_to_e7(static_cast<double>(m.y));
