@@ -289,10 +289,11 @@ def upload_mission(conn, items, count=None, resend_s=1.0, timeout_s=30.0, legacy
     return None
 
 
-def download_mission(conn, timeout_s=10.0, attempts=1, legacy=False):
+def download_mission(conn, timeout_s=10.0, attempts=1, legacy=False, gave_up=None):
     """Downloads like QGroundControl: every request is repeated on silence, `attempts` times.
-    legacy: ask with MISSION_REQUEST and get MISSION_ITEMs."""
-    def ask(send, kind, match=lambda m: True):
+    legacy: ask with MISSION_REQUEST and get MISSION_ITEMs. On failure returns None and appends
+    to `gave_up` (a list, if given) what it was waiting for."""
+    def ask(send, kind, match=lambda m: True, what=None):
         for _ in range(attempts):
             send()
             deadline = time.time() + timeout_s
@@ -300,6 +301,8 @@ def download_mission(conn, timeout_s=10.0, attempts=1, legacy=False):
                 m = conn.recv_match(type=kind, blocking=True, timeout=0.1)
                 if m is not None and match(m):
                     return m
+        if gave_up is not None:
+            gave_up.append(what or kind)
         return None
 
     count_msg = ask(lambda: conn.mav.mission_request_list_send(1, 1, mavlink.MAV_MISSION_TYPE_MISSION),
@@ -310,10 +313,10 @@ def download_mission(conn, timeout_s=10.0, attempts=1, legacy=False):
     for seq in range(count_msg.count):
         if legacy:
             item = ask(lambda: conn.mav.mission_request_send(1, 1, seq, mavlink.MAV_MISSION_TYPE_MISSION),
-                       "MISSION_ITEM", lambda m: m.seq == seq)
+                       "MISSION_ITEM", lambda m: m.seq == seq, "MISSION_ITEM %d" % seq)
         else:
             item = ask(lambda: conn.mav.mission_request_int_send(1, 1, seq, mavlink.MAV_MISSION_TYPE_MISSION),
-                       "MISSION_ITEM_INT", lambda m: m.seq == seq)
+                       "MISSION_ITEM_INT", lambda m: m.seq == seq, "MISSION_ITEM_INT %d" % seq)
         if item is None:
             return None
         items.append(item)
