@@ -1,6 +1,7 @@
 """Verdicts of a HiL flight from the simulator's truth: the safety regions S_x and S_u built from
 limits.yaml by the same generator the HA's configuration comes from
 (arduino_ha/tools/gen_aircraft_config.py), and the flight's summary.json."""
+import bisect
 import math
 import os
 import sys
@@ -99,6 +100,80 @@ def waypoint_progress(plan, home, records, regions, reach_ft):
             for i, (b, f) in enumerate(zip(best, first))]
 
 
+def nearest_rank(values, q):
+    """The q-quantile as a value that occurred (nearest rank)."""
+    if not values:
+        return None
+    v = sorted(values)
+    return v[max(0, min(len(v) - 1, int(math.ceil(q * len(v))) - 1))]
+
+
+def segment_distance_ft(p, a, b):
+    """Distance from point p to the segment a-b (north, east in ft)."""
+    dn, de = b[0] - a[0], b[1] - a[1]
+    L2 = dn * dn + de * de
+    u = 0.0 if L2 == 0.0 else max(0.0, min(1.0, ((p[0] - a[0]) * dn + (p[1] - a[1]) * de) / L2))
+    return math.hypot(p[0] - (a[0] + u * dn), p[1] - (a[1] + u * de))
+
+
+def mission_tracking(plan, home, records, regions, progress):
+    """Cross-track error: the true track's distance from the mission's path (its legs, waypoint
+    to waypoint) over the stretches the HP flew whole, from reaching one waypoint to reaching the
+    next with the HP on the servos throughout (a takeover and the HP's return to the track are
+    not tracking). The distance is to the nearest of the stretch's leg and its neighbours: the
+    guidance turns for the next waypoint once within its reach distance of this one, so it cuts
+    each corner on the path, not across it."""
+    wps = [regions.north_east_ft(home, it.lat_deg, it.lon_deg) for it in plan.items]
+    errors, legs = [], 0
+    for i in range(len(wps) - 1):
+        t0, t1 = progress[i]["first_reached_s"], progress[i + 1]["first_reached_s"]
+        if t0 is None or t1 is None or t1 <= t0:
+            continue
+        leg = [x for x in records if t0 - 1e-9 <= x[0] * 1e-6 <= t1 + 1e-9]
+        if not leg or any(x[2].controller != 0 for x in leg):
+            continue
+        legs += 1
+        near = [(wps[j], wps[j + 1]) for j in range(max(0, i - 1), min(len(wps) - 1, i + 2))]
+        errors += [min(segment_distance_ft((x[1].north_ft, x[1].east_ft), a, b) for a, b in near) for x in leg]
+    return {"legs_flown_by_hp": legs, "legs": len(wps) - 1, "samples": len(errors),
+            "max_cross_track_ft": round(max(errors), 2) if errors else None,
+            "p95_cross_track_ft": None if not errors else round(nearest_rank(errors, 0.95), 2)}
+
+
+def ground_station_view(sim, window_s=3.0):
+    """The ground station's positions (GLOBAL_POSITION_INT as microhard_gs sent it) held against
+    the truth: each one's distance to the nearest true position of the `window_s` of simulated
+    time before it arrived (the telemetry lags by its own period, in wall time), and its height
+    above home against that sample's. And the ground station's home against the simulator's."""
+    mon = getattr(sim, "gs_monitor", None)
+    if mon is None:
+        return None
+    r = sim.regions
+    recs = [x for x in sim.records if not x[1].on_ground]
+    times = [x[0] * 1e-6 for x in recs]
+    horiz, vert = [], []
+    for pos in list(mon.positions):
+        lo = bisect.bisect_left(times, pos.t_s - window_s)
+        hi = bisect.bisect_right(times, pos.t_s + 1e-9)
+        if hi - lo < 1:
+            continue
+        n, e = r.north_east_ft(sim.home, pos.lat_deg, pos.lon_deg)
+        best = min(recs[lo:hi], key=lambda x: math.hypot(x[1].north_ft - n, x[1].east_ft - e))
+        horiz.append(math.hypot(best[1].north_ft - n, best[1].east_ft - e))
+        vert.append(abs(best[1].height_above_home_ft - pos.relative_alt_m * FT_PER_M))
+    home = None
+    if mon.home is not None:
+        n, e = r.north_east_ft(sim.home, mon.home.lat_deg, mon.home.lon_deg)
+        home = {"horizontal_ft": round(math.hypot(n, e), 3),
+                "vertical_ft": round(abs(mon.home.alt_m - sim.home[2]) * FT_PER_M, 3)}
+    return {"positions_received": len(mon.positions), "positions_in_flight": len(horiz),
+            "window_s": window_s,
+            "max_horizontal_error_ft": round(max(horiz), 2) if horiz else None,
+            "p95_horizontal_error_ft": None if not horiz else round(nearest_rank(horiz, 0.95), 2),
+            "max_height_error_ft": round(max(vert), 2) if vert else None,
+            "home_vs_truth": home}
+
+
 def unsafe(regions, applied):
     """A servo output outside S_u, or not a number at all."""
     return not all(math.isfinite(v) for v in applied) or regions.su_max(applied) > 1.0 + EPS
@@ -117,13 +192,15 @@ def fault_verdict(sim, progress):
     unsafe_n = sum(1 for x in sim.records if unsafe(r, x[2].applied))
     # Time outside S_x while the HA's safety controller drives the servos, split by whether the
     # excursion began while the HP flew (the HA inherited it) or under the HA itself.
-    outside_ha = inherited = 0
+    outside_ha = inherited = outside_any = 0
     excursion_from_hp = False
     prev_out = False
     max_row = None
     for x in recs:
         row = r.sx_max(x[1])
         out = row > 1.0
+        if out and (at is None or x[0] * 1e-6 >= at - 1e-9):
+            outside_any += 1
         if out and not prev_out:
             excursion_from_hp = x[2].controller == 0
         if x[2].controller in HA_SIDE:
@@ -168,6 +245,9 @@ def fault_verdict(sim, progress):
                               "left_under_ha_s": round((outside_ha - inherited) * period, 4),
                               "max_S_x_row": None if max_row is None else round(max_row, 4),
                               "worst": None if max_row is None else worst_state(worst)},
+        # Whoever flew, from the fault on: the HA switches on an inset of S_x so that this can
+        # be 0 too, not only the time under the HA.
+        "outside_S_x_from_fault_s": round(outside_any * period, 4),
         "takeover_due_s": None if due_s is None else round(due_s, 4),
         "takeover_due_by": None if due_s is None else ("fault" if due is not None and due_s == due else "truth"),
         "takeover_s": None if took is None else round(took, 4),
@@ -283,7 +363,9 @@ def summarize(sim):
                     "reached_within_ft": reach_ft,
                     "reached": sum(1 for p in progress if p["first_reached_s"] is not None),
                     "per_waypoint": progress,
+                    "tracking": mission_tracking(sim.plan, sim.home, recs, r, progress),
                     "guidance_waypoint_index": sim.waypoint_log},
+        "ground_station": ground_station_view(sim),
         "events": sim.events,
         "fault": fault,
         "verdict": verdict,

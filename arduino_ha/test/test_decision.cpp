@@ -109,19 +109,23 @@ TEST(HaDecision, CommandOutsideActuatorRegionSwitches) {
   EXPECT_LE(std::fabs(t.servos().elevator_deg), t.cfg.elevator_limit_deg);
 }
 
-TEST(HaDecision, AboveCeilingSwitchesAndDescends) {
+// An HP climbing through the ceiling, seen by an INS that reads 5 ft low: the HA switches
+// within its margin of the ceiling, and the true height never reaches it.
+TEST(HaDecision, ClimbTowardsTheCeilingIsTakenOverBeforeItWithAnInsReadingLow) {
   Timeline t;
   ASSERT_GT(t.ReachHp(), 0);
+  const float ins_low_ft = 5.0f;
   PointMassAircraft ac;
   ac.north_ft = t.cfg.sc_circle_radius_ft;
   ac.heading_deg = 90.0f;
-  ac.altitude_ft = t.cfg.ceiling_agl_ft - 5.0f;
+  ac.altitude_ft = t.cfg.ceiling_switch_agl_ft - 30.0f;
   ac.pitch_deg = 8.0f;  // the HP is climbing through the ceiling
   ac.airspeed_ftps = 65.0f;
   bool switched = false;
   float peak_ft = 0.0f;
   for (int i = 0; i < 100 * 150; ++i) {
     ac.WriteTo(&t.app.inputs, t.board.now_us);
+    t.app.inputs.altitude_agl_ft -= ins_low_ft;
     t.board.airspeed_ftps = ac.airspeed_ftps;
     t.refresh_state = false;
     if (i < 100 * 30) {
@@ -131,17 +135,62 @@ TEST(HaDecision, AboveCeilingSwitchesAndDescends) {
     }
     if (!switched && t.controller() != HA_CONTROLLER_HP) {
       switched = true;
-      EXPECT_GT(ac.altitude_ft, t.cfg.ceiling_agl_ft);
+      EXPECT_LT(ac.altitude_ft, t.cfg.ceiling_agl_ft);
       EXPECT_TRUE(t.out().reasons_at_switch & HA_REASON_CEILING);
     }
     ac.Step(t.servos(), t.cfg.period_us * 1e-6f);
     peak_ft = std::max(peak_ft, ac.altitude_ft);
   }
   ASSERT_TRUE(switched);
-  EXPECT_LT(peak_ft, t.cfg.ceiling_agl_ft + 30.0f);
+  EXPECT_LT(peak_ft, t.cfg.ceiling_agl_ft);
   // Two minutes on the HA alone: it holds the aircraft inside its band, well below the ceiling.
   EXPECT_LE(ac.altitude_ft, t.cfg.sc_alt_max_ft);
   EXPECT_GE(ac.altitude_ft, t.cfg.sc_alt_min_ft);
+}
+
+// An HP rolling steadily out past the roll limit (every command valid): the HA has the servos
+// before the limit, and while its controller slews in from the HP's aileron the roll it
+// inherits never reaches the limit.
+TEST(HaDecision, RollOutTowardsTheLimitIsTakenOverAndStoppedInsideIt) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  const float roll_limit = 1.0f / t.cfg.sx[4][HA_X_ROLL_DEG];
+  PointMassAircraft ac;
+  ac.north_ft = t.cfg.sc_circle_radius_ft;
+  ac.heading_deg = 90.0f;
+  ac.airspeed_ftps = 62.0f;
+  bool switched = false;
+  float peak_deg = 0.0f;
+  for (int i = 0; i < 100 * 20; ++i) {
+    ac.WriteTo(&t.app.inputs, t.board.now_us);
+    t.board.airspeed_ftps = ac.airspeed_ftps;
+    t.refresh_state = false;
+    t.StepWithGood(4.0f, -1.0f, 0.0f, 0.5f);  // 16 deg/s of roll, for as long as it is obeyed
+    if (!switched && t.controller() != HA_CONTROLLER_HP) {
+      switched = true;
+      EXPECT_LT(ac.roll_deg, roll_limit);
+      EXPECT_TRUE(t.out().reasons_at_switch & HA_REASON_STATE_REGION);
+      EXPECT_LT(t.out().state_region_max, 1.0f);
+    }
+    ac.Step(t.servos(), t.cfg.period_us * 1e-6f);
+    peak_deg = std::max(peak_deg, std::fabs(ac.roll_deg));
+  }
+  ASSERT_TRUE(switched);
+  EXPECT_LT(peak_deg, roll_limit);
+}
+
+// Slowing towards the stall: the pitot lags, so the HA takes over above stall speed, at its
+// switch speed, and lowers the nose while there is still lift to fly with.
+TEST(HaDecision, SlowingTowardsTheStallIsTakenOverAboveStallSpeed) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  t.board.airspeed_ftps = 0.5f * (t.cfg.stall_speed_ftps + t.cfg.stall_switch_airspeed_ftps);
+  ASSERT_GT(t.board.airspeed_ftps, t.cfg.stall_speed_ftps);
+  t.StepWithGood();
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HA);
+  EXPECT_EQ(t.out().reasons_at_switch, HA_REASON_STALL);
+  for (int i = 0; i < 50; ++i) t.StepWithGood();
+  EXPECT_GT(t.servos().elevator_deg, 0.0f);  // trailing edge down: nose down
 }
 
 TEST(HaDecision, StallWhileAirborneSwitches) {

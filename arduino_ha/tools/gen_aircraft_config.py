@@ -147,6 +147,13 @@ def build(doc):
                           % (c["airborne_agl_ft"], c["ceiling_agl_ft"]))
     c["landed_confirm_us"] = us(positive(st, "landed_confirm_s"), "landed_confirm_s")
     c["inner_region_fraction"] = need(st, "inner_region_fraction", 0.05, 0.99)
+    # The HA switches on an inset of S_x and of the ceiling (limits.yaml says why): strictly
+    # outside the hand-back region, so the two cannot chatter, and at most S_x itself.
+    c["switch_region_fraction"] = need(st, "switch_region_fraction", c["inner_region_fraction"], 1.0)
+    if c["switch_region_fraction"] <= c["inner_region_fraction"]:
+        raise ConfigError("switch_region_fraction must exceed inner_region_fraction: the HA would "
+                          "switch inside the region it hands back in")
+    c["ceiling_switch_agl_ft"] = c["ceiling_agl_ft"] * c["switch_region_fraction"]
     c["max_airspeed_ftps"] = need(sen, "max_airspeed_ftps", c["stall_speed_ftps"])
     c["state_timeout_us"] = us(positive(sen, "state_timeout_s"), "state_timeout_s")
     c["airspeed_timeout_us"] = us(positive(sen, "airspeed_timeout_s"), "airspeed_timeout_s")
@@ -265,6 +272,11 @@ def build(doc):
         raise ConfigError("handback_stall_multiple must lie strictly between 1 and cruise_margin: "
                           "above stall for margin, below the speed the HA itself flies at")
     c["handback_airspeed_ftps"] = c["stall_speed_ftps"] * handback
+    stall_switch = need(st, "stall_switch_multiple", 1.0, handback)
+    if stall_switch >= handback:
+        raise ConfigError("stall_switch_multiple must lie below handback_stall_multiple: the HA "
+                          "would hand back at a speed it switches at")
+    c["stall_switch_airspeed_ftps"] = c["stall_speed_ftps"] * stall_switch
     # Steady coordinated turn: tan(bank) = V^2 / (g R). Derived here once, not per period.
     c["sc_circle_bank_ff_deg"] = math.degrees(
         math.atan(target_ftps * target_ftps / (STANDARD_GRAVITY_FTPS2 * c["sc_circle_radius_ft"])))

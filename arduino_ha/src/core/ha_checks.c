@@ -72,22 +72,25 @@ static uint32_t check_ha_state(const HaStateView *s) {
               HA_REASON_NO_HA_STATE);
 }
 
-/* Airborne with a known airspeed at or below stall. */
+/* Airborne with a known airspeed at or below the stall switch speed: the pitot lags a stall by
+ * several periods, so waiting for stall speed itself hands the HA a departed aircraft. */
 static uint32_t check_stall(const HaAircraftConfig *cfg, const HaStateView *s) {
   return flag(s->airborne && s->airspeed_ok &&
-                  !ha_greater(s->airspeed_ftps, cfg->stall_speed_ftps),
+                  !ha_greater(s->airspeed_ftps, cfg->stall_switch_airspeed_ftps),
               HA_REASON_STALL);
 }
 
-/* Above the ceiling (a component not ok holds the region centre, so only known values count). */
+/* Within the switch margin of the ceiling: the INS's height error and the climb during the
+ * takeover must not carry the aircraft through it (a component not ok holds the region centre,
+ * so only known values count). */
 static uint32_t check_ceiling(const HaAircraftConfig *cfg, const HaStateView *s) {
-  return flag(ha_greater(s->x[HA_X_ALT_AGL_FT], cfg->ceiling_agl_ft), HA_REASON_CEILING);
+  return flag(ha_greater(s->x[HA_X_ALT_AGL_FT], cfg->ceiling_switch_agl_ft), HA_REASON_CEILING);
 }
 
 static uint32_t check_state_region(const HaAircraftConfig *cfg, const HaStateView *s,
                                    float *region_max) {
   *region_max = ha_state_region_max(cfg, s->x);
-  return flag(ha_greater(*region_max, 1.0f), HA_REASON_STATE_REGION);
+  return flag(ha_greater(*region_max, cfg->switch_region_fraction), HA_REASON_STATE_REGION);
 }
 
 uint32_t ha_checks_evaluate(const HaAircraftConfig *cfg, const HaCmdFacts *facts,

@@ -52,6 +52,13 @@ typedef struct {
   /* ... and, airborne, only above this airspeed (stall x handback_stall_multiple, derived by the
    * generator): airspeed hovering at stall cannot cycle the HP and the HA. */
   float handback_airspeed_ftps;
+  /* Switching happens on an inset, not on the edges (derived by the generator): above
+   * max(S_x (x - x0)) = switch_region_fraction, above ceiling_switch_agl_ft, and, airborne, at or
+   * below stall_switch_airspeed_ftps. The HA's sensors err and lag and its controller needs room
+   * to turn the aircraft round inside S_x. */
+  float switch_region_fraction;
+  float ceiling_switch_agl_ft;
+  float stall_switch_airspeed_ftps;
 
   /* Actuators (the box S_u is built from; the final saturation uses it directly). */
   float elevator_limit_deg;

@@ -53,6 +53,8 @@
     .ceiling_agl_ft = 400.0f, \
     .airborne_agl_ft = 30.0f, \
     .inner_region_fraction = 0.7f, \
+    .switch_region_fraction = 0.9f, \
+    .ceiling_switch_agl_ft = 360.0f, \
     .max_airspeed_ftps = 200.0f, \
     .rc_elevator_deg_per_us = 0.04f, \
     .rc_aileron_deg_per_us = 0.03f, \
@@ -81,6 +83,7 @@
     .sc_stall_margin = 1.3f, \
     .sc_cruise_margin = 1.5f, \
     .handback_airspeed_ftps = 50.4f, \
+    .stall_switch_airspeed_ftps = 46.2f, \
     .sc_circle_bank_ff_deg = 17.139825f, \
     .sc_throttle_trim = 0.4f, \
     .sc_integrator_authority = 0.25f, \

@@ -1,0 +1,52 @@
+"""The HA switches on an inset of S_x, the ceiling and the stall speed (limits.yaml says why). The
+generator refuses an inset that would make switching and handing back chatter, or one outside
+S_x itself, naming the key."""
+import pathlib
+import subprocess
+import sys
+
+import yaml
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+GENERATOR = ROOT / "arduino_ha" / "tools" / "gen_aircraft_config.py"
+LIMITS = ROOT / "aircraft" / "DG808" / "limits.yaml"
+
+
+def generate(tmp_path, **state):
+    doc = yaml.safe_load(LIMITS.read_text())
+    doc["state"].update(state)
+    path = tmp_path / "limits.yaml"
+    path.write_text(yaml.safe_dump(doc))
+    return subprocess.run([sys.executable, str(GENERATOR), str(path), "-"], capture_output=True, text=True)
+
+
+def test_the_switch_level_and_speed_reach_the_ha_derived_from_the_limits(tmp_path):
+    r = generate(tmp_path)
+    assert r.returncode == 0, r.stderr
+    doc = yaml.safe_load(LIMITS.read_text())["state"]
+    assert ".switch_region_fraction = %sf" % doc["switch_region_fraction"] in r.stdout
+    assert ".ceiling_switch_agl_ft = %.1ff" % (doc["ceiling_agl_ft"] * doc["switch_region_fraction"]) in r.stdout
+
+
+def test_a_switch_level_inside_the_hand_back_region_is_refused(tmp_path):
+    r = generate(tmp_path, inner_region_fraction=0.7, switch_region_fraction=0.7)
+    assert r.returncode != 0
+    assert "switch_region_fraction must exceed inner_region_fraction" in r.stderr
+
+
+def test_a_switch_level_outside_s_x_is_refused(tmp_path):
+    r = generate(tmp_path, switch_region_fraction=1.05)
+    assert r.returncode != 0
+    assert "switch_region_fraction" in r.stderr
+
+
+def test_a_stall_switch_speed_at_the_hand_back_speed_is_refused(tmp_path):
+    r = generate(tmp_path, handback_stall_multiple=1.2, stall_switch_multiple=1.2)
+    assert r.returncode != 0
+    assert "stall_switch_multiple must lie below handback_stall_multiple" in r.stderr
+
+
+def test_a_stall_switch_speed_below_stall_is_refused(tmp_path):
+    r = generate(tmp_path, stall_switch_multiple=0.95)
+    assert r.returncode != 0
+    assert "stall_switch_multiple" in r.stderr
