@@ -176,6 +176,7 @@ def main(argv=None):
                   "servo_relay:=%s" % ("true" if relay else "false"),
                   "link_relay:=%s" % ("true" if link_relay else "false"),
                   "gs_udp_bind_port:=%d" % gs_bind, "gs_udp_remote_port:=%d" % gs_remote,
+                  "gs_monitor:=%s" % ("false" if args.realtime else "true"),
                   "wait_for_recorder:=%s" % ("false" if args.no_bag else "true")]
         launcher = procs.start("launch", launch)
         t0 = time.monotonic()

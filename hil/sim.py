@@ -42,7 +42,7 @@ from sensor_msgs.msg import Temperature
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 sys.path.insert(0, ROOT)
-from hil import faults, ha_channel, link_relay, mission, sensors, verdicts  # noqa: E402
+from hil import faults, gs_monitor, ha_channel, link_relay, mission, sensors, verdicts  # noqa: E402
 from hil.faults.base import RC_NEUTRAL, Board  # noqa: E402
 from hil.fdm import Fdm, FdmCrash, Surfaces, Wind  # noqa: E402
 
@@ -249,6 +249,9 @@ class Simulation:
         self.out_dir = p("out_dir", "/tmp")
         self.wait_for_recorder = bool(p("wait_for_recorder", False))
         self.gs_port = int(p("gs_udp_port", 14555))
+        # Where microhard_gs sends its telemetry, held as a ground station would (0: not held,
+        # e.g. in real time, where QGroundControl holds it).
+        self.gs_monitor_port = int(p("gs_monitor_port", 0))
         self.wind = Wind(float(p("wind_from_deg", 0.0)), float(p("wind_mps", 0.0)), p("turbulence", "none"))
         self.period_us = int(round(1e6 / self.rate_hz))
         self.controller_period_us = int(round(self.controller_dt_s * 1e6))
@@ -317,6 +320,9 @@ class Simulation:
         self.link_relay = None
         if p("ha_link_sil", ""):
             self.link_relay = link_relay.LinkRelay(p("ha_link", ""), p("ha_link_sil", ""))
+        self.gs_monitor = None
+        if self.gs_monitor_port:
+            self.gs_monitor = gs_monitor.GsMonitor(self.gs_monitor_port, self.gs_port, lambda: self.sim_t_s)
         self.fault = None
         if self.fault_name != "none" and self.fault_at_s >= 0.0:
             if faults.needs_link_relay(self.fault_name) and self.link_relay is None:
@@ -689,6 +695,8 @@ class Simulation:
 
     def close(self):
         self.truth_log.close()
+        if self.gs_monitor is not None:
+            self.gs_monitor.stop()
         for c in (self.chan, self.hp_vn, self.ha_vn) + ((self.link_relay,) if self.link_relay else ()):
             try:
                 c.close()
