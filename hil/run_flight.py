@@ -34,7 +34,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.dirname(HERE))
 from hil import faults  # noqa: E402
 BAG_TOPICS = ["/hil/truth", "/decision_status", "/servo_op", "/pwm", "/ins", "/data", "/to_hil",
-              "/way", "/rosout_agg", "/diagnostics"]
+              "/way", "/home", "/rosout_agg", "/diagnostics"]
 
 
 def free_port(kind=socket.SOCK_STREAM):

@@ -77,7 +77,7 @@ def hp_alive(t_s):
 
 
 def write(path, with_truth=True, end_s=END_S, t0_s=T0_S, chunk_threshold=768 * 1024,
-          received_after_s=0.0):
+          received_after_s=0.0, with_home=False):
     """Writes the flight; returns the number of messages. received_after_s puts the recorder's
     receive times on another clock than the stamps (a lockstep HiL: stamps on the simulator's
     clock from 0, receive times on the wall clock)."""
@@ -95,6 +95,9 @@ def write(path, with_truth=True, end_s=END_S, t0_s=T0_S, chunk_threshold=768 * 1
         for i, (n, e, h) in enumerate(waypoints()):
             plan.north[i], plan.east[i], plan.height[i], plan.velocity[i] = n, e, h, 60.0
         put("/way", plan, 0.0)
+        if with_home:  # the HA's latched home, as rosbag records a latched topic: first
+            from drone_ros.msg import HomePosition
+            put("/home", HomePosition(seq=1, latitude=HOME[0], longitude=HOME[1], altitude=HOME[2]), 0.0)
 
         for k in range(steps):
             t_s = k / DECISION_HZ

@@ -170,6 +170,37 @@ def test_real_flight_without_truth_reports_measured_state_and_says_so(tmp_path):
         assert (tmp_path / "r" / name).stat().st_size > 20000, name
 
 
+def test_real_flight_track_is_drawn_around_the_has_home_when_the_log_has_it(tmp_path):
+    # The scripted flight's first fix is 1500 ft north of home: drawn around the first fix (the
+    # old rule), the track would start at 0 and lie 1500 ft off the mission's waypoints.
+    import importlib.machinery
+    import types
+    script = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scripts", "flight_report")
+    loader = importlib.machinery.SourceFileLoader("flight_report_tool", script)
+    module = types.ModuleType(loader.name)
+    module.__file__ = script
+    loader.exec_module(module)
+    from report_core.flight_log import FlightLog
+    bag = tmp_path / "2026-11-23_120000-DG808-flight.bag"
+    for with_home, first_north_ft, said in ((True, 1500.0, "home = the HA's /home"),
+                                            (False, 0.0, "no /home recorded")):
+        scripted_flight.write(str(bag), with_truth=False, with_home=with_home)
+        log = FlightLog(*module.read_bag(str(bag)))
+        _, north, east, _, source = log.position()
+        assert north[0] == pytest.approx(first_north_ft, abs=5.0), with_home
+        assert said in source, source
+
+
+def test_the_flight_log_records_the_stacks_home():
+    import xml.etree.ElementTree as ET
+    root = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
+    args = ET.parse(os.path.join(root, "launch", "record.launch")).getroot().find("node").get("args")
+    assert "/home" in args.split()
+    sys.path.insert(0, os.path.join(root, "hil"))
+    import run_flight
+    assert "/home" in run_flight.BAG_TOPICS
+
+
 def test_aircraft_unknown_from_the_name_asks_for_it(tmp_path):
     bag = tmp_path / "flight.bag"
     scripted_flight.write(str(bag), end_s=2.0)

@@ -18,7 +18,9 @@ TOPIC_PWM = "/pwm"
 TOPIC_INS = "/ins"
 TOPIC_DATA = "/data"
 TOPIC_WAY = "/way"
-TOPICS = (TOPIC_TRUTH, TOPIC_DECISION, TOPIC_SERVO_OP, TOPIC_PWM, TOPIC_INS, TOPIC_DATA, TOPIC_WAY)
+TOPIC_HOME = "/home"  # the HA's latched home, the whole stack's one (drone_ros/HomePosition)
+TOPICS = (TOPIC_TRUTH, TOPIC_DECISION, TOPIC_SERVO_OP, TOPIC_PWM, TOPIC_INS, TOPIC_DATA, TOPIC_WAY,
+          TOPIC_HOME)
 
 FT_PER_M = 1.0 / 0.3048
 G_FTPS2 = 32.174
@@ -102,6 +104,7 @@ FIELDS_BY_TOPIC = {
     topic: {"header", "stamp"} | {path.split(".")[0].split("[")[0] for path in fields.values()}
     for topic, fields in FIELD_TABLES.items()}
 FIELDS_BY_TOPIC[TOPIC_WAY] = {"north", "east", "height", "fp"}
+FIELDS_BY_TOPIC[TOPIC_HOME] = {"latitude", "longitude", "altitude"}
 
 
 class LogBuilder:
@@ -113,6 +116,7 @@ class LogBuilder:
         self.columns = {topic: {name: array("d") for name in ("t", *fields)}
                         for topic, fields in FIELD_TABLES.items()}
         self.last_plan = None
+        self.home = None  # (lat_deg, lon_deg, alt_m): the last /home, latched, so in every log
         self.t_min = math.inf
         self.t_max = -math.inf
 
@@ -120,6 +124,13 @@ class LogBuilder:
         if topic == TOPIC_WAY:  # a plan, not a time series: it has no stamp and spans no time
             if _flight_plan(record):
                 self.last_plan = record
+            return
+        if topic == TOPIC_HOME:  # likewise a fact, not a series
+            try:
+                self.home = (float(record["latitude"]), float(record["longitude"]), float(record["altitude"]))
+            except (KeyError, TypeError, ValueError):
+                raise ReportError("%s has no latitude/longitude/altitude: the bag was recorded with "
+                                  "another version of the message" % TOPIC_HOME) from None
             return
         t = _stamp(record, self.sim_time)
         if topic in FIELD_TABLES:
@@ -166,6 +177,7 @@ class FlightLog:
         self.ins = builder.table(TOPIC_INS)
         self.data = builder.table(TOPIC_DATA)
         self.waypoints = _flight_plan(builder.last_plan) if builder.last_plan else []
+        self.home = builder.home
         text = definition_texts.get(TOPIC_DECISION, "")
         self.controller_names = definitions.constants(text, "CONTROLLER_")
         self.reason_names = definitions.constants(text, "REASON_")
@@ -181,7 +193,8 @@ class FlightLog:
 
     def position(self):
         """(t, north_ft, east_ft, height_ft, source): the track, from truth when simulated, else
-        from the INS fixes relayed on /data around the first fix (the controller's home rule)."""
+        from the INS fixes relayed on /data around the HA's /home (or, in a log without it, the
+        first fix)."""
         if self.truth is not None:
             return (self.truth.t, self.truth.north_ft, self.truth.east_ft,
                     self.truth.height_above_home_ft, "simulator truth (/hil/truth)")
@@ -192,9 +205,14 @@ class FlightLog:
             return None
         t = self.data.t[fixed]
         lat, lon, alt = self.data.lat_deg[fixed], self.data.lon_deg[fixed], self.data.alt_m[fixed]
-        north, east = ned_from_home(lat, lon, lat[0], lon[0])
-        return (t, north, east, (alt - alt[0]) * FT_PER_M,
-                "measured (VN-200 fixes on /data, home = first fix in the log)")
+        if self.home is not None:
+            home_lat, home_lon, home_alt = self.home
+            source = "measured (VN-200 fixes on /data, home = the HA's /home)"
+        else:
+            home_lat, home_lon, home_alt = lat[0], lon[0], alt[0]
+            source = "measured (VN-200 fixes on /data, home = first fix in the log: no /home recorded)"
+        north, east = ned_from_home(lat, lon, home_lat, home_lon)
+        return (t, north, east, (alt - home_alt) * FT_PER_M, source)
 
 
 def ned_from_home(lat_deg, lon_deg, home_lat_deg, home_lon_deg):

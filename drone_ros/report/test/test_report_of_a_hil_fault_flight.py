@@ -1,0 +1,64 @@
+"""flight_report on the bag of a real lockstep HiL flight with a fault (hil/run_flight.py records
+it and runs the report, as `make run` does): every figure is drawn and on the page, and the
+page's switch list is the flight's switches as the simulator saw them on the servos (summary.json
+"who_flew", from the HA's replies in the loop), not as the report read them from the bag."""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+import pytest
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from test_flight_report import FIGURES, page, png_size  # noqa: E402
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
+# The page's controller labels (report_core figures.CONTROLLER_LABELS) for the summary's names.
+LABELS = {"HP": "HP", "HA": "HA", "RECOVERING": "recovering", "HA_LATCHED": "latched", "MANUAL": "pilot"}
+
+
+@pytest.fixture(scope="module")
+def flight():
+    if "ROS_DISTRO" not in os.environ and "ROS_PACKAGE_PATH" not in os.environ:
+        pytest.fail("the workspace is not sourced (make test does it)")
+    folder = os.path.join(tempfile.mkdtemp(prefix="hil_report_"), "2026-11-24_101500-DG808-11")
+    # A NaN aileron for 3 s from 15 s: the HA takes over, the HP is restarted and handed back.
+    argv = [sys.executable, os.path.join(ROOT, "hil", "run_flight.py"), "--seed", "11", "--fault", "nan",
+            "--fault-at", "15", "--fault-duration", "3", "--fault-param", "surface=aileron",
+            "--duration", "35", "--quiet", "--folder", folder]
+    r = subprocess.run(argv, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=1200)
+    assert r.returncode == 0, r.stdout.decode(errors="replace")[-3000:]
+    with open(os.path.join(folder, "summary.json")) as f:
+        return folder, json.load(f)
+
+
+def test_every_figure_of_the_fault_flight_is_drawn_and_on_the_page(flight):
+    folder, _ = flight
+    report = os.path.join(folder, "report")
+    text, _ = page(os.path.join(report, "index.html"))
+    for name in FIGURES:
+        path = os.path.join(report, name)
+        assert os.path.exists(path), name
+        width, height = png_size(path)
+        assert width >= 800 and height >= 450, name
+        assert 'src="%s"' % name in text, "%s is not on the page" % name
+
+
+def test_the_switch_list_is_the_flights_switches_with_their_reasons(flight):
+    folder, s = flight
+    segs = s["who_flew"]
+    assert any(seg["controller"] == "HA" and seg["from_s"] >= 15.0 for seg in segs), segs  # the fault's takeover
+    expected = [(b["from_s"], LABELS[a["controller"]], LABELS[b["controller"]], b["why"])
+                for a, b in zip(segs, segs[1:])]
+    _, rows = page(os.path.join(folder, "report", "index.html"))
+    assert len(rows) == len(expected), (rows, expected)
+    for row, (t_s, frm, to, why) in zip(rows, expected):
+        _, time_cell, from_cell, to_cell, reason_cell, _ = row
+        # The bag's /decision_status is stamped by the arduino node within the HA's period.
+        assert float(time_cell) == pytest.approx(t_s, abs=0.02), (row, t_s)
+        assert (from_cell, to_cell) == (frm, to), (row, frm, to)
+        if frm == "HP":  # a takeover: the page names what the HA switched for
+            assert why and all(name in reason_cell for name in why), (row, why)
+        if to == "HP":   # a hand-back: after the stable window
+            assert "HP command valid for" in reason_cell, row
