@@ -43,6 +43,29 @@ std::string describe(const std::string &path, const char *step, int err) {
   return path + ": " + step + ": " + std::strerror(err);
 }
 
+// What a person at the bench does about a port that will not open: the fix, not only the errno.
+std::string fix_for(int err) {
+  switch (err) {
+    case ENOENT:
+    case ENODEV:
+    case ENXIO:
+      return " (is the device plugged in? ls -l /dev/serial/by-id/ lists the USB serial devices by "
+             "name: give that path, which survives re-plugging, as the port)";
+    case EACCES:
+    case EPERM:
+      return " (this user may not open it: sudo usermod -aG dialout $USER, then log out and in "
+             "again; ls -l shows the device's group)";
+    case EBUSY:
+      return " (another program holds it: fuser -v the path; ModemManager grabs new USB serial "
+             "devices)";
+    case ENOTTY:
+    case EINVAL:
+      return " (the path is not a serial device: check it; /dev/serial/by-id/ names the real ones)";
+    default:
+      return "";
+  }
+}
+
 }  // namespace
 
 SerialPort::~SerialPort() { close(); }
@@ -58,12 +81,14 @@ bool SerialPort::open(const std::string &path, int baud, std::string *error) {
   }
   const int fd = ::open(path.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0) {
-    *error = describe(path, "open", errno);
+    const int err = errno;
+    *error = describe(path, "open", err) + fix_for(err);
     return false;
   }
   termios tio{};
   if (tcgetattr(fd, &tio) != 0) {
-    *error = describe(path, "not a serial port (tcgetattr)", errno);
+    const int err = errno;
+    *error = describe(path, "not a serial port (tcgetattr)", err) + fix_for(ENOTTY);
     ::close(fd);
     return false;
   }

@@ -7,7 +7,9 @@
 #include <pty.h>
 #include <signal.h>
 #include <sys/ioctl.h>
+#include <sys/stat.h>
 #include <sys/time.h>
+#include <sys/wait.h>
 #include <termios.h>
 #include <unistd.h>
 
@@ -134,6 +136,57 @@ TEST(SerialPort, MissingDeviceAndAbsurdBaudAreRefusedWithAReason) {
   EXPECT_FALSE(port.open(pty.name, 50000000, &error));
   EXPECT_NE(std::string::npos, error.find("50000000")) << error;
   EXPECT_FALSE(port.is_open());
+}
+
+// What a user sees when the port will not open: the port and what to do about it.
+TEST(SerialPort, AMissingDeviceNamesThePortAndTheByIdPath) {
+  SerialPort port;
+  std::string error;
+  EXPECT_FALSE(port.open("/dev/ttyACM_not_plugged", 115200, &error));
+  EXPECT_NE(std::string::npos, error.find("/dev/ttyACM_not_plugged")) << error;
+  EXPECT_NE(std::string::npos, error.find("plugged in")) << error;
+  EXPECT_NE(std::string::npos, error.find("/dev/serial/by-id/")) << error;
+}
+
+TEST(SerialPort, APathThatIsNoSerialDeviceSaysSo) {
+  SerialPort port;
+  std::string error;
+  EXPECT_FALSE(port.open("/dev/null", 115200, &error));
+  EXPECT_NE(std::string::npos, error.find("not a serial device")) << error;
+}
+
+// As root every device opens, so the denied user is a child that drops to nobody's ids first.
+TEST(SerialPort, APortThisUserMayNotOpenNamesTheDialoutGroup) {
+  Pty pty;
+  // Root's child becomes nobody, whom 0600 keeps out; a developer's own pty needs 0000.
+  ASSERT_EQ(0, chmod(pty.name.c_str(), getuid() == 0 ? 0600 : 0000));
+  int pipe_fds[2];
+  ASSERT_EQ(0, pipe(pipe_fds));
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    ::close(pipe_fds[0]);
+    const uid_t nobody = 65534;
+    if (getuid() == 0 && (setgid(nobody) != 0 || setuid(nobody) != 0)) _exit(2);
+    SerialPort port;
+    std::string error;
+    const bool opened = port.open(pty.name, 115200, &error);
+    const ssize_t w = write(pipe_fds[1], error.data(), error.size());
+    _exit(opened ? 1 : (w < 0 ? 3 : 0));
+  }
+  ::close(pipe_fds[1]);
+  std::string error;
+  char buf[512];
+  ssize_t n;
+  while ((n = read(pipe_fds[0], buf, sizeof buf)) > 0) error.append(buf, static_cast<size_t>(n));
+  ::close(pipe_fds[0]);
+  int status = 0;
+  ASSERT_EQ(child, waitpid(child, &status, 0));
+  ASSERT_TRUE(WIFEXITED(status));
+  ASSERT_EQ(0, WEXITSTATUS(status)) << "the unprivileged child opened the port, or could not drop privileges";
+  EXPECT_NE(std::string::npos, error.find(pty.name)) << error;
+  EXPECT_NE(std::string::npos, error.find(std::strerror(EACCES))) << error;
+  EXPECT_NE(std::string::npos, error.find("usermod -aG dialout")) << error;
 }
 
 // --- From the VN-200 driver: its command line, its rates, the adapter vanishing -----------------
