@@ -1,0 +1,125 @@
+"""Every launch file started as a user starts it, in HiL configuration on one ROS master:
+DG808_hil.launch (which is DG808_flight.launch with its ports on ptys, and through it the
+hp_supervisor, vn200, arduino and microhard_gs launch files), view.launch (the markers; rviz itself
+needs a display: rviz:=false) and record.launch. The expected nodes come up, every topic the
+stack's interfaces name has a publisher and carries messages, the recorder writes its log under
+the dated name; then everything started here is stopped."""
+import glob
+import os
+import signal
+import socket
+import subprocess
+import tempfile
+import time
+
+import pytest
+import rosgraph
+
+# ha_sil is no ROS node (the HA speaks rosserial over its pty, as the Due does): /decision_status
+# flowing from the arduino node below is what shows it up.
+NODES = ["/controller_DG808", "/hp_supervisor", "/vn200", "/arduino", "/microhard_gs", "/hil_sim",
+         "/flight_markers", "/recorder"]
+# Topic: the node that must publish it.
+TOPICS = {"/clock": "/hil_sim", "/hil/truth": "/hil_sim", "/ins": "/vn200", "/attitude": "/vn200",
+          "/gps_position": "/vn200", "/gps_velocity": "/vn200", "/imu_PQR_acceleration": "/vn200",
+          "/servo_op": "/controller_DG808", "/data": "/controller_DG808", "/to_hil": "/controller_DG808",
+          "/pwm": "/arduino", "/decision_status": "/arduino", "/home": "/arduino", "/way": "/microhard_gs",
+          "/flight_markers": "/flight_markers", "/tf": "/flight_markers"}
+FLOWING = ["/clock", "/ins", "/servo_op", "/decision_status", "/home", "/way", "/flight_markers"]
+
+
+def free_port(kind=socket.SOCK_STREAM):
+    with socket.socket(socket.AF_INET, kind) as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+@pytest.fixture(scope="module")
+def stack():
+    if "ROS_PACKAGE_PATH" not in os.environ:
+        pytest.fail("the workspace is not sourced (make test does it)")
+    port = free_port()
+    run_dir = tempfile.mkdtemp(prefix="launch_")
+    logs = os.path.join(run_dir, "logs")
+    env = dict(os.environ, ROS_MASTER_URI="http://127.0.0.1:%d" % port, ROS_IP="127.0.0.1",
+               ROS_LOG_DIR=os.path.join(run_dir, "ros"), PYTHONUNBUFFERED="1")
+    env.pop("ROS_HOSTNAME", None)
+    procs = []
+
+    def start(cmd):
+        log = open(os.path.join(run_dir, "%s.log" % len(procs)), "wb")
+        procs.append(subprocess.Popen(cmd, env=env, stdout=log, stderr=subprocess.STDOUT, start_new_session=True))
+
+    try:
+        start(["roscore", "-p", str(port)])
+        master = rosgraph.Master("/launch_test", master_uri=env["ROS_MASTER_URI"])
+        deadline = time.time() + 60
+        while True:
+            try:
+                master.getPid()
+                break
+            except OSError:
+                if time.time() > deadline:
+                    raise RuntimeError("roscore did not come up")
+                time.sleep(0.2)
+        # A long flight: the checks run while it flies, and the fixture stops it.
+        start(["roslaunch", "--wait", "drone_ros", "DG808_hil.launch", "run_dir:=" + run_dir,
+               "out_dir:=" + os.path.join(run_dir, "out"), "duration_s:=3600", "crash_at_s:=-1", "fault:=none",
+               "gs_udp_bind_port:=%d" % free_port(socket.SOCK_DGRAM),
+               "gs_udp_remote_port:=%d" % free_port(socket.SOCK_DGRAM)])
+        start(["roslaunch", "--wait", "drone_ros", "view.launch", "rviz:=false"])
+        start(["roslaunch", "--wait", "drone_ros", "record.launch", "aircraft:=DG808", "mode:=hil",
+               "out_dir:=" + logs])
+        yield master, env, logs
+    finally:
+        for p in reversed(procs):
+            if p.poll() is None:
+                os.killpg(p.pid, signal.SIGINT)
+        for p in reversed(procs):
+            try:
+                p.wait(timeout=20)
+            except subprocess.TimeoutExpired:
+                os.killpg(p.pid, signal.SIGKILL)
+                p.wait()
+
+
+def wait_for(cond, timeout_s=120.0):
+    deadline = time.time() + timeout_s
+    while time.time() < deadline:
+        value = cond()
+        if value:
+            return value
+        time.sleep(0.5)
+    return cond()
+
+
+def test_every_node_of_the_launch_files_comes_up(stack):
+    master, _, _ = stack
+
+    def missing():
+        up = {n for kind in master.getSystemState() for _, ns in kind for n in ns}
+        return [n for n in NODES if n not in up]
+    assert wait_for(lambda: not missing()), "not up: %s" % missing()
+
+
+def test_every_interface_topic_has_its_publisher(stack):
+    master, _, _ = stack
+
+    def absent():
+        pubs = dict(master.getSystemState()[0])
+        return ["%s (from %s)" % (t, n) for t, n in TOPICS.items() if n not in pubs.get(t, [])]
+    assert wait_for(lambda: not absent()), "no publisher: %s" % absent()
+
+
+@pytest.mark.parametrize("topic", FLOWING)
+def test_the_topic_carries_messages(stack, topic):
+    _, env, _ = stack
+    r = subprocess.run(["rostopic", "echo", "-n", "1", "--noarr", topic], env=env, capture_output=True,
+                       text=True, timeout=180)
+    assert r.returncode == 0 and r.stdout.strip(), "%s: nothing within the time: %s" % (topic, r.stderr[-500:])
+
+
+def test_the_recorder_writes_a_dated_log_of_aircraft_and_mode(stack):
+    _, _, logs = stack
+    found = wait_for(lambda: glob.glob(os.path.join(logs, "*-DG808-hil.bag*")), 60.0)
+    assert found, os.listdir(logs) if os.path.isdir(logs) else "no log folder"
