@@ -131,6 +131,10 @@ def main(argv=None):
 
     stamp = datetime.datetime.utcnow().strftime("%Y-%m-%d_%H%M%S")
     out = args.folder or os.path.join(args.out, "%s-%s-%d" % (stamp, args.aircraft, args.seed))
+    # A folder that already holds a flight is never flown over: its done file would end the new
+    # flight at once with the old one's result.
+    if any(os.path.exists(os.path.join(out, f)) for f in ("done", "summary.json", "flight.bag")):
+        ap.error("%s already holds a flight: give another --folder (flights are never overwritten)" % out)
     os.makedirs(out, exist_ok=True)
     run_dir = tempfile.mkdtemp(prefix="hil-")  # short: the control socket path must fit sun_path
     port = free_port()

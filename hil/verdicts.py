@@ -316,10 +316,11 @@ def summarize(sim):
         }
     handbacks = []
     prev = None
-    for t_us, m, reply, _, _ in recs:
+    for t_us, m, reply, _, cal_ftps in recs:
         if prev is not None and prev != 0 and reply.controller == 0:
             handbacks.append({"t_s": round(t_us * 1e-6, 3), "stable_for_s": round(reply.stable_for_s, 3),
-                              "after_stable_window": reply.stable_for_s + 1e-6 >= r.stable_window_s})
+                              "after_stable_window": reply.stable_for_s + 1e-6 >= r.stable_window_s,
+                              "calibrated_airspeed_ftps": round(cal_ftps, 2)})
         prev = reply.controller
     heights = [x[1].height_above_home_ft for x in airborne]
     cal = [x[4] for x in airborne]
