@@ -31,7 +31,22 @@ def fly(fault, at_s=15.0, duration_s=-1.0, params=(), flight_s=35.0, seed=11):
     with open(os.path.join(folder, "summary.json")) as f:
         s = json.load(f)
     s["_replay"] = replay
+    s["_folder"] = folder
     return s
+
+
+def truth_series(s):
+    """Every step's /hil/truth of the flight (the simulator's own log, truth.bin), in order."""
+    import struct
+    from drone_ros.msg import HilTruth
+    with open(os.path.join(s["_folder"], "truth.bin"), "rb") as f:
+        data = f.read()
+    out, i = [], 0
+    while i < len(data):
+        (n,) = struct.unpack_from("<I", data, i)
+        out.append(HilTruth().deserialize(data[i + 4:i + 4 + n]))
+        i += 4 + n
+    return out
 
 
 def assert_property(s, takeover_due):
