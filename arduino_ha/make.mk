@@ -37,12 +37,9 @@ verify-ha-board: deps
 bench-ha: deps
 	@bash $(HA_DIR)/bench/run_bench.sh $(ROOT)/.build/arduino_ha_bench
 
-# arduino-cli compiles only the sketch folder's root and src/, so the VN-200 protocol core the
-# INS seam decodes with is kept as a checked-in copy in src/vn200/. Run after changing
-# vn200_driver/core; arduino_ha/test/test_sketch_copies.py fails while the two differ.
-.PHONY: due-sketch-vn200
-due-sketch-vn200:
-	@mkdir -p $(HA_DIR)/src/vn200
-	@rm -f $(HA_DIR)/src/vn200/*.c $(HA_DIR)/src/vn200/*.h
-	@cp $(ROOT)/vn200_driver/core/*.c $(ROOT)/vn200_driver/core/*.h $(HA_DIR)/src/vn200/
-	@echo "due-sketch-vn200: copied vn200_driver/core into arduino_ha/src/vn200"
+# arduino-cli compiles only inside the sketch folder, so the sketch is assembled under .build/
+# with the one VN-200 protocol core (vn200_driver/core) in its src/vn200/; flash from there.
+.PHONY: sketch-ha
+sketch-ha:
+	@sketch=$$(bash $(HA_DIR)/tools/assemble_sketch.sh $(ROOT)/.build/sketch) && \
+	  echo "sketch-ha: $$sketch; arduino-cli compile --fqbn arduino:sam:arduino_due_x $$sketch"

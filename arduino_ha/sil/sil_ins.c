@@ -2,7 +2,7 @@
 
 #include <string.h>
 
-#include "../src/vn200/vn_binary.h"
+#include "vn_binary.h"
 
 /* Field for field as due_ins_sample_from_vn() (board_due/due_ins_seam.cpp), which is C++ behind
  * the Arduino API and cannot be linked into this C program. */

@@ -1,6 +1,6 @@
 /* The SIL's VN-200 port: the host counterpart of src/board_due/due_ins_seam.cpp (which reads the
  * Due's Serial1 through the Arduino API). The same C99 vn200 core splits and decodes the stream
- * (vn_framer_next, vn_bin_decode, compiled from src/vn200/, the Due's copy) and the same INS
+ * (vn_framer_next, vn_bin_decode, vn200_driver/core, what the Due's sketch is assembled with) and the same INS
  * adapter (core/ha_ins.c) writes the state into HaInputs; only the byte source differs. */
 #ifndef SIL_INS_H
 #define SIL_INS_H
@@ -11,7 +11,7 @@
 #include "../src/core/ha_config.h"
 #include "../src/core/ha_core.h"
 #include "../src/core/ha_ins.h"
-#include "../src/vn200/vn_framer.h"
+#include "vn_framer.h"
 
 typedef struct {
   const HaAircraftConfig *cfg;

@@ -1,33 +1,48 @@
-"""The Due sketch compiles a checked-in copy of the VN-200 protocol core (arduino_ha/src/vn200/,
-made by `make due-sketch-vn200`), because arduino-cli only compiles inside the sketch folder.
-These tests fail when that copy no longer matches vn200_driver/core, so the HA never flies a
-decoder the host tests did not test."""
+"""The Due sketch is assembled, not copied: arduino-cli compiles only inside the sketch folder, so
+`make sketch-ha` (arduino_ha/tools/assemble_sketch.sh) puts the .ino, src/ and the one VN-200
+protocol core (vn200_driver/core) together under .build/. No copy of that core is checked in, and
+the assembled sketch holds every file its sources include, so the HA never flies a decoder the
+host tests did not test."""
 import pathlib
+import re
 import subprocess
 import sys
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
-ORIGINAL = ROOT / "vn200_driver" / "core"
-COPY = ROOT / "arduino_ha" / "src" / "vn200"
-FIX = "run `make due-sketch-vn200` and check in arduino_ha/src/vn200/"
+HA = ROOT / "arduino_ha"
+VN200_CORE = ROOT / "vn200_driver" / "core"
+INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 
 
-def sources(folder):
-    return {p.name: p for p in folder.iterdir() if p.suffix in (".c", ".h")}
+def assemble(tmp_path):
+    out = subprocess.run(["bash", str(HA / "tools" / "assemble_sketch.sh"), str(tmp_path)],
+                         check=True, capture_output=True, text=True).stdout.strip()
+    return pathlib.Path(out)
 
 
-def test_sketch_has_every_vn200_core_file_and_no_other():
-    original = sorted(sources(ORIGINAL))
-    copy = sorted(sources(COPY))
-    assert original, "vn200_driver/core has no sources"
-    assert copy == original, FIX
+def test_no_copy_of_the_vn200_core_is_checked_in():
+    assert not (HA / "src" / "vn200").exists(), "arduino_ha/src/vn200 is a copy: the sketch is assembled"
 
 
-def test_sketch_copy_of_vn200_core_is_byte_identical():
-    copy = sources(COPY)
-    differing = [name for name, path in sorted(sources(ORIGINAL).items())
-                 if name in copy and copy[name].read_bytes() != path.read_bytes()]
-    assert not differing, "%s differ; %s" % (", ".join(differing), FIX)
+def test_the_assembled_sketch_carries_the_one_vn200_core_byte_for_byte(tmp_path):
+    sketch = assemble(tmp_path)
+    core = {p.name: p.read_bytes() for p in VN200_CORE.iterdir() if p.suffix in (".c", ".h")}
+    copy = {p.name: p.read_bytes() for p in (sketch / "src" / "vn200").iterdir()}
+    assert core and copy == core
+
+
+def test_every_quoted_include_of_the_sketch_resolves_inside_the_assembled_sketch(tmp_path):
+    sketch = assemble(tmp_path)
+    assert (sketch / "arduino_ha.ino").is_file()
+    missing = []
+    sources = [sketch / "arduino_ha.ino"] + [p for p in (sketch / "src").rglob("*")
+                                              if p.suffix in (".c", ".h", ".cpp")]
+    for src in sources:
+        for name in INCLUDE.findall(src.read_text(errors="replace")):
+            # arduino-cli's include path: the including file's folder, then the sketch's root.
+            if not ((src.parent / name).is_file() or (sketch / name).is_file()):
+                missing.append("%s: %s" % (src.relative_to(sketch), name))
+    assert not missing, missing
 
 
 def test_decision_status_header_is_the_one_the_message_generates(tmp_path):

@@ -25,12 +25,14 @@ for tool in g++ gcc arm-none-eabi-g++ arm-none-eabi-gcc; do
 done
 rm -rf "$out"
 mkdir -p "$out/host" "$out/m3"
+# What arduino-cli compiles: the sketch as assembled for flashing (make sketch-ha).
+ha=$(bash "$ha/tools/assemble_sketch.sh" "$out/sketch")
 
 # arduino-cli compiles the .ino as C++ after adding #include <Arduino.h>; do the same.
 { echo '#include <Arduino.h>'; echo '#line 1 "arduino_ha.ino"'; cat "$ha/arduino_ha.ino"; } \
   > "$out/arduino_ha.ino.cpp"
 
-strict=(-Wall -Wextra -Werror -Os -I"$here/arduino_shim" -iquote "$ha")
+strict=(-Wall -Wextra -Werror -Os -I"$here/arduino_shim" -iquote "$ha" -iquote "$root/vn200_driver/core")
 m3=(-mcpu=cortex-m3 -mthumb -ffunction-sections -fdata-sections)
 mapfile -t board_cpp < <(find "$ha/src/board_due" -name '*.cpp' | LC_ALL=C sort)
 mapfile -t board_c < <(find "$ha/src/board_due" -name '*.c' | LC_ALL=C sort)

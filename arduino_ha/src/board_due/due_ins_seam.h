@@ -2,8 +2,8 @@
  *
  * The VN-200's port 1 is wired to the Due's Serial1, so the HA senses attitude, rates, altitude
  * and position without the HP. Its bytes are read here every loop, split into packets by the
- * VN-200 protocol core (src/vn200/, a checked-in copy of vn200_driver/core made by
- * `make due-sketch-vn200`: vn_framer + vn_bin_decode), each decoded binary packet is copied into
+ * VN-200 protocol core (vn200_driver/core, which `make sketch-ha` puts into the assembled
+ * sketch's src/vn200/: vn_framer + vn_bin_decode), each decoded binary packet is copied into
  * the core's plain HaInsSample, and the core's INS adapter (core/ha_ins.c) turns it into the
  * state fields of HaInputs: the only place INS data enters them. ASCII sentences (register
  * responses) are counted and ignored; bad packets are counted by the framer and dropped.
