@@ -206,6 +206,36 @@ TEST(HaDecision, StallWhileAirborneSwitches) {
   EXPECT_GT(t.servos().throttle, t.cfg.sc_throttle_trim);
 }
 
+// A pitot that reads zero in cruise (blocked, zeroed) while the INS shows 60 ft/s over the
+// ground: no tailwind explains it, so it is a lying sensor, not a stall. Believed, the
+// slow-beats-low law would push the nose down all the way to the ground; instead the HA takes
+// the servos for its own missing airspeed (no HP reset), and flies the altitude band.
+TEST(HaDecision, AZeroPitotInCruiseIsALyingSensorNotAStallToDiveOutOf) {
+  Timeline t;
+  t.Cruise(200.0f, 60.0f);
+  ASSERT_GT(t.ReachHp(), 0);
+  t.board.airspeed_ftps = 0.0f;
+  for (uint32_t i = 0; i <= t.cfg.airspeed_timeout_us / t.cfg.period_us + 1u; ++i) t.StepWithGood();
+  EXPECT_NE(t.controller(), HA_CONTROLLER_HP);
+  EXPECT_EQ(t.out().reasons_at_switch, HA_REASON_NO_HA_STATE);
+  EXPECT_FALSE(t.out().reasons & HA_REASON_STALL);
+  EXPECT_EQ(t.out().restart_count, 0u);
+  EXPECT_EQ(t.board.hp_reset_assertions, 0);
+  for (int i = 0; i < 300; ++i) t.StepWithGood();  // past the bumpless slew
+  // At the band's middle, level: no dive (trailing edge down beyond a trim's worth).
+  t.app.inputs.altitude_agl_ft = 0.5f * (t.cfg.sc_alt_min_ft + t.cfg.sc_alt_max_ft);
+  for (int i = 0; i < 300; ++i) t.StepWithGood();
+  EXPECT_LT(t.servos().elevator_deg, 0.25f * t.cfg.elevator_limit_deg);
+  // A slow reading a tailwind can explain is still believed: a stall downwind is a stall.
+  Timeline u;
+  u.Cruise(200.0f, 60.0f);
+  ASSERT_GT(u.ReachHp(), 0);
+  u.board.airspeed_ftps = u.app.inputs.groundspeed_ftps - 0.9f * u.cfg.max_wind_ftps;
+  ASSERT_LT(u.board.airspeed_ftps, u.cfg.stall_switch_airspeed_ftps);
+  u.StepWithGood();
+  EXPECT_EQ(u.out().reasons_at_switch, HA_REASON_STALL);
+}
+
 TEST(HaDecision, NoAirspeedOnTheGroundIsNoStall) {
   Timeline t;
   t.Parked();

@@ -50,3 +50,12 @@ def test_a_stall_switch_speed_below_stall_is_refused(tmp_path):
     r = generate(tmp_path, stall_switch_multiple=0.95)
     assert r.returncode != 0
     assert "stall_switch_multiple" in r.stderr
+
+
+def test_a_wind_that_would_excuse_a_stalled_pitot_is_refused(tmp_path):
+    doc = yaml.safe_load(LIMITS.read_text())
+    doc["sensors"]["max_wind_ftps"] = doc["state"]["stall_speed_ftps"] + 5.0
+    path = tmp_path / "limits.yaml"
+    path.write_text(yaml.safe_dump(doc))
+    r = subprocess.run([sys.executable, str(GENERATOR), str(path), "-"], capture_output=True, text=True)
+    assert r.returncode != 0 and "max_wind_ftps" in r.stderr

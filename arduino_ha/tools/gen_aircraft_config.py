@@ -155,6 +155,8 @@ def build(doc):
                           "switch inside the region it hands back in")
     c["ceiling_switch_agl_ft"] = c["ceiling_agl_ft"] * c["switch_region_fraction"]
     c["max_airspeed_ftps"] = need(sen, "max_airspeed_ftps", c["stall_speed_ftps"])
+    # Below stall speed: a stronger tailwind would excuse a pitot reading zero at cruise.
+    c["max_wind_ftps"] = need(sen, "max_wind_ftps", 1.0, c["stall_speed_ftps"])
     c["state_timeout_us"] = us(positive(sen, "state_timeout_s"), "state_timeout_s")
     c["airspeed_timeout_us"] = us(positive(sen, "airspeed_timeout_s"), "airspeed_timeout_s")
 

@@ -81,6 +81,8 @@ typedef struct {
   float airborne_agl_ft; /* one signal of flight among several (ha_core.c: airborne latch) */
   uint32_t landed_confirm_us; /* a landing evident this long clears the airborne latch */
   float max_airspeed_ftps; /* a reading above this is a broken sensor, not a fast aircraft */
+  /* A reading more than this below the INS's groundspeed is a lying pitot, not a stall. */
+  float max_wind_ftps;
   uint32_t state_timeout_us; /* attitude/position older than this is not trusted */
   /* A failed pitot read holds the last good one this long: a glitch is not a dead sensor. */
   uint32_t airspeed_timeout_us;

@@ -84,7 +84,17 @@ static void track_own_sensors(HaCore *core, const HaInputs *in, uint32_t now_us,
   } else {
     own->state_age_us = add_sat(own->state_age_us, dt_us);
   }
-  if (ha_in_range(in->airspeed_ftps, 0.0f, max_ftps)) {
+  /* A pitot reading that far below the INS's groundspeed is a lying sensor (zeroed, blocked), not
+   * a stall: no wind the aircraft flies in is that strong a tailwind. Believed, it would make the
+   * slow-beats-low law dive into the ground (HiL campaign: a zero pitot at 200 ft crashed). It
+   * counts as a failed read: the last good one holds for airspeed_timeout_s, then NO_HA_STATE. */
+  const int lying = own->state_age_us <= core->cfg->state_timeout_us && in->state_valid != 0u &&
+                    ha_in_range(in->groundspeed_ftps, 0.0f, max_ftps) &&
+                    ha_in_range(in->airspeed_ftps, 0.0f, max_ftps) &&
+                    ha_greater(ha_clampf(in->groundspeed_ftps, 0.0f, max_ftps) -
+                                   ha_clampf(in->airspeed_ftps, 0.0f, max_ftps),
+                               core->cfg->max_wind_ftps);
+  if (ha_in_range(in->airspeed_ftps, 0.0f, max_ftps) && !lying) {
     own->airspeed_ftps = ha_clampf(in->airspeed_ftps, 0.0f, max_ftps);
     own->airspeed_age_us = 0u;
   } else {

@@ -56,6 +56,7 @@
     .switch_region_fraction = 0.9f, \
     .ceiling_switch_agl_ft = 360.0f, \
     .max_airspeed_ftps = 200.0f, \
+    .max_wind_ftps = 30.0f, \
     .rc_elevator_deg_per_us = 0.04f, \
     .rc_aileron_deg_per_us = 0.03f, \
     .rc_rudder_deg_per_us = 0.03f, \

@@ -5,3 +5,14 @@ from flight import assert_property, fly
 def test_a_dead_pitot_hands_the_servos_to_the_ha():
     s = fly("pitot_failure", at_s=15.0, duration_s=3.0, params=["mode=dead"])
     assert_property(s, takeover_due=True)
+
+
+def test_a_pitot_reading_zero_in_cruise_is_not_flown_as_a_stall_into_the_ground():
+    """The campaign's flight 0 (seed 7): a zeroed pitot at 19 s. Believed, the HA's slow-beats-low
+    law pushed the nose down for 12 s and hit the ground sinking at 4.8 m/s. The HA now holds a
+    reading that far below its INS's groundspeed for a lying sensor (sensors.max_wind_ftps), and
+    the aircraft stays in the air."""
+    s = fly("pitot_failure", at_s=19.22, duration_s=-1.0, params=["mode=zero"], flight_s=45.0, seed=392572427)
+    assert_property(s, takeover_due=None)
+    assert not s["verdict"]["aircraft_crashed"] and s["verdict"]["min_height_agl_ft"] > 100.0, s["_replay"]
+    assert not any("STALL" in seg["why"] for seg in s["who_flew"]), s["_replay"]
