@@ -36,14 +36,18 @@ $(WS)/src/drone_ros:
 
 build: deps $(WS)/src/drone_ros
 	@cd $(WS) && PATH=/usr/bin:$$PATH catkin_make -j$(JOBS) -DPYTHON_EXECUTABLE=$(PYTHON) \
-	  -DCATKIN_ENABLE_TESTING=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo > $(ROOT)/.build/build.log 2>&1 \
+	  -DCATKIN_ENABLE_TESTING=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_EXPORT_COMPILE_COMMANDS=ON \
+	  > $(ROOT)/.build/build.log 2>&1 \
 	  || { tail -n 60 $(ROOT)/.build/build.log; echo "build failed: full log in .build/build.log"; exit 1; }
 	@echo "build: ok (log in .build/build.log)"
 
 # uninstalled_script is ignored on purpose: the executables it names are developer tools
 # (verify, bench, install and test-summary scripts) that have no place in an install space.
-lint: deps $(WS)/src/drone_ros
+# tools/lint.sh: clang-format on the listed files and clang-tidy naming on the C++ nodes (it
+# reads the build's compile_commands.json).
+lint: build
 	@cd $(WS)/src && ROS_PACKAGE_PATH=$(WS)/src $(VENV)/bin/catkin_lint --strict -W2 --offline --ignore uninstalled_script drone_ros 2>&1 | grep -v rosdep; exit $${PIPESTATUS[0]}
+	@$(ROOT)/tools/lint.sh $(WS)
 
 test: build lint
 	@$(ROSENV) $(ROOT)/tools/run_tests.sh $(WS) $(VENV)

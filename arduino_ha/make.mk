@@ -3,6 +3,7 @@
 #                    with flash/RAM/stack figures, and the Due sketch compiled against an Arduino
 #                    API shim (-Werror) and run on the host with a fake Arduino. Deterministic;
 #                    fails on any alarm, unproven assertion, warning or failed check.
+#   make sketch-ha   assemble the sketch arduino-cli compiles into .build/sketch/arduino_ha
 #   make bench-ha    instructions per control step on a Cortex-M3 under QEMU, ns per step on
 #                    the host.
 # Tools come from arduino_ha/apt-packages.txt through `make deps`.
@@ -37,9 +38,11 @@ verify-ha-board: deps
 bench-ha: deps
 	@bash $(HA_DIR)/bench/run_bench.sh $(ROOT)/.build/arduino_ha_bench
 
-# arduino-cli compiles only inside the sketch folder, so the sketch is assembled under .build/
-# with the one VN-200 protocol core (vn200_driver/core) in its src/vn200/; flash from there.
+# The sketch arduino-cli compiles and flashes, assembled under .build/sketch/arduino_ha: the
+# sketch with the VN-200 protocol core from vn200_driver/core in src/vn200/ (arduino-cli compiles
+# only inside the sketch folder; nothing is copied into the source tree). README.md, "Build and
+# flash the Due".
+HA_SKETCH_OUT := $(ROOT)/.build/sketch
 .PHONY: sketch-ha
 sketch-ha:
-	@sketch=$$(bash $(HA_DIR)/tools/assemble_sketch.sh $(ROOT)/.build/sketch) && \
-	  echo "sketch-ha: $$sketch; arduino-cli compile --fqbn arduino:sam:arduino_due_x $$sketch"
+	@echo "sketch-ha: assembled $$(bash $(HA_DIR)/tools/assemble_sketch.sh $(HA_SKETCH_OUT))"

@@ -30,7 +30,6 @@ import sys
 import threading
 import time
 import warnings
-import xmlrpc.client
 from collections import deque
 
 import rosgraph
@@ -42,6 +41,8 @@ from sensor_msgs.msg import Temperature
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 sys.path.insert(0, ROOT)
+sys.path.insert(0, os.path.join(ROOT, "drone_ros", "supervisor", "scripts"))
+import node_query  # noqa: E402  (the supervisor's node queries: the same PID lookup)
 from hil import faults, gs_monitor, ha_channel, link_relay, mission, sensors, verdicts  # noqa: E402
 from hil.faults.base import RC_NEUTRAL, Board  # noqa: E402
 from hil.fdm import Fdm, FdmCrash, Surfaces, Wind  # noqa: E402
@@ -152,47 +153,15 @@ class PhaseTimer:
         self.t = now
 
 
-def node_api(master, name):
-    try:
-        return master.lookupNode(name)
-    except Exception:  # noqa: BLE001 - not registered, master gone: either way no node
-        return None
-
-
-class TimeoutTransport(xmlrpc.client.Transport):
-    """A hung node accepts the connection and never answers: ask with a deadline."""
-
-    def __init__(self, timeout_s=0.5):
-        super().__init__()
-        self.timeout_s = timeout_s
-
-    def make_connection(self, host):
-        conn = super().make_connection(host)
-        conn.timeout = self.timeout_s
-        return conn
-
-
 def node_pid(master, name):
-    uri = node_api(master, name)
-    if uri is None:
-        return None
-    try:
-        code, _, pid = xmlrpc.client.ServerProxy(uri, transport=TimeoutTransport()).getPid("/hil_sim")
-        return pid if code == 1 else None
-    except (OSError, xmlrpc.client.Error):
-        return None
+    return node_query.node_pid(master, name, "/hil_sim")
 
 
 def inbound_connected(master, name, topics):
     """Whether node `name` has a live inbound connection on each of topics."""
-    uri = node_api(master, name)
-    if uri is None:
-        return False
-    try:
-        code, _, info = xmlrpc.client.ServerProxy(uri, transport=TimeoutTransport()).getBusInfo("/hil_sim")
-    except (OSError, xmlrpc.client.Error):
-        return False
-    if code != 1:
+    uri = node_query.node_uri(master, name)
+    info = None if uri is None else node_query.bus_info(uri, "/hil_sim")
+    if info is None:
         return False
     got = {c[4] for c in info if c[2] == "i" and (len(c) < 6 or c[5])}
     return all(t in got for t in topics)
@@ -201,14 +170,11 @@ def inbound_connected(master, name, topics):
 def publisher_connected(master, name, topic, publisher):
     """Whether node `name` has a live inbound connection on topic from node `publisher` (rospy
     names an inbound connection by the publisher's XML-RPC URI)."""
-    uri, pub = node_api(master, name), node_api(master, publisher)
-    if uri is None or pub is None:
+    uri, pub = node_query.node_uri(master, name), node_query.node_uri(master, publisher)
+    info = None if uri is None or pub is None else node_query.bus_info(uri, "/hil_sim")
+    if info is None:
         return False
-    try:
-        code, _, info = xmlrpc.client.ServerProxy(uri, transport=TimeoutTransport()).getBusInfo("/hil_sim")
-    except (OSError, xmlrpc.client.Error):
-        return False
-    return code == 1 and any(c[2] == "i" and c[4] == topic and (len(c) < 6 or c[5]) and c[1].rstrip("/") == pub.rstrip("/")
+    return any(c[2] == "i" and c[4] == topic and (len(c) < 6 or c[5]) and c[1].rstrip("/") == pub.rstrip("/")
                              for c in info)
 
 

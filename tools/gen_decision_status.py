@@ -4,7 +4,7 @@ msg/DecisionStatus.msg, the one place they are defined:
 
   --c     the HA core's C99 header (arduino_ha/src/core/ha_decision_status.h; checked in because
           arduino-cli compiles only the sketch folder, kept identical by
-          arduino_ha/test/test_sketch_copies.py)
+          arduino_ha/test/test_sketch_assembly.py)
   --cpp   the ground station's C++ name tables (written by CMake and microhard_gs/make.mk at build
           time, never checked in)
 

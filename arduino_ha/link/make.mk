@@ -54,14 +54,16 @@ verify-link: verify-link-m3 verify-link-eva
 # EVA over any input bytes (verify/eva_link_main.c), tools/kit.mk.
 EVA_COMPONENTS += link
 EVA_link_SOURCES = $(LINK_DIR)/verify/eva_link_main.c $(ROOT)/arduino_ha/src/link/ha_link.c \
-  $(ROOT)/arduino_ha/src/link/ha_link_frame.c $(LINK_GEN_DIR)/ha_msgs.c $(ROOT)/arduino_ha/src/core/hp_command.c
+  $(ROOT)/arduino_ha/src/link/ha_link_frame.c $(ROOT)/arduino_ha/src/link/ha_link_report.c \
+  $(LINK_GEN_DIR)/ha_msgs.c $(ROOT)/arduino_ha/src/core/hp_command.c \
+  $(ROOT)/arduino_ha/src/core/ha_surfaces.c $(ROOT)/arduino_ha/src/core/ha_aircraft.c
 EVA_link_ARGS = -I $(ROOT)/arduino_ha/src/link -I $(ROOT)/arduino_ha/src/core \
   -D 'HA_LINK_GENERATED_HEADER="$(LINK_GEN_DIR)/ha_msgs.h"' --case any-bytes:main:1:none
 EVA_link_DEPS = $(LINK_GEN_DIR)/ha_msgs.c
 
 LINK_M3_OUT ?= $(ROOT)/.build/link_m3
 LINK_M3_SOURCES := $(ROOT)/arduino_ha/src/link/ha_link.c $(ROOT)/arduino_ha/src/link/ha_link_frame.c \
-  $(LINK_GEN_DIR)/ha_msgs.c
+  $(ROOT)/arduino_ha/src/link/ha_link_report.c $(LINK_GEN_DIR)/ha_msgs.c
 .PHONY: verify-link-m3
 verify-link-m3: $(LINK_GEN_DIR)/ha_msgs.c
 	@mkdir -p $(LINK_M3_OUT)

@@ -39,8 +39,9 @@
 #include "../src/core/ha_aircraft.h"
 #include "../src/core/ha_app.h"
 #include "ha_link.h"
+#include "ha_link_report.h"
 #include "ha_sil_channel.h"
-#include "sil_ins.h"
+#include "../src/vn200/ha_vn200_feed.h"
 
 static volatile sig_atomic_t g_stop = 0;
 static volatile sig_atomic_t g_unplug = 0;
@@ -74,7 +75,7 @@ typedef struct {
   uint32_t errors_logged_us;  /* when */
   /* In the loop of a simulator */
   int vn_fd;                  /* the HA's VN-200 port, -1 without --vn200 */
-  SilIns ins;
+  HaVn200Feed ins; /* the VN-200 port, read by the Due's own rule (src/vn200/ha_vn200_feed.c) */
   int channel_fd;             /* the simulator's control channel, -1 without --lockstep */
   int sim_clock;              /* 1: board micros() is sim_now_us (lockstep) */
   uint32_t sim_now_us;
@@ -261,52 +262,10 @@ static void unplug(Sil *sil) {
   sil->slave_fd = -1;
 }
 
-/* The HA owns home: the host hears it on a change and every few seconds (ha_link_offer_home). */
-static void send_home(HaLink *link, const HaIns *ins, HaRosTime stamp, uint32_t now_us) {
-  drone_ros_HomePosition home;
-  memset(&home, 0, sizeof home);
-  if (ins->home_latched) {
-    home.stamp = stamp;
-    home.seq = ins->home_seq;
-    home.latitude = ins->home.lat_deg;
-    home.longitude = ins->home.lon_deg;
-    home.altitude = ins->home.alt_m;
-  }
-  (void)ha_link_offer_home(link, &home, now_us);
-}
-
+/* The period's pwm, decision_status and home, built as the Due builds them. */
 static void send_sensors(Sil *sil, uint32_t now_us) {
-  const HaOutputs *o = &sil->app.outputs;
-  const HaInputs *in = &sil->app.inputs;
-  drone_ros_pwm pwm;
-  drone_ros_DecisionStatus st;
-  const HaRosTime stamp = ha_link_ros_time(&sil->link, now_us);
-  memset(&pwm, 0, sizeof pwm);
-  pwm.header.stamp = stamp;
-  pwm.PICCIC = (in->rc.pulse_us[HA_RC_PIC] >= 1500u) ? 0u : 1u;
-  pwm.velocity = in->airspeed_ftps;
-  (void)ha_link_publish_pwm(&sil->link, &pwm);
-  memset(&st, 0, sizeof st);
-  st.stamp = stamp;
-  st.controller = o->controller;
-  st.reasons = o->reasons;
-  st.reasons_at_switch = o->reasons_at_switch;
-  st.restart_count = o->restart_count;
-  st.restart_requested = o->restart_requested;
-  st.last_seq = o->last_seq;
-  st.stable_for_s = o->stable_for_s;
-  st.airspeed_ftps = o->airspeed_ftps;
-  st.altitude_agl_ft = o->altitude_agl_ft;
-  st.alpha_deg = o->alpha_deg;
-  st.beta_deg = o->beta_deg;
-  st.state_region_max = o->state_region_max;
-  st.actuator_region_max = o->actuator_region_max;
-  st.throttle = o->surfaces.throttle;
-  st.elevator_deg = o->surfaces.elevator_deg;
-  st.aileron_deg = o->surfaces.aileron_deg;
-  st.rudder_deg = o->surfaces.rudder_deg;
-  (void)ha_link_publish_decision_status(&sil->link, &st);
-  send_home(&sil->link, &sil->ins.ins, stamp, now_us);
+  ha_link_report_period(&sil->link, &ha_aircraft_config, &sil->app.inputs, &sil->app.outputs, &sil->ins.ins,
+                        now_us);
 }
 
 /* A (re)negotiated link says so in the host's log and asks for --param. */
@@ -460,10 +419,10 @@ static void send_reply(Sil *sil, uint16_t flags, uint64_t t_us, uint32_t wait_us
   put_f32(b, &at, o->stable_for_s);
   put_f32(b, &at, o->state_region_max);
   put_f32(b, &at, o->actuator_region_max);
-  put_u32(b, &at, (uint32_t)sil->ins.bytes_read);
+  put_u32(b, &at, (uint32_t)sil->ins.counts.bytes_read);
   put_u32(b, &at, sil->ins.ins.solutions_used);
   put_u32(b, &at, sil->ins.ins.solutions_rejected);
-  put_u32(b, &at, vn_framer_bad_packets(&sil->ins.framer.stats) + sil->ins.decode_errors);
+  put_u32(b, &at, vn_framer_bad_packets(&sil->ins.framer.stats) + sil->ins.counts.decode_errors);
   put_u32(b, &at, wait_us);
   {
     const ssize_t n = send(sil->channel_fd, b, at, MSG_NOSIGNAL | (sil->sim_clock ? 0 : MSG_DONTWAIT));
@@ -486,7 +445,7 @@ static size_t drain_inputs(Sil *sil, uint32_t now_us) {
   }
   if (sil->vn_fd >= 0) {
     while ((n = read(sil->vn_fd, buf, sizeof buf)) > 0) {
-      sil_ins_feed(&sil->ins, buf, (size_t)n, &sil->app.inputs, now_us);
+      ha_vn200_feed_bytes(&sil->ins, buf, (size_t)n, &sil->app.inputs, now_us);
       taken += (size_t)n;
     }
   }
@@ -515,7 +474,7 @@ static uint16_t gather_period_inputs(Sil *sil, const HaSilStep *st) {
       want_cmd = (st->flags & HA_SIL_WAIT_COMMAND) != 0u &&
                  !(sil->commands > 0u && sil->last_cmd_seq == st->cmd_seq);
     }
-    want_vn = sil->vn_fd >= 0 && sil->ins.bytes_read < st->vn_bytes;
+    want_vn = sil->vn_fd >= 0 && sil->ins.counts.bytes_read < st->vn_bytes;
     if (!want_cmd && !want_vn) {
       return 0u;
     }
@@ -657,7 +616,7 @@ int main(int argc, char **argv) {
   board.set_leds = board_set_leds;
   board.kick_watchdog = board_kick;
   ha_app_init(&sil.app, &ha_aircraft_config);
-  sil_ins_init(&sil.ins, &ha_aircraft_config);
+  ha_vn200_feed_init(&sil.ins, &ha_aircraft_config);
 
   memset(&cb, 0, sizeof cb);
   cb.write = link_write;
@@ -710,7 +669,7 @@ int main(int argc, char **argv) {
       if (sil.vn_fd >= 0) {
         const ssize_t n = read(sil.vn_fd, buf, sizeof buf);
         if (n > 0) {
-          sil_ins_feed(&sil.ins, buf, (size_t)n, &sil.app.inputs, now_us);
+          ha_vn200_feed_bytes(&sil.ins, buf, (size_t)n, &sil.app.inputs, now_us);
         }
       }
       if (sil.channel_fd >= 0) {
@@ -754,6 +713,6 @@ int main(int argc, char **argv) {
           "VN-200 bytes %llu\n",
           (unsigned)sil.commands, (unsigned)sil.link.decoder.counters.frames_ok,
           (unsigned)sil.link.decoder.counters.bad_checksum, (unsigned)sil.link.decoder.counters.bytes_skipped,
-          (unsigned)sil.link.counters.unknown_topic, (unsigned long long)sil.ins.bytes_read);
+          (unsigned)sil.link.counters.unknown_topic, (unsigned long long)sil.ins.counts.bytes_read);
   return 0;
 }

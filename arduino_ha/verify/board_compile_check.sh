@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# What can be checked of the Due sketch without the Arduino SAM core (not installable here):
+# What can be checked of the Due sketch without the Arduino SAM core (not installable here), on
+# the sketch as arduino-cli gets it (tools/assemble_sketch.sh: src/ plus vn200_driver/core):
 #  1. the board layer and the .ino compile as C++ (-std=gnu++11, as the SAM platform builds) with
 #     -Wall -Wextra -Werror against verify/arduino_shim/, stand-in headers for the SAM core, Servo
 #     and Wire APIs with their real signatures; once with the host g++ and once with
@@ -25,14 +26,14 @@ for tool in g++ gcc arm-none-eabi-g++ arm-none-eabi-gcc; do
 done
 rm -rf "$out"
 mkdir -p "$out/host" "$out/m3"
-# What arduino-cli compiles: the sketch as assembled for flashing (make sketch-ha).
+# Everything below compiles the assembled sketch, not the source tree: the files flashed.
 ha=$(bash "$ha/tools/assemble_sketch.sh" "$out/sketch")
 
 # arduino-cli compiles the .ino as C++ after adding #include <Arduino.h>; do the same.
 { echo '#include <Arduino.h>'; echo '#line 1 "arduino_ha.ino"'; cat "$ha/arduino_ha.ino"; } \
   > "$out/arduino_ha.ino.cpp"
 
-strict=(-Wall -Wextra -Werror -Os -I"$here/arduino_shim" -iquote "$ha" -iquote "$root/vn200_driver/core")
+strict=(-Wall -Wextra -Werror -Os -I"$here/arduino_shim" -iquote "$ha")
 m3=(-mcpu=cortex-m3 -mthumb -ffunction-sections -fdata-sections)
 mapfile -t board_cpp < <(find "$ha/src/board_due" -name '*.cpp' | LC_ALL=C sort)
 mapfile -t board_c < <(find "$ha/src/board_due" -name '*.c' | LC_ALL=C sort)

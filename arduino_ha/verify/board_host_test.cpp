@@ -9,13 +9,12 @@
 #include <cstdio>
 #include <cstring>
 
-// The assembled sketch (make sketch-ha) is on the include path: what arduino-cli compiles.
 #include "src/board_due/due_board.h"
 #include "src/board_due/due_config.h"
 #include "src/board_due/due_ins_seam.h"
 #include "src/board_due/due_main.h"
 #include "src/core/ha_aircraft.h"
-#include "vn_checksum.h"
+#include "src/vn200/vn_checksum.h"
 #include "arduino_shim/fake_arduino.h"
 
 namespace {

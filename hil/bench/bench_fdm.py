@@ -10,13 +10,14 @@ Prints `metric: value unit` lines, then `machine: ...`.
 import dataclasses
 import math
 import os
-import platform
 import statistics
 import sys
 import time
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 sys.path.insert(0, ROOT)
+sys.path.insert(0, os.path.join(ROOT, "tools"))
+from bench_machine import machine  # noqa: E402
 from hil.fdm import Fdm, Wind  # noqa: E402
 
 AIRCRAFT = os.path.join(ROOT, "aircraft", "DG808")
@@ -43,20 +44,6 @@ def trim_ms(fdm):
     cpu0 = time.process_time()
     fdm.reset_airborne(47.4, 8.5, 420.0, 100.0, 0.0, 18.0)
     return 1000.0 * (time.process_time() - cpu0)
-
-
-def machine():
-    model = "unknown cpu"
-    try:
-        with open("/proc/cpuinfo", encoding="utf-8") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    model = line.split(":", 1)[1].strip()
-                    break
-    except OSError:
-        pass
-    return "%s, %d cores, %s, load %.1f at start (shared machine)" % (
-        model, os.cpu_count(), platform.platform(), os.getloadavg()[0])
 
 
 def main():

@@ -6,12 +6,13 @@ probe, counts the ATTITUDE messages a pymavlink client receives over a measured 
 the node's CPU time from /proc. Prints `metric: value unit` lines, then `machine: ...`.
 """
 import os
-import platform
 import sys
 import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "test"))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
 import gs_harness as gh  # noqa: E402
+from bench_machine import machine  # noqa: E402
 
 WINDOW_S = 10.0
 CLK_TCK = os.sysconf("SC_CLK_TCK")
@@ -65,21 +66,6 @@ def measure(rate_hz):
         return count / wall, 100.0 * cpu / wall
     finally:
         gs.stop()
-
-
-def machine():
-    model = "unknown cpu"
-    try:
-        with open("/proc/cpuinfo") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    model = line.split(":", 1)[1].strip()
-                    break
-    except OSError:
-        pass
-    load = os.getloadavg()[0]
-    return "%s, %d cores, %s, %s, load %.1f at start (shared machine)" % (
-        platform.node(), os.cpu_count(), model, platform.platform(), load)
 
 
 def main():

@@ -6,21 +6,21 @@
 
 namespace vn200 {
 
-Quat quatMultiply(const Quat& a, const Quat& b) {
+Quat quat_multiply(const Quat& a, const Quat& b) {
   return {a[3] * b[0] + a[0] * b[3] + a[1] * b[2] - a[2] * b[1],
           a[3] * b[1] - a[0] * b[2] + a[1] * b[3] + a[2] * b[0],
           a[3] * b[2] + a[0] * b[1] - a[1] * b[0] + a[2] * b[3],
           a[3] * b[3] - a[0] * b[0] - a[1] * b[1] - a[2] * b[2]};
 }
 
-Vec3 quatRotate(const Quat& q, const Vec3& v) {
+Vec3 quat_rotate(const Quat& q, const Vec3& v) {
   const Quat p{v[0], v[1], v[2], 0.0};
   const Quat qc{-q[0], -q[1], -q[2], q[3]};
-  const Quat r = quatMultiply(quatMultiply(q, p), qc);
+  const Quat r = quat_multiply(quat_multiply(q, p), qc);
   return {r[0], r[1], r[2]};
 }
 
-Quat quatFromYprNed(double yaw_rad, double pitch_rad, double roll_rad) {
+Quat quat_from_ypr_ned(double yaw_rad, double pitch_rad, double roll_rad) {
   const double cy = std::cos(yaw_rad / 2), sy = std::sin(yaw_rad / 2);
   const double cp = std::cos(pitch_rad / 2), sp = std::sin(pitch_rad / 2);
   const double cr = std::cos(roll_rad / 2), sr = std::sin(roll_rad / 2);
@@ -28,24 +28,24 @@ Quat quatFromYprNed(double yaw_rad, double pitch_rad, double roll_rad) {
           cr * cp * cy + sr * sp * sy};
 }
 
-Quat nedFrdToEnuFlu(const Quat& q_ned_frd) {
+Quat ned_frd_to_enu_flu(const Quat& q_ned_frd) {
   const double h = std::sqrt(0.5);
   // ENU<-NED swaps north/east and flips down: a half turn about the (1,1,0)/sqrt2 axis.
   const Quat q_enu_ned{h, h, 0.0, 0.0};
   // FRD<-FLU: a half turn about x.
   const Quat q_frd_flu{1.0, 0.0, 0.0, 0.0};
-  Quat q = quatMultiply(quatMultiply(q_enu_ned, q_ned_frd), q_frd_flu);
+  Quat q = quat_multiply(quat_multiply(q_enu_ned, q_ned_frd), q_frd_flu);
   if (q[3] < 0) {
     for (double& c : q) c = -c;  // one canonical sign keeps consumers' diffs smooth
   }
   return q;
 }
 
-Vec3 frdToFlu(const Vec3& v) { return {v[0], -v[1], -v[2]}; }
+Vec3 frd_to_flu(const Vec3& v) { return {v[0], -v[1], -v[2]}; }
 
-Vec3 nedToEnu(const Vec3& v) { return {v[1], v[0], -v[2]}; }
+Vec3 ned_to_enu(const Vec3& v) { return {v[1], v[0], -v[2]}; }
 
-Vec3 llaToLocalEnu(double lat_deg, double lon_deg, double alt_m, double ref_lat_deg,
+Vec3 lla_to_local_enu(double lat_deg, double lon_deg, double alt_m, double ref_lat_deg,
                    double ref_lon_deg, double ref_alt_m) {
   // The stack's one flat earth (geo_wgs84.h), so the tf puts the aircraft where the HA, the
   // controller and the ground station do.

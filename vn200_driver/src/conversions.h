@@ -13,18 +13,18 @@ constexpr double kDegToRad = 0.017453292519943295;
 constexpr double kGaussToTesla = 1e-4;
 constexpr double kKpaToPa = 1000.0;
 
-Quat quatMultiply(const Quat& a, const Quat& b);
+Quat quat_multiply(const Quat& a, const Quat& b);
 // Rotates v by unit quaternion q.
-Vec3 quatRotate(const Quat& q, const Vec3& v);
+Vec3 quat_rotate(const Quat& q, const Vec3& v);
 // Body(FRD)->NED quaternion from yaw, pitch, roll [rad] (aerospace 3-2-1 sequence).
-Quat quatFromYprNed(double yaw_rad, double pitch_rad, double roll_rad);
+Quat quat_from_ypr_ned(double yaw_rad, double pitch_rad, double roll_rad);
 // Body(FRD)->NED attitude to body(FLU)->ENU attitude.
-Quat nedFrdToEnuFlu(const Quat& q_ned_frd);
-Vec3 frdToFlu(const Vec3& v);
-Vec3 nedToEnu(const Vec3& v);
+Quat ned_frd_to_enu_flu(const Quat& q_ned_frd);
+Vec3 frd_to_flu(const Vec3& v);
+Vec3 ned_to_enu(const Vec3& v);
 // East/north/up offset [m] of (lat, lon, alt) from a reference, on a local tangent plane
 // (adequate over the few kilometres of a research flight).
-Vec3 llaToLocalEnu(double lat_deg, double lon_deg, double alt_m, double ref_lat_deg,
+Vec3 lla_to_local_enu(double lat_deg, double lon_deg, double alt_m, double ref_lat_deg,
                    double ref_lon_deg, double ref_alt_m);
 
 }  // namespace vn200

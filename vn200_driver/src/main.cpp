@@ -9,7 +9,7 @@ int main(int argc, char** argv) {
   ros::NodeHandle pnh("~");
   vn200::NodeParams params;
   std::string error;
-  if (!vn200::loadParams(pnh, &params, &error)) {
+  if (!vn200::load_params(pnh, &params, &error)) {
     ROS_FATAL("vn200: bad parameter: %s", error.c_str());
     return 2;
   }

@@ -5,7 +5,7 @@
 
 namespace vn200 {
 
-bool loadParams(const ros::NodeHandle& pnh, NodeParams* p, std::string* error) {
+bool load_params(const ros::NodeHandle& pnh, NodeParams* p, std::string* error) {
   pnh.param("port", p->port, p->port);
   pnh.param("baud", p->baud, p->baud);
   pnh.param("sensor_baud", p->sensor_baud, p->sensor_baud);
@@ -44,7 +44,7 @@ bool loadParams(const ros::NodeHandle& pnh, NodeParams* p, std::string* error) {
              " is not 0 (sensor already at ~baud) or a baud rate the node supports";
     return false;
   }
-  if (p->rate_hz <= 0 || !rateSupported(static_cast<unsigned>(p->rate_hz))) {
+  if (p->rate_hz <= 0 || !rate_supported(static_cast<unsigned>(p->rate_hz))) {
     *error = "~rate_hz " + std::to_string(p->rate_hz) + " must divide 800 Hz evenly";
     return false;
   }
@@ -61,10 +61,10 @@ bool loadParams(const ros::NodeHandle& pnh, NodeParams* p, std::string* error) {
              std::to_string(p->sensor_port) + " uses 2 or 3";
     return false;
   }
-  const VnBinaryOutputConfig cfg = nodeOutputConfig(static_cast<unsigned>(p->rate_hz),
+  const VnBinaryOutputConfig cfg = node_output_config(static_cast<unsigned>(p->rate_hz),
                                                     static_cast<VnAsyncMode>(p->sensor_port),
                                                     static_cast<unsigned>(p->binary_output));
-  if (!replay && streamBitsPerSecond(cfg, static_cast<unsigned>(p->rate_hz)) > p->baud) {
+  if (!replay && stream_bits_per_second(cfg, static_cast<unsigned>(p->rate_hz)) > p->baud) {
     *error = "~rate_hz " + std::to_string(p->rate_hz) + " needs more than ~baud " +
              std::to_string(p->baud) + " carries (the sensor would answer $VNERR 12)";
     return false;

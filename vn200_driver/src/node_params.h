@@ -34,6 +34,6 @@ struct NodeParams {
 };
 
 // Reads ~parameters; returns false with a message naming the bad parameter.
-bool loadParams(const ros::NodeHandle& pnh, NodeParams* out, std::string* error);
+bool load_params(const ros::NodeHandle& pnh, NodeParams* out, std::string* error);
 
 }  // namespace vn200

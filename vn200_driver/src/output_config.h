@@ -13,12 +13,12 @@ namespace vn200 {
 // attitude, rates, INS position/velocity, acceleration, mag/temperature/pressure, INS status),
 // GPS (satellites, fix, uncertainties), Attitude (YPR uncertainty), INS (position/velocity
 // uncertainty).
-VnBinaryOutputConfig nodeOutputConfig(unsigned rate_hz, VnAsyncMode port, unsigned output);
+VnBinaryOutputConfig node_output_config(unsigned rate_hz, VnAsyncMode port, unsigned output);
 
 // Whether `rate_hz` is an output rate the sensor can produce (800 Hz / integer divisor).
-bool rateSupported(unsigned rate_hz);
+bool rate_supported(unsigned rate_hz);
 
 // Serial bytes per second the configured stream needs (10 bits per byte on the wire).
-double streamBitsPerSecond(const VnBinaryOutputConfig& cfg, unsigned rate_hz);
+double stream_bits_per_second(const VnBinaryOutputConfig& cfg, unsigned rate_hz);
 
 }  // namespace vn200

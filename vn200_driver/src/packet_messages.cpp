@@ -31,7 +31,7 @@ std_msgs::Header header(const ros::Time& stamp, const std::string& frame_id) {
 
 Quat attitude_ned(const VnBinaryData& d) {
   if (d.has & VN_HAS_QUATERNION) return {d.quat_xyzw[0], d.quat_xyzw[1], d.quat_xyzw[2], d.quat_xyzw[3]};
-  return quatFromYprNed(d.ypr_deg[0] * kDegToRad, d.ypr_deg[1] * kDegToRad, d.ypr_deg[2] * kDegToRad);
+  return quat_from_ypr_ned(d.ypr_deg[0] * kDegToRad, d.ypr_deg[1] * kDegToRad, d.ypr_deg[2] * kDegToRad);
 }
 
 drone_ros::ins to_ins(const VnBinaryData& d, const ros::Time& stamp, const std::string& frame_id) {
@@ -91,7 +91,7 @@ sensor_msgs::NavSatFix to_nav_sat_fix(const VnBinaryData& d, const ros::Time& st
     fix.position_covariance = {var, 0, 0, 0, var, 0, 0, 0, var};
     fix.position_covariance_type = sensor_msgs::NavSatFix::COVARIANCE_TYPE_APPROXIMATED;
   } else if (d.has & VN_HAS_GPS_POS_UNC) {
-    const Vec3 u = nedToEnu(vec3(d.gps_pos_unc_ned_m));
+    const Vec3 u = ned_to_enu(vec3(d.gps_pos_unc_ned_m));
     fix.position_covariance = {u[0] * u[0], 0, 0, 0, u[1] * u[1], 0, 0, 0, u[2] * u[2]};
     fix.position_covariance_type = sensor_msgs::NavSatFix::COVARIANCE_TYPE_DIAGONAL_KNOWN;
   }
@@ -102,28 +102,28 @@ geometry_msgs::TwistStamped to_velocity_enu(const VnBinaryData& d, const ros::Ti
                                             const std::string& world_frame_id) {
   geometry_msgs::TwistStamped ve;
   ve.header = header(stamp, world_frame_id);
-  set_vec(&ve.twist.linear, nedToEnu(vec3(d.vel_ned_mps)));
+  set_vec(&ve.twist.linear, ned_to_enu(vec3(d.vel_ned_mps)));
   return ve;
 }
 
 sensor_msgs::Imu to_imu(const VnBinaryData& d, const ros::Time& stamp, const std::string& frame_id) {
   sensor_msgs::Imu imu;
   imu.header = header(stamp, frame_id);
-  set_quat(&imu.orientation, nedFrdToEnuFlu(attitude_ned(d)));
+  set_quat(&imu.orientation, ned_frd_to_enu_flu(attitude_ned(d)));
   if (d.has & VN_HAS_YPR_UNC) {
     const double r = d.ypr_unc_deg[2] * kDegToRad, p = d.ypr_unc_deg[1] * kDegToRad,
                  y = d.ypr_unc_deg[0] * kDegToRad;
     imu.orientation_covariance = {r * r, 0, 0, 0, p * p, 0, 0, 0, y * y};
   }
-  set_vec(&imu.angular_velocity, frdToFlu(vec3(d.angular_rate_radps)));
-  set_vec(&imu.linear_acceleration, frdToFlu(vec3(d.accel_mps2)));
+  set_vec(&imu.angular_velocity, frd_to_flu(vec3(d.angular_rate_radps)));
+  set_vec(&imu.linear_acceleration, frd_to_flu(vec3(d.accel_mps2)));
   return imu;
 }
 
 sensor_msgs::MagneticField to_magnetic_field(const VnBinaryData& d, const std_msgs::Header& header) {
   sensor_msgs::MagneticField mag;
   mag.header = header;
-  const Vec3 m = frdToFlu(vec3(d.mag_gauss));
+  const Vec3 m = frd_to_flu(vec3(d.mag_gauss));
   set_vec(&mag.magnetic_field, {m[0] * kGaussToTesla, m[1] * kGaussToTesla, m[2] * kGaussToTesla});
   return mag;
 }
@@ -148,11 +148,11 @@ geometry_msgs::TransformStamped to_transform(const VnBinaryData& d, const ros::T
   geometry_msgs::TransformStamped tf;
   tf.header = header(stamp, world_frame_id);
   tf.child_frame_id = frame_id;
-  const Vec3 p = llaToLocalEnu(d.lat_deg, d.lon_deg, d.alt_m, ref_lat_deg, ref_lon_deg, ref_alt_m);
+  const Vec3 p = lla_to_local_enu(d.lat_deg, d.lon_deg, d.alt_m, ref_lat_deg, ref_lon_deg, ref_alt_m);
   tf.transform.translation.x = p[0];
   tf.transform.translation.y = p[1];
   tf.transform.translation.z = p[2];
-  set_quat(&tf.transform.rotation, nedFrdToEnuFlu(attitude_ned(d)));
+  set_quat(&tf.transform.rotation, ned_frd_to_enu_flu(attitude_ned(d)));
   return tf;
 }
 

@@ -29,12 +29,12 @@ void SensorSession::start(double now_s) {
   sent_at_s_ = now_s;
 }
 
-uint64_t SensorSession::badPackets() const {
+uint64_t SensorSession::bad_packets() const {
   return vn_framer_bad_packets(&framer_.stats) + counters_.binary_decode_errors +
          counters_.ascii_decode_errors;
 }
 
-std::string SensorSession::pollCommand(double now_s) {
+std::string SensorSession::poll_command(double now_s) {
   if (state_ != State::Configuring) return "";
   if (awaiting_ && now_s - sent_at_s_ < options_.response_timeout_s) return "";
   if (awaiting_) ++counters_.config_resends;
@@ -49,7 +49,7 @@ std::string SensorSession::pollCommand(double now_s) {
   return steps_[step_];
 }
 
-void SensorSession::onBytes(const uint8_t* data, size_t len, double now_s) {
+void SensorSession::on_bytes(const uint8_t* data, size_t len, double now_s) {
   if (len > 0) last_byte_s_ = now_s;
   counters_.bytes += len;
   size_t off = 0;
@@ -68,12 +68,12 @@ void SensorSession::onBytes(const uint8_t* data, size_t len, double now_s) {
         ++counters_.binary_decode_errors;
       }
     } else {
-      handleAscii(frame, now_s);
+      handle_ascii(frame, now_s);
     }
   }
 }
 
-void SensorSession::handleAscii(const VnFrame& frame, double now_s) {
+void SensorSession::handle_ascii(const VnFrame& frame, double now_s) {
   VnAsciiMsg m;
   const char* s = reinterpret_cast<const char*>(frame.data);
   if (vn_ascii_parse(s, frame.len, &m) != VN_ASCII_OK) {
@@ -99,7 +99,7 @@ void SensorSession::handleAscii(const VnFrame& frame, double now_s) {
   if (on_ascii) on_ascii(m, now_s);
 }
 
-const char* sensorErrorText(uint8_t code) {
+const char* sensor_error_text(uint8_t code) {
   switch (code) {
     case VN_ERR_HARD_FAULT: return "hard fault";
     case VN_ERR_SERIAL_BUFFER_OVERFLOW: return "serial buffer overflow";

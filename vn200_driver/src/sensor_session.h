@@ -1,5 +1,5 @@
 // One connection's conversation with the VN-200, independent of ROS and of the port: bytes in,
-// decoded packets out through callbacks, configuration commands out through pollCommand().
+// decoded packets out through callbacks, configuration commands out through poll_command().
 // Configuration: stop the ASCII async stream (register 6), then set Binary Output 1
 // (register 75). Each write must come back as the sensor's echo; a $VNERR or silence means a
 // resend, and after `max_attempts` the session reports Failed so the node can reconnect.
@@ -44,21 +44,21 @@ class SensorSession {
   // keeps every counter.
   void start(double now_s);
   // Feeds received bytes.
-  void onBytes(const uint8_t* data, size_t len, double now_s);
+  void on_bytes(const uint8_t* data, size_t len, double now_s);
   // The command to send now, or "" when nothing is due.
-  std::string pollCommand(double now_s);
+  std::string poll_command(double now_s);
 
   State state() const { return state_; }
-  const VnFramerStats& framerStats() const { return framer_.stats; }
+  const VnFramerStats& framer_stats() const { return framer_.stats; }
   const Counters& counters() const { return counters_; }
-  uint64_t badPackets() const;
-  double lastByteS() const { return last_byte_s_; }
+  uint64_t bad_packets() const;
+  double last_byte_s() const { return last_byte_s_; }
 
   std::function<void(const VnBinaryData&, double now_s)> on_binary;
   std::function<void(const VnAsciiMsg&, double now_s)> on_ascii;
 
  private:
-  void handleAscii(const VnFrame& frame, double now_s);
+  void handle_ascii(const VnFrame& frame, double now_s);
 
   Options options_;
   VnFramer framer_{};
@@ -73,6 +73,6 @@ class SensorSession {
   Counters counters_;
 };
 
-const char* sensorErrorText(uint8_t code);
+const char* sensor_error_text(uint8_t code);
 
 }  // namespace vn200

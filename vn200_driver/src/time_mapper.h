@@ -15,7 +15,7 @@ class TimeMapper {
   double map(double sensor_s, double arrival_s);
   void reset() { initialised_ = false; }
   bool initialised() const { return initialised_; }
-  double offsetS() const { return offset_s_; }
+  double offset_s() const { return offset_s_; }
   unsigned resets() const { return resets_; }
 
  private:

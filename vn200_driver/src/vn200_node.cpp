@@ -12,21 +12,21 @@ namespace vn200 {
 
 namespace {
 
-SensorSession::Options sessionOptions(const NodeParams& p) {
+SensorSession::Options session_options(const NodeParams& p) {
   SensorSession::Options o;
-  o.output = nodeOutputConfig(static_cast<unsigned>(p.rate_hz),
+  o.output = node_output_config(static_cast<unsigned>(p.rate_hz),
                               static_cast<VnAsyncMode>(p.sensor_port),
                               static_cast<unsigned>(p.binary_output));
   o.response_timeout_s = p.response_timeout_s;
   return o;
 }
 
-double wallNow() { return ros::WallTime::now().toSec(); }
+double wall_now() { return ros::WallTime::now().toSec(); }
 
 }  // namespace
 
 Vn200Node::Vn200Node(ros::NodeHandle nh, ros::NodeHandle pnh, const NodeParams& params)
-    : nh_(nh), pnh_(pnh), params_(params), session_(sessionOptions(params)) {
+    : nh_(nh), pnh_(pnh), params_(params), session_(session_options(params)) {
   // Original drone_ros interface (thesis): global names and types the controller subscribes to.
   ins_pub_ = nh_.advertise<drone_ros::ins>("/ins", 10);
   gps_position_pub_ = nh_.advertise<sensor_msgs::NavSatFix>("/gps_position", 10);
@@ -40,21 +40,21 @@ Vn200Node::Vn200Node(ros::NodeHandle nh, ros::NodeHandle pnh, const NodeParams& 
   mag_pub_ = pnh_.advertise<sensor_msgs::MagneticField>("imu/mag", 10);
   pressure_pub_ = pnh_.advertise<sensor_msgs::FluidPressure>("pressure", 10);
   temperature_pub_ = pnh_.advertise<sensor_msgs::Temperature>("temperature", 10);
-  if (params_.publish_tf) home_sub_ = nh_.subscribe("/home", 1, &Vn200Node::onHome, this);
+  if (params_.publish_tf) home_sub_ = nh_.subscribe("/home", 1, &Vn200Node::on_home, this);
 
   diag_.setHardwareID(params_.replay_file.empty() ? "VN-200 on " + params_.port
                                                   : "VN-200 replay " + params_.replay_file);
-  diag_.add("VN-200 link", this, &Vn200Node::diagLink);
+  diag_.add("VN-200 link", this, &Vn200Node::diag_link);
 
   session_.on_binary = [this](const VnBinaryData& d, double) {
-    if (!params_.replay_file.empty()) paceReplay(d);
-    publishPacket(d);
+    if (!params_.replay_file.empty()) pace_replay(d);
+    publish_packet(d);
   };
 }
 
-int Vn200Node::run() { return params_.replay_file.empty() ? runPort() : runReplay(); }
+int Vn200Node::run() { return params_.replay_file.empty() ? run_port() : run_replay(); }
 
-void Vn200Node::tryOpen(double now_s) {
+void Vn200Node::try_open(double now_s) {
   std::string error;
   if (params_.sensor_baud != 0 && params_.sensor_baud != params_.baud) {
     // The sensor may be at its power-up speed: ask it, at that speed, to switch to ours. If it
@@ -87,7 +87,7 @@ void Vn200Node::tryOpen(double now_s) {
   session_.start(now_s);
 }
 
-void Vn200Node::linkLost(const std::string& why, double now_s) {
+void Vn200Node::link_lost(const std::string& why, double now_s) {
   ROS_WARN("vn200: link lost (%s); reconnecting every %.1f s", why.c_str(),
            params_.reconnect_period_s);
   last_problem_ = why;
@@ -98,7 +98,7 @@ void Vn200Node::linkLost(const std::string& why, double now_s) {
   next_down_report_s_ = now_s;
 }
 
-void Vn200Node::publishLinkDown() {
+void Vn200Node::publish_link_down() {
   drone_ros::ins msg;
   msg.header.stamp = ros::Time::now();
   msg.header.frame_id = params_.frame_id;
@@ -106,43 +106,43 @@ void Vn200Node::publishLinkDown() {
   ins_pub_.publish(msg);
 }
 
-int Vn200Node::runPort() {
+int Vn200Node::run_port() {
   uint8_t buf[4096];
-  next_down_report_s_ = wallNow();
+  next_down_report_s_ = wall_now();
   while (ros::ok()) {
-    const double now = wallNow();
+    const double now = wall_now();
     if (!port_.is_open()) {
-      if (now >= next_open_s_) tryOpen(now);
+      if (now >= next_open_s_) try_open(now);
       if (!port_.is_open()) std::this_thread::sleep_for(std::chrono::milliseconds(20));
     } else {
-      const std::string cmd = session_.pollCommand(now);
+      const std::string cmd = session_.poll_command(now);
       if (!cmd.empty() && !port_.write_all(cmd.data(), cmd.size())) {
-        linkLost("write failed", now);
+        link_lost("write failed", now);
       } else if (session_.state() == SensorSession::State::Failed) {
-        linkLost("sensor did not accept the configuration", now);
+        link_lost("sensor did not accept the configuration", now);
       } else {
         size_t got = 0;
         const auto r = port_.read(buf, sizeof buf, 20, &got);
         if (r == drone_ros_common::SerialPort::ReadResult::kGone) {
-          linkLost("device gone", now);
+          link_lost("device gone", now);
         } else if (r == drone_ros_common::SerialPort::ReadResult::kData) {
-          session_.onBytes(buf, got, wallNow());
+          session_.on_bytes(buf, got, wall_now());
         }
         // A port that stays open but silent (sensor power-cycled, cable half-plugged): report it
         // at once, and reopen/reconfigure if it persists.
-        const double last = std::max(session_.lastByteS(), opened_at_s_);
+        const double last = std::max(session_.last_byte_s(), opened_at_s_);
         if (port_.is_open() && now - last > params_.data_timeout_s) {
           if (link_up_) {
             ++link_losses_;
             last_problem_ = "no data";
           }
           link_up_ = false;
-          if (now - last > 3 * params_.data_timeout_s) linkLost("no data", now);
+          if (now - last > 3 * params_.data_timeout_s) link_lost("no data", now);
         }
       }
     }
     if (!link_up_ && now >= next_down_report_s_) {
-      publishLinkDown();
+      publish_link_down();
       next_down_report_s_ = now + 1.0;
     }
     ros::spinOnce();
@@ -151,7 +151,7 @@ int Vn200Node::runPort() {
   return 0;
 }
 
-bool Vn200Node::everyDataTopicSubscribed() const {
+bool Vn200Node::every_data_topic_subscribed() const {
   for (const ros::Publisher* pub : {&ins_pub_, &gps_position_pub_, &gps_velocity_pub_, &imu_pqr_pub_,
                                     &attitude_pub_, &imu_pub_, &fix_pub_, &velocity_pub_, &mag_pub_,
                                     &pressure_pub_, &temperature_pub_}) {
@@ -160,7 +160,7 @@ bool Vn200Node::everyDataTopicSubscribed() const {
   return true;
 }
 
-int Vn200Node::runReplay() {
+int Vn200Node::run_replay() {
   std::ifstream in(params_.replay_file, std::ios::binary);
   if (!in) {
     ROS_FATAL("vn200: cannot open replay file %s", params_.replay_file.c_str());
@@ -169,7 +169,7 @@ int Vn200Node::runReplay() {
   ROS_INFO("vn200: replaying %s at %.2fx", params_.replay_file.c_str(), params_.replay_speed);
   const ros::WallTime start_at = ros::WallTime::now() + ros::WallDuration(params_.replay_delay_s);
   while (ros::ok() && (ros::WallTime::now() < start_at ||
-                       (params_.replay_wait_for_subscribers && !everyDataTopicSubscribed()))) {
+                       (params_.replay_wait_for_subscribers && !every_data_topic_subscribed()))) {
     ros::spinOnce();
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
@@ -178,8 +178,8 @@ int Vn200Node::runReplay() {
     if (!replay_done_) {
       in.read(buf, sizeof buf);
       const std::streamsize n = in.gcount();
-      if (n > 0) session_.onBytes(reinterpret_cast<const uint8_t*>(buf), static_cast<size_t>(n),
-                                  wallNow());
+      if (n > 0) session_.on_bytes(reinterpret_cast<const uint8_t*>(buf), static_cast<size_t>(n),
+                                  wall_now());
       if (!in) {
         if (params_.replay_loop) {
           in.clear();
@@ -202,21 +202,21 @@ int Vn200Node::runReplay() {
   return 0;
 }
 
-void Vn200Node::paceReplay(const VnBinaryData& d) {
+void Vn200Node::pace_replay(const VnBinaryData& d) {
   // Hold each packet until its sensor time comes round again.
   if (!(d.has & VN_HAS_TIME_STARTUP)) return;
   const double t = static_cast<double>(d.time_startup_ns) * 1e-9;
   if (!replay_started_ || t < replay_t0_sensor_s_) {
     replay_started_ = true;
     replay_t0_sensor_s_ = t;
-    replay_t0_wall_s_ = wallNow();
+    replay_t0_wall_s_ = wall_now();
   }
   const double due = replay_t0_wall_s_ + (t - replay_t0_sensor_s_) / params_.replay_speed;
-  const double wait = due - wallNow();
+  const double wait = due - wall_now();
   if (wait > 0) ros::WallDuration(std::min(wait, 10.0)).sleep();
 }
 
-void Vn200Node::publishPacket(const VnBinaryData& d) {
+void Vn200Node::publish_packet(const VnBinaryData& d) {
   link_up_ = true;
   ros::Time stamp = ros::Time::now();
   if (d.has & VN_HAS_TIME_STARTUP) {
@@ -262,8 +262,8 @@ void Vn200Node::publishPacket(const VnBinaryData& d) {
   }
 }
 
-void Vn200Node::diagLink(diagnostic_updater::DiagnosticStatusWrapper& stat) {
-  const VnFramerStats& f = session_.framerStats();
+void Vn200Node::diag_link(diagnostic_updater::DiagnosticStatusWrapper& stat) {
+  const VnFramerStats& f = session_.framer_stats();
   const SensorSession::Counters& c = session_.counters();
   if (params_.replay_file.empty() && !port_.is_open()) {
     stat.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "port closed: " + last_problem_);
@@ -277,7 +277,7 @@ void Vn200Node::diagLink(diagnostic_updater::DiagnosticStatusWrapper& stat) {
   }
   stat.add("usbstatus", link_up_ ? 1 : 0);
   stat.add("packets decoded", c.packets_decoded);
-  stat.add("bad packets", session_.badPackets());
+  stat.add("bad packets", session_.bad_packets());
   stat.add("bad binary CRC", f.bad_binary_crc);
   stat.add("bad binary groups", f.bad_binary_groups);
   stat.add("bad binary field", f.bad_binary_field);
@@ -289,7 +289,7 @@ void Vn200Node::diagLink(diagnostic_updater::DiagnosticStatusWrapper& stat) {
   stat.add("dropped bytes", f.dropped_bytes);
   stat.add("bytes received", c.bytes);
   stat.add("sensor errors", c.sensor_errors);
-  stat.add("last sensor error", sensorErrorText(c.last_sensor_error));
+  stat.add("last sensor error", sensor_error_text(c.last_sensor_error));
   stat.add("configuration resends", c.config_resends);
   stat.add("connections", reconnects_);
   stat.add("link losses", link_losses_);
@@ -297,7 +297,7 @@ void Vn200Node::diagLink(diagnostic_updater::DiagnosticStatusWrapper& stat) {
   stat.add("last problem", last_problem_);
 }
 
-void Vn200Node::onHome(const drone_ros::HomePosition::ConstPtr& msg) {
+void Vn200Node::on_home(const drone_ros::HomePosition::ConstPtr& msg) {
   if (!std::isfinite(msg->latitude) || !std::isfinite(msg->longitude) || !std::isfinite(msg->altitude) ||
       std::fabs(msg->latitude) > 90.0 || std::fabs(msg->longitude) > 180.0) {
     ROS_WARN("vn200: home %u dropped: not a valid position", msg->seq);

@@ -25,14 +25,14 @@ class Vn200Node {
   int run();
 
  private:
-  int runPort();
-  int runReplay();
-  void tryOpen(double now_s);
-  void linkLost(const std::string& why, double now_s);
-  void paceReplay(const VnBinaryData& d);  // replay only: sleeps until the packet's sensor time
-  void publishPacket(const VnBinaryData& d);
-  void publishLinkDown();
-  void diagLink(diagnostic_updater::DiagnosticStatusWrapper& stat);
+  int run_port();
+  int run_replay();
+  void try_open(double now_s);
+  void link_lost(const std::string& why, double now_s);
+  void pace_replay(const VnBinaryData& d);  // replay only: sleeps until the packet's sensor time
+  void publish_packet(const VnBinaryData& d);
+  void publish_link_down();
+  void diag_link(diagnostic_updater::DiagnosticStatusWrapper& stat);
 
   ros::NodeHandle nh_, pnh_;
   NodeParams params_;
@@ -43,7 +43,7 @@ class Vn200Node {
   tf2_ros::TransformBroadcaster tf_;
 
   // A replay that must reach its subscribers whole starts only once they are all connected.
-  bool everyDataTopicSubscribed() const;
+  bool every_data_topic_subscribed() const;
   ros::Publisher ins_pub_, gps_position_pub_, gps_velocity_pub_, imu_pqr_pub_, attitude_pub_;
   ros::Publisher imu_pub_, fix_pub_, velocity_pub_, mag_pub_, pressure_pub_, temperature_pub_;
 
@@ -55,7 +55,7 @@ class Vn200Node {
   unsigned link_losses_ = 0;
   std::string last_problem_;
   // The tf's origin is home, from its one owner (the HA, on the latched /home): no tf before it.
-  void onHome(const drone_ros::HomePosition::ConstPtr& msg);
+  void on_home(const drone_ros::HomePosition::ConstPtr& msg);
   ros::Subscriber home_sub_;
   std::mutex ref_mutex_;
   bool have_ref_ = false;

@@ -118,7 +118,7 @@ TEST(PacketMessages, AnEastboundAircraftFacesAlongEnuXWithOrWithoutTheQuaternion
   const sensor_msgs::Imu from_quat = vn200::to_imu(d, ros::Time(1, 0), "vn200");
   for (const sensor_msgs::Imu* imu : {&from_ypr, &from_quat}) {
     const auto& o = imu->orientation;
-    const vn200::Vec3 nose = vn200::quatRotate({o.x, o.y, o.z, o.w}, {1, 0, 0});
+    const vn200::Vec3 nose = vn200::quat_rotate({o.x, o.y, o.z, o.w}, {1, 0, 0});
     EXPECT_NEAR(nose[0], 1.0, 1e-6);
     EXPECT_NEAR(nose[1], 0.0, 1e-6);
   }

@@ -34,7 +34,7 @@ TEST(VnCrc, MatchesTheCcittCheckValueAndABitwiseReference) {
 
 TEST(VnBinary, NodePacketDecodesEveryFieldInUnits) {
   std::vector<uint8_t> p = makeNodePacket();
-  VnBinaryOutputConfig cfg = vn200::nodeOutputConfig(100, VN_ASYNC_PORT2, 2);
+  VnBinaryOutputConfig cfg = vn200::node_output_config(100, VN_ASYNC_PORT2, 2);
   ASSERT_EQ(vn_binary_output_packet_len(&cfg), p.size());
   VnBinaryData d;
   ASSERT_EQ(VN_BIN_OK, vn_bin_decode(p.data(), p.size(), &d));
@@ -120,7 +120,7 @@ uint16_t fullMask(unsigned g) {
 TEST(VnBinary, EveryGroupCombinationDecodesToItsDocumentedLength) {
   for (unsigned groups = 1; groups < 64; ++groups) {
     for (int full = 0; full < 2; ++full) {
-      VnBinaryOutputConfig node = vn200::nodeOutputConfig(100, VN_ASYNC_PORT2, 2);
+      VnBinaryOutputConfig node = vn200::node_output_config(100, VN_ASYNC_PORT2, 2);
       std::vector<uint16_t> masks;
       size_t payload = 0;
       for (unsigned g = 0; g < 6; ++g) {

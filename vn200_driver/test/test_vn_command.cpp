@@ -37,7 +37,7 @@ TEST(VnCommand, BaudChangeOnlyForRatesTheSensorSupports) {
 // which feeds the HA on port 1, is never rewritten by the untrusted side.
 TEST(VnCommand, NodeWritesBinaryOutputTwoRoutedToItsOwnPortOnly) {
   char buf[VN_CMD_MAX];
-  VnBinaryOutputConfig cfg = vn200::nodeOutputConfig(100, VN_ASYNC_PORT2, 2);
+  VnBinaryOutputConfig cfg = vn200::node_output_config(100, VN_ASYNC_PORT2, 2);
   size_t n = vn_cmd_binary_output(buf, sizeof buf, &cfg, VN_CK_XOR8);
   std::string s = build(n, buf);
   EXPECT_EQ("$VNWRG,76,2,8,39,15FB,0618,0100,0600*", s.substr(0, 37));
@@ -64,7 +64,7 @@ TEST(VnCommand, BinaryOutputRegistersSeventySixAndSeventySeven) {
 
 TEST(VnCommand, ConfigurationsTheSensorWouldRefuseAreNotBuilt) {
   char buf[VN_CMD_MAX];
-  VnBinaryOutputConfig good = vn200::nodeOutputConfig(50, VN_ASYNC_PORT1, 1);
+  VnBinaryOutputConfig good = vn200::node_output_config(50, VN_ASYNC_PORT1, 1);
   ASSERT_GT(vn_cmd_binary_output(buf, sizeof buf, &good, VN_CK_XOR8), 0u);
   VnBinaryOutputConfig c = good;
   c.output = 4;
@@ -86,12 +86,12 @@ TEST(VnCommand, ConfigurationsTheSensorWouldRefuseAreNotBuilt) {
 }
 
 TEST(VnCommand, OutputRateMustDivideTheImuRate) {
-  EXPECT_TRUE(vn200::rateSupported(800));
-  EXPECT_TRUE(vn200::rateSupported(100));
-  EXPECT_TRUE(vn200::rateSupported(1));
-  EXPECT_FALSE(vn200::rateSupported(0));
-  EXPECT_FALSE(vn200::rateSupported(300));
-  EXPECT_FALSE(vn200::rateSupported(1600));
+  EXPECT_TRUE(vn200::rate_supported(800));
+  EXPECT_TRUE(vn200::rate_supported(100));
+  EXPECT_TRUE(vn200::rate_supported(1));
+  EXPECT_FALSE(vn200::rate_supported(0));
+  EXPECT_FALSE(vn200::rate_supported(300));
+  EXPECT_FALSE(vn200::rate_supported(1600));
 }
 
 }  // namespace

@@ -1,12 +1,12 @@
 /* THE VN-200 SEAM: where the INS solution enters the HA.
  *
  * The VN-200's port 1 is wired to the Due's Serial1, so the HA senses attitude, rates, altitude
- * and position without the HP. Its bytes are read here every loop, split into packets by the
- * VN-200 protocol core (vn200_driver/core, which `make sketch-ha` puts into the assembled
- * sketch's src/vn200/: vn_framer + vn_bin_decode), each decoded binary packet is copied into
- * the core's plain HaInsSample, and the core's INS adapter (core/ha_ins.c) turns it into the
- * state fields of HaInputs: the only place INS data enters them. ASCII sentences (register
- * responses) are counted and ignored; bad packets are counted by the framer and dropped.
+ * and position without the HP. Its bytes are read here every loop and handed to
+ * src/vn200/ha_vn200_feed.c, the one rule (shared with the host SIL) that splits them into
+ * packets with the VN-200 protocol core (vn200_driver/core, put beside it when the sketch is
+ * assembled, `make sketch-ha`), decodes them and passes each solution to the core's INS adapter
+ * (core/ha_ins.c): the only place INS data enters HaInputs. ASCII sentences (register responses)
+ * are counted and ignored; bad packets are counted by the framer and dropped.
  * README.md, "VN-200", says how to wire and configure the sensor. */
 #ifndef DUE_INS_SEAM_H
 #define DUE_INS_SEAM_H
@@ -17,8 +17,7 @@
 #include "../core/ha_config.h"
 #include "../core/ha_core.h"
 #include "../core/ha_ins.h"
-#include "../vn200/vn_binary.h"
-#include "../vn200/vn_framer.h"
+#include "../vn200/ha_vn200_feed.h"
 
 typedef struct {
   uint32_t bytes_read;
@@ -40,9 +39,6 @@ void due_ins_poll(HaInputs *inputs, uint32_t now_us);
 /* Frames, decodes and applies bytes from the VN-200 stream, received at now_us. Partial packets
  * are kept for the next call. A packet with a non-finite value makes the state invalid. */
 void due_ins_feed(const uint8_t *bytes, size_t len, HaInputs *inputs, uint32_t now_us);
-
-/* The copy from the VN-200 decoder's struct into the core's (units unchanged). */
-void due_ins_sample_from_vn(const VnBinaryData *vn, HaInsSample *sample);
 
 DueInsStats due_ins_stats(void);
 

@@ -1,13 +1,9 @@
 #include "due_link.h"
 
 #include <Arduino.h>
-#include <string.h>
 
-/* ha_surfaces.h is a core-internal C header without C++ guards. */
-extern "C" {
-#include "../core/ha_surfaces.h"
-}
 #include "../link/ha_link.h"
+#include "../link/ha_link_report.h"
 #include "due_ins_seam.h"
 #include "due_config.h"
 
@@ -29,7 +25,6 @@ HaInputs *g_inputs = nullptr;
 
 /* Bytes handed to the link per loop; the port's buffer holds more, the next loop takes them. */
 const size_t kMaxBytesPerPoll = 64u;
-const double kRadPerDeg = 0.017453292519943295;
 
 void link_write(void *ctx, const uint8_t *bytes, size_t len) {
   (void)ctx;
@@ -83,59 +78,5 @@ void due_link_poll(uint32_t now_us) {
 
 void due_link_publish(const HaAircraftConfig *cfg, const HaInputs *inputs, const HaOutputs *out,
                       uint32_t now_us) {
-  if (!ha_link_connected(&g_link)) {
-    return;
-  }
-  const HaRosTime stamp = ha_link_ros_time(&g_link, now_us);
-
-  drone_ros_DecisionStatus status;
-  status.stamp = stamp;
-  status.controller = out->controller;
-  status.reasons = out->reasons;
-  status.reasons_at_switch = out->reasons_at_switch;
-  status.restart_count = out->restart_count;
-  status.restart_requested = out->restart_requested;
-  status.last_seq = out->last_seq;
-  status.stable_for_s = out->stable_for_s;
-  status.airspeed_ftps = out->airspeed_ftps;
-  status.altitude_agl_ft = out->altitude_agl_ft;
-  status.alpha_deg = out->alpha_deg;
-  status.beta_deg = out->beta_deg;
-  status.state_region_max = out->state_region_max;
-  status.actuator_region_max = out->actuator_region_max;
-  status.throttle = out->surfaces.throttle;
-  status.elevator_deg = out->surfaces.elevator_deg;
-  status.aileron_deg = out->surfaces.aileron_deg;
-  status.rudder_deg = out->surfaces.rudder_deg;
-  (void)ha_link_publish_decision_status(&g_link, &status);
-
-  // The HA owns home: the host hears it on a change and every few seconds, not every period.
-  drone_ros_HomePosition home;
-  memset(&home, 0, sizeof home);
-  const HaIns *ins = due_ins_state();
-  if (ins->home_latched) {
-    home.stamp = stamp;
-    home.seq = ins->home_seq;
-    home.latitude = ins->home.lat_deg;
-    home.longitude = ins->home.lon_deg;
-    home.altitude = ins->home.alt_m;
-  }
-  (void)ha_link_offer_home(&g_link, &home, now_us);
-
-  /* The pilot's sticks, decoded with the same calibration the core uses in manual mode. */
-  HaSurfaces rc;
-  ha_surfaces_from_rc(cfg, &inputs->rc, &rc);
-  drone_ros_pwm pwm;
-  pwm.header.seq = 0u;
-  pwm.header.stamp = stamp;
-  pwm.header.frame_id = ha_ros_string("");
-  pwm.PICCIC = out->controller == HA_CONTROLLER_MANUAL ? 0u : 1u;
-  pwm.Throttle = rc.throttle;
-  pwm.Elevator = rc.elevator_deg * kRadPerDeg;
-  pwm.Aileron = rc.aileron_deg * kRadPerDeg;
-  pwm.Rudder = rc.rudder_deg * kRadPerDeg;
-  pwm.velocity = out->airspeed_ftps;
-  pwm.tach = 0.0; /* no tachometer on this board */
-  pwm.usbstatus = 1u;
-  (void)ha_link_publish_pwm(&g_link, &pwm);
+  ha_link_report_period(&g_link, cfg, inputs, out, due_ins_state(), now_us);
 }

@@ -9,7 +9,6 @@ Prints `metric: value unit` lines, then `machine: ...`:
 Usage: bench_link.py WORKSPACE   (the catkin workspace with drone_ros built)"""
 import io
 import os
-import platform
 import shutil
 import signal
 import socket
@@ -22,6 +21,9 @@ import rospy
 from std_msgs.msg import Time
 
 from drone_ros.msg import DecisionStatus, ServoCommand, pwm
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "tools"))
+from bench_machine import machine  # noqa: E402
 
 RATE_HZ = 100
 STEADY_S = 6.0
@@ -42,17 +44,6 @@ def wire_size(msg):
     return len(buf.getvalue()) + FRAME_OVERHEAD
 
 
-def cpu_model():
-    try:
-        with open("/proc/cpuinfo") as fh:
-            for line in fh:
-                if line.startswith("model name"):
-                    return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.machine()
-
-
 def percentile(values, p):
     values = sorted(values)
     k = min(len(values) - 1, max(0, int(round(p / 100.0 * (len(values) - 1)))))
@@ -60,6 +51,7 @@ def percentile(values, p):
 
 
 def main():
+    header = machine("ptys (no baud limit)")
     ws = sys.argv[1]
     lib = os.path.join(ws, "devel", "lib", "drone_ros")
     tmp = tempfile.mkdtemp(prefix="bench_link_")
@@ -141,8 +133,7 @@ def main():
         budget = baud / 10.0 / RATE_HZ  # 8N1: 10 bits a byte
         print("budget_%d_baud_ha_to_hp: %.0f %%" % (baud, 100.0 * up_period / budget))
         print("budget_%d_baud_hp_to_ha: %.0f %%" % (baud, 100.0 * down_period / budget))
-    print("machine: %s, %s, %d cpus, %s, ptys (no baud limit)" % (platform.node(), cpu_model(), os.cpu_count(),
-                                                                 platform.platform()))
+    print("machine: %s" % header)
 
 
 if __name__ == "__main__":

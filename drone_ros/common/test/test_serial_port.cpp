@@ -183,7 +183,8 @@ TEST(SerialPort, APortThisUserMayNotOpenNamesTheDialoutGroup) {
   int status = 0;
   ASSERT_EQ(child, waitpid(child, &status, 0));
   ASSERT_TRUE(WIFEXITED(status));
-  ASSERT_EQ(0, WEXITSTATUS(status)) << "the unprivileged child opened the port, or could not drop privileges";
+  ASSERT_EQ(0, WEXITSTATUS(status))
+      << "the unprivileged child opened the port, or could not drop privileges";
   EXPECT_NE(std::string::npos, error.find(pty.name)) << error;
   EXPECT_NE(std::string::npos, error.find(std::strerror(EACCES))) << error;
   EXPECT_NE(std::string::npos, error.find("usermod -aG dialout")) << error;

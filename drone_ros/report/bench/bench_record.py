@@ -10,7 +10,6 @@ control rate (20 Hz, controller_param.yaml dt 0.05; or 100 Hz), /hil/truth once 
 HiL, /diagnostics and /rosout_agg at 1 Hz."""
 import io
 import os
-import platform
 import random
 import sys
 import tempfile
@@ -22,6 +21,9 @@ from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 from rosgraph_msgs.msg import Log
 
 from drone_ros.msg import DecisionStatus, HilTruth, ServoCommand, data, hil_data, ins, pwm
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "tools"))
+from bench_machine import machine  # noqa: E402
 
 SECONDS = 60.0
 CHUNK_BYTES = 768 * 1024  # rosbag record's default --chunksize
@@ -96,20 +98,6 @@ def _serialized(message):
     buf = io.BytesIO()
     message.serialize(buf)
     return buf.getvalue()
-
-
-def machine():
-    model = "unknown cpu"
-    try:
-        with open("/proc/cpuinfo") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    model = line.split(":", 1)[1].strip()
-                    break
-    except OSError:
-        pass
-    return "%s, %d cores, %s, %s, load %.1f at start (shared machine)" % (
-        platform.node(), os.cpu_count(), model, platform.platform(), os.getloadavg()[0])
 
 
 def main():

@@ -17,9 +17,9 @@ import os
 import signal
 import socket
 import subprocess
+import sys
 import threading
 import time
-import xmlrpc.client
 from urllib.parse import urlparse
 
 import rosgraph
@@ -27,35 +27,9 @@ import roslib.packages
 import rospy
 from drone_ros.msg import DecisionStatus
 
-
-class TimeoutTransport(xmlrpc.client.Transport):
-    """A hung node accepts the connection and never answers: ask with a deadline."""
-
-    def __init__(self, timeout_s):
-        super().__init__()
-        self.timeout_s = timeout_s
-
-    def make_connection(self, host):
-        conn = super().make_connection(host)
-        conn.timeout = self.timeout_s
-        return conn
-
-
-def node_uri(master, node):
-    try:
-        return master.lookupNode(node)
-    except (rosgraph.MasterError, socket.error, xmlrpc.client.Error):
-        return None
-
-
-def ask_pid(uri, timeout_s=0.5):
-    """The node's own answer to getPid, or None (gone: connection refused; hung: no answer)."""
-    try:
-        code, _, pid = xmlrpc.client.ServerProxy(uri, transport=TimeoutTransport(timeout_s)).getPid(
-            rospy.get_name())
-    except (socket.error, socket.timeout, xmlrpc.client.Error, OSError):
-        return None
-    return pid if code == 1 else None
+# node_query.py lies beside this file (the devel space runs it from the source folder).
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from node_query import ask_pid, node_uri  # noqa: E402
 
 
 def local(uri):
@@ -112,7 +86,7 @@ class Supervisor:
         while not rospy.is_shutdown():
             uri = node_uri(self.master, self.node)
             if uri is not None and uri != self.known[0] and local(uri):
-                pid = ask_pid(uri)
+                pid = ask_pid(uri, rospy.get_name())
                 if pid is not None:
                     self.known = (uri, pid)
             time.sleep(0.2)
@@ -124,7 +98,7 @@ class Supervisor:
         if not local(uri):
             rospy.logwarn("hp_supervisor: %s runs on %s, not here: cannot restart it", self.node, uri)
             return None
-        pid = ask_pid(uri)
+        pid = ask_pid(uri, rospy.get_name())
         if pid is None and self.known[0] == uri:
             pid = self.known[1]  # it does not answer (hung): the PID it had when it did
         return pid

@@ -1,0 +1,75 @@
+#include "ha_vn200_feed.h"
+
+#include <string.h>
+
+void ha_vn200_sample_from_vn(const VnBinaryData *vn, HaInsSample *s) {
+  const uint32_t has = vn->has;
+  size_t i;
+  s->has = 0u;
+  if ((has & VN_HAS_YPR) != 0u) s->has |= HA_INS_HAS_YPR;
+  if ((has & VN_HAS_ANGULAR_RATE) != 0u) s->has |= HA_INS_HAS_RATE;
+  if ((has & VN_HAS_POSITION_LLA) != 0u) s->has |= HA_INS_HAS_POSITION;
+  if ((has & VN_HAS_VEL_NED) != 0u) s->has |= HA_INS_HAS_VEL_NED;
+  if ((has & VN_HAS_INS_STATUS) != 0u) s->has |= HA_INS_HAS_STATUS;
+  if ((has & VN_HAS_GPS_FIX) != 0u) s->has |= HA_INS_HAS_GPS_FIX;
+  for (i = 0u; i < 3u; ++i) {
+    s->ypr_deg[i] = vn->ypr_deg[i];
+    s->angular_rate_radps[i] = vn->angular_rate_radps[i];
+    s->vel_ned_mps[i] = vn->vel_ned_mps[i];
+  }
+  s->lat_deg = vn->lat_deg;
+  s->lon_deg = vn->lon_deg;
+  s->alt_m = vn->alt_m;
+  s->ins_status = vn->ins_status;
+  s->gps_fix = vn->gps_fix;
+}
+
+void ha_vn200_feed_init(HaVn200Feed *feed, const HaAircraftConfig *cfg) {
+  memset(feed, 0, sizeof *feed);
+  feed->cfg = cfg;
+  vn_framer_init(&feed->framer);
+  ha_ins_init(&feed->ins);
+}
+
+static void apply_packet(HaVn200Feed *feed, const VnFrame *frame, HaInputs *inputs,
+                         uint32_t now_us) {
+  HaInsSample sample;
+  const VnBinResult result = vn_bin_decode(frame->data, frame->len, &feed->scratch);
+  if (result != VN_BIN_OK) {
+    feed->counts.decode_errors++;
+    if (result == VN_BIN_ERR_NONFINITE) {
+      /* The sensor sent NaN/inf: its solution cannot be trusted until a clean one arrives. */
+      inputs->state_valid = 0u;
+    }
+    return;
+  }
+  ha_vn200_sample_from_vn(&feed->scratch, &sample);
+  (void)ha_ins_update(&feed->ins, feed->cfg, &sample, now_us, inputs);
+}
+
+void ha_vn200_feed_bytes(HaVn200Feed *feed, const uint8_t *bytes, size_t len, HaInputs *inputs,
+                         uint32_t now_us) {
+  size_t offset = 0u;
+  size_t pass;
+  if (feed->cfg == NULL) {
+    return; /* not initialised */
+  }
+  feed->counts.bytes_read += len;
+  /* Each pass consumes input or hands out a frame from the framer's bounded buffer, so the
+   * loop ends; the cap only makes that obvious. */
+  for (pass = 0u; pass < len + VN_FRAME_MAX + 1u; ++pass) {
+    size_t used = 0u;
+    VnFrame frame;
+    const int got = vn_framer_next(&feed->framer, bytes + offset, len - offset, &used, &frame);
+    offset += used;
+    if (got == 0) {
+      break;
+    }
+    if (frame.kind == VN_FRAME_BINARY) {
+      feed->counts.binary_packets++;
+      apply_packet(feed, &frame, inputs, now_us);
+    } else {
+      feed->counts.ascii_frames++;
+    }
+  }
+}

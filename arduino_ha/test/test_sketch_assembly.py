@@ -1,0 +1,91 @@
+"""The Due sketch arduino-cli compiles is assembled under .build/ (`make sketch-ha`,
+arduino_ha/tools/assemble_sketch.sh): arduino_ha's sources plus the VN-200 protocol core from
+vn200_driver/core, which arduino-cli could not reach outside the sketch folder. The SAM core is
+not installable here, so these tests check what arduino-cli needs of the folder: every file the
+sketch includes is inside it, found the way arduino-cli's compiler finds it (relative to the
+including file; the sketch gets no include path of its own), and the VN-200 decoder in it is the
+one the host tests test."""
+import pathlib
+import re
+import subprocess
+import sys
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+HA = ROOT / "arduino_ha"
+VN200_CORE = ROOT / "vn200_driver" / "core"
+ASSEMBLE = HA / "tools" / "assemble_sketch.sh"
+SOURCE_SUFFIXES = (".ino", ".c", ".cpp", ".h")
+INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]', re.M)
+# What the Arduino SAM platform and its toolchain provide: the core, the two libraries the sketch
+# installs (README.md) and the C/C++ standard headers the sources use.
+PLATFORM_HEADERS = {"Arduino.h", "Servo.h", "Wire.h", "float.h", "math.h", "stdbool.h",
+                    "stddef.h", "stdint.h", "string.h"}
+
+
+def assemble(out):
+    done = subprocess.run(["bash", str(ASSEMBLE), str(out)], check=True, capture_output=True,
+                          text=True)
+    return pathlib.Path(done.stdout.strip())
+
+
+def sources(folder):
+    return sorted(p for p in folder.rglob("*") if p.suffix in SOURCE_SUFFIXES)
+
+
+def unresolved_includes(sketch):
+    """Every #include of every sketch source that arduino-cli's compile would not find."""
+    missing = []
+    for source in sources(sketch):
+        for kind, name in INCLUDE.findall(source.read_text(errors="replace")):
+            if kind == "<":
+                if name not in PLATFORM_HEADERS:
+                    missing.append("%s: <%s> is not a platform header" % (source, name))
+                continue
+            target = (source.parent / name).resolve()
+            if not target.is_file():
+                missing.append("%s: \"%s\" not found" % (source, name))
+            elif sketch.resolve() not in target.parents:
+                missing.append("%s: \"%s\" lies outside the sketch folder" % (source, name))
+    return missing
+
+
+def test_assembled_sketch_is_a_folder_arduino_cli_accepts(tmp_path):
+    sketch = assemble(tmp_path)
+    assert sketch.name == "arduino_ha"
+    assert (sketch / "arduino_ha.ino").is_file(), "the primary .ino must be named as its folder"
+
+
+def test_every_file_the_assembled_sketch_includes_is_inside_it(tmp_path):
+    sketch = assemble(tmp_path)
+    assert unresolved_includes(sketch) == []
+
+
+def test_the_source_tree_alone_lacks_the_vn200_core_the_assembly_adds():
+    """The check above can fail: without the assembly, the INS seam's VN-200 headers are missing."""
+    missing = unresolved_includes(HA)
+    assert any("vn_binary.h" in m for m in missing), missing
+
+
+def test_the_sketch_flies_the_vn200_core_the_host_tests_test(tmp_path):
+    sketch = assemble(tmp_path)
+    core = {p.name: p.read_bytes() for p in VN200_CORE.iterdir() if p.suffix in (".c", ".h")}
+    in_sketch = {p.name: p.read_bytes() for p in (sketch / "src" / "vn200").iterdir()}
+    assert core, "vn200_driver/core has no sources"
+    assert {name: in_sketch.get(name) for name in core} == core
+
+
+def test_no_vn200_core_file_is_checked_in_under_arduino_ha():
+    core_names = {p.name for p in VN200_CORE.iterdir() if p.suffix in (".c", ".h")}
+    copies = [str(p) for p in HA.rglob("*") if p.name in core_names]
+    assert copies == [], "vn200_driver/core is the one source; the sketch gets it at assembly"
+
+
+def test_decision_status_header_is_the_one_the_message_generates(tmp_path):
+    """CONTROLLER_* and REASON_* are defined once, in msg/DecisionStatus.msg; the core's header
+    is generated from it and must not drift."""
+    fresh = tmp_path / "ha_decision_status.h"
+    subprocess.run([sys.executable, str(ROOT / "tools" / "gen_decision_status.py"), "--c",
+                    str(ROOT / "msg" / "DecisionStatus.msg"), str(fresh)], check=True)
+    checked_in = HA / "src" / "core" / "ha_decision_status.h"
+    assert checked_in.read_text() == fresh.read_text(), \
+        "run `make due-sketch-msgs` and check in arduino_ha/src/core/ha_decision_status.h"

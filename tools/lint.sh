@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# The C/C++ half of `make lint` (catkin_lint is the other):
+#  1. layout: clang-format (.clang-format) must leave every file of tools/clang_format_checked.txt
+#     unchanged, and every tracked C/C++ source outside generated/ must be listed there or in
+#     tools/clang_format_todo.txt (not formatted yet), so a new file is placed on purpose;
+#  2. naming: clang-tidy's readability-identifier-naming (.clang-tidy) over the C++ nodes, with
+#     the workspace's compile_commands.json (`make build` exports it).
+# usage: lint.sh WS
+set -uo pipefail
+ws=${1:?usage: lint.sh WS}
+root=$(cd "$(dirname "$0")/.." && pwd)
+checked=$root/tools/clang_format_checked.txt
+todo=$root/tools/clang_format_todo.txt
+status=0
+for tool in clang-format run-clang-tidy; do
+  if ! command -v "$tool" > /dev/null; then
+    echo "lint: $tool not found; run 'make deps' (tools/apt-packages.txt)" >&2
+    exit 2
+  fi
+done
+cd "$root" || exit 2
+
+listed() { sed 's/#.*//; s/[[:space:]]*$//; /^$/d' "$@"; }
+unlisted=$(comm -23 <(git ls-files '*.c' '*.cpp' '*.h' '*.hpp' | grep -v '/generated/' | LC_ALL=C sort) \
+  <(listed "$checked" "$todo" | LC_ALL=C sort -u))
+if [ -n "$unlisted" ]; then
+  echo "lint: C/C++ files in neither tools/clang_format_checked.txt nor tools/clang_format_todo.txt:"
+  echo "$unlisted" | sed 's/^/  /'
+  status=1
+fi
+mapfile -t files < <(listed "$checked")
+missing=0
+for f in "${files[@]}"; do
+  [ -f "$f" ] || { echo "lint: $f is listed in tools/clang_format_checked.txt but does not exist"; missing=1; }
+done
+[ $missing -eq 0 ] || status=1
+if out=$(clang-format --dry-run --Werror "${files[@]}" 2>&1); then
+  echo "lint: clang-format: ${#files[@]} files as .clang-format lays them out"
+else
+  echo "$out" | grep -E '^[^ ].*(warning|error):' | sed 's/ \[-Wclang-format-violations\]//' | sort -u -t: -k1,1
+  echo "lint: clang-format would change the files above (clang-format -i <file>)"
+  status=1
+fi
+
+db=$ws/build
+if [ ! -f "$db/compile_commands.json" ]; then
+  echo "lint: $db/compile_commands.json missing; run 'make build'" >&2
+  exit 2
+fi
+# The nodes as the workspace compiles them (through its src/drone_ros link).
+nodes="/src/drone_ros/(drone_ros/(common|arduino_link|controller)|microhard_gs|vn200_driver)/src/.*\.cpp$"
+if out=$(run-clang-tidy -quiet -j 2 -p "$db" "$nodes" 2>&1); then
+  echo "lint: clang-tidy naming: the C++ nodes follow .clang-tidy"
+else
+  echo "$out" | grep -E 'error:|warning:' | sed 's|.*/src/drone_ros/||' | sort -u
+  echo "lint: clang-tidy naming failed (.clang-tidy)"
+  status=1
+fi
+exit $status
