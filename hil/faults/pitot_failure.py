@@ -1,8 +1,9 @@
 """Pitot (AMS5812) failure on the HA: mode dead (default: every I2C read fails; the HA holds its
 last reading sensors.airspeed_timeout_s, then lacks state: takeover due), zero (reads 0 ft/s,
-a blocked tube: airborne that is a stall to the HA: takeover due at once) or stuck (reads its
-last value: undetectable by design, no takeover due). Took effect when the HA stepped on the
-failed reading."""
+a blocked tube: airborne, that is further below the INS's groundspeed than sensors.max_wind_ftps,
+so the HA takes it for a lying sensor, a failed read, not for a stall: takeover due as for dead)
+or stuck (reads its last value: undetectable by design, no takeover due). Took effect when the
+HA stepped on the failed reading."""
 from hil.faults.base import Fault
 
 MODES = ("dead", "zero", "stuck")
@@ -23,10 +24,8 @@ class PitotFailure(Fault):
             return b
         if self.steps == 0:
             self.note(t_s, "pitot %s" % self.mode)
-            if self.mode == "dead":
+            if self.mode in ("dead", "zero"):
                 self.due_s = t_s + float(self.ctx.limits["sensors"]["airspeed_timeout_s"])
-            elif self.mode == "zero":
-                self.due_s = t_s
         self.steps += 1
         if self.mode == "dead":
             return b._replace(airspeed_ok=False)
