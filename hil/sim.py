@@ -35,7 +35,7 @@ from collections import deque
 import rosgraph
 import rospy
 import yaml
-from drone_ros.msg import DecisionStatus, HilTruth, ServoCommand, hil_data, way
+from drone_ros.msg import DecisionStatus, HilTruth, LockstepStep, ServoCommand, hil_data, pwm, way
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import Temperature
 
@@ -50,7 +50,7 @@ from hil.fdm import Fdm, FdmCrash, Surfaces, Wind  # noqa: E402
 FT_PER_M = sensors.FT_PER_M
 CONTROLLER_NAMES = {0: "HP", 1: "HA", 2: "RECOVERING", 3: "HA_LATCHED", 4: "MANUAL"}
 # What the controller subscribes to (drone_ros/controller/README.md): connected before a step.
-CONTROLLER_INPUTS = ["/clock", "/ins", "/attitude", "/gps_position", "/gps_velocity",
+CONTROLLER_INPUTS = ["/hil/lockstep", "/ins", "/attitude", "/gps_position", "/gps_velocity",
                      "/imu_PQR_acceleration", "/pwm", "/decision_status", "/way"]
 
 
@@ -232,10 +232,13 @@ class Simulation:
         # makes "published" mean "on its way to every subscriber" in the stepping order.
         warnings.filterwarnings("ignore", message="The publisher should be created with an explicit keyword")
         self.clock_pub = rospy.Publisher("/clock", Clock, queue_size=None)
+        self.lockstep_pub = rospy.Publisher("/hil/lockstep", LockstepStep, queue_size=None, tcp_nodelay=True)
         self.truth_pub = rospy.Publisher("/hil/truth", HilTruth, queue_size=None)
         self.latency = LatencyProbe() if self.realtime else None
         rospy.Subscriber("/vn200/temperature", Temperature, self.on_vn_delivered, queue_size=1000, tcp_nodelay=True)
         rospy.Subscriber("/decision_status", DecisionStatus, lambda m: self.waiter.hit("status", m), queue_size=1000, tcp_nodelay=True)
+        # The HA's own reports only: the arduino node's link-down /pwm (usbstatus 0) runs on the wall clock.
+        rospy.Subscriber("/pwm", pwm, lambda m: m.usbstatus and self.waiter.hit("pwm"), queue_size=1000, tcp_nodelay=True)
         rospy.Subscriber("/servo_op", ServoCommand, self.on_servo_op, queue_size=1000, tcp_nodelay=True)
         rospy.Subscriber("/way", way, lambda m: self.waiter.hit("way", m), queue_size=10)
         rospy.Subscriber("/to_hil", hil_data, self.on_to_hil, queue_size=1000)
@@ -276,8 +279,9 @@ class Simulation:
         self.timer = PhaseTimer()
         self.hp_alive = True
         self.hp_pid = None
-        self.status_expected = 0
+        self.status_expected = 0  # HA reports (a /decision_status and a /pwm each) the link carried
         self.hp_packets = 0
+        self.declared = (0, 0)  # (hp_packets, status_expected) as last declared on /hil/lockstep
         self.last_cmd_seq = None
         self.controller_index = -1
         self.progress_path = os.path.join(self.out_dir, "progress")
@@ -420,12 +424,22 @@ class Simulation:
         tm.lap("sensors")
         if not self.waiter.wait_count("vn", self.hp_packets, self.wait_s):
             self.event(t_s, "vn200 node late: %d of %d packets published" % (self.waiter.count("vn"), self.hp_packets))
-        if not self.waiter.wait_count("status", self.status_expected, self.wait_s):
-            self.event(t_s, "arduino node late: /decision_status %d of %d" % (self.waiter.count("status"), self.status_expected))
+        for key, topic in (("status", "/decision_status"), ("pwm", "/pwm")):
+            if not self.waiter.wait_count(key, self.status_expected, self.wait_s):
+                self.event(t_s, "arduino node late: %s %d of %d" % (topic, self.waiter.count(key), self.status_expected))
         tm.lap("wait_hp_inputs")
         expect_command = self.controller_steps_at(t_us) and self.hp_alive
         want = self.waiter.count("servo_op") + 1  # counted before the clock moves: it may answer at once
-        self.clock_pub.publish(Clock(clock=rospy.Time(t_us // 1000000, (t_us % 1000000) * 1000)))
+        clock = rospy.Time(t_us // 1000000, (t_us % 1000000) * 1000)
+        self.clock_pub.publish(Clock(clock=clock))
+        # What this node has seen published since its last step, for the controller to wait for:
+        # each VN-200 packet is one message on each of its five topics, each HA report one
+        # /decision_status and one /pwm.
+        packets, reports = self.hp_packets - self.declared[0], self.status_expected - self.declared[1]
+        self.declared = (self.hp_packets, self.status_expected)
+        self.lockstep_pub.publish(LockstepStep(clock=clock, ins=packets, attitude=packets, gps_position=packets,
+                                               gps_velocity=packets, imu_pqr_acceleration=packets,
+                                               pwm=reports, decision_status=reports))
         cmd_seq = None
         msg = None
         if expect_command:
@@ -569,6 +583,8 @@ class Simulation:
         self.hp_pid = node_pid(self.master, self.controller_node)
         self.hp_alive = True
         self.controller_index = -1
+        # What went out before the new controller subscribed never reaches it: not declared.
+        self.declared = (self.hp_packets, self.status_expected)
         self.event(t_s, "controller restarted by hp_supervisor (pid %d, %.2f s wall)" % (self.hp_pid, time.monotonic() - t0))
 
     # --- the flight ------------------------------------------------------------------------

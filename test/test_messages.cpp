@@ -6,6 +6,7 @@
 #include <drone_ros/DecisionStatus.h>
 #include <drone_ros/HilTruth.h>
 #include <drone_ros/HomePosition.h>
+#include <drone_ros/LockstepStep.h>
 #include <drone_ros/OperatorCommand.h>
 #include <drone_ros/ServoCommand.h>
 #include <drone_ros/data.h>
@@ -316,6 +317,7 @@ TEST(Messages, Md5sumsArePinned) {
   expectPinned<drone_ros::HilTruth>(sums);
   expectPinned<drone_ros::OperatorCommand>(sums);
   expectPinned<drone_ros::HomePosition>(sums);
+  expectPinned<drone_ros::LockstepStep>(sums);
 }
 
 int main(int argc, char** argv) {

@@ -109,7 +109,7 @@ def test_data_round_trip_keeps_estimates():
     assert back.alphaest == pytest.approx(math.radians(4.0))
 
 
-@pytest.mark.parametrize("name", ["DecisionStatus", "HilTruth", "HomePosition", "OperatorCommand", "ServoCommand", "data", "hil_data", "ins", "pwm", "way"])
+@pytest.mark.parametrize("name", ["DecisionStatus", "HilTruth", "HomePosition", "LockstepStep", "OperatorCommand", "ServoCommand", "data", "hil_data", "ins", "pwm", "way"])
 def test_md5sum_is_pinned(name):
     cls = getattr(drone_msgs, name)
     assert pinned_md5sums()[cls._type] == cls._md5sum, (

@@ -25,6 +25,9 @@ def fly(seed, folder):
         events = [e["event"] for e in json.load(f)["events"]]
     # A bounded wait that ran out is the one way wall-clock timing enters a lockstep flight.
     assert not [e for e in events if "late" in e or "ran out" in e or "did not answer" in e], events
+    with open(os.path.join(folder, "launch.log"), errors="replace") as f:
+        waits = [line for line in f if "lockstep: stepping at" in line]
+    assert not waits, "the controller stepped without a declared input: " + waits[0]
     return truth_log(os.path.join(folder, "truth.bin"))
 
 

@@ -1,7 +1,6 @@
 #include "controller_node.h"
 
 #include <XmlRpcValue.h>
-#include <ros/callback_queue.h>
 
 #include <cmath>
 #include <functional>
@@ -12,24 +11,6 @@
 
 namespace controller {
 
-namespace {
-// A function run from the node's callback queue, behind whatever is queued already.
-class QueuedCall : public ros::CallbackInterface {
- public:
-  explicit QueuedCall(std::function<void()> fn) : fn_(std::move(fn)) {}
-  CallResult call() override {
-    fn_();
-    return Success;
-  }
-
- private:
-  std::function<void()> fn_;
-};
-
-void queue_call(std::function<void()> fn) {
-  ros::getGlobalCallbackQueue()->addCallback(boost::make_shared<QueuedCall>(std::move(fn)));
-}
-}  // namespace
 
 bool load_params(const ros::NodeHandle &pnh, ControllerParams *params, ParamValues *values,
                  std::string *frame_id, std::string *error) {
@@ -71,12 +52,19 @@ ControllerNode::ControllerNode(ros::NodeHandle &nh, ros::NodeHandle &pnh, const 
           ROS_WARN("home %u dropped: position not finite or out of range", m->seq);
         }
       }));
-  // Queue of 1: only the newest sample matters to a controller stepping on its own clock.
-  subs_.push_back(nh.subscribe<drone_ros::pwm>("/pwm", 1, [this](const drone_ros::pwm::ConstPtr &m) {
+  // On its own clock only the newest sample matters (queue of 1). In lockstep every message a
+  // step declares must reach a callback to be counted, so none may be pushed out of the queue.
+  pnh_.param("lockstep", lockstep_, false);
+  const uint32_t q = lockstep_ ? 100 : 1;
+  subs_.push_back(nh.subscribe<drone_ros::pwm>("/pwm", q, [this](const drone_ros::pwm::ConstPtr &m) {
     board_.on_pwm(*m, now_s());
+    if (m->usbstatus != 0) {
+      on_input(kInPwm);  // the HA's report; the node's own link-down /pwm is nobody's step
+    }
   }));
-  subs_.push_back(nh.subscribe<drone_ros::ins>("/ins", 1, [this](const drone_ros::ins::ConstPtr &m) {
+  subs_.push_back(nh.subscribe<drone_ros::ins>("/ins", q, [this](const drone_ros::ins::ConstPtr &m) {
     board_.on_ins(*m, now_s());
+    on_input(kInIns);
   }));
   subs_.push_back(nh.subscribe<drone_ros::way>("/way", 1, [this](const drone_ros::way::ConstPtr &m) {
     if (board_.on_way(*m)) {
@@ -86,20 +74,30 @@ ControllerNode::ControllerNode(ros::NodeHandle &nh, ros::NodeHandle &pnh, const 
     }
   }));
   subs_.push_back(nh.subscribe<sensor_msgs::NavSatFix>(
-      "/gps_position", 1, [this](const sensor_msgs::NavSatFix::ConstPtr &m) {
+      "/gps_position", q, [this](const sensor_msgs::NavSatFix::ConstPtr &m) {
         board_.on_gps_position(*m, now_s());
+        on_input(kInGpsPosition);
       }));
   subs_.push_back(nh.subscribe<geometry_msgs::Twist>(
-      "/gps_velocity", 1, [this](const geometry_msgs::Twist::ConstPtr &m) { board_.on_gps_velocity(*m, now_s()); }));
+      "/gps_velocity", q, [this](const geometry_msgs::Twist::ConstPtr &m) {
+        board_.on_gps_velocity(*m, now_s());
+        on_input(kInGpsVelocity);
+      }));
   subs_.push_back(nh.subscribe<sensor_msgs::Imu>(
-      "/imu_PQR_acceleration", 1, [this](const sensor_msgs::Imu::ConstPtr &m) { board_.on_imu(*m, now_s()); }));
+      "/imu_PQR_acceleration", q, [this](const sensor_msgs::Imu::ConstPtr &m) {
+        board_.on_imu(*m, now_s());
+        on_input(kInImu);
+      }));
   subs_.push_back(nh.subscribe<geometry_msgs::Point>(
-      "/attitude", 1, [this](const geometry_msgs::Point::ConstPtr &m) { board_.on_attitude(*m, now_s()); }));
+      "/attitude", q, [this](const geometry_msgs::Point::ConstPtr &m) {
+        board_.on_attitude(*m, now_s());
+        on_input(kInAttitude);
+      }));
   subs_.push_back(nh.subscribe<sensor_msgs::FluidPressure>(
       "/pressure", 1, [this](const sensor_msgs::FluidPressure::ConstPtr &m) { board_.on_pressure(m->fluid_pressure); }));
   subs_.push_back(nh.subscribe<sensor_msgs::BatteryState>(
       "/battery_state", 1, [this](const sensor_msgs::BatteryState::ConstPtr &m) { board_.on_battery(m->voltage); }));
-  subs_.push_back(nh.subscribe("/decision_status", 10, &ControllerNode::on_decision, this));
+  subs_.push_back(nh.subscribe("/decision_status", lockstep_ ? 100 : 10, &ControllerNode::on_decision, this));
   servo_pub_ = nh.advertise<drone_ros::ServoCommand>("/servo_op", 10);
   data_pub_ = nh.advertise<drone_ros::data>("/data", 10);
   hil_pub_ = nh.advertise<drone_ros::hil_data>("/to_hil", 10);
@@ -108,14 +106,18 @@ ControllerNode::ControllerNode(ros::NodeHandle &nh, ros::NodeHandle &pnh, const 
 
   diag_.setHardwareID(std::string("controller_") + GNC_AIRCRAFT_NAME);
   diag_.add("performance controller", this, &ControllerNode::diagnose);
-  pnh_.param("lockstep", lockstep_, false);
   if (lockstep_) {
-    clock_sub_ = nh.subscribe("/clock", 100, &ControllerNode::on_clock, this, ros::TransportHints().tcpNoDelay());
+    lockstep_sub_ =
+        nh.subscribe("/hil/lockstep", 100, &ControllerNode::on_lockstep, this, ros::TransportHints().tcpNoDelay());
+    // Wall time: a declared message that never comes (a defect) must not stop the flight.
+    lockstep_wait_timer_ = nh.createSteadyTimer(
+        ros::WallDuration(kLockstepWaitS), [this](const ros::SteadyTimerEvent &) { on_lockstep_wait_over(); }, true,
+        false);
   } else {
     timer_ = nh.createSteadyTimer(ros::WallDuration(params_.gnc.dt_s), &ControllerNode::on_timer, this);
   }
   ROS_INFO("controller_%s stepping at %.1f Hz%s", GNC_AIRCRAFT_NAME, params_.rate_hz,
-           lockstep_ ? " on /clock (lockstep)" : "");
+           lockstep_ ? " on /hil/lockstep" : "");
 }
 
 ControllerNode::~ControllerNode() {
@@ -184,6 +186,7 @@ void ControllerNode::on_decision(const drone_ros::DecisionStatus::ConstPtr &msg)
   }
   restart_requested_ = msg->restart_requested;
   hp_in_control_ = msg->controller == drone_ros::DecisionStatus::CONTROLLER_HP;
+  on_input(kInDecisionStatus);
 }
 
 void ControllerNode::on_timer(const ros::SteadyTimerEvent &event) {
@@ -194,11 +197,12 @@ void ControllerNode::on_timer(const ros::SteadyTimerEvent &event) {
   step(now_s(), ros::Time::now());
 }
 
-// Lockstep: the simulator publishes /clock once per simulation step and waits for this node's
-// /servo_op before it goes on. The step runs from the back of the callback queue, twice removed,
-// so that the sensor messages the simulator saw delivered before it advanced the clock (queued
-// here in the same or an earlier read of the sockets) are applied first.
-void ControllerNode::on_clock(const rosgraph_msgs::Clock::ConstPtr &msg) {
+// Lockstep: the simulator publishes one /hil/lockstep per simulation step and waits for this
+// node's /servo_op before it goes on. The step runs once every message the simulator declares
+// has been received here (LockstepGate), whichever connection brings it last.
+void ControllerNode::on_lockstep(const drone_ros::LockstepStep::ConstPtr &msg) {
+  gate_.declare({msg->ins, msg->attitude, msg->gps_position, msg->gps_velocity, msg->imu_pqr_acceleration, msg->pwm,
+                 msg->decision_status});
   const int64_t dt_ns = static_cast<int64_t>(std::llround(params_.gnc.dt_s * 1e9));
   const int64_t index = static_cast<int64_t>(msg->clock.toNSec()) / dt_ns;
   if (index <= lockstep_index_) {
@@ -207,19 +211,53 @@ void ControllerNode::on_clock(const rosgraph_msgs::Clock::ConstPtr &msg) {
   if (lockstep_index_ >= 0 && index > lockstep_index_ + 1) {
     ++late_steps_;  // the clock skipped a period of ours
   }
+  if (lockstep_pending_) {
+    // The simulator went on without this node's answer: the old step is overdue.
+    ++lockstep_wait_timeouts_;
+    run_lockstep_step();
+  }
   if (lockstep_index_ < 0) {
-    // Whatever arrived before the first clock arrived at it, in whichever order it came.
+    // Whatever arrived before the first step arrived at it, in whichever order it came.
     lockstep_step_s_ = msg->clock.toSec();
     board_.restamp_arrivals(lockstep_step_s_);
   }
   lockstep_index_ = index;
-  const ros::Time stamp = msg->clock;
-  queue_call([this, stamp]() {
-    queue_call([this, stamp]() {
-      step(stamp.toSec(), stamp);
-      lockstep_step_s_ = stamp.toSec();
-    });
-  });
+  lockstep_pending_ = true;
+  lockstep_pending_stamp_ = msg->clock;
+  if (gate_.complete()) {
+    run_lockstep_step();
+  } else {
+    lockstep_wait_timer_.stop();
+    lockstep_wait_timer_.start();
+  }
+}
+
+void ControllerNode::on_input(LockstepInput input) {
+  if (!lockstep_) {
+    return;
+  }
+  gate_.received(input);
+  if (lockstep_pending_ && gate_.complete()) {
+    run_lockstep_step();
+  }
+}
+
+void ControllerNode::on_lockstep_wait_over() {
+  if (!lockstep_pending_) {
+    return;
+  }
+  ++lockstep_wait_timeouts_;
+  ROS_WARN("lockstep: stepping at %.3f s without %s after %.1f s", lockstep_pending_stamp_.toSec(),
+           gate_.missing().c_str(), kLockstepWaitS);
+  run_lockstep_step();
+}
+
+void ControllerNode::run_lockstep_step() {
+  lockstep_pending_ = false;
+  lockstep_wait_timer_.stop();
+  const ros::Time stamp = lockstep_pending_stamp_;
+  step(stamp.toSec(), stamp);
+  lockstep_step_s_ = stamp.toSec();
 }
 
 void ControllerNode::step(double now, const ros::Time &stamp) {
@@ -272,6 +310,9 @@ void ControllerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper &stat)
   stat.add("seq", seq_);
   stat.add("steps", steps_);
   stat.add("late_steps", late_steps_);
+  if (lockstep_) {
+    stat.add("lockstep_wait_timeouts", lockstep_wait_timeouts_);
+  }
   stat.add("invalid_steps", invalid_steps_);
   stat.add("restarts", restarts_);
   stat.add("tunables_changed", tunables_changed_);

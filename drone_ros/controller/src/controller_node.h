@@ -1,17 +1,18 @@
 // controller_<aircraft>: steps the aircraft's GNC on a monotonic timer and publishes the HP
 // command (/servo_op), the ground telemetry (/data) and the HiL record (/to_hil). Thin: the
 // sensor bookkeeping is SensorBoard, the message building command_builder, the flying the GNC.
-// With ~lockstep (a HiL flight whose simulator owns time) it steps instead each time /clock
-// crosses a multiple of dt, and measures sensor ages on that clock.
+// With ~lockstep (a HiL flight whose simulator owns time) it steps instead each time the
+// simulator's /hil/lockstep crosses a multiple of dt, once that step's declared inputs are in,
+// and measures sensor ages on that clock.
 #ifndef CONTROLLER_NODE_H
 #define CONTROLLER_NODE_H
 
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <drone_ros/DecisionStatus.h>
 #include <drone_ros/HomePosition.h>
+#include <drone_ros/LockstepStep.h>
 #include <drone_ros/SetTunable.h>
 #include <ros/ros.h>
-#include <rosgraph_msgs/Clock.h>
 #include <sensor_msgs/BatteryState.h>
 #include <sensor_msgs/FluidPressure.h>
 
@@ -19,6 +20,7 @@
 #include <vector>
 
 #include "controller_params.h"
+#include "lockstep_gate.h"
 #include "sensor_board.h"
 
 namespace controller {
@@ -39,7 +41,11 @@ class ControllerNode {
   // last step, so that when a message arrived in wall time between two steps changes nothing.
   double now_s() const { return lockstep_ ? lockstep_step_s_ : ros::SteadyTime::now().toSec(); }
   void on_timer(const ros::SteadyTimerEvent &event);
-  void on_clock(const rosgraph_msgs::Clock::ConstPtr &msg);
+  void on_lockstep(const drone_ros::LockstepStep::ConstPtr &msg);
+  // A sensor message arrived (after the board took it): may complete a pending lockstep step.
+  void on_input(LockstepInput input);
+  void on_lockstep_wait_over();
+  void run_lockstep_step();
   void step(double now, const ros::Time &stamp);
   void on_decision(const drone_ros::DecisionStatus::ConstPtr &msg);
   void restart_gnc();
@@ -56,9 +62,16 @@ class ControllerNode {
   ros::Publisher servo_pub_, data_pub_, hil_pub_;
   ros::SteadyTimer timer_;
   bool lockstep_ = false;
-  ros::Subscriber clock_sub_;
+  // Longer than any scheduling hiccup, well inside the simulator's wait for a command.
+  static constexpr double kLockstepWaitS = 2.0;
+  ros::Subscriber lockstep_sub_;
+  LockstepGate gate_;
+  ros::SteadyTimer lockstep_wait_timer_;
+  bool lockstep_pending_ = false;  // a step is due, waiting for its inputs
+  ros::Time lockstep_pending_stamp_;
   int64_t lockstep_index_ = -1;   // the last period stepped: floor(clock / dt)
   double lockstep_step_s_ = 0.0;  // its clock time
+  uint64_t lockstep_wait_timeouts_ = 0;
   ros::ServiceServer set_tunable_srv_;
   diagnostic_updater::Updater diag_;
   GncInput in_{};

@@ -10,6 +10,7 @@
 #include "command_builder.h"
 #include "controller_params.h"
 #include "hp_command.h"
+#include "lockstep_gate.h"
 #include "sensor_board.h"
 #include "servo_command_as_ha.h"
 #include "yaml_lookup.h"
@@ -313,6 +314,72 @@ TEST(ServoCommand, InvalidGncOutputOrBadLinksAreFlaggedNotHidden) {
 }
 
 }  // namespace
+
+// Lockstep: the step waits for every message the simulator declares, however late its
+// connection brings it.
+controller::LockstepCounts one_packet_and_one_report() {
+  return {1, 1, 1, 1, 1, 1, 1};
+}
+
+void receive_all(controller::LockstepGate *gate) {
+  for (uint32_t i = 0; i < controller::kLockstepInputCount; ++i) {
+    gate->received(static_cast<controller::LockstepInput>(i));
+  }
+}
+
+TEST(LockstepGate, AStepWhoseAttitudeIsStillOnItsWayWaitsForIt) {
+  controller::LockstepGate gate;
+  gate.declare(one_packet_and_one_report());
+  receive_all(&gate);
+  ASSERT_TRUE(gate.complete());
+  gate.declare(one_packet_and_one_report());
+  for (uint32_t i = 0; i < controller::kLockstepInputCount; ++i) {
+    if (i != controller::kInAttitude) {
+      gate.received(static_cast<controller::LockstepInput>(i));
+    }
+  }
+  EXPECT_FALSE(gate.complete());
+  EXPECT_EQ("/attitude 1", gate.missing());
+  gate.received(controller::kInAttitude);
+  EXPECT_TRUE(gate.complete());
+  EXPECT_EQ("", gate.missing());
+}
+
+TEST(LockstepGate, MessagesThatArriveBeforeTheirStepCountForIt) {
+  controller::LockstepGate gate;
+  gate.declare(one_packet_and_one_report());
+  receive_all(&gate);
+  receive_all(&gate);  // the next step's inputs, here before its declaration
+  gate.declare(one_packet_and_one_report());
+  EXPECT_TRUE(gate.complete());
+}
+
+TEST(LockstepGate, AStepWithoutSensorPacketsStepsAtOnce) {
+  controller::LockstepGate gate;
+  gate.declare({0, 0, 0, 0, 0, 0, 0});
+  EXPECT_TRUE(gate.complete());
+}
+
+TEST(LockstepGate, LinkDownPwmBeforeTheFirstStepDoesNotStandInForALaterReport) {
+  controller::LockstepGate gate;
+  for (int i = 0; i < 3; ++i) {
+    gate.received(controller::kInPwm);  // published before the flight's first step
+  }
+  const auto all_but_pwm = [&gate]() {
+    for (uint32_t i = 0; i < controller::kLockstepInputCount; ++i) {
+      if (i != controller::kInPwm) {
+        gate.received(static_cast<controller::LockstepInput>(i));
+      }
+    }
+  };
+  gate.declare(one_packet_and_one_report());
+  all_but_pwm();
+  ASSERT_TRUE(gate.complete());
+  gate.declare(one_packet_and_one_report());
+  all_but_pwm();
+  EXPECT_FALSE(gate.complete()) << "a /pwm from before the first step was counted for a later one";
+  EXPECT_EQ("/pwm 1", gate.missing());
+}
 
 int main(int argc, char **argv) {
   testing::InitGoogleTest(&argc, argv);
