@@ -45,6 +45,15 @@ def _table(prop, pts):
             f"        <tableData>\n{rows}\n        </tableData>\n      </table>")
 
 
+def _table2(row_prop, col_prop, grid):
+    rows_bp, cols_bp, rows = grid
+    head = "          " + " ".join(f"{c:.6f}" for c in cols_bp)
+    body = "\n".join(f"          {r:.6f} " + " ".join(f"{v:.9f}" for v in vals) for r, vals in zip(rows_bp, rows))
+    return (f'<table>\n        <independentVar lookup="row">{row_prop}</independentVar>\n'
+            f'        <independentVar lookup="column">{col_prop}</independentVar>\n'
+            f"        <tableData>\n{head}\n{body}\n        </tableData>\n      </table>")
+
+
 def _products(terms):
     """terms: list of (coefficient, [property, ...]) -> JSBSim <product>s, one per term."""
     parts = []
@@ -70,8 +79,10 @@ def _aero(af):
 
     fn("aero/hil/cl-static", _table("aero/alpha-deg", af.lift_table()),
        "static lift curve with the stall")
-    fn("aero/hil/roll-damping-factor", _table("aero/alpha-deg", af.roll_damping_table()),
-       "cl_p scaled by the local lift-curve slope: negative past the stall (autorotation)")
+    fn("aero/hil/phat", _products([(1.0, ["aero/bi2vel", "velocities/p-aero-rad_sec"])]),
+       "roll rate p b/2V")
+    fn("aero/hil/roll-damping-phat", _table2("aero/alpha-deg", "aero/hil/phat", af.roll_damping_grid()),
+       "the roll rate cl_p acts on, by strip theory over the lift curve: autorotation past the stall, bounded")
     fn("aero/hil/cd-separation", _table("aero/alpha-deg", af.separation_drag_table()),
        "drag of separated flow past the stall")
     fn("aero/hil/cl", "<sum><property>aero/hil/cl-static</property>"
@@ -95,7 +106,7 @@ def _aero(af):
        "Cm about the CG")
     fn("aero/hil/croll", _sum_of_products([
         (a["cl_beta_per_rad"], ["aero/beta-rad"]),
-        (a["cl_p_per_rad"], ["aero/bi2vel", "velocities/p-aero-rad_sec", "aero/hil/roll-damping-factor"]),
+        (a["cl_p_per_rad"], ["aero/hil/roll-damping-phat"]),
         (a["cl_r_per_rad"], ["aero/bi2vel", "velocities/r-aero-rad_sec"]),
         (a["cl_aileron_per_rad"], [da]), (a["cl_rudder_per_rad"], [dr])]), "rolling moment coefficient")
     fn("aero/hil/cn", _sum_of_products([
