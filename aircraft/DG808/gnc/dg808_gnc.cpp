@@ -36,7 +36,13 @@ struct Gnc {
   dg808::InnerLoops loops;
   DG808_GNC_Output last{};
   uint32_t rejected = 0;
+  // The attitude the loops are asked for (slewed towards the guidance's), rad.
+  double phi_ref_rad = 0.0, theta_ref_rad = 0.0;
 };
+
+double slew(double from, double to, double max_step) {
+  return from + std::clamp(to - from, -max_step, max_step);
+}
 
 Gnc g_gnc;
 
@@ -105,7 +111,7 @@ bool params_valid(const DG808_GNC_Params &p) {
                       p.throttle_min, p.throttle_max, p.stall_speed_ftps, p.vt_trim_ftps,
                       p.alpha0_rad, p.beta0_rad, p.mpf_radius_ft, p.max_allow_error_ft,
                       p.dist2b_ft, p.kp_lon_rad_per_ft, p.ki_lon_rad_per_ft_s, p.max_bank_deg,
-                      p.max_pitch_cmd_deg, p.min_airspeed_cmd_ftps, p.airspeed_valid_min_ftps,
+                      p.max_pitch_cmd_deg, p.attitude_cmd_rate_deg_s, p.min_airspeed_cmd_ftps, p.airspeed_valid_min_ftps,
                       p.converged_sigma_deg};
   if (!finite_all(v, sizeof(v) / sizeof(v[0]))) {
     return false;
@@ -116,7 +122,7 @@ bool params_valid(const DG808_GNC_Params &p) {
          p.vt_trim_ftps > p.stall_speed_ftps && p.mpf_radius_ft > 0.0 &&
          p.max_allow_error_ft > 0.0 && p.dist2b_ft > 0.0 && p.kp_lon_rad_per_ft >= 0.0 &&
          p.ki_lon_rad_per_ft_s >= 0.0 && p.max_bank_deg > 0.0 && p.max_bank_deg < 90.0 &&
-         p.max_pitch_cmd_deg > 0.0 && p.max_pitch_cmd_deg < 90.0 &&
+         p.max_pitch_cmd_deg > 0.0 && p.max_pitch_cmd_deg < 90.0 && p.attitude_cmd_rate_deg_s > 0.0 &&
          p.min_airspeed_cmd_ftps > p.stall_speed_ftps && p.airspeed_valid_min_ftps > 0.0 &&
          p.converged_sigma_deg > 0.0 && (p.guidance_selection == 0 || p.guidance_selection == 1) &&
          (p.mpf_switch == 0 || p.mpf_switch == 1) && (p.path_select == 0 || p.path_select == 1) &&
@@ -239,13 +245,23 @@ extern "C" void DG808_GNC_step(const DG808_GNC_Input *in, DG808_GNC_Output *out)
   const dg808::GuidanceState gs{o.north_ft, o.east_ft, o.height_ft, in->vel_north_mps * kFtPerM,
                                 in->vel_east_mps * kFtPerM, in->psi_rad};
   const dg808::GuidanceCommand gc = g_gnc.guidance.step(*in, gs, flying);
+  // While this command is not flown (the HA or the pilot flies, the loops not closed) the
+  // reference is the attitude the aircraft has, so that a hand-back starts from it.
+  if (flying && in->ha_in_control == 0) {
+    const double step_rad = p.attitude_cmd_rate_deg_s * kDegToRad * p.dt_s;
+    g_gnc.phi_ref_rad = slew(g_gnc.phi_ref_rad, gc.phi_cmd_rad, step_rad);
+    g_gnc.theta_ref_rad = slew(g_gnc.theta_ref_rad, gc.theta_cmd_rad, step_rad);
+  } else {
+    g_gnc.phi_ref_rad = in->phi_rad;
+    g_gnc.theta_ref_rad = in->theta_rad;
+  }
   o.guidance_mode = gc.mode;
   o.waypoint_index = gc.waypoint_index;
   o.dist_to_waypoint_ft = gc.dist_to_waypoint_ft;
   o.cross_track_ft = gc.cross_track_ft;
   o.vt_cmd_ftps = gc.vt_cmd_ftps;
-  o.phi_cmd_rad = gc.phi_cmd_rad;
-  o.theta_cmd_rad = gc.theta_cmd_rad;
+  o.phi_cmd_rad = g_gnc.phi_ref_rad;
+  o.theta_cmd_rad = g_gnc.theta_ref_rad;
   o.beta_cmd_rad = 0.0;  // coordinated flight
   o.eta_lat_rad = gc.eta_lat_rad;
   o.eta_lon_rad = gc.eta_lon_rad;
@@ -268,8 +284,8 @@ extern "C" void DG808_GNC_step(const DG808_GNC_Input *in, DG808_GNC_Output *out)
                              in->r_radps, in->phi_rad, in->theta_rad};
     // est.converged implies vt >= airspeed_valid_min > 0.
     const double vt_cmd_mps = gc.vt_cmd_ftps * kMPerFt;
-    const dg808::LoopReference ref{vt_cmd_mps, gc.theta_cmd_rad, gc.phi_cmd_rad,
-                                   DG808_GRAVITY_M_S2 / est.vt_mps * std::sin(gc.phi_cmd_rad)};
+    const dg808::LoopReference ref{vt_cmd_mps, g_gnc.theta_ref_rad, g_gnc.phi_ref_rad,
+                                   DG808_GRAVITY_M_S2 / est.vt_mps * std::sin(g_gnc.phi_ref_rad)};
     u = g_gnc.loops.step(x, ref, trim, g_gnc.limits, p.dt_s, flying);
   } else {
     // No air data to close the loops on: hold the trims, forget the integrators.

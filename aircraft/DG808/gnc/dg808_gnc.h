@@ -37,6 +37,7 @@ typedef struct {
   double dist2b_ft;
   double kp_lon_rad_per_ft, ki_lon_rad_per_ft_s;
   double max_bank_deg, max_pitch_cmd_deg;
+  double attitude_cmd_rate_deg_s; /* fastest the bank and pitch commands move */
   double min_airspeed_cmd_ftps;
   double airspeed_valid_min_ftps;
   double converged_sigma_deg;
@@ -45,6 +46,7 @@ typedef struct {
 typedef struct {
   /* HA computer (/pwm): pilot switch and pitot */
   uint8_t piccic;                 /* 0 pilot in command, 1 computer */
+  uint8_t ha_in_control;          /* 1 while the HA flies its own command instead of this one */
   double airspeed_ftps;           /* true airspeed from the pitot */
   /* trims to fly around (captured from the RC by the node while the pilot flies) */
   double throttle_trim, elevator_trim_rad, aileron_trim_rad, rudder_trim_rad;

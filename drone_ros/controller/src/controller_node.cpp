@@ -263,6 +263,9 @@ void ControllerNode::run_lockstep_step() {
 void ControllerNode::step(double now, const ros::Time &stamp) {
   ++steps_;
   board_.fill_input(&in_);
+  // The HA flies its own command until its decision says the HP's is applied: the GNC then
+  // starts its attitude command from the attitude it is handed.
+  in_.ha_in_control = hp_in_control_ ? 0 : 1;
   // The estimator starts from its first input: a controller (re)started in flight that stepped
   // before the pitot's first /pwm would take the whole ground speed for wind. Until every
   // sensor has been heard from, the command goes out invalid (estimator not converged, links

@@ -117,6 +117,7 @@ bool build_controller_params(const ParamLookup &lookup, ControllerParams *params
   g.ki_lon_rad_per_ft_s = r.get("KiLon", 0.0, 1.0);
   g.max_bank_deg = r.get("max_bank_deg", 1.0, roll_limit_deg);
   g.max_pitch_cmd_deg = r.get("max_pitch_cmd_deg", 1.0, pitch_limit_deg);
+  g.attitude_cmd_rate_deg_s = r.get("attitude_cmd_rate_deg_s", 1.0, 360.0);
   g.min_airspeed_cmd_ftps = r.get("min_airspeed_cmd_ftps", 0.0, 300.0);
   r.require(g.min_airspeed_cmd_ftps > g.stall_speed_ftps,
             "min_airspeed_cmd_ftps must be above limits' stall_speed_ftps");

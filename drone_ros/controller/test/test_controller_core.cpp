@@ -158,7 +158,7 @@ TEST(Tunables, EveryTunableIsAValueTheControllerReads) {
   for (const char *name : {"dt", "Q_weight", "throttle_trim", "elevator_trim", "aileron_trim", "rudder_trim",
                            "sensor_timeout_s", "VTtrim", "alpha", "beta", "guidance_selection", "mpf_switch",
                            "mpf_radius", "path_select", "max_allow_error", "dist2b", "KpLon", "KiLon",
-                           "max_bank_deg", "max_pitch_cmd_deg", "min_airspeed_cmd_ftps",
+                           "max_bank_deg", "max_pitch_cmd_deg", "attitude_cmd_rate_deg_s", "min_airspeed_cmd_ftps",
                            "airspeed_valid_min_ftps", "converged_sigma_deg"}) {
     EXPECT_NE(controller::tunable_kind(name), controller::TunableKind::kNone) << name;
     EXPECT_TRUE(f.set(name, f.values.at(name)).accepted) << name;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <string>
@@ -56,6 +57,7 @@ class Flight {
   }
 
   double dt() const { return params_.gnc.dt_s; }
+  void advance_clock() { t_s_ += params_.gnc.dt_s; }
   dg808sim::Sim &sim() { return sim_; }
   DG808_GNC_Input &in() { return in_; }
   const DG808_GNC_Output &out() const { return out_; }
@@ -411,4 +413,55 @@ TEST(GncClosedLoop, CBoundaryStepsATerminatedGncToANeutralInvalidCommand) {
 int main(int argc, char **argv) {
   testing::InitGoogleTest(&argc, argv);
   return RUN_ALL_TESTS();
+}
+
+// The HP's side of a hand-back, PX4-style timeline: the HA flies its own command for 20 s,
+// holding a 30 deg right bank, while the guidance wants a hard left turn towards a waypoint in
+// the west. Handed back, the loops start from the 30 deg the HA hands over and reverse the bank
+// at attitude_cmd_rate_deg_s: the aileron never reaches full travel and the roll rate stays
+// inside the HA's switching region (0.9 x 120 deg/s). A 65 deg step of bank command, as before,
+// is answered with full aileron (HiL: a tip stall and 148 deg/s, taken over by the HA).
+double peak_after_hand_back(double attitude_cmd_rate_deg_s, double *peak_aileron_deg) {
+  Flight f({{"attitude_cmd_rate_deg_s", attitude_cmd_rate_deg_s}});
+  f.sim().set_trimmed_flight(f.params().gnc.vt_trim_ftps, 200.0, 0.0);
+  const double west[1][3] = {{0.0, -30000.0, 200.0}};
+  f.set_plan(west, 1);
+  f.in().ha_in_control = 1;
+  const double bank_rad = 30.0 / kRadToDeg;
+  while (f.t() < 20.0) {  // the HA: bank and pitch holds of its own on the same sim
+    f.sim().sense(f.in());
+    DG808_GNC_Output hp{};
+    DG808_GNC_step(&f.in(), &hp);
+    DG808_GNC_Output ha = hp;
+    ha.aileron_rad = std::clamp(0.8 * (bank_rad - f.sim().phi_rad()) - 0.15 * f.sim().p_radps(), -0.26, 0.26);
+    ha.elevator_rad = f.params().elevator_trim_rad - 0.8 * (0.05 - f.sim().theta_rad());
+    ha.rudder_rad = f.params().rudder_trim_rad;
+    ha.throttle = 0.5;
+    f.sim().advance(ha, f.dt());
+    f.advance_clock();
+  }
+  f.in().ha_in_control = 0;
+  double peak_p = 0.0;
+  *peak_aileron_deg = 0.0;
+  while (f.t() < 30.0) {
+    f.step();
+    EXPECT_TRUE(all_finite(f.out()));
+    peak_p = std::max(peak_p, std::fabs(f.sim().p_radps()) * kRadToDeg);
+    *peak_aileron_deg = std::max(*peak_aileron_deg, std::fabs(f.out().aileron_rad) * kRadToDeg);
+  }
+  return peak_p;
+}
+
+TEST(GncClosedLoop, AHandBackIntoTheOppositeBankReversesItWithoutAFullAileronSnap) {
+  double aileron_deg = 0.0, step_aileron_deg = 0.0;
+  const double p_deg_s = peak_after_hand_back(20.0, &aileron_deg);
+  const double step_p_deg_s = peak_after_hand_back(360.0, &step_aileron_deg);
+  RecordProperty("peak_roll_rate_deg_s", std::to_string(p_deg_s));
+  RecordProperty("peak_aileron_deg", std::to_string(aileron_deg));
+  EXPECT_GE(step_aileron_deg, 15.0 - 1e-6) << "the scenario no longer asks for a hard reversal";
+  EXPECT_LT(aileron_deg, 0.6 * 15.0);
+  EXPECT_LT(p_deg_s, 0.6 * step_p_deg_s);
+  EXPECT_LT(p_deg_s, 0.9 * 120.0);
+  std::printf("hand-back: slewed peak p %.1f deg/s aileron %.1f deg; stepped %.1f deg/s %.1f deg\n", p_deg_s,
+              aileron_deg, step_p_deg_s, step_aileron_deg);
 }

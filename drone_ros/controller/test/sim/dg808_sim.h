@@ -43,6 +43,8 @@ class Sim {
   double alpha_rad() const;
   double beta_rad() const;
   double phi_rad() const { return euler_.x(); }
+  double theta_rad() const { return euler_.y(); }
+  double p_radps() const { return rates_radps_.x(); }
 
  private:
   using State = Eigen::Matrix<double, 12, 1>;  // pos NED, v body (ground), pqr, euler
