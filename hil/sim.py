@@ -30,6 +30,7 @@ import sys
 import threading
 import time
 import warnings
+import xmlrpc.client
 from collections import deque
 
 import rosgraph
@@ -157,14 +158,51 @@ def node_pid(master, name):
     return node_query.node_pid(master, name, "/hil_sim")
 
 
-def inbound_connected(master, name, topics):
-    """Whether node `name` has a live inbound connection on each of topics."""
+def inbound_missing(master, name, topics):
+    """Those of topics on which node `name` has no live inbound connection (all of them while
+    the node does not answer)."""
     uri = node_query.node_uri(master, name)
     info = None if uri is None else node_query.bus_info(uri, "/hil_sim")
     if info is None:
-        return False
+        return list(topics)
     got = {c[4] for c in info if c[2] == "i" and (len(c) < 6 or c[5])}
-    return all(t in got for t in topics)
+    return [t for t in topics if t not in got]
+
+
+def inbound_connected(master, name, topics):
+    """Whether node `name` has a live inbound connection on each of topics."""
+    return not inbound_missing(master, name, topics)
+
+
+def publishers_of(master, topic):
+    """The XML-RPC URIs of topic's registered publishers, from the master."""
+    try:
+        pubs, _, _ = master.getSystemState()
+    except (rosgraph.MasterException, OSError):
+        return []
+    uris = []
+    for t, nodes in pubs:
+        if t == topic:
+            for n in nodes:
+                uri = node_query.node_uri(master, n)
+                if uri is not None:
+                    uris.append(uri)
+    return uris
+
+
+def reannounce_publishers(master, name, topic):
+    """Tell node `name` the publishers of topic again, as the master does when one registers.
+    roscpp asks a publisher for the topic once per announcement and never again if that call
+    fails (a publisher too loaded to answer in time): a new announcement is its only retry."""
+    uri = node_query.node_uri(master, name)
+    pubs = publishers_of(master, topic)
+    if uri is None or not pubs:
+        return False
+    try:
+        code, _, _ = node_query.node_api(uri, 2.0).publisherUpdate("/master", topic, pubs)
+    except (OSError, xmlrpc.client.Error):
+        return False
+    return code == 1
 
 
 def publisher_connected(master, name, topic, publisher):
@@ -377,6 +415,35 @@ class Simulation:
             time.sleep(0.02)
         raise rospy.ROSInterruptException("shutdown")
 
+    def wait_subscribed(self, wanted, timeout_s, reannounce_after_s=10.0):
+        """Waits until each node of wanted {node: [topic, ...]} has a live inbound connection on
+        each of its topics. A topic still missing after reannounce_after_s has its publishers
+        announced to the node again (reannounce_publishers), once per period; past timeout_s the
+        error names what is missing and who publishes it."""
+        start = time.monotonic()
+        last_announce = start
+        while True:
+            self.service_while_waiting()
+            missing = {n: m for n, m in ((n, inbound_missing(self.master, n, t)) for n, t in wanted.items()) if m}
+            if not missing:
+                return
+            now = time.monotonic()
+            if rospy.is_shutdown():
+                raise rospy.ROSInterruptException("shutdown")
+            if now - start > timeout_s:
+                raise RuntimeError("gave up waiting after %.0f s for subscriptions: %s" % (timeout_s, "; ".join(
+                    "%s has no connection on %s" % (n, ", ".join(
+                        "%s (publishers %s)" % (t, publishers_of(self.master, t) or "none") for t in m))
+                    for n, m in missing.items())))
+            if now - last_announce > reannounce_after_s:
+                last_announce = now
+                for n, topics in missing.items():
+                    for t in topics:
+                        done = reannounce_publishers(self.master, n, t)
+                        rospy.logwarn("hil_sim: %s has no connection on %s after %.0f s: publishers announced "
+                                      "again (%s)", n, t, now - start, "ok" if done else "failed")
+            time.sleep(0.02)
+
     def preflight(self):
         rospy.loginfo("hil_sim: waiting for ha_sil on %s", self.chan.path)
         deadline = time.monotonic() + 120.0
@@ -388,9 +455,7 @@ class Simulation:
         self.wait_until("the HA link (arduino node <-> ha_sil)", lambda r: r.flags & ha_channel.R_LINK_CONNECTED, 120.0)
         self.wait_until("the vn200 node's configuration of the VN-200", lambda r: self.hp_vn.configured(), 120.0)
         inputs = CONTROLLER_INPUTS[1:] if self.realtime else CONTROLLER_INPUTS  # no /clock on the wall clock
-        self.wait_until("controller_DG808 subscribed to its inputs",
-                        lambda r: inbound_connected(self.master, self.controller_node, inputs) and
-                        inbound_connected(self.master, "/arduino", [self.arduino_input]), 120.0)
+        self.wait_subscribed({self.controller_node: inputs, "/arduino": [self.arduino_input]}, 120.0)
         # With the relay, what reaches the HA must be what the relay sends, and nothing else.
         self.relay_verified = self.relay_topic is not None and \
             inbound_connected(self.master, "/arduino", [self.relay_topic]) and \
