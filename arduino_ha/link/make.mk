@@ -1,5 +1,5 @@
 # arduino_ha/link targets (included by the root Makefile).
-#   make due-sketch-msgs   write the Due's generated message code into arduino_ha/src/link/generated/
+#   make due-sketch-msgs   write the decision reasons the HA core includes, arduino_ha/src/core/ha_decision_status.h
 #                          and the core's DecisionStatus numbers into arduino_ha/src/core/ (arduino-cli cannot run the generator; run this after any msg/ change,
 #                          before compiling the sketch; CMake builds regenerate it on their own)
 #   make fuzz-link         libFuzzer (clang, ASan + UBSan) on the device link, the host framer and
@@ -21,10 +21,9 @@ VERIFY_TARGETS += verify-link
 .PHONY: due-sketch-msgs verify-link
 
 due-sketch-msgs:
-	@$(LINK_GEN) $(ROOT)/arduino_ha/src/link/generated $(LINK_SEARCH) -- $(LINK_TYPES)
 	@$(PYTHON) $(ROOT)/tools/gen_decision_status.py --c $(ROOT)/msg/DecisionStatus.msg \
 	  $(ROOT)/arduino_ha/src/core/ha_decision_status.h
-	@echo "due-sketch-msgs: wrote arduino_ha/src/link/generated/ and arduino_ha/src/core/ha_decision_status.h"
+	@echo "due-sketch-msgs: wrote arduino_ha/src/core/ha_decision_status.h"
 
 # The message code host builds use, generated into .build (CMake builds make their own).
 $(LINK_GEN_DIR)/ha_msgs.c: $(LINK_DIR)/gen/make_c99_msgs.py $(LINK_DIR)/gen/device_types.txt $(wildcard $(ROOT)/msg/*.msg)

@@ -74,6 +74,31 @@ def test_the_sketch_flies_the_vn200_core_the_host_tests_test(tmp_path):
     assert {name: in_sketch.get(name) for name in core} == core
 
 
+def test_the_sketch_carries_the_message_code_msg_generates(tmp_path):
+    """The link's message code is generated into the sketch from msg/, by the generator the host
+    builds use: what the Due serializes is what the md5sums pinned in test/ describe."""
+    sketch = assemble(tmp_path)
+    gen = sketch / "src" / "link" / "generated"
+    assert sorted(p.name for p in gen.iterdir()) == ["ha_msg_runtime.h", "ha_msgs.c", "ha_msgs.h"]
+    header = (gen / "ha_msgs.h").read_text()
+    pinned = dict(line.split() for line in (ROOT / "test" / "message_md5sums.txt").read_text().splitlines()
+                  if line.startswith("drone_ros/"))
+    found = {}
+    for name, md5 in pinned.items():
+        define = "#define DRONE_ROS_%s_MD5 " % name.split("/")[1].upper()
+        for line in header.splitlines():
+            if line.startswith(define):
+                found[name] = line[len(define):].strip().strip('"')
+    assert {"drone_ros/pwm", "drone_ros/DecisionStatus", "drone_ros/ServoCommand"} <= set(found), found
+    assert found == {name: pinned[name] for name in found}
+
+
+def test_no_generated_message_code_is_checked_in_under_arduino_ha():
+    names = {"ha_msgs.h", "ha_msgs.c", "ha_msg_runtime.h"}
+    copies = [str(p) for p in (HA / "src").rglob("*") if p.name in names]
+    assert copies == [], "the sketch gets the message code at assembly (assemble_sketch.sh)"
+
+
 def test_no_vn200_core_file_is_checked_in_under_arduino_ha():
     core_names = {p.name for p in VN200_CORE.iterdir() if p.suffix in (".c", ".h")}
     copies = [str(p) for p in HA.rglob("*") if p.name in core_names]

@@ -91,23 +91,6 @@ TEST(HaMsgsGenerated, ArrayLongerThanTheDeviceCapacityIsRefused) {
   EXPECT_FALSE(rosserial_msgs_Log_deserialize(&l, log, sizeof log, &used));
 }
 
-namespace {
-std::string slurp(const std::string &path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return in ? text.str() : std::string("<missing>");
-}
-}  // namespace
-
-TEST(HaMsgsGenerated, SketchCopyForArduinoCliEqualsWhatTheBuildGenerates) {
-  for (const char *name : {"ha_msgs.h", "ha_msgs.c", "ha_msg_runtime.h"}) {
-    EXPECT_EQ(slurp(std::string(HA_LINK_SKETCH_GENERATED_DIR) + "/" + name),
-              slurp(std::string(HA_LINK_BUILD_GENERATED_DIR) + "/" + name))
-        << name << " in arduino_ha/src/link/generated/ is stale: run `make due-sketch-msgs`";
-  }
-}
-
 int main(int argc, char **argv) {
   testing::InitGoogleTest(&argc, argv);
   return RUN_ALL_TESTS();

@@ -1,7 +1,7 @@
-/* The device's generated message code (arduino_ha/link/gen/make_c99_msgs.py). CMake builds
- * define HA_LINK_GENERATED_HEADER to the copy generated in the build tree, so a build always uses
- * code fresh from msg/; arduino-cli, which cannot run the generator, uses the copy that
- * `make due-sketch-msgs` writes into generated/ (a test keeps that copy identical). */
+/* The device's generated message code (arduino_ha/link/gen/make_c99_msgs.py), always fresh from
+ * msg/: CMake builds define HA_LINK_GENERATED_HEADER to the code generated in the build tree;
+ * arduino-cli, which cannot run the generator, compiles the sketch `make sketch-ha` assembles,
+ * with the same generator's output in generated/. */
 #ifndef HA_LINK_MSGS_H
 #define HA_LINK_MSGS_H
 

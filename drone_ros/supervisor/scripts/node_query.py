@@ -33,13 +33,19 @@ def node_api(uri, timeout_s=0.5):
     return xmlrpc.client.ServerProxy(uri, transport=TimeoutTransport(timeout_s))
 
 
-def ask_pid(uri, caller_id, timeout_s=0.5):
-    """The node's own answer to getPid, or None (gone: connection refused; hung: no answer)."""
+def _call(uri, method, caller_id, timeout_s):
+    """The value of the node's own answer to method(caller_id), or None (gone: connection
+    refused; hung: no answer; or a failure code)."""
     try:
-        code, _, pid = node_api(uri, timeout_s).getPid(caller_id)
+        code, _, value = getattr(node_api(uri, timeout_s), method)(caller_id)
     except (OSError, xmlrpc.client.Error):
         return None
-    return pid if code == 1 else None
+    return value if code == 1 else None
+
+
+def ask_pid(uri, caller_id, timeout_s=0.5):
+    """The node's own answer to getPid, or None."""
+    return _call(uri, "getPid", caller_id, timeout_s)
 
 
 def node_pid(master, name, caller_id, timeout_s=0.5):
@@ -50,8 +56,4 @@ def node_pid(master, name, caller_id, timeout_s=0.5):
 
 def bus_info(uri, caller_id, timeout_s=0.5):
     """The node's getBusInfo connections, or None when it does not answer."""
-    try:
-        code, _, info = node_api(uri, timeout_s).getBusInfo(caller_id)
-    except (OSError, xmlrpc.client.Error):
-        return None
-    return info if code == 1 else None
+    return _call(uri, "getBusInfo", caller_id, timeout_s)
