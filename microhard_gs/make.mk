@@ -14,7 +14,7 @@ BENCH_TARGETS += bench-gs
 FUZZ_COMPONENTS += gs
 FUZZ_gs_HARNESSES := gs_core
 FUZZ_gs_gs_core_SOURCES := $(GS_FUZZ_SOURCES)
-FUZZ_gs_gs_core_FLAGS := -I$(GS_DIR)/src/core -I$(GS_FUZZ_DIR)/tunables -I$(GS_FUZZ_DIR)/generated \
+FUZZ_gs_gs_core_FLAGS := -I$(GS_DIR)/src/core -I$(GS_DIR)/test -I$(GS_FUZZ_DIR)/tunables -I$(GS_FUZZ_DIR)/generated \
   -I$(ROOT)/drone_ros/common/include -I$(ROOT)/arduino_ha/src/core -isystem $(GS_FUZZ_DIR)/mavlink
 FUZZ_gs_gs_core_SEEDS := $(GS_DIR)/fuzz/corpus
 FUZZ_gs_DEPS = $(wildcard $(GS_DIR)/src/core/*.h) $(GS_FUZZ_DIR)/mavlink/development/mavlink.h \

@@ -7,6 +7,7 @@
 #include <cstdlib>
 
 #include "gs_core.h"
+#include "gs_test_config.h"
 
 using namespace microhard_gs;
 
@@ -35,15 +36,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   data += 2;
   size -= 2;
 
-  GsConfig c;
-  c.system_id = 1;
-  c.telemetry_rate_hz = 50.0;
-  c.limits.floor_ft = 100.0;
-  c.limits.ceiling_ft = 400.0;
-  c.limits.max_radius_ft = 3000.0;
-  c.limits.min_speed_ftps = 42.0;
-  c.limits.default_speed_ftps = 60.0;
-  c.airborne_agl_ft = 30.0;
+  GsConfig c = test::gs_config(50.0);
   c.home_fixed = (mode & 2) != 0;
   c.home = GeoPoint{40.11, -88.22, 220.0};
   c.mission_item_timeout_ms = 50;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "gs_core.h"
+#include "gs_test_config.h"
 
 using namespace microhard_gs;
 
@@ -19,15 +20,7 @@ constexpr uint64_t kUnixStartUs = 1795000000ULL * 1000000ULL;  // any time after
 const GeoPoint kHome{40.11, -88.22, 220.0};
 
 GsConfig base_config() {
-  GsConfig c;
-  c.system_id = 1;
-  c.telemetry_rate_hz = 10.0;
-  c.limits.floor_ft = 100.0;
-  c.limits.ceiling_ft = 400.0;
-  c.limits.max_radius_ft = 3000.0;
-  c.limits.min_speed_ftps = 42.0;
-  c.limits.default_speed_ftps = 60.0;
-  c.airborne_agl_ft = 30.0;
+  GsConfig c = test::gs_config();
   c.home_fixed = true;
   c.home = kHome;
   c.mission_item_timeout_ms = 1500;

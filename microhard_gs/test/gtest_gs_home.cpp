@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "gs_core.h"
+#include "gs_test_config.h"
 
 using namespace microhard_gs;
 
@@ -14,18 +15,7 @@ namespace {
 
 const GeoPoint kHaHome{40.4237054, -86.9211946, 185.25};
 
-GsConfig config() {
-  GsConfig c;
-  c.system_id = 1;
-  c.telemetry_rate_hz = 10.0;
-  c.limits.floor_ft = 100.0;
-  c.limits.ceiling_ft = 400.0;
-  c.limits.max_radius_ft = 3000.0;
-  c.limits.min_speed_ftps = 42.0;
-  c.limits.default_speed_ftps = 60.0;
-  c.airborne_agl_ft = 30.0;
-  return c;
-}
+GsConfig config() { return test::gs_config(); }
 
 std::vector<mavlink_message_t> decode(const std::vector<std::vector<uint8_t>>& frames) {
   std::vector<mavlink_message_t> out;
@@ -35,7 +25,8 @@ std::vector<mavlink_message_t> decode(const std::vector<std::vector<uint8_t>>& f
     for (uint8_t b : f) {
       mavlink_message_t msg;
       mavlink_status_t s;
-      if (mavlink_frame_char_buffer(&buffer, &status, b, &msg, &s) == MAVLINK_FRAMING_OK) out.push_back(msg);
+      if (mavlink_frame_char_buffer(&buffer, &status, b, &msg, &s) == MAVLINK_FRAMING_OK)
+        out.push_back(msg);
     }
   }
   return out;
@@ -51,13 +42,14 @@ struct Station {
   }
   std::vector<mavlink_message_t> set_home_long(float here, float lat, float lon, float alt) {
     mavlink_message_t m;
-    mavlink_msg_command_long_pack(255, 190, &m, 1, 1, MAV_CMD_DO_SET_HOME, 0, here, 0, 0, 0, lat, lon, alt);
+    mavlink_msg_command_long_pack(255, 190, &m, 1, 1, MAV_CMD_DO_SET_HOME, 0, here, 0, 0, 0, lat,
+                                  lon, alt);
     return send(m);
   }
   std::vector<mavlink_message_t> set_home_int(int32_t x, int32_t y, float alt) {
     mavlink_message_t m;
-    mavlink_msg_command_int_pack(255, 190, &m, 1, 1, MAV_FRAME_GLOBAL, MAV_CMD_DO_SET_HOME, 0, 0, 0, 0, 0, 0, x,
-                                 y, alt);
+    mavlink_msg_command_int_pack(255, 190, &m, 1, 1, MAV_FRAME_GLOBAL, MAV_CMD_DO_SET_HOME, 0, 0, 0,
+                                 0, 0, 0, x, y, alt);
     return send(m);
   }
   void ha_says_agl_ft(double agl_ft) {

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "geo.h"
+#include "gs_test_config.h"
 #include "mavlink_all.h"
 #include "mission.h"
 #include "mission_frames.h"
@@ -13,15 +14,7 @@ using namespace microhard_gs;
 namespace {
 const GeoPoint kHome{40.1100, -88.2200, 220.0};
 
-MissionLimits limits() {
-  MissionLimits l;
-  l.floor_ft = 100.0;
-  l.ceiling_ft = 400.0;
-  l.max_radius_ft = 3000.0;
-  l.min_speed_ftps = 42.0;
-  l.default_speed_ftps = 60.0;
-  return l;
-}
+MissionLimits limits() { return test::mission_limits(); }
 
 MissionItem waypoint(uint16_t seq, double north_ft, double east_ft, double height_ft) {
   double lat = 0, lon = 0;
@@ -38,7 +31,8 @@ MissionItem waypoint(uint16_t seq, double north_ft, double east_ft, double heigh
 }  // namespace
 
 TEST(Geo, OneArcMinuteNorthIsAboutOneNauticalMile) {
-  const NorthEastFt ne = geodetic_to_north_east_ft(kHome, kHome.lat_deg + 1.0 / 60.0, kHome.lon_deg);
+  const NorthEastFt ne =
+      geodetic_to_north_east_ft(kHome, kHome.lat_deg + 1.0 / 60.0, kHome.lon_deg);
   EXPECT_NEAR(ne.north_ft, 6076.0, 15.0);  // a nautical mile, give or take the ellipsoid
   EXPECT_NEAR(ne.east_ft, 0.0, 1e-9);
 }
@@ -46,7 +40,8 @@ TEST(Geo, OneArcMinuteNorthIsAboutOneNauticalMile) {
 TEST(Geo, EastShrinksWithCosineOfLatitude) {
   const NorthEastFt at_home = geodetic_to_north_east_ft(kHome, kHome.lat_deg, kHome.lon_deg + 0.01);
   const GeoPoint equator{0.0001, -88.22, 0.0};
-  const NorthEastFt at_equator = geodetic_to_north_east_ft(equator, equator.lat_deg, equator.lon_deg + 0.01);
+  const NorthEastFt at_equator =
+      geodetic_to_north_east_ft(equator, equator.lat_deg, equator.lon_deg + 0.01);
   EXPECT_NEAR(at_home.east_ft / at_equator.east_ft, std::cos(kHome.lat_deg * M_PI / 180.0), 0.002);
 }
 
@@ -60,7 +55,8 @@ TEST(Geo, RoundTripIsExactToAnInch) {
 
 TEST(Mission, TenWaypointsBecomeAFlightPlanInFeetFromHome) {
   MissionItem items[10];
-  for (int i = 0; i < 10; ++i) items[i] = waypoint(static_cast<uint16_t>(i), 100.0 * i, -50.0 * i, 150.0 + 10 * i);
+  for (int i = 0; i < 10; ++i)
+    items[i] = waypoint(static_cast<uint16_t>(i), 100.0 * i, -50.0 * i, 150.0 + 10 * i);
   WayPlan plan;
   const MissionVerdict v = build_way_plan(items, 10, kHome, limits(), &plan);
   ASSERT_TRUE(v.ok()) << v.reason;
@@ -223,5 +219,6 @@ TEST(MissionFrames, NonFiniteLegacyCoordinatesAreRefusedNotWrapped) {
   wire.x = NAN;
   wire.y = -88.22f;
   wire.z = 300.0f;
-  EXPECT_EQ(check_mission_item(from_item_float(wire), kHome, limits()).result, MAV_MISSION_INVALID_PARAM5_X);
+  EXPECT_EQ(check_mission_item(from_item_float(wire), kHome, limits()).result,
+            MAV_MISSION_INVALID_PARAM5_X);
 }
