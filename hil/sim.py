@@ -455,7 +455,11 @@ class Simulation:
         self.wait_until("the HA link (arduino node <-> ha_sil)", lambda r: r.flags & ha_channel.R_LINK_CONNECTED, 120.0)
         self.wait_until("the vn200 node's configuration of the VN-200", lambda r: self.hp_vn.configured(), 120.0)
         inputs = CONTROLLER_INPUTS[1:] if self.realtime else CONTROLLER_INPUTS  # no /clock on the wall clock
-        self.wait_subscribed({self.controller_node: inputs, "/arduino": [self.arduino_input]}, 120.0)
+        # This node counts what the vn200 and arduino nodes publish (the step waits for each VN-200
+        # packet and HA report): a report sent before its own subscriber connected would leave the
+        # count one short for the rest of the flight, every step waiting out wait_s.
+        self.wait_subscribed({self.controller_node: inputs, "/arduino": [self.arduino_input],
+                              "/hil_sim": ["/vn200/temperature", "/decision_status", "/pwm"]}, 120.0)
         # With the relay, what reaches the HA must be what the relay sends, and nothing else.
         self.relay_verified = self.relay_topic is not None and \
             inbound_connected(self.master, "/arduino", [self.relay_topic]) and \
