@@ -141,6 +141,40 @@ def broke_property(row):
                 or env > 0 or row["ok"] is False)
 
 
+def run_whole(argv, timeout_s, env=None, term_grace_s=30.0):
+    """Runs argv (a run_flight.py command) to its end or past timeout_s, and then leaves no
+    process of it behind: (exit code, output bytes, timed out). What a test uses instead of
+    subprocess.run(timeout=...), which would SIGKILL run_flight.py alone and orphan its master
+    and nodes."""
+    token = uuid.uuid4().hex
+    env = dict(env if env is not None else os.environ)
+    env[TOKEN_VAR] = token
+    p = subprocess.Popen(argv, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
+                         start_new_session=True)
+    timed_out = False
+    try:
+        out, _ = p.communicate(timeout=timeout_s)
+    except subprocess.TimeoutExpired:
+        timed_out = True
+        try:
+            os.killpg(p.pid, signal.SIGTERM)
+            out, _ = p.communicate(timeout=term_grace_s)
+        except (ProcessLookupError, subprocess.TimeoutExpired):
+            kill_all(token, p)
+            out, _ = p.communicate()
+    kill_all(token)
+    return p.returncode, out, timed_out
+
+
+def run_completed(argv, timeout, env=None):
+    """subprocess.run(argv, stdout=PIPE, stderr=STDOUT, timeout=timeout) for a flight, killed
+    whole (run_whole) when it runs out of time, which it reports as subprocess.TimeoutExpired."""
+    code, out, timed_out = run_whole(argv, timeout, env=env)
+    if timed_out:
+        raise subprocess.TimeoutExpired(argv, timeout, output=out)
+    return subprocess.CompletedProcess(argv, code, stdout=out)
+
+
 def run(flight, argv, folder, wall_limit_s, term_grace_s=30.0, env=None):
     """Flies one flight (argv: its command) and returns its row. Never raises for what the flight
     does: a flight that fails gives a row with status died or timeout."""

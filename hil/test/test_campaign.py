@@ -140,6 +140,29 @@ def test_a_flight_past_its_wall_limit_is_killed_whole_and_reported_as_timed_out(
     assert row["broke_property"] is False
 
 
+def test_a_test_flight_past_its_timeout_raises_and_leaves_no_process_behind():
+    """What the HiL tests run their flights with (run_completed): subprocess.run's own timeout
+    would SIGKILL run_flight.py alone and leave its master and nodes flying."""
+    folder = tempfile.mkdtemp(prefix="campaign_stuck_test_")
+    fl = plan_mod.Flight(0, "stuck", 5, 10.0, 1.0, (), 40.0)
+    argv = plan_mod.command(fl, folder, AGREED, run_flight=FAKE)
+    with pytest.raises(subprocess.TimeoutExpired):
+        flight_mod.run_completed(argv, timeout=10.0)
+    with open(os.path.join(folder, "pids")) as f:
+        pids = [int(p) for p in f.read().split()]
+    assert len(pids) == 2, "the stuck flight had not started its processes within the timeout"
+    for pid in pids:
+        wait_for(lambda: gone(pid), "process %d of the timed-out flight gone" % pid, bound_s=30.0)
+
+
+def test_a_test_flight_that_ends_gives_its_exit_code_and_output():
+    folder = tempfile.mkdtemp(prefix="campaign_quick_test_")
+    fl = plan_mod.Flight(0, "die", 5, 10.0, 1.0, (), 40.0)
+    r = flight_mod.run_completed(plan_mod.command(fl, folder, AGREED, run_flight=FAKE), timeout=60.0)
+    assert r.returncode == 3
+    assert isinstance(r.stdout, bytes)
+
+
 def test_a_flight_that_dies_is_reported_as_died_with_its_reason():
     folder = tempfile.mkdtemp(prefix="campaign_die_")
     fl = plan_mod.Flight(3, "die", 9, 10.0, 1.0, (("bits", "2"),), 40.0)

@@ -4,21 +4,22 @@ restart included); another seed differs.
 Each flight is a full hil/run_flight.py run: its own ROS master, ptys, every HP node."""
 import os
 import struct
-import subprocess
 import sys
 import tempfile
 
 import pytest
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+sys.path.insert(0, ROOT)
+from hil.campaigns.flight import run_completed  # noqa: E402  (a flight that runs out of time, killed whole)
 DURATION_S, CRASH_AT_S = "24", "10"
 
 
 def fly(seed, folder):
     env = dict(os.environ)
-    r = subprocess.run([sys.executable, os.path.join(ROOT, "hil", "run_flight.py"), "--seed", str(seed),
-                        "--duration", DURATION_S, "--crash-at", CRASH_AT_S, "--folder", folder, "--quiet"],
-                       env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=900)
+    r = run_completed([sys.executable, os.path.join(ROOT, "hil", "run_flight.py"), "--seed", str(seed),
+                       "--duration", DURATION_S, "--crash-at", CRASH_AT_S, "--folder", folder, "--quiet"],
+                      env=env, timeout=900)
     assert r.returncode == 0, r.stdout.decode(errors="replace")[-3000:]
     import json
     with open(os.path.join(folder, "summary.json")) as f:

@@ -4,19 +4,19 @@ hp_supervisor's SIGTERM goes unanswered and its SIGKILL ends it, a new controlle
 HA hands control back after the stable window. A whole lockstep flight (hil/run_flight.py)."""
 import json
 import os
-import subprocess
 import sys
 import tempfile
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+sys.path.insert(0, ROOT)
+from hil.campaigns.flight import run_completed  # noqa: E402  (a flight that runs out of time, killed whole)
 
 
 def test_a_hung_controller_is_killed_restarted_and_given_control_back():
     folder = os.path.join(tempfile.mkdtemp(prefix="hil_hang_"), "flight")
-    r = subprocess.run([sys.executable, os.path.join(ROOT, "hil", "run_flight.py"), "--seed", "3",
-                        "--duration", "20", "--crash-at", "9", "--fault", "hang", "--no-bag",
-                        "--folder", folder, "--quiet"],
-                       stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=900)
+    r = run_completed([sys.executable, os.path.join(ROOT, "hil", "run_flight.py"), "--seed", "3",
+                       "--duration", "20", "--crash-at", "9", "--fault", "hang", "--no-bag",
+                       "--folder", folder, "--quiet"], timeout=900)
     out = r.stdout.decode(errors="replace")
     assert r.returncode == 0, out[-3000:]
     with open(os.path.join(folder, "summary.json")) as f:

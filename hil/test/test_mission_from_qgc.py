@@ -5,7 +5,6 @@ by the HP within a cross-track band, and what a ground station on the telemetry 
 through hil/run_flight.py, no fault."""
 import json
 import os
-import subprocess
 import sys
 import tempfile
 
@@ -15,6 +14,7 @@ import yaml
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 sys.path.insert(0, ROOT)
 from hil import mission  # noqa: E402
+from hil.campaigns.flight import run_completed  # noqa: E402  (a flight that runs out of time, killed whole)
 
 # The bands. Tracking: the controller's own reach distance (controller_param.yaml dist2b: within
 # it a waypoint counts as passed and the guidance turns for the next) bounds the worst sample;
@@ -39,7 +39,7 @@ def flight():
     folder = os.path.join(tempfile.mkdtemp(prefix="hil_mission_"), "flight")
     argv = [sys.executable, os.path.join(ROOT, "hil", "run_flight.py"), "--seed", "3", "--fault", "none",
             "--duration", "240", "--no-bag", "--quiet", "--folder", folder]
-    r = subprocess.run(argv, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=1200)
+    r = run_completed(argv, timeout=1200)
     assert r.returncode == 0, r.stdout.decode(errors="replace")[-3000:]
     with open(os.path.join(folder, "summary.json")) as f:
         return json.load(f)

@@ -4,7 +4,6 @@ page's switch list is the flight's switches as the simulator saw them on the ser
 "who_flew", from the HA's replies in the loop), not as the report read them from the bag."""
 import json
 import os
-import subprocess
 import sys
 import tempfile
 
@@ -14,6 +13,8 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from test_flight_report import FIGURES, page, png_size  # noqa: E402
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
+sys.path.insert(0, ROOT)
+from hil.campaigns.flight import run_completed  # noqa: E402  (a flight that runs out of time, killed whole)
 # The page's controller labels (report_core figures.CONTROLLER_LABELS) for the summary's names.
 LABELS = {"HP": "HP", "HA": "HA", "RECOVERING": "recovering", "HA_LATCHED": "latched", "MANUAL": "pilot"}
 
@@ -27,7 +28,7 @@ def flight():
     argv = [sys.executable, os.path.join(ROOT, "hil", "run_flight.py"), "--seed", "11", "--fault", "nan",
             "--fault-at", "15", "--fault-duration", "3", "--fault-param", "surface=aileron",
             "--duration", "35", "--quiet", "--folder", folder]
-    r = subprocess.run(argv, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=1200)
+    r = run_completed(argv, timeout=1200)
     assert r.returncode == 0, r.stdout.decode(errors="replace")[-3000:]
     with open(os.path.join(folder, "summary.json")) as f:
         return folder, json.load(f)

@@ -3,13 +3,14 @@ own ROS master, ptys and folder) with one fault, and the Simplex property assert
 which comes from the simulator's truth."""
 import json
 import os
-import subprocess
 import sys
 import tempfile
 
 import yaml
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
+sys.path.insert(0, ROOT)
+from hil.campaigns.flight import run_completed  # noqa: E402  (a flight that runs out of time, killed whole)
 with open(os.path.join(ROOT, "aircraft", "DG808", "limits.yaml")) as _f:
     HA_PERIOD_S = 1.0 / float(yaml.safe_load(_f)["decision"]["rate_hz"])
 
@@ -24,7 +25,7 @@ def fly(fault, at_s=15.0, duration_s=-1.0, params=(), flight_s=35.0, seed=11):
     for p in params:
         argv += ["--fault-param", p]
     argv += ["--no-bag", "--quiet", "--folder", folder]
-    r = subprocess.run([sys.executable] + argv, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=1200)
+    r = run_completed([sys.executable] + argv, timeout=1200)
     replay = "hil/run_flight.py " + " ".join(argv[1:-2])
     out = r.stdout.decode(errors="replace")
     assert r.returncode == 0, "flight failed (%s):\n%s" % (replay, out[-3000:])
