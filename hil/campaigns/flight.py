@@ -141,15 +141,15 @@ def broke_property(row):
                 or env > 0 or row["ok"] is False)
 
 
-def run_whole(argv, timeout_s, env=None, term_grace_s=30.0):
-    """Runs argv (a run_flight.py command) to its end or past timeout_s, and then leaves no
-    process of it behind: (exit code, output bytes, timed out). What a test uses instead of
-    subprocess.run(timeout=...), which would SIGKILL run_flight.py alone and orphan its master
-    and nodes."""
+def _run_killed_whole(argv, timeout_s, env, term_grace_s, stdout):
+    """The one way a flight is run: to its end or past timeout_s, then SIGTERM to its session,
+    term_grace_s to go, and every process holding its token SIGKILLed. subprocess.run's own
+    timeout would SIGKILL run_flight.py alone and orphan its master and nodes. Returns (exit code,
+    output bytes or None when stdout is a file, timed out, processes found after the end)."""
     token = uuid.uuid4().hex
     env = dict(env if env is not None else os.environ)
     env[TOKEN_VAR] = token
-    p = subprocess.Popen(argv, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
+    p = subprocess.Popen(argv, env=env, stdout=stdout, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
                          start_new_session=True)
     timed_out = False
     try:
@@ -162,8 +162,14 @@ def run_whole(argv, timeout_s, env=None, term_grace_s=30.0):
         except (ProcessLookupError, subprocess.TimeoutExpired):
             kill_all(token, p)
             out, _ = p.communicate()
-    kill_all(token)
-    return p.returncode, out, timed_out
+    return p.returncode, out, timed_out, kill_all(token)
+
+
+def run_whole(argv, timeout_s, env=None, term_grace_s=30.0):
+    """Runs argv (a run_flight.py command) for a test and leaves no process of it behind:
+    (exit code, output bytes, timed out)."""
+    code, out, timed_out, _ = _run_killed_whole(argv, timeout_s, env, term_grace_s, subprocess.PIPE)
+    return code, out, timed_out
 
 
 def run_completed(argv, timeout, env=None):
@@ -179,9 +185,6 @@ def run(flight, argv, folder, wall_limit_s, term_grace_s=30.0, env=None):
     """Flies one flight (argv: its command) and returns its row. Never raises for what the flight
     does: a flight that fails gives a row with status died or timeout."""
     os.makedirs(folder, exist_ok=True)
-    token = uuid.uuid4().hex
-    env = dict(env if env is not None else os.environ)
-    env[TOKEN_VAR] = token
     row = {c: None for c in COLUMNS}
     row.update(flight_id=flight.flight_id, fault_class=flight.fault_class, seed=flight.seed,
                fault_at_s=flight.fault_at_s, fault_duration_s=flight.fault_duration_s,
@@ -189,22 +192,8 @@ def run(flight, argv, folder, wall_limit_s, term_grace_s=30.0, env=None):
                flight_duration_s=flight.duration_s, folder=folder,
                command=" ".join(_quote(a) for a in argv), worker=socket.gethostname())
     t0 = time.monotonic()
-    timed_out = False
     with open(os.path.join(folder, "campaign_flight.log"), "wb") as log:
-        p = subprocess.Popen(argv, env=env, stdout=log, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
-                             start_new_session=True)
-        try:
-            code = p.wait(timeout=wall_limit_s)
-        except subprocess.TimeoutExpired:
-            timed_out = True
-            try:
-                os.killpg(p.pid, signal.SIGTERM)
-                p.wait(timeout=term_grace_s)
-            except (ProcessLookupError, subprocess.TimeoutExpired):
-                pass
-            kill_all(token, p)
-            code = p.wait()
-    row["leftovers_killed"] = kill_all(token)
+        code, _, timed_out, row["leftovers_killed"] = _run_killed_whole(argv, wall_limit_s, env, term_grace_s, log)
     row["wall_s"] = round(time.monotonic() - t0, 2)
     row["exit_code"] = code
     summary = None
