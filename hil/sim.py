@@ -23,7 +23,6 @@ import io
 import json
 import math
 import os
-import signal
 import socket
 import struct
 import sys

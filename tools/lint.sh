@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
-# The C/C++ half of `make lint` (catkin_lint is the other):
+# `make lint` after catkin_lint:
 #  1. layout: clang-format (.clang-format) must leave every file of tools/clang_format_checked.txt
 #     unchanged, and every tracked C/C++ source outside generated/ must be listed there or in
 #     tools/clang_format_todo.txt (not formatted yet), so a new file is placed on purpose;
 #  2. naming: clang-tidy's readability-identifier-naming (.clang-tidy) over the C++ nodes, with
-#     the workspace's compile_commands.json (`make build` exports it).
+#     the workspace's compile_commands.json (`make build` exports it);
+#  3. Python: pyflakes (requirements.txt) over every tracked .py file: unused imports and
+#     variables, undefined names.
 # usage: lint.sh WS
 set -uo pipefail
 ws=${1:?usage: lint.sh WS}
@@ -54,6 +56,20 @@ if out=$(run-clang-tidy -quiet -j 2 -p "$db" "$nodes" 2>&1); then
 else
   echo "$out" | grep -E 'error:|warning:' | sed 's|.*/src/drone_ros/||' | sort -u
   echo "lint: clang-tidy naming failed (.clang-tidy)"
+  status=1
+fi
+
+pyflakes=$root/.venv/bin/pyflakes
+if [ ! -x "$pyflakes" ]; then
+  echo "lint: $pyflakes not found; run 'make deps' (requirements.txt)" >&2
+  exit 2
+fi
+mapfile -t pyfiles < <(git ls-files '*.py')
+if out=$("$pyflakes" "${pyfiles[@]}" 2>&1); then
+  echo "lint: pyflakes: ${#pyfiles[@]} Python files clean"
+else
+  echo "$out"
+  echo "lint: pyflakes failed"
   status=1
 fi
 exit $status

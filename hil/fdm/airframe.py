@@ -124,7 +124,7 @@ class Airframe:
         within lift_drop_deg past each stall, then blends into a flat plate (CN = cd90 sin(alpha))
         by 40 deg, which it follows to +-180 deg."""
         a = self.aero
-        cl0, cla = a["cl0"], a["cl_alpha_per_rad"]
+        cl0 = a["cl0"]
         cd90 = self.flat_plate_cd90
         a_s = math.degrees(self.alpha_stall_rad)
         a_n = math.degrees(self.alpha_stall_neg_rad)

@@ -11,7 +11,6 @@ reproduces the checked-in file byte for byte (drone_ros/controller/test checks i
 """
 import argparse
 import hashlib
-import math
 import os
 import sys
 

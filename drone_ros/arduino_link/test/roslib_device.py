@@ -28,14 +28,13 @@ once at each level. What it receives is recorded for the test (RoslibDevice.even
 Run alone: roslib_device.py --port /tmp/fake_due   (then point the `arduino` node at it)."""
 import argparse
 import os
-import select
 import struct
 import termios
 import threading
 import time
 import tty
 
-from std_msgs.msg import Bool, Float32, Int32, String, Time
+from std_msgs.msg import Bool, Float32, Int32, String
 
 # rosserial_msgs/TopicInfo ids (reserved topics).
 ID_PUBLISHER = 0
