@@ -26,7 +26,8 @@ class Flight {
       : sim_(sim_config) {
     values_ = controller_test::aircraft_params(AIRCRAFT_DIR, overrides);
     std::string error;
-    ok_ = controller::build_controller_params(controller_test::lookup_in(values_), &params_, &error);
+    ok_ =
+        controller::build_controller_params(controller_test::lookup_in(values_), &params_, &error);
     EXPECT_TRUE(ok_) << error;
     EXPECT_EQ(DG808_GNC_initialize(&params_.gnc), 0);
     in_ = DG808_GNC_Input{};
@@ -63,6 +64,12 @@ class Flight {
   const DG808_GNC_Output &out() const { return out_; }
   const controller::ControllerParams &params() const { return params_; }
   double t() const { return t_s_; }
+  // A value of controller_param.yaml or limits.yaml ("limits/actuators/aileron_limit_deg").
+  double value(const std::string &key) const {
+    const auto it = values_.find(key);
+    EXPECT_NE(it, values_.end()) << key;
+    return it == values_.end() ? std::numeric_limits<double>::quiet_NaN() : it->second;
+  }
 
  private:
   std::map<std::string, double> values_;
@@ -75,10 +82,11 @@ class Flight {
 };
 
 bool all_finite(const DG808_GNC_Output &o) {
-  const double v[] = {o.throttle, o.elevator_rad, o.aileron_rad, o.rudder_rad, o.vt_est_ftps,
-                      o.alpha_est_rad, o.beta_est_rad, o.wind_north_ftps, o.wind_east_ftps,
-                      o.wind_up_ftps, o.phi_cmd_rad, o.theta_cmd_rad, o.vt_cmd_ftps, o.n_op_ft,
-                      o.e_op_ft, o.h_op_ft, o.dist_to_waypoint_ft};
+  const double v[] = {o.throttle,           o.elevator_rad,  o.aileron_rad,  o.rudder_rad,
+                      o.vt_est_ftps,        o.alpha_est_rad, o.beta_est_rad, o.wind_north_ftps,
+                      o.wind_east_ftps,     o.wind_up_ftps,  o.phi_cmd_rad,  o.theta_cmd_rad,
+                      o.vt_cmd_ftps,        o.n_op_ft,       o.e_op_ft,      o.h_op_ft,
+                      o.dist_to_waypoint_ft};
   return std::all_of(std::begin(v), std::end(v), [](double x) { return std::isfinite(x); });
 }
 
@@ -127,8 +135,10 @@ TEST(GncClosedLoop, HoldsAltitudeAndAirspeedWithModelErrors) {
   Flight f({}, cfg);
   const double trim_ftps = f.params().gnc.vt_trim_ftps;
   f.sim().set_trimmed_flight(trim_ftps, 200.0, 0.0);
-  const double square[4][3] = {{1000.0, 0.0, 200.0}, {1000.0, 2000.0, 200.0},
-                               {-1000.0, 2000.0, 200.0}, {-1000.0, 0.0, 200.0}};
+  const double square[4][3] = {{1000.0, 0.0, 200.0},
+                               {1000.0, 2000.0, 200.0},
+                               {-1000.0, 2000.0, 200.0},
+                               {-1000.0, 0.0, 200.0}};
   f.set_plan(square, 4);
   double worst_alt_ft = 0.0, worst_vt_ftps = 0.0;
   while (f.t() < 150.0) {
@@ -154,8 +164,10 @@ TEST(GncClosedLoop, FliesFourWaypointSquareWithinCrossTrackBand) {
   cfg.wind_ned_mps = Eigen::Vector3d(-2.0, 2.0, 0.0);
   Flight f({}, cfg);
   f.sim().set_trimmed_flight(f.params().gnc.vt_trim_ftps, 200.0, 0.0);
-  const double square[4][3] = {{1000.0, 0.0, 200.0}, {1000.0, 2000.0, 200.0},
-                               {-1000.0, 2000.0, 200.0}, {-1000.0, 0.0, 200.0}};
+  const double square[4][3] = {{1000.0, 0.0, 200.0},
+                               {1000.0, 2000.0, 200.0},
+                               {-1000.0, 2000.0, 200.0},
+                               {-1000.0, 0.0, 200.0}};
   f.set_plan(square, 4);
   bool captured = false;
   int laps_wp = 0, last_index = 0;
@@ -172,7 +184,8 @@ TEST(GncClosedLoop, FliesFourWaypointSquareWithinCrossTrackBand) {
     if (captured) {
       double d = std::numeric_limits<double>::infinity();
       for (int i = 0; i < 4; ++i) {
-        d = std::min(d, segment_distance(f.sim().north_ft(), f.sim().east_ft(), square[i], square[(i + 1) % 4]));
+        d = std::min(d, segment_distance(f.sim().north_ft(), f.sim().east_ft(), square[i],
+                                         square[(i + 1) % 4]));
       }
       worst_ft = std::max(worst_ft, d);
       worst_alt_ft = std::max(worst_alt_ft, std::fabs(f.sim().height_ft() - 200.0));
@@ -419,10 +432,12 @@ int main(int argc, char **argv) {
 // holding a 30 deg right bank, while the guidance wants a hard left turn towards a waypoint in
 // the west. Handed back, the loops start from the 30 deg the HA hands over and reverse the bank
 // at attitude_cmd_rate_deg_s: the aileron never reaches full travel and the roll rate stays
-// inside the HA's switching region (0.9 x 120 deg/s). A 65 deg step of bank command, as before,
-// is answered with full aileron (HiL: a tip stall and 148 deg/s, taken over by the HA).
+// inside the HA's switching region (switch_region_fraction x body_rate_limit_deg_per_s). A 65 deg
+// step of bank command, as before, is answered with full aileron (HiL: a tip stall and 148 deg/s,
+// taken over by the HA).
 double peak_after_hand_back(double attitude_cmd_rate_deg_s, double *peak_aileron_deg) {
   Flight f({{"attitude_cmd_rate_deg_s", attitude_cmd_rate_deg_s}});
+  const double aileron_limit_rad = f.value("limits/actuators/aileron_limit_deg") / kRadToDeg;
   f.sim().set_trimmed_flight(f.params().gnc.vt_trim_ftps, 200.0, 0.0);
   const double west[1][3] = {{0.0, -30000.0, 200.0}};
   f.set_plan(west, 1);
@@ -433,7 +448,8 @@ double peak_after_hand_back(double attitude_cmd_rate_deg_s, double *peak_aileron
     DG808_GNC_Output hp{};
     DG808_GNC_step(&f.in(), &hp);
     DG808_GNC_Output ha = hp;
-    ha.aileron_rad = std::clamp(0.8 * (bank_rad - f.sim().phi_rad()) - 0.15 * f.sim().p_radps(), -0.26, 0.26);
+    ha.aileron_rad = std::clamp(0.8 * (bank_rad - f.sim().phi_rad()) - 0.15 * f.sim().p_radps(),
+                                -aileron_limit_rad, aileron_limit_rad);
     ha.elevator_rad = f.params().elevator_trim_rad - 0.8 * (0.05 - f.sim().theta_rad());
     ha.rudder_rad = f.params().rudder_trim_rad;
     ha.throttle = 0.5;
@@ -453,15 +469,20 @@ double peak_after_hand_back(double attitude_cmd_rate_deg_s, double *peak_aileron
 }
 
 TEST(GncClosedLoop, AHandBackIntoTheOppositeBankReversesItWithoutAFullAileronSnap) {
+  const auto limits = controller_test::aircraft_params(AIRCRAFT_DIR);
+  const double aileron_limit_deg = limits.at("limits/actuators/aileron_limit_deg");
+  const double switch_rate_deg_s = limits.at("limits/state/switch_region_fraction") *
+                                   limits.at("limits/state/body_rate_limit_deg_per_s");
   double aileron_deg = 0.0, step_aileron_deg = 0.0;
   const double p_deg_s = peak_after_hand_back(20.0, &aileron_deg);
   const double step_p_deg_s = peak_after_hand_back(360.0, &step_aileron_deg);
   RecordProperty("peak_roll_rate_deg_s", std::to_string(p_deg_s));
   RecordProperty("peak_aileron_deg", std::to_string(aileron_deg));
-  EXPECT_GE(step_aileron_deg, 15.0 - 1e-6) << "the scenario no longer asks for a hard reversal";
-  EXPECT_LT(aileron_deg, 0.6 * 15.0);
+  EXPECT_GE(step_aileron_deg, aileron_limit_deg - 1e-6)
+      << "the scenario no longer asks for a hard reversal";
+  EXPECT_LT(aileron_deg, 0.6 * aileron_limit_deg);
   EXPECT_LT(p_deg_s, 0.6 * step_p_deg_s);
-  EXPECT_LT(p_deg_s, 0.9 * 120.0);
-  std::printf("hand-back: slewed peak p %.1f deg/s aileron %.1f deg; stepped %.1f deg/s %.1f deg\n", p_deg_s,
-              aileron_deg, step_p_deg_s, step_aileron_deg);
+  EXPECT_LT(p_deg_s, switch_rate_deg_s);
+  std::printf("hand-back: slewed peak p %.1f deg/s aileron %.1f deg; stepped %.1f deg/s %.1f deg\n",
+              p_deg_s, aileron_deg, step_p_deg_s, step_aileron_deg);
 }
