@@ -11,10 +11,15 @@
 
 #include "gs_core.h"
 #include "gs_test_config.h"
+#include "gs_test_frames.h"
 
 using namespace microhard_gs;
 
 namespace {
+
+using test::decode_all;
+using test::of_type;
+using test::statustexts;
 
 constexpr uint64_t kUnixStartUs = 1795000000ULL * 1000000ULL;  // any time after 2015
 const GeoPoint kHome{40.11, -88.22, 220.0};
@@ -107,28 +112,6 @@ class Gcs {
   mavlink_signing_t signing_{};
   mavlink_signing_streams_t streams_{};
 };
-
-std::vector<mavlink_message_t> decode_all(const std::vector<std::vector<uint8_t>>& frames) {
-  std::vector<mavlink_message_t> out;
-  mavlink_status_t status{};
-  mavlink_message_t buffer{};
-  for (const auto& f : frames) {
-    for (uint8_t b : f) {
-      mavlink_message_t msg;
-      mavlink_status_t s;
-      if (mavlink_frame_char_buffer(&buffer, &status, b, &msg, &s) == MAVLINK_FRAMING_OK) out.push_back(msg);
-    }
-  }
-  return out;
-}
-
-std::vector<mavlink_message_t> of_type(const std::vector<mavlink_message_t>& msgs, uint32_t id) {
-  std::vector<mavlink_message_t> out;
-  for (const auto& m : msgs) {
-    if (m.msgid == id) out.push_back(m);
-  }
-  return out;
-}
 
 class Bench {
  public:
@@ -309,16 +292,6 @@ float echoed_value(const std::vector<mavlink_message_t>& out, const char* name) 
   mavlink_msg_param_value_get_param_id(&values[0], id);
   EXPECT_STREQ(id, name);
   return mavlink_msg_param_value_get_param_value(&values[0]);
-}
-
-std::string statustexts(const std::vector<mavlink_message_t>& out) {
-  std::string joined;
-  for (const auto& t : of_type(out, MAVLINK_MSG_ID_STATUSTEXT)) {
-    char text[51] = {};
-    mavlink_msg_statustext_get_text(&t, text);
-    joined += text;
-  }
-  return joined;
 }
 
 // some_params() gives each parameter its index in the table as value.

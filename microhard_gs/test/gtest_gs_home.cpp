@@ -8,6 +8,7 @@
 
 #include "gs_core.h"
 #include "gs_test_config.h"
+#include "gs_test_frames.h"
 
 using namespace microhard_gs;
 
@@ -17,28 +18,13 @@ const GeoPoint kHaHome{40.4237054, -86.9211946, 185.25};
 
 GsConfig config() { return test::gs_config(); }
 
-std::vector<mavlink_message_t> decode(const std::vector<std::vector<uint8_t>>& frames) {
-  std::vector<mavlink_message_t> out;
-  mavlink_status_t status{};
-  mavlink_message_t buffer{};
-  for (const auto& f : frames) {
-    for (uint8_t b : f) {
-      mavlink_message_t msg;
-      mavlink_status_t s;
-      if (mavlink_frame_char_buffer(&buffer, &status, b, &msg, &s) == MAVLINK_FRAMING_OK)
-        out.push_back(msg);
-    }
-  }
-  return out;
-}
-
 struct Station {
   Station() : core(config(), ParamTable()) {}
   std::vector<mavlink_message_t> send(const mavlink_message_t& m) {
     uint8_t buf[MAVLINK_MAX_PACKET_LEN];
     const uint16_t n = mavlink_msg_to_send_buffer(buf, &m);
     core.handle_bytes(buf, n, Clock{1000, 1795000000000000ULL});
-    return decode(core.take_frames());
+    return test::decode_all(core.take_frames());
   }
   std::vector<mavlink_message_t> set_home_long(float here, float lat, float lon, float alt) {
     mavlink_message_t m;
@@ -61,26 +47,8 @@ struct Station {
   GsCore core;
 };
 
-std::vector<mavlink_message_t> only(const std::vector<mavlink_message_t>& msgs, uint32_t id) {
-  std::vector<mavlink_message_t> out;
-  for (const auto& m : msgs) {
-    if (m.msgid == id) out.push_back(m);
-  }
-  return out;
-}
-
-std::string texts(const std::vector<mavlink_message_t>& msgs) {
-  std::string joined;
-  for (const auto& t : only(msgs, MAVLINK_MSG_ID_STATUSTEXT)) {
-    char text[51] = {};
-    mavlink_msg_statustext_get_text(&t, text);
-    joined += text;
-  }
-  return joined;
-}
-
 uint8_t ack_result(const std::vector<mavlink_message_t>& msgs) {
-  const auto acks = only(msgs, MAVLINK_MSG_ID_COMMAND_ACK);
+  const auto acks = test::of_type(msgs, MAVLINK_MSG_ID_COMMAND_ACK);
   EXPECT_EQ(acks.size(), 1u);
   return acks.empty() ? 255 : mavlink_msg_command_ack_get_result(&acks[0]);
 }
@@ -96,15 +64,16 @@ TEST(GsHome, TelemetryNeverBecomesHomeOnlyTheHasHomeDoes) {
   s.core.set_telemetry(t, Clock{1000, 1795000000000000ULL});
   EXPECT_FALSE(s.core.home_known());
   ASSERT_TRUE(s.core.set_home(kHaHome));
-  const auto out = decode(s.core.take_frames());
-  const auto homes = only(out, MAVLINK_MSG_ID_HOME_POSITION);
+  const auto out = test::decode_all(s.core.take_frames());
+  const auto homes = test::of_type(out, MAVLINK_MSG_ID_HOME_POSITION);
   ASSERT_EQ(homes.size(), 1u);  // told at once, without being asked
   EXPECT_EQ(mavlink_msg_home_position_get_latitude(&homes[0]), 404237054);
   EXPECT_EQ(mavlink_msg_home_position_get_longitude(&homes[0]), -869211946);
   EXPECT_EQ(mavlink_msg_home_position_get_altitude(&homes[0]), 185250);
   // The same home again (the HA repeats it every few seconds) is no news.
   ASSERT_TRUE(s.core.set_home(kHaHome));
-  EXPECT_TRUE(only(decode(s.core.take_frames()), MAVLINK_MSG_ID_HOME_POSITION).empty());
+  EXPECT_TRUE(
+      test::of_type(test::decode_all(s.core.take_frames()), MAVLINK_MSG_ID_HOME_POSITION).empty());
   // A corrupt one is dropped and the old home kept.
   EXPECT_FALSE(s.core.set_home(GeoPoint{95.0, 0.5, 0.0}));
   EXPECT_EQ(s.core.home().lat_deg, kHaHome.lat_deg);
@@ -131,7 +100,7 @@ TEST(GsHome, SetHomeInFlightIsRefusedWithTheReason) {
   s.ha_says_agl_ft(150.0);
   const auto out = s.set_home_long(1.0f, 0, 0, 0);
   EXPECT_EQ(ack_result(out), MAV_RESULT_TEMPORARILY_REJECTED);
-  EXPECT_EQ(texts(out), "Set home refused: in flight");
+  EXPECT_EQ(test::statustexts(out), "Set home refused: in flight");
   EXPECT_TRUE(s.core.take_home_requests().empty());
 }
 
@@ -139,10 +108,10 @@ TEST(GsHome, SetHomeWithoutHaStatusOrToANonsensePositionIsRefused) {
   Station s;
   auto out = s.set_home_long(1.0f, 0, 0, 0);
   EXPECT_EQ(ack_result(out), MAV_RESULT_TEMPORARILY_REJECTED);
-  EXPECT_NE(texts(out).find("no HA status"), std::string::npos);
+  EXPECT_NE(test::statustexts(out).find("no HA status"), std::string::npos);
   s.ha_says_agl_ft(0.0);
   out = s.set_home_long(0.0f, 91.0f, 7.0f, 100.0f);
   EXPECT_EQ(ack_result(out), MAV_RESULT_DENIED);
-  EXPECT_EQ(texts(out), "Set home refused: not a valid position");
+  EXPECT_EQ(test::statustexts(out), "Set home refused: not a valid position");
   EXPECT_TRUE(s.core.take_home_requests().empty());
 }
