@@ -22,7 +22,7 @@ FUZZ_SMOKE_TARGETS :=
 # fuzz-smoke-<c> (before the aggregate targets below, which list them).
 include $(ROOT)/tools/kit.mk
 
-.PHONY: help deps build test run lint verify bench fuzz fuzz-smoke clean
+.PHONY: help deps build test run lint verify bench fuzz fuzz-smoke check-user-ws clean
 help:
 	@echo "make run    set up and fly the main job"
 	@echo "make test   set up, build and run every test"
@@ -59,6 +59,11 @@ verify: $(VERIFY_TARGETS)
 bench: $(BENCH_TARGETS)
 fuzz: $(FUZZ_TARGETS)
 fuzz-smoke: $(FUZZ_SMOKE_TARGETS)
+
+# A fresh clone of HEAD built the way README's "your own catkin workspace" says: make deps, then
+# plain catkin_make in a new workspace (tools/check_user_workspace.sh). CI runs it.
+check-user-ws:
+	@$(ROOT)/tools/check_user_workspace.sh
 
 clean:
 	rm -rf $(ROOT)/.build

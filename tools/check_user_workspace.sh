@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# `make check-user-ws`: what README "Building inside your own catkin workspace" promises, done the
+# user's way. A fresh clone of this repository's HEAD goes into a new workspace's src/, `make
+# deps` runs in it, and plain `catkin_make` builds the workspace from a clean login environment
+# (no workspace sourced, no venv or pyenv on PATH, nothing from this checkout's .build). Then
+# every node the launch files start must be there. Leaves nothing behind unless KEEP=1.
+# usage: check_user_workspace.sh [WORKSPACE_DIR]   (default: a new folder under /tmp)
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+ws=${1:-$(mktemp -d /tmp/drone_ros_user_ws.XXXXXX)}
+if [ -z "${KEEP:-}" ]; then trap 'rm -rf "$ws"' EXIT; fi
+mkdir -p "$ws/src"
+git clone -q "$root" "$ws/src/drone_ros"
+echo "check-user-ws: clone of $(git -C "$ws/src/drone_ros" rev-parse --short HEAD) in $ws/src/drone_ros"
+
+login_env=(env -i HOME="$HOME" LANG=C.UTF-8 PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin)
+start=$(date +%s)
+(cd "$ws/src/drone_ros" && "${login_env[@]}" make deps)
+deps_s=$(( $(date +%s) - start ))
+start=$(date +%s)
+if ! (cd "$ws" && "${login_env[@]}" catkin_make -j2 > "$ws/catkin_make.log" 2>&1); then
+  tail -n 60 "$ws/catkin_make.log"
+  echo "check-user-ws: catkin_make failed in $ws (KEEP=1 keeps the workspace)"
+  exit 1
+fi
+build_s=$(( $(date +%s) - start ))
+
+# The executables the launch files start (<node pkg="drone_ros" type="...">), built into devel/.
+mapfile -t types < <(cd "$root" && git ls-files '*.launch' | grep -v '/test/' | xargs cat | tr '\n' ' ' \
+  | grep -o '<node [^>]*>' | grep 'pkg="drone_ros"' | sed 's/.* type="\([^"]*\)".*/\1/' | sort -u)
+missing=0
+for t in "${types[@]}"; do
+  if [ ! -x "$ws/devel/lib/drone_ros/$t" ]; then
+    echo "check-user-ws: $t (a launch file starts it) was not built into $ws/devel/lib/drone_ros"
+    missing=1
+  fi
+done
+[ $missing -eq 0 ] || exit 1
+echo "check-user-ws: plain catkin_make built ${#types[@]} launch-file executables (${types[*]}); make deps ${deps_s} s, catkin_make ${build_s} s"
