@@ -97,6 +97,10 @@ double segment_distance(double pn, double pe, const double *a, const double *b) 
   return std::hypot(pn - (a[0] + t * dn), pe - (a[1] + t * de));
 }
 
+// A 2000 ft square at 200 ft AGL (north, east, height ft).
+constexpr double kSquareFt[4][3] = {
+    {1000.0, 0.0, 200.0}, {1000.0, 2000.0, 200.0}, {-1000.0, 2000.0, 200.0}, {-1000.0, 0.0, 200.0}};
+
 // The worst height and airspeed errors (from height_ft and the trim airspeed) from settle_s on,
 // flying the plan until until_s, with a valid command all the while.
 struct Bands {
@@ -119,6 +123,8 @@ Bands fly_and_measure_bands(Flight *f, double until_s, double settle_s, double h
       b.worst_vt_ftps = std::max(b.worst_vt_ftps, std::fabs(f->sim().airspeed_ftps() - trim_ftps));
     }
   }
+  testing::Test::RecordProperty("worst_altitude_error_ft", std::to_string(b.worst_alt_ft));
+  testing::Test::RecordProperty("worst_airspeed_error_ftps", std::to_string(b.worst_vt_ftps));
   return b;
 }
 
@@ -134,8 +140,6 @@ TEST(GncClosedLoop, FromTrimHoldsAltitudeAndAirspeedWithinBands) {
   const Bands b = fly_and_measure_bands(&f, 60.0, 5.0, 200.0);
   EXPECT_LT(b.worst_alt_ft, 10.0);
   EXPECT_LT(b.worst_vt_ftps, 2.0);
-  RecordProperty("worst_altitude_error_ft", std::to_string(b.worst_alt_ft));
-  RecordProperty("worst_airspeed_error_ftps", std::to_string(b.worst_vt_ftps));
 }
 
 // The real aircraft is not the design model: 15 % heavier (and its inertia), 25 % more drag,
@@ -149,16 +153,10 @@ TEST(GncClosedLoop, HoldsAltitudeAndAirspeedWithModelErrors) {
   cfg.wind_ned_mps = Eigen::Vector3d(0.0, 3.0, 0.0);
   Flight f({}, cfg);
   f.sim().set_trimmed_flight(f.params().gnc.vt_trim_ftps, 200.0, 0.0);
-  const double square[4][3] = {{1000.0, 0.0, 200.0},
-                               {1000.0, 2000.0, 200.0},
-                               {-1000.0, 2000.0, 200.0},
-                               {-1000.0, 0.0, 200.0}};
-  f.set_plan(square, 4);
+  f.set_plan(kSquareFt, 4);
   const Bands b = fly_and_measure_bands(&f, 150.0, 10.0, 200.0);
   EXPECT_LT(b.worst_alt_ft, 15.0);
   EXPECT_LT(b.worst_vt_ftps, 4.0);
-  RecordProperty("worst_altitude_error_ft", std::to_string(b.worst_alt_ft));
-  RecordProperty("worst_airspeed_error_ftps", std::to_string(b.worst_vt_ftps));
 }
 
 // A 2000 ft square at 200 ft AGL in a 2.8 m/s wind: from reaching waypoint 0 on, through all
@@ -169,10 +167,7 @@ TEST(GncClosedLoop, FliesFourWaypointSquareWithinCrossTrackBand) {
   cfg.wind_ned_mps = Eigen::Vector3d(-2.0, 2.0, 0.0);
   Flight f({}, cfg);
   f.sim().set_trimmed_flight(f.params().gnc.vt_trim_ftps, 200.0, 0.0);
-  const double square[4][3] = {{1000.0, 0.0, 200.0},
-                               {1000.0, 2000.0, 200.0},
-                               {-1000.0, 2000.0, 200.0},
-                               {-1000.0, 0.0, 200.0}};
+  const auto &square = kSquareFt;
   f.set_plan(square, 4);
   bool captured = false;
   int laps_wp = 0, last_index = 0;
