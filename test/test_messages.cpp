@@ -230,11 +230,12 @@ TEST(Messages, HomePositionRoundTripKeepsFullDoublePrecision) {
 
 TEST(Messages, ReasonBitsAreDistinctSingleBits) {
   using S = drone_ros::DecisionStatus;
-  const uint32_t bits[] = {S::REASON_NO_COMMAND, S::REASON_DEADLINE_MISS, S::REASON_NOT_FINITE,
-                           S::REASON_ACTUATOR_REGION, S::REASON_ALPHA_BETA, S::REASON_SENSOR_LINK,
-                           S::REASON_STALL, S::REASON_CEILING, S::REASON_STATE_REGION,
-                           S::REASON_FROZEN, S::REASON_INTEGRITY, S::REASON_ESTIMATOR,
-                           S::REASON_GROUND_COMMAND, S::REASON_NO_HA_STATE};
+  const uint32_t bits[] = {
+      S::REASON_NO_COMMAND,      S::REASON_DEADLINE_MISS, S::REASON_NOT_FINITE,
+      S::REASON_ACTUATOR_REGION, S::REASON_ALPHA_BETA,    S::REASON_SENSOR_LINK,
+      S::REASON_STALL,           S::REASON_CEILING,       S::REASON_STATE_REGION,
+      S::REASON_FROZEN,          S::REASON_INTEGRITY,     S::REASON_ESTIMATOR,
+      S::REASON_GROUND_COMMAND,  S::REASON_NO_HA_STATE};
   uint32_t seen = 0;
   for (uint32_t b : bits) {
     EXPECT_EQ(0u, b & (b - 1)) << b << " is not a single bit";

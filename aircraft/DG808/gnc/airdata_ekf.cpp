@@ -10,10 +10,10 @@ namespace {
 // Measurement and process noise of the VN-200 and AMS5812 class sensors this airframe carries.
 constexpr double kGpsVelSigmaMps = 0.2;
 constexpr double kPitotSigmaMps = 0.5;
-constexpr double kAeroZSigmaMps2 = 0.6;   // lift model error and turbulence
+constexpr double kAeroZSigmaMps2 = 0.6;  // lift model error and turbulence
 constexpr double kAeroYSigmaMps2 = 0.4;
-constexpr double kAccelSigmaMps2 = 0.5;   // accelerometer noise plus attitude error leaking g
-constexpr double kWindHorizWalkMps = 0.1; // per sqrt(s)
+constexpr double kAccelSigmaMps2 = 0.5;    // accelerometer noise plus attitude error leaking g
+constexpr double kWindHorizWalkMps = 0.1;  // per sqrt(s)
 constexpr double kWindVertWalkMps = 0.05;
 constexpr double kInitVelSigmaMps = 1.0;
 constexpr double kInitWindHorizSigmaMps = 5.0;
@@ -33,17 +33,16 @@ Eigen::Matrix3d body_to_ned(double phi, double theta, double psi) {
   const double ct = std::cos(theta), st = std::sin(theta);
   const double cp = std::cos(psi), sp = std::sin(psi);
   Eigen::Matrix3d r;
-  r << ct * cp, sf * st * cp - cf * sp, cf * st * cp + sf * sp,
-      ct * sp, sf * st * sp + cf * cp, cf * st * sp - sf * cp,
-      -st, sf * ct, cf * ct;
+  r << ct * cp, sf * st * cp - cf * sp, cf * st * cp + sf * sp, ct * sp, sf * st * sp + cf * cp,
+      cf * st * sp - sf * cp, -st, sf * ct, cf * ct;
   return r;
 }
 
 void AirdataEkf::reset(const Config &config, const AirdataMeasurement &first, double alpha0_rad,
                        double beta0_rad) {
   config_ = config;
-  const Eigen::Matrix3d r_nb = body_to_ned(first.euler_rad.x(), first.euler_rad.y(),
-                                           first.euler_rad.z());
+  const Eigen::Matrix3d r_nb =
+      body_to_ned(first.euler_rad.x(), first.euler_rad.y(), first.euler_rad.z());
   const Eigen::Vector3d v_body = r_nb.transpose() * first.vel_ned_mps;
   // The initial alpha/beta guess is a statement about the air-relative velocity; with the
   // ground velocity known from GPS it becomes an initial wind estimate.
@@ -80,9 +79,10 @@ AirdataEstimate AirdataEkf::step(const AirdataMeasurement &m, double dt_s) {
   Mat6 f = Mat6::Identity();
   f.topLeftCorner<3, 3>() -= dt_s * skew(w);
   Mat6 q = Mat6::Zero();
-  q.diagonal() << kAccelSigmaMps2 * kAccelSigmaMps2 * dt_s, kAccelSigmaMps2 * kAccelSigmaMps2 * dt_s,
-      kAccelSigmaMps2 * kAccelSigmaMps2 * dt_s, kWindHorizWalkMps * kWindHorizWalkMps * dt_s,
-      kWindHorizWalkMps * kWindHorizWalkMps * dt_s, kWindVertWalkMps * kWindVertWalkMps * dt_s;
+  q.diagonal() << kAccelSigmaMps2 * kAccelSigmaMps2 * dt_s,
+      kAccelSigmaMps2 * kAccelSigmaMps2 * dt_s, kAccelSigmaMps2 * kAccelSigmaMps2 * dt_s,
+      kWindHorizWalkMps * kWindHorizWalkMps * dt_s, kWindHorizWalkMps * kWindHorizWalkMps * dt_s,
+      kWindVertWalkMps * kWindVertWalkMps * dt_s;
   p_ = f * p_ * f.transpose() + q;
 
   // GPS velocity, one axis at a time.
@@ -139,7 +139,8 @@ AirdataEstimate AirdataEkf::peek(const AirdataMeasurement &m) const {
   return estimate(body_to_ned(m.euler_rad.x(), m.euler_rad.y(), m.euler_rad.z()), m.airspeed_mps);
 }
 
-AirdataEstimate AirdataEkf::estimate(const Eigen::Matrix3d &r_nb, double measured_airspeed_mps) const {
+AirdataEstimate AirdataEkf::estimate(const Eigen::Matrix3d &r_nb,
+                                     double measured_airspeed_mps) const {
   AirdataEstimate e;
   const Eigen::Vector3d va = x_.head<3>() - r_nb.transpose() * x_.tail<3>();
   e.vt_mps = va.norm();

@@ -18,7 +18,7 @@ struct AirdataMeasurement {
   Eigen::Vector3d vel_ned_mps;
   Eigen::Vector3d rates_radps;
   Eigen::Vector3d specific_force_mps2;
-  Eigen::Vector3d euler_rad;     // phi, theta, psi
+  Eigen::Vector3d euler_rad;  // phi, theta, psi
   double airspeed_mps;
   double elevator_rad;
   double rudder_rad;

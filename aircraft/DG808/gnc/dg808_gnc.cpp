@@ -6,8 +6,8 @@
 #include <cstring>
 
 #include "airdata_ekf.h"
-#include "geo_wgs84.h"
 #include "dg808_gnc_data.h"
+#include "geo_wgs84.h"
 #include "guidance.h"
 #include "inner_loops.h"
 
@@ -56,12 +56,13 @@ bool finite_all(const double *v, size_t n) {
 }
 
 bool input_finite(const DG808_GNC_Input &in) {
-  const double scalars[] = {in.airspeed_ftps, in.throttle_trim, in.elevator_trim_rad,
-                            in.aileron_trim_rad, in.rudder_trim_rad, in.lat_deg, in.lon_deg,
-                            in.alt_m, in.vel_north_mps, in.vel_east_mps, in.vel_down_mps,
-                            in.p_radps, in.q_radps, in.r_radps, in.fx_mps2, in.fy_mps2,
-                            in.fz_mps2, in.phi_rad, in.theta_rad, in.psi_rad, in.home_lat_deg,
-                            in.home_lon_deg, in.home_alt_m};
+  const double scalars[] = {
+      in.airspeed_ftps,   in.throttle_trim, in.elevator_trim_rad, in.aileron_trim_rad,
+      in.rudder_trim_rad, in.lat_deg,       in.lon_deg,           in.alt_m,
+      in.vel_north_mps,   in.vel_east_mps,  in.vel_down_mps,      in.p_radps,
+      in.q_radps,         in.r_radps,       in.fx_mps2,           in.fy_mps2,
+      in.fz_mps2,         in.phi_rad,       in.theta_rad,         in.psi_rad,
+      in.home_lat_deg,    in.home_lon_deg,  in.home_alt_m};
   return finite_all(scalars, sizeof(scalars) / sizeof(scalars[0])) &&
          finite_all(in.wp_north_ft, DG808_GNC_MAX_WAYPOINTS) &&
          finite_all(in.wp_east_ft, DG808_GNC_MAX_WAYPOINTS) &&
@@ -69,9 +70,7 @@ bool input_finite(const DG808_GNC_Input &in) {
          finite_all(in.wp_velocity_ftps, DG808_GNC_MAX_WAYPOINTS);
 }
 
-bool within(double v, double limit) {
-  return v >= -limit && v <= limit;
-}
+bool within(double v, double limit) { return v >= -limit && v <= limit; }
 
 bool input_plausible(const DG808_GNC_Input &in) {
   bool ok = within(in.airspeed_ftps, kMaxAirspeedFtps) && within(in.lat_deg, 90.0) &&
@@ -80,25 +79,28 @@ bool input_plausible(const DG808_GNC_Input &in) {
             within(in.vel_east_mps, kMaxVelocityMps) && within(in.vel_down_mps, kMaxVelocityMps) &&
             within(in.p_radps, kMaxRateRadps) && within(in.q_radps, kMaxRateRadps) &&
             within(in.r_radps, kMaxRateRadps) && within(in.fx_mps2, kMaxSpecificForceMps2) &&
-            within(in.fy_mps2, kMaxSpecificForceMps2) && within(in.fz_mps2, kMaxSpecificForceMps2) &&
-            within(in.phi_rad, kMaxAngleRad) && within(in.theta_rad, kMaxAngleRad) &&
-            within(in.psi_rad, kMaxAngleRad) && within(in.alt_m - in.home_alt_m, 1.0e5) &&
-            within(in.throttle_trim, 1.0) && within(in.elevator_trim_rad, kMaxAngleRad) &&
+            within(in.fy_mps2, kMaxSpecificForceMps2) &&
+            within(in.fz_mps2, kMaxSpecificForceMps2) && within(in.phi_rad, kMaxAngleRad) &&
+            within(in.theta_rad, kMaxAngleRad) && within(in.psi_rad, kMaxAngleRad) &&
+            within(in.alt_m - in.home_alt_m, 1.0e5) && within(in.throttle_trim, 1.0) &&
+            within(in.elevator_trim_rad, kMaxAngleRad) &&
             within(in.aileron_trim_rad, kMaxAngleRad) && within(in.rudder_trim_rad, kMaxAngleRad);
   for (int i = 0; ok && i < DG808_GNC_MAX_WAYPOINTS; ++i) {
     ok = within(in.wp_north_ft[i], kMaxWaypointFt) && within(in.wp_east_ft[i], kMaxWaypointFt) &&
-         within(in.wp_height_ft[i], kMaxWaypointFt) && within(in.wp_velocity_ftps[i], kMaxAirspeedFtps);
+         within(in.wp_height_ft[i], kMaxWaypointFt) &&
+         within(in.wp_velocity_ftps[i], kMaxAirspeedFtps);
   }
   return ok;
 }
 
 bool output_finite(const DG808_GNC_Output &o) {
-  const double v[] = {o.throttle, o.elevator_rad, o.aileron_rad, o.rudder_rad, o.vt_est_ftps,
-                      o.alpha_est_rad, o.beta_est_rad, o.alpha_sigma_rad, o.beta_sigma_rad,
-                      o.wind_north_ftps, o.wind_east_ftps, o.wind_up_ftps, o.north_ft, o.east_ft,
-                      o.height_ft, o.dist_to_waypoint_ft, o.cross_track_ft, o.vt_cmd_ftps,
-                      o.phi_cmd_rad, o.theta_cmd_rad, o.beta_cmd_rad, o.eta_lat_rad,
-                      o.eta_lon_rad, o.delta_psi_rad, o.n_op_ft, o.e_op_ft, o.h_op_ft};
+  const double v[] = {o.throttle,       o.elevator_rad,    o.aileron_rad,    o.rudder_rad,
+                      o.vt_est_ftps,    o.alpha_est_rad,   o.beta_est_rad,   o.alpha_sigma_rad,
+                      o.beta_sigma_rad, o.wind_north_ftps, o.wind_east_ftps, o.wind_up_ftps,
+                      o.north_ft,       o.east_ft,         o.height_ft,      o.dist_to_waypoint_ft,
+                      o.cross_track_ft, o.vt_cmd_ftps,     o.phi_cmd_rad,    o.theta_cmd_rad,
+                      o.beta_cmd_rad,   o.eta_lat_rad,     o.eta_lon_rad,    o.delta_psi_rad,
+                      o.n_op_ft,        o.e_op_ft,         o.h_op_ft};
   return finite_all(v, sizeof(v) / sizeof(v[0])) &&
          finite_all(o.mw_north_ft, DG808_GNC_PREVIEW_WAYPOINTS) &&
          finite_all(o.mw_east_ft, DG808_GNC_PREVIEW_WAYPOINTS) &&
@@ -107,11 +109,26 @@ bool output_finite(const DG808_GNC_Output &o) {
 }
 
 bool params_valid(const DG808_GNC_Params &p) {
-  const double v[] = {p.dt_s, p.elevator_limit_deg, p.aileron_limit_deg, p.rudder_limit_deg,
-                      p.throttle_min, p.throttle_max, p.stall_speed_ftps, p.vt_trim_ftps,
-                      p.alpha0_rad, p.beta0_rad, p.mpf_radius_ft, p.max_allow_error_ft,
-                      p.dist2b_ft, p.kp_lon_rad_per_ft, p.ki_lon_rad_per_ft_s, p.max_bank_deg,
-                      p.max_pitch_cmd_deg, p.attitude_cmd_rate_deg_s, p.min_airspeed_cmd_ftps, p.airspeed_valid_min_ftps,
+  const double v[] = {p.dt_s,
+                      p.elevator_limit_deg,
+                      p.aileron_limit_deg,
+                      p.rudder_limit_deg,
+                      p.throttle_min,
+                      p.throttle_max,
+                      p.stall_speed_ftps,
+                      p.vt_trim_ftps,
+                      p.alpha0_rad,
+                      p.beta0_rad,
+                      p.mpf_radius_ft,
+                      p.max_allow_error_ft,
+                      p.dist2b_ft,
+                      p.kp_lon_rad_per_ft,
+                      p.ki_lon_rad_per_ft_s,
+                      p.max_bank_deg,
+                      p.max_pitch_cmd_deg,
+                      p.attitude_cmd_rate_deg_s,
+                      p.min_airspeed_cmd_ftps,
+                      p.airspeed_valid_min_ftps,
                       p.converged_sigma_deg};
   if (!finite_all(v, sizeof(v) / sizeof(v[0]))) {
     return false;
@@ -122,9 +139,10 @@ bool params_valid(const DG808_GNC_Params &p) {
          p.vt_trim_ftps > p.stall_speed_ftps && p.mpf_radius_ft > 0.0 &&
          p.max_allow_error_ft > 0.0 && p.dist2b_ft > 0.0 && p.kp_lon_rad_per_ft >= 0.0 &&
          p.ki_lon_rad_per_ft_s >= 0.0 && p.max_bank_deg > 0.0 && p.max_bank_deg < 90.0 &&
-         p.max_pitch_cmd_deg > 0.0 && p.max_pitch_cmd_deg < 90.0 && p.attitude_cmd_rate_deg_s > 0.0 &&
-         p.min_airspeed_cmd_ftps > p.stall_speed_ftps && p.airspeed_valid_min_ftps > 0.0 &&
-         p.converged_sigma_deg > 0.0 && (p.guidance_selection == 0 || p.guidance_selection == 1) &&
+         p.max_pitch_cmd_deg > 0.0 && p.max_pitch_cmd_deg < 90.0 &&
+         p.attitude_cmd_rate_deg_s > 0.0 && p.min_airspeed_cmd_ftps > p.stall_speed_ftps &&
+         p.airspeed_valid_min_ftps > 0.0 && p.converged_sigma_deg > 0.0 &&
+         (p.guidance_selection == 0 || p.guidance_selection == 1) &&
          (p.mpf_switch == 0 || p.mpf_switch == 1) && (p.path_select == 0 || p.path_select == 1) &&
          std::fabs(p.alpha0_rad) < kPi / 2.0 && std::fabs(p.beta0_rad) < kPi / 2.0;
 }
@@ -158,9 +176,7 @@ extern "C" int DG808_GNC_initialize(const DG808_GNC_Params *params) {
   return 0;
 }
 
-extern "C" void DG808_GNC_terminate(void) {
-  g_gnc.initialized = false;
-}
+extern "C" void DG808_GNC_terminate(void) { g_gnc.initialized = false; }
 
 extern "C" void DG808_GNC_step(const DG808_GNC_Input *in, DG808_GNC_Output *out) {
   if (out == nullptr) {
@@ -242,8 +258,9 @@ extern "C" void DG808_GNC_step(const DG808_GNC_Input *in, DG808_GNC_Output *out)
   const bool computer_flies = in->piccic == 1;
   const bool flying = computer_flies && est.converged && home;
 
-  const dg808::GuidanceState gs{o.north_ft, o.east_ft, o.height_ft, in->vel_north_mps * kFtPerM,
-                                in->vel_east_mps * kFtPerM, in->psi_rad};
+  const dg808::GuidanceState gs{
+      o.north_ft, o.east_ft, o.height_ft, in->vel_north_mps * kFtPerM, in->vel_east_mps * kFtPerM,
+      in->psi_rad};
   const dg808::GuidanceCommand gc = g_gnc.guidance.step(*in, gs, flying);
   // While this command is not flown (the HA or the pilot flies, the loops not closed) the
   // reference is the attitude the aircraft has, so that a hand-back starts from it.
@@ -269,7 +286,10 @@ extern "C" void DG808_GNC_step(const DG808_GNC_Input *in, DG808_GNC_Output *out)
   o.n_op_ft = gc.n_op_ft;
   o.e_op_ft = gc.e_op_ft;
   o.h_op_ft = gc.h_op_ft;
-  const int32_t count = in->wp_count < 0 ? 0 : (in->wp_count > DG808_GNC_MAX_WAYPOINTS ? DG808_GNC_MAX_WAYPOINTS : in->wp_count);
+  const int32_t count =
+      in->wp_count < 0
+          ? 0
+          : (in->wp_count > DG808_GNC_MAX_WAYPOINTS ? DG808_GNC_MAX_WAYPOINTS : in->wp_count);
   for (int32_t k = 0; k < DG808_GNC_PREVIEW_WAYPOINTS && count > 0; ++k) {
     const int32_t w = (gc.waypoint_index + k) % count;
     o.mw_north_ft[k] = in->wp_north_ft[w];
@@ -280,8 +300,8 @@ extern "C" void DG808_GNC_step(const DG808_GNC_Input *in, DG808_GNC_Output *out)
 
   dg808::Surfaces u;
   if (est.converged) {
-    const dg808::LoopState x{est.vt_mps, est.alpha_rad, est.beta_rad, in->p_radps, in->q_radps,
-                             in->r_radps, in->phi_rad, in->theta_rad};
+    const dg808::LoopState x{est.vt_mps,  est.alpha_rad, est.beta_rad, in->p_radps,
+                             in->q_radps, in->r_radps,   in->phi_rad,  in->theta_rad};
     // est.converged implies vt >= airspeed_valid_min > 0.
     const double vt_cmd_mps = gc.vt_cmd_ftps * kMPerFt;
     const dg808::LoopReference ref{vt_cmd_mps, g_gnc.theta_ref_rad, g_gnc.phi_ref_rad,

@@ -16,23 +16,23 @@ extern "C" {
 #define DG808_GNC_PREVIEW_WAYPOINTS 6
 
 /* Guidance modes (DG808_GNC_Output.guidance_mode). */
-#define DG808_GNC_MODE_FLIGHT_PLAN 0   /* following the /way legs */
-#define DG808_GNC_MODE_DIRECT 1        /* beyond max_allow_error: heading straight for the waypoint */
-#define DG808_GNC_MODE_CIRCLE_HOME 2   /* return home / end of plan / no plan: circle home */
+#define DG808_GNC_MODE_FLIGHT_PLAN 0 /* following the /way legs */
+#define DG808_GNC_MODE_DIRECT 1      /* beyond max_allow_error: heading straight for the waypoint */
+#define DG808_GNC_MODE_CIRCLE_HOME 2 /* return home / end of plan / no plan: circle home */
 
 typedef struct {
-  double dt_s;                    /* step period */
+  double dt_s; /* step period */
   /* limits.yaml */
   double elevator_limit_deg, aileron_limit_deg, rudder_limit_deg;
   double throttle_min, throttle_max;
   double stall_speed_ftps;
   /* controller_param.yaml */
   double vt_trim_ftps;
-  double alpha0_rad, beta0_rad;   /* initial estimator guess */
-  int32_t guidance_selection;     /* 0 flight plan, 1 return home */
-  int32_t mpf_switch;             /* 1 moving point (L1) on legs, 0 direct to waypoint */
+  double alpha0_rad, beta0_rad; /* initial estimator guess */
+  int32_t guidance_selection;   /* 0 flight plan, 1 return home */
+  int32_t mpf_switch;           /* 1 moving point (L1) on legs, 0 direct to waypoint */
   double mpf_radius_ft;
-  int32_t path_select;            /* end of plan: 0 restart it, 1 circle home */
+  int32_t path_select; /* end of plan: 0 restart it, 1 circle home */
   double max_allow_error_ft;
   double dist2b_ft;
   double kp_lon_rad_per_ft, ki_lon_rad_per_ft_s;
@@ -45,43 +45,43 @@ typedef struct {
 
 typedef struct {
   /* HA computer (/pwm): pilot switch and pitot */
-  uint8_t piccic;                 /* 0 pilot in command, 1 computer */
-  uint8_t ha_in_control;          /* 1 while the HA flies its own command instead of this one */
-  double airspeed_ftps;           /* true airspeed from the pitot */
+  uint8_t piccic;        /* 0 pilot in command, 1 computer */
+  uint8_t ha_in_control; /* 1 while the HA flies its own command instead of this one */
+  double airspeed_ftps;  /* true airspeed from the pitot */
   /* trims to fly around (captured from the RC by the node while the pilot flies) */
   double throttle_trim, elevator_trim_rad, aileron_trim_rad, rudder_trim_rad;
   /* INS (/gps_position, /gps_velocity, /imu_PQR_acceleration, /attitude) */
-  double lat_deg, lon_deg, alt_m;           /* WGS84 */
+  double lat_deg, lon_deg, alt_m; /* WGS84 */
   double vel_north_mps, vel_east_mps, vel_down_mps;
-  double p_radps, q_radps, r_radps;         /* body FRD */
-  double fx_mps2, fy_mps2, fz_mps2;         /* specific force, body FRD (about -g on z at rest) */
-  double phi_rad, theta_rad, psi_rad;       /* 3-2-1 Euler, NED */
+  double p_radps, q_radps, r_radps;   /* body FRD */
+  double fx_mps2, fy_mps2, fz_mps2;   /* specific force, body FRD (about -g on z at rest) */
+  double phi_rad, theta_rad, psi_rad; /* 3-2-1 Euler, NED */
   /* home: origin of the /way local frame (latched by the node; survives HP restarts) */
   uint8_t home_valid;
   double home_lat_deg, home_lon_deg, home_alt_m;
-  uint8_t home_cmd;               /* 1 = return home commanded */
+  uint8_t home_cmd; /* 1 = return home commanded */
   /* flight plan (/way), local North-East-Up from home */
   int32_t wp_count;
   double wp_north_ft[DG808_GNC_MAX_WAYPOINTS];
   double wp_east_ft[DG808_GNC_MAX_WAYPOINTS];
   double wp_height_ft[DG808_GNC_MAX_WAYPOINTS];
   double wp_velocity_ftps[DG808_GNC_MAX_WAYPOINTS];
-  uint32_t wp_revision;           /* changes when a new plan arrives: guidance restarts at leg 0 */
+  uint32_t wp_revision; /* changes when a new plan arrives: guidance restarts at leg 0 */
 } DG808_GNC_Input;
 
 typedef struct {
   /* commands, always finite and inside the limits */
   double throttle;
   double elevator_rad, aileron_rad, rudder_rad;
-  uint8_t command_valid;          /* 0: do not fly this (input not finite, air data undefined) */
-  uint8_t inputs_finite;          /* 0: this step's input had a NaN/inf and was dropped */
-  uint32_t rejected_inputs;       /* count of dropped input steps since initialize */
+  uint8_t command_valid;    /* 0: do not fly this (input not finite, air data undefined) */
+  uint8_t inputs_finite;    /* 0: this step's input had a NaN/inf and was dropped */
+  uint32_t rejected_inputs; /* count of dropped input steps since initialize */
   /* estimation */
   double vt_est_ftps, alpha_est_rad, beta_est_rad;
   double alpha_sigma_rad, beta_sigma_rad;
-  double wind_north_ftps, wind_east_ftps, wind_up_ftps;  /* velocity of the air mass */
+  double wind_north_ftps, wind_east_ftps, wind_up_ftps; /* velocity of the air mass */
   uint8_t estimator_converged;
-  double north_ft, east_ft, height_ft;                   /* position from home */
+  double north_ft, east_ft, height_ft; /* position from home */
   /* guidance */
   int32_t guidance_mode;
   int32_t waypoint_index;
@@ -89,7 +89,7 @@ typedef struct {
   double cross_track_ft;
   double vt_cmd_ftps, phi_cmd_rad, theta_cmd_rad, beta_cmd_rad;
   double eta_lat_rad, eta_lon_rad, delta_psi_rad;
-  double n_op_ft, e_op_ft, h_op_ft;                      /* moving point */
+  double n_op_ft, e_op_ft, h_op_ft; /* moving point */
   double mw_north_ft[DG808_GNC_PREVIEW_WAYPOINTS];
   double mw_east_ft[DG808_GNC_PREVIEW_WAYPOINTS];
   double mw_height_ft[DG808_GNC_PREVIEW_WAYPOINTS];

@@ -10,9 +10,7 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kDegToRad = kPi / 180.0;
 constexpr double kGravityFtps2 = 32.1740486;
 
-double wrap_pi(double a) {
-  return std::atan2(std::sin(a), std::cos(a));
-}
+double wrap_pi(double a) { return std::atan2(std::sin(a), std::cos(a)); }
 
 }  // namespace
 
@@ -55,7 +53,8 @@ double Guidance::lateral_accel_cmd(const GuidanceState &s, double n_op, double e
   const double vg2 = s.vel_north_ftps * s.vel_north_ftps + s.vel_east_ftps * s.vel_east_ftps;
   const double vmin = params_.airspeed_valid_min_ftps;
   // Standing still the track is undefined: use the heading instead.
-  const double track = vg2 >= vmin * vmin ? std::atan2(s.vel_east_ftps, s.vel_north_ftps) : s.psi_rad;
+  const double track =
+      vg2 >= vmin * vmin ? std::atan2(s.vel_east_ftps, s.vel_north_ftps) : s.psi_rad;
   const double bearing = std::atan2(e_op - s.east_ft, n_op - s.north_ft);
   const double eta = wrap_pi(bearing - track);
   c.eta_lat_rad = eta;
@@ -102,8 +101,8 @@ GuidanceCommand Guidance::step(const DG808_GNC_Input &in, const GuidanceState &s
         const double next_ft = std::hypot(nn, ne);
         if (next_ft > 0.0) {
           const double bn = tn + nn / next_ft, be = te + ne / next_ft;
-          past_bisector = (s.north_ft - wn) * bn + (s.east_ft - we) * be >= 0.0 &&
-                          (bn != 0.0 || be != 0.0);
+          past_bisector =
+              (s.north_ft - wn) * bn + (s.east_ft - we) * be >= 0.0 && (bn != 0.0 || be != 0.0);
         }
       }
       const bool reached = c.dist_to_waypoint_ft <= params_.dist2b_ft ||
@@ -123,11 +122,13 @@ GuidanceCommand Guidance::step(const DG808_GNC_Input &in, const GuidanceState &s
   }
   if (fly_plan && !plan_done_) {
     circling_ = false;
-    const double wn = in.wp_north_ft[index_], we = in.wp_east_ft[index_], wh = in.wp_height_ft[index_];
+    const double wn = in.wp_north_ft[index_], we = in.wp_east_ft[index_],
+                 wh = in.wp_height_ft[index_];
     const double dn = wn - leg_start_n_ft_, de = we - leg_start_e_ft_;
     const double leg_ft = std::hypot(dn, de);
     const double tn = leg_ft > 0.0 ? dn / leg_ft : 0.0, te = leg_ft > 0.0 ? de / leg_ft : 0.0;
-    const double along_ft = (s.north_ft - leg_start_n_ft_) * tn + (s.east_ft - leg_start_e_ft_) * te;
+    const double along_ft =
+        (s.north_ft - leg_start_n_ft_) * tn + (s.east_ft - leg_start_e_ft_) * te;
     const bool on_track = params_.mpf_switch == 1 && leg_ft > 0.0 &&
                           std::fabs(c.cross_track_ft) <= params_.max_allow_error_ft;
     if (on_track) {
@@ -196,7 +197,8 @@ GuidanceCommand Guidance::step(const DG808_GNC_Input &in, const GuidanceState &s
                        params_.ki_lon_rad_per_ft_s * alt_integral_ft_s_;
   c.theta_cmd_rad = std::clamp(unsat, -max_pitch, max_pitch);
   // Conditional integration: only while unsaturated or while the error unwinds the saturation.
-  const bool unwinding = (unsat > max_pitch && err_ft < 0.0) || (unsat < -max_pitch && err_ft > 0.0);
+  const bool unwinding =
+      (unsat > max_pitch && err_ft < 0.0) || (unsat < -max_pitch && err_ft > 0.0);
   if (integrate && (unsat == c.theta_cmd_rad || unwinding)) {
     alt_integral_ft_s_ += err_ft * params_.dt_s;
   }

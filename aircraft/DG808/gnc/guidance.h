@@ -40,15 +40,16 @@ class Guidance {
   // The waypoint after index, or -1 when the plan ends there (path_select 1).
   int32_t next_index(int32_t index, int32_t count) const;
   void start_leg(const DG808_GNC_Input &in, const GuidanceState &s, int32_t index, bool from_here);
-  double lateral_accel_cmd(const GuidanceState &s, double n_op, double e_op, GuidanceCommand &c) const;
+  double lateral_accel_cmd(const GuidanceState &s, double n_op, double e_op,
+                           GuidanceCommand &c) const;
 
   DG808_GNC_Params params_{};
   double theta_trim_rad_ = 0.0;
   bool have_plan_ = false;
   uint32_t plan_revision_ = 0;
   int32_t index_ = 0;
-  bool plan_done_ = false;   // path_select 1 reached the last waypoint
-  bool circling_ = false;    // circled last step (the circle height is captured on entry)
+  bool plan_done_ = false;  // path_select 1 reached the last waypoint
+  bool circling_ = false;   // circled last step (the circle height is captured on entry)
   double circle_height_ft_ = 0.0;
   double leg_start_n_ft_ = 0.0, leg_start_e_ft_ = 0.0, leg_start_h_ft_ = 0.0;
   double alt_integral_ft_s_ = 0.0;

@@ -26,8 +26,8 @@ Surfaces InnerLoops::step(const LoopState &x, const LoopReference &ref, const Su
   const double e_vt = x.vt_mps - ref.vt_mps;
   const double e_theta = x.theta_rad - ref.theta_rad;
   const double e_phi = x.phi_rad - ref.phi_rad;
-  const double lon[DG808_K_LON_COLS] = {e_vt, x.alpha_rad - DG808_TRIM_ALPHA_RAD, x.q_radps, e_theta,
-                                        int_vt_m_, int_theta_rad_s_};
+  const double lon[DG808_K_LON_COLS] = {
+      e_vt, x.alpha_rad - DG808_TRIM_ALPHA_RAD, x.q_radps, e_theta, int_vt_m_, int_theta_rad_s_};
   const double lat[DG808_K_LAT_COLS] = {x.beta_rad, x.p_radps, x.r_radps - ref.r_radps, e_phi,
                                         int_phi_rad_s_};
   double u_lon[DG808_K_LON_ROWS] = {0.0, 0.0};

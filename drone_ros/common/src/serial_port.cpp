@@ -20,22 +20,53 @@ namespace {
 // (cfgetospeed) see these as themselves, not as BOTHER.
 bool standard_speed(int baud, speed_t *speed) {
   switch (baud) {
-    case 1200: *speed = B1200; return true;
-    case 2400: *speed = B2400; return true;
-    case 4800: *speed = B4800; return true;
-    case 9600: *speed = B9600; return true;
-    case 19200: *speed = B19200; return true;
-    case 38400: *speed = B38400; return true;
-    case 57600: *speed = B57600; return true;
-    case 115200: *speed = B115200; return true;
-    case 230400: *speed = B230400; return true;
-    case 460800: *speed = B460800; return true;
-    case 500000: *speed = B500000; return true;
-    case 921600: *speed = B921600; return true;
-    case 1000000: *speed = B1000000; return true;
-    case 2000000: *speed = B2000000; return true;
-    case 4000000: *speed = B4000000; return true;
-    default: return false;
+    case 1200:
+      *speed = B1200;
+      return true;
+    case 2400:
+      *speed = B2400;
+      return true;
+    case 4800:
+      *speed = B4800;
+      return true;
+    case 9600:
+      *speed = B9600;
+      return true;
+    case 19200:
+      *speed = B19200;
+      return true;
+    case 38400:
+      *speed = B38400;
+      return true;
+    case 57600:
+      *speed = B57600;
+      return true;
+    case 115200:
+      *speed = B115200;
+      return true;
+    case 230400:
+      *speed = B230400;
+      return true;
+    case 460800:
+      *speed = B460800;
+      return true;
+    case 500000:
+      *speed = B500000;
+      return true;
+    case 921600:
+      *speed = B921600;
+      return true;
+    case 1000000:
+      *speed = B1000000;
+      return true;
+    case 2000000:
+      *speed = B2000000;
+      return true;
+    case 4000000:
+      *speed = B4000000;
+      return true;
+    default:
+      return false;
   }
 }
 
@@ -168,7 +199,8 @@ bool SerialPort::write_all(const void *data, std::size_t len) {
     if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {
       // The driver's buffer is full: wait for room, but not forever.
       const auto stalled_ms =
-          std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - last_progress).count();
+          std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - last_progress)
+              .count();
       if (stalled_ms >= write_stall_ms_) return false;
       pollfd pfd{fd_, POLLOUT, 0};
       const int r = ::poll(&pfd, 1, static_cast<int>(write_stall_ms_ - stalled_ms));
