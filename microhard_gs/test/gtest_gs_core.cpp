@@ -72,27 +72,30 @@ class Gcs {
   }
   // A waypoint as a GCS sends it in any frame: MISSION_ITEM_INT (lat/lon deg * 1e7) or the
   // legacy MISSION_ITEM (degrees).
-  std::vector<uint8_t> waypoint_in(uint16_t seq, uint8_t mav_frame, double lat_deg, double lon_deg, float z_m,
-                                   bool legacy = false) {
+  std::vector<uint8_t> waypoint_in(uint16_t seq, uint8_t mav_frame, double lat_deg, double lon_deg,
+                                   float z_m, bool legacy = false) {
     return frame([&](mavlink_message_t* m) {
       if (legacy) {
-        mavlink_msg_mission_item_pack_status(255, 190, &tx_, m, 1, 1, seq, mav_frame, MAV_CMD_NAV_WAYPOINT, 0, 1, 0, 0,
-                                             0, 0, static_cast<float>(lat_deg), static_cast<float>(lon_deg), z_m,
-                                             MAV_MISSION_TYPE_MISSION);
+        mavlink_msg_mission_item_pack_status(
+            255, 190, &tx_, m, 1, 1, seq, mav_frame, MAV_CMD_NAV_WAYPOINT, 0, 1, 0, 0, 0, 0,
+            static_cast<float>(lat_deg), static_cast<float>(lon_deg), z_m,
+            MAV_MISSION_TYPE_MISSION);
       } else {
-        mavlink_msg_mission_item_int_pack_status(255, 190, &tx_, m, 1, 1, seq, mav_frame, MAV_CMD_NAV_WAYPOINT, 0, 1, 0,
-                                                 0, 0, 0, static_cast<int32_t>(std::lround(lat_deg * 1e7)),
-                                                 static_cast<int32_t>(std::lround(lon_deg * 1e7)), z_m,
-                                                 MAV_MISSION_TYPE_MISSION);
+        mavlink_msg_mission_item_int_pack_status(
+            255, 190, &tx_, m, 1, 1, seq, mav_frame, MAV_CMD_NAV_WAYPOINT, 0, 1, 0, 0, 0, 0,
+            static_cast<int32_t>(std::lround(lat_deg * 1e7)),
+            static_cast<int32_t>(std::lround(lon_deg * 1e7)), z_m, MAV_MISSION_TYPE_MISSION);
       }
     });
   }
   std::vector<uint8_t> request_item(uint16_t seq, bool legacy) {
     return frame([&](mavlink_message_t* m) {
       if (legacy) {
-        mavlink_msg_mission_request_pack_status(255, 190, &tx_, m, 1, 1, seq, MAV_MISSION_TYPE_MISSION);
+        mavlink_msg_mission_request_pack_status(255, 190, &tx_, m, 1, 1, seq,
+                                                MAV_MISSION_TYPE_MISSION);
       } else {
-        mavlink_msg_mission_request_int_pack_status(255, 190, &tx_, m, 1, 1, seq, MAV_MISSION_TYPE_MISSION);
+        mavlink_msg_mission_request_int_pack_status(255, 190, &tx_, m, 1, 1, seq,
+                                                    MAV_MISSION_TYPE_MISSION);
       }
     });
   }
@@ -101,9 +104,10 @@ class Gcs {
     north_east_ft_to_geodetic(kHome, NorthEastFt{north_ft, east_ft}, &lat, &lon);
     return frame([&](mavlink_message_t* m) {
       mavlink_msg_mission_item_int_pack_status(
-          255, 190, &tx_, m, 1, 1, seq, MAV_FRAME_GLOBAL_RELATIVE_ALT_INT, MAV_CMD_NAV_WAYPOINT, 0, 1, 0, 0, 0, 0,
-          static_cast<int32_t>(std::lround(lat * 1e7)), static_cast<int32_t>(std::lround(lon * 1e7)),
-          static_cast<float>(height_ft * 0.3048), MAV_MISSION_TYPE_MISSION);
+          255, 190, &tx_, m, 1, 1, seq, MAV_FRAME_GLOBAL_RELATIVE_ALT_INT, MAV_CMD_NAV_WAYPOINT, 0,
+          1, 0, 0, 0, 0, static_cast<int32_t>(std::lround(lat * 1e7)),
+          static_cast<int32_t>(std::lround(lon * 1e7)), static_cast<float>(height_ft * 0.3048),
+          MAV_MISSION_TYPE_MISSION);
     });
   }
 
@@ -162,7 +166,8 @@ TEST(Telemetry, TenHertzScheduleHoldsOverTenSimulatedSeconds) {
     b.core.set_telemetry(flying(), b.at(b.now_ms));
   }
   EXPECT_NEAR(static_cast<double>(of_type(msgs, MAVLINK_MSG_ID_ATTITUDE).size()), 100.0, 1.0);
-  EXPECT_NEAR(static_cast<double>(of_type(msgs, MAVLINK_MSG_ID_GLOBAL_POSITION_INT).size()), 100.0, 1.0);
+  EXPECT_NEAR(static_cast<double>(of_type(msgs, MAVLINK_MSG_ID_GLOBAL_POSITION_INT).size()), 100.0,
+              1.0);
   EXPECT_NEAR(static_cast<double>(of_type(msgs, MAVLINK_MSG_ID_HEARTBEAT).size()), 10.0, 1.0);
   const auto hb = of_type(msgs, MAVLINK_MSG_ID_HEARTBEAT).front();
   EXPECT_EQ(mavlink_msg_heartbeat_get_type(&hb), MAV_TYPE_FIXED_WING);
@@ -276,7 +281,8 @@ TEST(MissionUpload, NoHomeMeansDenied) {
   EXPECT_EQ(ack_of(acks[0]), MAV_MISSION_DENIED);
 }
 
-std::vector<uint8_t> param_set(const char* name, float value, uint8_t type = MAV_PARAM_TYPE_REAL32) {
+std::vector<uint8_t> param_set(const char* name, float value,
+                               uint8_t type = MAV_PARAM_TYPE_REAL32) {
   return Gcs().frame([&](mavlink_message_t* m) {
     char id[16] = {};  // the packer copies all 16 bytes; ids of 16 have no terminator
     std::memcpy(id, name, std::min(sizeof id, std::strlen(name)));
@@ -318,11 +324,13 @@ TEST(Parameters, RefusedSetIsEchoedWithTheOldValueAndTheReasonAsStatustext) {
   b.feed(param_set("mpf_radius", -5.0f));
   const auto requests = b.core.take_param_set_requests();
   ASSERT_EQ(requests.size(), 1u);
-  b.core.param_set_answered(requests[0], ParamSetAnswer{false, 0.0, "mpf_radius = -5 is outside [20, 5000]"});
+  b.core.param_set_answered(requests[0],
+                            ParamSetAnswer{false, 0.0, "mpf_radius = -5 is outside [20, 5000]"});
   const auto out = decode_all(b.core.take_frames());
   EXPECT_FLOAT_EQ(echoed_value(out, "mpf_radius"), kMpfRadiusAtStart);
   EXPECT_EQ(statustexts(out), "Param mpf_radius refused: mpf_radius = -5 is outside [20, 5000]");
-  EXPECT_EQ(mavlink_msg_statustext_get_severity(&of_type(out, MAVLINK_MSG_ID_STATUSTEXT)[0]), MAV_SEVERITY_WARNING);
+  EXPECT_EQ(mavlink_msg_statustext_get_severity(&of_type(out, MAVLINK_MSG_ID_STATUSTEXT)[0]),
+            MAV_SEVERITY_WARNING);
   EXPECT_EQ(b.core.counters().param_sets_refused, 1u);
 }
 
@@ -335,7 +343,8 @@ TEST(Parameters, SilentControllerMeansRefusedAfterTheTimeoutAndALateAcceptanceIs
   const auto out = b.run_for(200);  // past the 500 ms default
   const double old_value = b.core.params().at(b.core.params().find("KpLon", 5)).value;
   EXPECT_FLOAT_EQ(echoed_value(out, "KpLon"), static_cast<float>(old_value));
-  EXPECT_NE(statustexts(out).find("no answer from the controller"), std::string::npos) << statustexts(out);
+  EXPECT_NE(statustexts(out).find("no answer from the controller"), std::string::npos)
+      << statustexts(out);
   EXPECT_EQ(b.core.counters().param_sets_timed_out, 1u);
 
   // The controller did take it after all: the GCS must learn the value it now flies with.
@@ -376,7 +385,8 @@ TEST(Parameters, UnknownNameIsIgnoredAsTheProtocolHasNoNegativeAnswer) {
 
 TEST(Parameters, ListSendsEveryParameterWithItsIndex) {
   Bench b;
-  const auto out = b.feed(Gcs().frame([&](mavlink_message_t* m) { mavlink_msg_param_request_list_pack(255, 190, m, 1, 1); }));
+  const auto out = b.feed(Gcs().frame(
+      [&](mavlink_message_t* m) { mavlink_msg_param_request_list_pack(255, 190, m, 1, 1); }));
   const auto values = of_type(out, MAVLINK_MSG_ID_PARAM_VALUE);
   ASSERT_EQ(values.size(), controller_param_specs().size());
   EXPECT_EQ(mavlink_msg_param_value_get_param_index(&values.back()), values.size() - 1);
@@ -402,7 +412,8 @@ TEST(Commands, UnknownCommandIsUnsupported) {
 }
 
 // The text a decision status produced (its chunks joined), and its severity.
-std::pair<std::string, uint8_t> announced(Bench& b, uint8_t controller, uint32_t reasons_at_switch = 0) {
+std::pair<std::string, uint8_t> announced(Bench& b, uint8_t controller,
+                                          uint32_t reasons_at_switch = 0) {
   DecisionInfo d;
   d.controller = controller;
   d.reasons_at_switch = reasons_at_switch;
@@ -445,10 +456,12 @@ TEST(Decision, EveryStepOfARecoveryNamesItsReason) {
   announced(b, 0);
   EXPECT_EQ(announced(b, 1, 2048).first, "Controller HP->HA: ESTIMATOR");
   const auto recovering = announced(b, 2);
-  EXPECT_EQ(recovering.first, "Controller HA->RECOVERING: HP command valid, watching its stability");
+  EXPECT_EQ(recovering.first,
+            "Controller HA->RECOVERING: HP command valid, watching its stability");
   EXPECT_EQ(recovering.second, MAV_SEVERITY_NOTICE);
   EXPECT_EQ(announced(b, 1, 1).first, "Controller RECOVERING->HA: NO_COMMAND");
-  EXPECT_EQ(announced(b, 2).first, "Controller HA->RECOVERING: HP command valid, watching its stability");
+  EXPECT_EQ(announced(b, 2).first,
+            "Controller HA->RECOVERING: HP command valid, watching its stability");
   EXPECT_EQ(announced(b, 0).first, "Controller RECOVERING->HP: HP command stable");
 }
 
@@ -464,9 +477,11 @@ TEST(Decision, PilotTakingAndHandingBackCommandIsAnnouncedAsThePicSwitch) {
   Bench b;
   announced(b, 0);
   EXPECT_EQ(announced(b, 4).first, "Controller HP->MANUAL: pilot in command (PIC switch)");
-  EXPECT_EQ(announced(b, 1, 4096).first, "Controller MANUAL->HA: PIC switch to computer; GROUND_COMMAND");
+  EXPECT_EQ(announced(b, 1, 4096).first,
+            "Controller MANUAL->HA: PIC switch to computer; GROUND_COMMAND");
   announced(b, 4);
-  EXPECT_EQ(announced(b, 1).first, "Controller MANUAL->HA: PIC switch to computer; no reason reported");
+  EXPECT_EQ(announced(b, 1).first,
+            "Controller MANUAL->HA: PIC switch to computer; no reason reported");
 }
 
 TEST(Decision, UnknownControllerValueIsStillAnnounced) {
@@ -567,11 +582,13 @@ TEST(MissionUpload, GcsThatAnswersOnlyMissionRequestGetsItsUploadThrough) {
   const auto legacy = of_type(retry, MAVLINK_MSG_ID_MISSION_REQUEST);
   ASSERT_EQ(legacy.size(), 1u);
   EXPECT_EQ(mavlink_msg_mission_request_get_seq(&legacy[0]), 0);
-  auto out = b.feed(gcs.waypoint_in(0, MAV_FRAME_GLOBAL_RELATIVE_ALT, lat_of(0), kHome.lon_deg, 60.0f));
+  auto out =
+      b.feed(gcs.waypoint_in(0, MAV_FRAME_GLOBAL_RELATIVE_ALT, lat_of(0), kHome.lon_deg, 60.0f));
   const auto next = of_type(out, MAVLINK_MSG_ID_MISSION_REQUEST);
   ASSERT_EQ(next.size(), 1u) << "keeps asking the way that was answered";
   EXPECT_EQ(mavlink_msg_mission_request_get_seq(&next[0]), 1);
-  out = b.feed(gcs.waypoint_in(1, MAV_FRAME_GLOBAL_RELATIVE_ALT, lat_of(500), kHome.lon_deg, 60.0f));
+  out =
+      b.feed(gcs.waypoint_in(1, MAV_FRAME_GLOBAL_RELATIVE_ALT, lat_of(500), kHome.lon_deg, 60.0f));
   const auto acks = of_type(out, MAVLINK_MSG_ID_MISSION_ACK);
   ASSERT_EQ(acks.size(), 1u);
   EXPECT_EQ(ack_of(acks[0]), MAV_MISSION_ACCEPTED);
@@ -580,26 +597,37 @@ TEST(MissionUpload, GcsThatAnswersOnlyMissionRequestGetsItsUploadThrough) {
 TEST(MissionDownload, EachItemComesBackInTheFrameItWasUploadedIn) {
   // Every global frame, in both item messages, 200 ft above home; downloads answer in the
   // uploaded frame (a MISSION_ITEM, which carries degrees, gives 5 and 6 as 0 and 3).
-  struct Case { uint8_t frame; bool legacy; uint8_t int_frame; uint8_t float_frame; };
+  struct Case {
+    uint8_t frame;
+    bool legacy;
+    uint8_t int_frame;
+    uint8_t float_frame;
+  };
   const Case cases[] = {
       {MAV_FRAME_GLOBAL, false, MAV_FRAME_GLOBAL, MAV_FRAME_GLOBAL},
-      {MAV_FRAME_GLOBAL_RELATIVE_ALT, false, MAV_FRAME_GLOBAL_RELATIVE_ALT, MAV_FRAME_GLOBAL_RELATIVE_ALT},
+      {MAV_FRAME_GLOBAL_RELATIVE_ALT, false, MAV_FRAME_GLOBAL_RELATIVE_ALT,
+       MAV_FRAME_GLOBAL_RELATIVE_ALT},
       {MAV_FRAME_GLOBAL_INT, false, MAV_FRAME_GLOBAL_INT, MAV_FRAME_GLOBAL},
-      {MAV_FRAME_GLOBAL_RELATIVE_ALT_INT, false, MAV_FRAME_GLOBAL_RELATIVE_ALT_INT, MAV_FRAME_GLOBAL_RELATIVE_ALT},
+      {MAV_FRAME_GLOBAL_RELATIVE_ALT_INT, false, MAV_FRAME_GLOBAL_RELATIVE_ALT_INT,
+       MAV_FRAME_GLOBAL_RELATIVE_ALT},
       {MAV_FRAME_GLOBAL, true, MAV_FRAME_GLOBAL, MAV_FRAME_GLOBAL},
-      {MAV_FRAME_GLOBAL_RELATIVE_ALT, true, MAV_FRAME_GLOBAL_RELATIVE_ALT, MAV_FRAME_GLOBAL_RELATIVE_ALT},
+      {MAV_FRAME_GLOBAL_RELATIVE_ALT, true, MAV_FRAME_GLOBAL_RELATIVE_ALT,
+       MAV_FRAME_GLOBAL_RELATIVE_ALT},
       {MAV_FRAME_GLOBAL_INT, true, MAV_FRAME_GLOBAL_INT, MAV_FRAME_GLOBAL},
-      {MAV_FRAME_GLOBAL_RELATIVE_ALT_INT, true, MAV_FRAME_GLOBAL_RELATIVE_ALT_INT, MAV_FRAME_GLOBAL_RELATIVE_ALT},
+      {MAV_FRAME_GLOBAL_RELATIVE_ALT_INT, true, MAV_FRAME_GLOBAL_RELATIVE_ALT_INT,
+       MAV_FRAME_GLOBAL_RELATIVE_ALT},
   };
   for (const Case& c : cases) {
-    SCOPED_TRACE(testing::Message() << "frame " << int(c.frame) << (c.legacy ? " MISSION_ITEM" : " MISSION_ITEM_INT"));
+    SCOPED_TRACE(testing::Message()
+                 << "frame " << int(c.frame) << (c.legacy ? " MISSION_ITEM" : " MISSION_ITEM_INT"));
     Bench b;
     Gcs gcs;
     const bool absolute = c.frame == MAV_FRAME_GLOBAL || c.frame == MAV_FRAME_GLOBAL_INT;
     const float z_m = static_cast<float>((absolute ? kHome.alt_m : 0.0) + 200.0 * 0.3048);
     b.feed(gcs.count(1));
-    const auto acks = of_type(b.feed(gcs.waypoint_in(0, c.frame, lat_of(300), kHome.lon_deg, z_m, c.legacy)),
-                              MAVLINK_MSG_ID_MISSION_ACK);
+    const auto acks =
+        of_type(b.feed(gcs.waypoint_in(0, c.frame, lat_of(300), kHome.lon_deg, z_m, c.legacy)),
+                MAVLINK_MSG_ID_MISSION_ACK);
     ASSERT_EQ(acks.size(), 1u);
     ASSERT_EQ(ack_of(acks[0]), MAV_MISSION_ACCEPTED);
     const auto plans = b.core.take_way_plans();
@@ -607,11 +635,13 @@ TEST(MissionDownload, EachItemComesBackInTheFrameItWasUploadedIn) {
     EXPECT_NEAR(plans[0].height_ft[0], 200.0, 0.01);
     EXPECT_NEAR(plans[0].north_ft[0], 300.0, c.legacy ? 3.0 : 0.5);
 
-    const auto as_int = of_type(b.feed(gcs.request_item(0, false)), MAVLINK_MSG_ID_MISSION_ITEM_INT);
+    const auto as_int =
+        of_type(b.feed(gcs.request_item(0, false)), MAVLINK_MSG_ID_MISSION_ITEM_INT);
     ASSERT_EQ(as_int.size(), 1u);
     EXPECT_EQ(mavlink_msg_mission_item_int_get_frame(&as_int[0]), c.int_frame);
     EXPECT_FLOAT_EQ(mavlink_msg_mission_item_int_get_z(&as_int[0]), z_m);
-    EXPECT_NEAR(mavlink_msg_mission_item_int_get_x(&as_int[0]), lat_of(300) * 1e7, c.legacy ? 40 : 1);
+    EXPECT_NEAR(mavlink_msg_mission_item_int_get_x(&as_int[0]), lat_of(300) * 1e7,
+                c.legacy ? 40 : 1);
     const auto as_float = of_type(b.feed(gcs.request_item(0, true)), MAVLINK_MSG_ID_MISSION_ITEM);
     ASSERT_EQ(as_float.size(), 1u);
     EXPECT_EQ(mavlink_msg_mission_item_get_frame(&as_float[0]), c.float_frame);
@@ -625,11 +655,13 @@ TEST(MissionCurrent, CountsMissionItemsNotWaypoints) {
   Bench b;
   Gcs gcs;
   b.feed(gcs.count(4));
-  b.feed(gcs.waypoint_in(0, MAV_FRAME_GLOBAL, kHome.lat_deg, kHome.lon_deg, static_cast<float>(kHome.alt_m)));
+  b.feed(gcs.waypoint_in(0, MAV_FRAME_GLOBAL, kHome.lat_deg, kHome.lon_deg,
+                         static_cast<float>(kHome.alt_m)));
   b.feed(gcs.item(1, 300, 0, 200));
   b.feed(gcs.frame([&](mavlink_message_t* m) {
-    mavlink_msg_mission_item_int_pack(255, 190, m, 1, 1, 2, MAV_FRAME_MISSION, MAV_CMD_DO_CHANGE_SPEED, 0, 1, 0,
-                                      20.0f, -1, 0, 0, 0, 0, MAV_MISSION_TYPE_MISSION);
+    mavlink_msg_mission_item_int_pack(255, 190, m, 1, 1, 2, MAV_FRAME_MISSION,
+                                      MAV_CMD_DO_CHANGE_SPEED, 0, 1, 0, 20.0f, -1, 0, 0, 0, 0,
+                                      MAV_MISSION_TYPE_MISSION);
   }));
   const auto done = b.feed(gcs.item(3, 600, 0, 200));
   const auto acks = of_type(done, MAVLINK_MSG_ID_MISSION_ACK);
@@ -662,7 +694,8 @@ TEST(Modes, AvailableModesNameEveryControllerAndOnlyHpAndHaCanBeSelected) {
   const char* names[] = {"HP", "HA", "RECOVERING", "HA_LATCHED", "MANUAL"};
   for (uint32_t i = 0; i < 5; ++i) {
     EXPECT_EQ(mode_name(modes[i]), names[i]);
-    EXPECT_EQ(mavlink_msg_available_modes_get_custom_mode(&modes[i]), i);  // = DecisionStatus.controller
+    EXPECT_EQ(mavlink_msg_available_modes_get_custom_mode(&modes[i]),
+              i);  // = DecisionStatus.controller
     EXPECT_EQ(mavlink_msg_available_modes_get_mode_index(&modes[i]), i + 1);
     EXPECT_EQ(mavlink_msg_available_modes_get_number_modes(&modes[i]), 5);
     const bool selectable = (mavlink_msg_available_modes_get_properties(&modes[i]) &
@@ -674,7 +707,8 @@ TEST(Modes, AvailableModesNameEveryControllerAndOnlyHpAndHaCanBeSelected) {
   ASSERT_EQ(of_type(out, MAVLINK_MSG_ID_AVAILABLE_MODES).size(), 1u);
   EXPECT_EQ(mode_name(of_type(out, MAVLINK_MSG_ID_AVAILABLE_MODES)[0]), "HA_LATCHED");
   out = b.feed(Gcs().command(MAV_CMD_REQUEST_MESSAGE, MAVLINK_MSG_ID_AVAILABLE_MODES, 6));
-  EXPECT_EQ(mavlink_msg_command_ack_get_result(&of_type(out, MAVLINK_MSG_ID_COMMAND_ACK)[0]), MAV_RESULT_DENIED);
+  EXPECT_EQ(mavlink_msg_command_ack_get_result(&of_type(out, MAVLINK_MSG_ID_COMMAND_ACK)[0]),
+            MAV_RESULT_DENIED);
   EXPECT_TRUE(of_type(out, MAVLINK_MSG_ID_AVAILABLE_MODES).empty());
 }
 
@@ -705,11 +739,13 @@ TEST(Modes, HeartbeatAndCurrentModeAgreeOnWhoFliesAndAChangeIsSentAtOnce) {
   const auto now = of_type(decode_all(b.core.take_frames()), MAVLINK_MSG_ID_CURRENT_MODE);
   ASSERT_EQ(now.size(), 1u);
   EXPECT_EQ(mavlink_msg_current_mode_get_custom_mode(&now[0]), kControllerHp);
-  EXPECT_EQ(mavlink_msg_current_mode_get_intended_custom_mode(&now[0]), kControllerHa) << "the operator asked for the HA";
+  EXPECT_EQ(mavlink_msg_current_mode_get_intended_custom_mode(&now[0]), kControllerHa)
+      << "the operator asked for the HA";
   const auto hb = of_type(b.run_for(1100), MAVLINK_MSG_ID_HEARTBEAT);
   ASSERT_FALSE(hb.empty());
   EXPECT_TRUE(mavlink_msg_heartbeat_get_base_mode(&hb.back()) & MAV_MODE_FLAG_AUTO_ENABLED);
-  EXPECT_FALSE(mavlink_msg_heartbeat_get_base_mode(&hb.back()) & MAV_MODE_FLAG_MANUAL_INPUT_ENABLED);
+  EXPECT_FALSE(mavlink_msg_heartbeat_get_base_mode(&hb.back()) &
+               MAV_MODE_FLAG_MANUAL_INPUT_ENABLED);
 }
 
 TEST(Telemetry, NoGeofenceIsReportedAbsentAndHealthySoNoBreachIsShown) {
@@ -717,8 +753,13 @@ TEST(Telemetry, NoGeofenceIsReportedAbsentAndHealthySoNoBreachIsShown) {
   b.core.set_telemetry(flying(), b.at(b.now_ms));
   const auto status = of_type(b.run_for(200), MAVLINK_MSG_ID_SYS_STATUS);
   ASSERT_FALSE(status.empty());
-  EXPECT_EQ(mavlink_msg_sys_status_get_onboard_control_sensors_present(&status[0]) & MAV_SYS_STATUS_GEOFENCE, 0u);
-  EXPECT_EQ(mavlink_msg_sys_status_get_onboard_control_sensors_enabled(&status[0]) & MAV_SYS_STATUS_GEOFENCE, 0u);
-  EXPECT_EQ(mavlink_msg_sys_status_get_onboard_control_sensors_health(&status[0]) & MAV_SYS_STATUS_GEOFENCE,
+  EXPECT_EQ(mavlink_msg_sys_status_get_onboard_control_sensors_present(&status[0]) &
+                MAV_SYS_STATUS_GEOFENCE,
+            0u);
+  EXPECT_EQ(mavlink_msg_sys_status_get_onboard_control_sensors_enabled(&status[0]) &
+                MAV_SYS_STATUS_GEOFENCE,
+            0u);
+  EXPECT_EQ(mavlink_msg_sys_status_get_onboard_control_sensors_health(&status[0]) &
+                MAV_SYS_STATUS_GEOFENCE,
             static_cast<uint32_t>(MAV_SYS_STATUS_GEOFENCE));
 }

@@ -72,7 +72,8 @@ bool modem_to_vehicle(SerialTransport* link, int master) {
   if (write(master, in, sizeof in) != 2) return false;
   uint8_t got[16] = {};
   long total = 0;
-  for (int i = 0; i < 100 && total < 2; ++i) total += link->receive(got + total, sizeof got - total, 20);
+  for (int i = 0; i < 100 && total < 2; ++i)
+    total += link->receive(got + total, sizeof got - total, 20);
   return total == 2 && got[1] == 0x09;
 }
 

@@ -27,7 +27,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     arduino_link::RosserialFramer check(kMaxPayload, 0.05);
     std::vector<arduino_link::Frame> back;
     check.feed(again.data(), again.size(), 0.0, &back);
-    if (back.size() != 1 || back[0].topic_id != f.topic_id || back[0].payload != f.payload) std::abort();
+    if (back.size() != 1 || back[0].topic_id != f.topic_id || back[0].payload != f.payload)
+      std::abort();
   }
   const auto &c = framer.counters();
   if (c.frames_ok != frames.size()) std::abort();

@@ -25,8 +25,8 @@ void check_announcement(const Bytes &in) {
     if (why.empty()) std::abort();  // a refusal always says why: it goes into the warning
     return;
   }
-  if (a.topic_id < arduino_link::kFirstUserTopicId || a.name.empty() || !arduino_link::is_message_type(a.type) ||
-      !arduino_link::is_md5sum(a.md5)) {
+  if (a.topic_id < arduino_link::kFirstUserTopicId || a.name.empty() ||
+      !arduino_link::is_message_type(a.type) || !arduino_link::is_md5sum(a.md5)) {
     std::abort();
   }
   rosserial_msgs_TopicInfo info{};
@@ -37,7 +37,8 @@ void check_announcement(const Bytes &in) {
   info.buffer_size = a.buffer_size;
   Bytes out(in.size());
   std::size_t n = 0;
-  if (!rosserial_msgs_TopicInfo_serialize(&info, out.data(), out.size(), &n) || n != in.size() || out != in) {
+  if (!rosserial_msgs_TopicInfo_serialize(&info, out.data(), out.size(), &n) || n != in.size() ||
+      out != in) {
     std::abort();
   }
 }
@@ -50,13 +51,16 @@ void check_log(const Bytes &in) {
   msg.msg = HaRosString{log.text.data(), static_cast<uint32_t>(log.text.size())};
   Bytes out(in.size());
   std::size_t n = 0;
-  if (!rosserial_msgs_Log_serialize(&msg, out.data(), out.size(), &n) || n != in.size() || out != in) std::abort();
+  if (!rosserial_msgs_Log_serialize(&msg, out.data(), out.size(), &n) || n != in.size() ||
+      out != in)
+    std::abort();
 }
 
 void check_param_request(const Bytes &in) {
   std::string name;
   if (!arduino_link::decode_param_request(in, &name)) return;
-  if (name.size() + 4 != in.size() || std::memcmp(name.data(), in.data() + 4, name.size()) != 0) std::abort();
+  if (name.size() + 4 != in.size() || std::memcmp(name.data(), in.data() + 4, name.size()) != 0)
+    std::abort();
 }
 
 // Values taken from the bytes: counts (possibly over the limit), numbers, strings of any length.
@@ -89,9 +93,10 @@ void check_param_reply(const Bytes &in) {
   if (payload.size() > max_payload) std::abort();
   rosserial_msgs_RequestParamResponse back{};
   std::size_t used = 0;
-  if (!rosserial_msgs_RequestParamResponse_deserialize(&back, payload.data(), payload.size(), &used) ||
-      used != payload.size() || back.ints_count != v.ints.size() || back.floats_count != v.floats.size() ||
-      back.strings_count != v.strings.size()) {
+  if (!rosserial_msgs_RequestParamResponse_deserialize(&back, payload.data(), payload.size(),
+                                                       &used) ||
+      used != payload.size() || back.ints_count != v.ints.size() ||
+      back.floats_count != v.floats.size() || back.strings_count != v.strings.size()) {
     std::abort();
   }
   for (std::size_t k = 0; k < v.ints.size(); ++k) {

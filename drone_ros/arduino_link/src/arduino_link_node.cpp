@@ -88,7 +88,8 @@ void ArduinoLinkNode::try_open(const ros::WallTime &now) {
     opened = port_.open(params_.port, params_.baud, &error);
   }
   if (!opened) {
-    if (error != last_error_) ROS_WARN("arduino: cannot open %s: %s (retrying)", params_.port.c_str(), error.c_str());
+    if (error != last_error_)
+      ROS_WARN("arduino: cannot open %s: %s (retrying)", params_.port.c_str(), error.c_str());
     last_error_ = error;
     return;
   }
@@ -114,12 +115,23 @@ void ArduinoLinkNode::port_gone(const char *why) {
 
 void ArduinoLinkNode::handle_frame(const Frame &f) {
   switch (f.topic_id) {
-    case kIdPublisher: on_publisher_info(f); return;
-    case kIdSubscriber: on_subscriber_info(f); return;
-    case kIdTime: on_time_request(); return;
-    case kIdParameterRequest: on_param_request(f); return;
-    case kIdLog: on_log(f); return;
-    default: break;
+    case kIdPublisher:
+      on_publisher_info(f);
+      return;
+    case kIdSubscriber:
+      on_subscriber_info(f);
+      return;
+    case kIdTime:
+      on_time_request();
+      return;
+    case kIdParameterRequest:
+      on_param_request(f);
+      return;
+    case kIdLog:
+      on_log(f);
+      return;
+    default:
+      break;
   }
   std::lock_guard<std::mutex> lock(endpoints_mutex_);
   auto it = endpoints_.find(f.topic_id);
@@ -133,7 +145,8 @@ void ArduinoLinkNode::handle_frame(const Frame &f) {
 void ArduinoLinkNode::refuse(const char *what, const std::string &why) {
   ++counters_.bad_payload;
   // Throttled: a device stuck repeating a bad frame must not flood rosout; the counter has all.
-  ROS_WARN_THROTTLE(5.0, "arduino: dropped the device's %s: %s (counted as bad_payload)", what, why.c_str());
+  ROS_WARN_THROTTLE(5.0, "arduino: dropped the device's %s: %s (counted as bad_payload)", what,
+                    why.c_str());
 }
 
 bool ArduinoLinkNode::accept_announcement(const Frame &f, TopicAnnouncement *a) {
@@ -167,7 +180,8 @@ void ArduinoLinkNode::on_publisher_info(const Frame &f) {
   Endpoint ep = endpoint_for(info);
   std::lock_guard<std::mutex> lock(endpoints_mutex_);
   auto it = endpoints_.find(info.topic_id);
-  if (it != endpoints_.end() && it->second.pub && it->second.name == ep.name && it->second.md5 == ep.md5) {
+  if (it != endpoints_.end() && it->second.pub && it->second.name == ep.name &&
+      it->second.md5 == ep.md5) {
     return;  // the same device came back: keep the publisher, subscribers see no gap in topology
   }
   try {
@@ -175,7 +189,8 @@ void ArduinoLinkNode::on_publisher_info(const Frame &f) {
         nh_.resolveName(ep.name) == pwm_pub_.getTopic()) {
       if (ep.md5 != ros::message_traits::MD5Sum<drone_ros::pwm>::value()) {
         ++counters_.md5_mismatch;
-        ROS_ERROR("arduino: device's drone_ros/pwm md5 %s differs from ours; not publishing it", ep.md5.c_str());
+        ROS_ERROR("arduino: device's drone_ros/pwm md5 %s differs from ours; not publishing it",
+                  ep.md5.c_str());
         return;
       }
       ep.is_pwm = true;
@@ -197,7 +212,8 @@ void ArduinoLinkNode::on_publisher_info(const Frame &f) {
     refuse("publisher", ep.name + ": ROS did not advertise it");
     return;
   }
-  ROS_INFO("arduino: device publishes %s [%s] as id %u", ep.name.c_str(), ep.type.c_str(), info.topic_id);
+  ROS_INFO("arduino: device publishes %s [%s] as id %u", ep.name.c_str(), ep.type.c_str(),
+           info.topic_id);
   endpoints_[info.topic_id] = ep;
 }
 
@@ -219,7 +235,7 @@ void ArduinoLinkNode::on_subscriber_info(const Frame &f) {
   try {
     // TCP_NODELAY: a servo command must not wait for Nagle.
     ep.sub = nh_.subscribe<topic_tools::ShapeShifter>(ep.name, 10, cb, ros::VoidConstPtr(),
-                                                     ros::TransportHints().tcpNoDelay());
+                                                      ros::TransportHints().tcpNoDelay());
   } catch (const ros::Exception &e) {
     refuse("subscriber", ep.name + ": " + e.what());
     return;
@@ -228,7 +244,8 @@ void ArduinoLinkNode::on_subscriber_info(const Frame &f) {
   endpoints_[id] = ep;  // replaces (and so unsubscribes) an older subscriber on this id
 }
 
-void ArduinoLinkNode::on_ros_message(uint16_t topic_id, const topic_tools::ShapeShifter::ConstPtr &msg) {
+void ArduinoLinkNode::on_ros_message(uint16_t topic_id,
+                                     const topic_tools::ShapeShifter::ConstPtr &msg) {
   int32_t buffer_size = 0;
   {
     std::lock_guard<std::mutex> lock(endpoints_mutex_);
@@ -237,7 +254,8 @@ void ArduinoLinkNode::on_ros_message(uint16_t topic_id, const topic_tools::Shape
     if (msg->getMD5Sum() != it->second.md5) {
       ++counters_.md5_mismatch;
       ROS_WARN_THROTTLE(5.0, "arduino: %s carries %s, the device expects md5 %s; dropped",
-                        it->second.name.c_str(), msg->getDataType().c_str(), it->second.md5.c_str());
+                        it->second.name.c_str(), msg->getDataType().c_str(),
+                        it->second.md5.c_str());
       return;
     }
     buffer_size = it->second.buffer_size;
@@ -256,7 +274,8 @@ void ArduinoLinkNode::on_device_data(Endpoint &ep, const Frame &f) {
   if (ep.is_pwm) {
     drone_ros::pwm pwm;
     try {
-      ros::serialization::IStream in(const_cast<uint8_t *>(f.payload.data()), static_cast<uint32_t>(f.payload.size()));
+      ros::serialization::IStream in(const_cast<uint8_t *>(f.payload.data()),
+                                     static_cast<uint32_t>(f.payload.size()));
       ros::serialization::deserialize(in, pwm);
       if (in.getLength() != 0) throw ros::serialization::StreamOverrunException("trailing bytes");
     } catch (const ros::Exception &) {
@@ -275,7 +294,8 @@ void ArduinoLinkNode::on_device_data(Endpoint &ep, const Frame &f) {
   }
   topic_tools::ShapeShifter shape;
   shape.morph(ep.md5, ep.type, ep.definition(), "false");
-  ros::serialization::IStream in(const_cast<uint8_t *>(f.payload.data()), static_cast<uint32_t>(f.payload.size()));
+  ros::serialization::IStream in(const_cast<uint8_t *>(f.payload.data()),
+                                 static_cast<uint32_t>(f.payload.size()));
   shape.read(in);
   ep.pub.publish(shape);
 }
@@ -308,7 +328,9 @@ void ArduinoLinkNode::on_param_request(const Frame &f) {
     } catch (const ros::Exception &e) {
       why = e.what();
     }
-    if (!have) ROS_WARN("arduino: device asked for parameter %s, which is not set %s", name.c_str(), why.c_str());
+    if (!have)
+      ROS_WARN("arduino: device asked for parameter %s, which is not set %s", name.c_str(),
+               why.c_str());
   }
   if (have) {
     std::vector<XmlRpc::XmlRpcValue> items;
@@ -319,18 +341,29 @@ void ArduinoLinkNode::on_param_request(const Frame &f) {
     }
     for (auto &v : items) {
       switch (v.getType()) {
-        case XmlRpc::XmlRpcValue::TypeInt: values.ints.push_back(static_cast<int>(v)); break;
-        case XmlRpc::XmlRpcValue::TypeBoolean: values.ints.push_back(static_cast<bool>(v) ? 1 : 0); break;
-        case XmlRpc::XmlRpcValue::TypeDouble: values.floats.push_back(static_cast<float>(static_cast<double>(v))); break;
-        case XmlRpc::XmlRpcValue::TypeString: values.strings.push_back(static_cast<std::string>(v)); break;
-        default: break;  // structs, dates, binary: rosserial has no way to carry them
+        case XmlRpc::XmlRpcValue::TypeInt:
+          values.ints.push_back(static_cast<int>(v));
+          break;
+        case XmlRpc::XmlRpcValue::TypeBoolean:
+          values.ints.push_back(static_cast<bool>(v) ? 1 : 0);
+          break;
+        case XmlRpc::XmlRpcValue::TypeDouble:
+          values.floats.push_back(static_cast<float>(static_cast<double>(v)));
+          break;
+        case XmlRpc::XmlRpcValue::TypeString:
+          values.strings.push_back(static_cast<std::string>(v));
+          break;
+        default:
+          break;  // structs, dates, binary: rosserial has no way to carry them
       }
     }
   }
   std::vector<uint8_t> payload;
   if (!encode_param_reply(values, static_cast<std::size_t>(params_.max_payload), &payload, &why)) {
-    ROS_WARN("arduino: parameter %s cannot go to the device (%s); answering not set", name.c_str(), why.c_str());
-    (void)encode_param_reply(ParamValues{}, static_cast<std::size_t>(params_.max_payload), &payload, &why);
+    ROS_WARN("arduino: parameter %s cannot go to the device (%s); answering not set", name.c_str(),
+             why.c_str());
+    (void)encode_param_reply(ParamValues{}, static_cast<std::size_t>(params_.max_payload), &payload,
+                             &why);
   }
   (void)send(kIdParameterRequest, payload);  // always answer: ros_lib waits for a reply
 }
@@ -343,11 +376,21 @@ void ArduinoLinkNode::on_log(const Frame &f) {
   }
   const std::string text = "[HA] " + log.text;
   switch (log.level) {
-    case ROSSERIAL_MSGS_LOG_ROSDEBUG: ROS_DEBUG("%s", text.c_str()); break;
-    case ROSSERIAL_MSGS_LOG_INFO: ROS_INFO("%s", text.c_str()); break;
-    case ROSSERIAL_MSGS_LOG_WARN: ROS_WARN("%s", text.c_str()); break;
-    case ROSSERIAL_MSGS_LOG_ERROR: ROS_ERROR("%s", text.c_str()); break;
-    default: ROS_FATAL("%s", text.c_str()); break;  // FATAL, or a level from a newer device
+    case ROSSERIAL_MSGS_LOG_ROSDEBUG:
+      ROS_DEBUG("%s", text.c_str());
+      break;
+    case ROSSERIAL_MSGS_LOG_INFO:
+      ROS_INFO("%s", text.c_str());
+      break;
+    case ROSSERIAL_MSGS_LOG_WARN:
+      ROS_WARN("%s", text.c_str());
+      break;
+    case ROSSERIAL_MSGS_LOG_ERROR:
+      ROS_ERROR("%s", text.c_str());
+      break;
+    default:
+      ROS_FATAL("%s", text.c_str());
+      break;  // FATAL, or a level from a newer device
   }
 }
 
@@ -366,7 +409,8 @@ bool ArduinoLinkNode::send_raw(const std::vector<uint8_t> &bytes) {
 
 void ArduinoLinkNode::update_link_state(const ros::WallTime &now) {
   framer_.poll(now.toSec());
-  const bool up = port_.is_open() && negotiated_ && (now - last_rx_).toSec() < params_.link_timeout_s;
+  const bool up =
+      port_.is_open() && negotiated_ && (now - last_rx_).toSec() < params_.link_timeout_s;
   if (up && !link_up_) {
     last_gap_s_ = (now - lost_since_).toSec();
     ROS_INFO("arduino: HA link up (gap %.3f s)", last_gap_s_);
@@ -395,7 +439,8 @@ void ArduinoLinkNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper &stat
   if (link_up_) {
     stat.summary(DiagnosticStatus::OK, "HA link up");
   } else {
-    stat.summaryf(DiagnosticStatus::ERROR, "HA link lost for %.1f s", (ros::WallTime::now() - lost_since_).toSec());
+    stat.summaryf(DiagnosticStatus::ERROR, "HA link lost for %.1f s",
+                  (ros::WallTime::now() - lost_since_).toSec());
   }
   const FramerCounters &fc = framer_.counters();
   stat.add("port", params_.port);

@@ -27,13 +27,13 @@ namespace arduino_link {
 
 // Atomics: subscriber callbacks (spinner thread) count too.
 struct LinkCounters {
-  std::atomic<uint64_t> unknown_topic{0};   // data on an id the device never announced
-  std::atomic<uint64_t> bad_payload{0};     // a valid frame whose payload does not decode, or
-                                            // announces a topic ROS would refuse
-  std::atomic<uint64_t> md5_mismatch{0};    // device and ROS disagree on a type
-  std::atomic<uint64_t> tx_failed{0};       // a frame that could not be written
-  std::atomic<uint64_t> tx_too_big{0};      // a ROS message larger than the device's buffer
-  std::atomic<uint64_t> outages{0};         // link up -> down transitions
+  std::atomic<uint64_t> unknown_topic{0};  // data on an id the device never announced
+  std::atomic<uint64_t> bad_payload{0};    // a valid frame whose payload does not decode, or
+                                           // announces a topic ROS would refuse
+  std::atomic<uint64_t> md5_mismatch{0};   // device and ROS disagree on a type
+  std::atomic<uint64_t> tx_failed{0};      // a frame that could not be written
+  std::atomic<uint64_t> tx_too_big{0};     // a ROS message larger than the device's buffer
+  std::atomic<uint64_t> outages{0};        // link up -> down transitions
   std::atomic<uint64_t> port_opens{0};
   std::atomic<uint64_t> commands_forwarded{0};
 };

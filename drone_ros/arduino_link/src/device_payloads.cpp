@@ -24,7 +24,8 @@ bool is_base_name(const std::string &s, std::size_t begin, std::size_t end) {
 
 bool is_message_type(const std::string &type) {
   const std::size_t slash = type.find('/');
-  return slash != std::string::npos && is_base_name(type, 0, slash) && is_base_name(type, slash + 1, type.size());
+  return slash != std::string::npos && is_base_name(type, 0, slash) &&
+         is_base_name(type, slash + 1, type.size());
 }
 
 bool is_md5sum(const std::string &md5) {
@@ -35,10 +36,12 @@ bool is_md5sum(const std::string &md5) {
   return true;
 }
 
-bool decode_topic_announcement(const std::vector<uint8_t> &payload, TopicAnnouncement *out, std::string *why) {
+bool decode_topic_announcement(const std::vector<uint8_t> &payload, TopicAnnouncement *out,
+                               std::string *why) {
   rosserial_msgs_TopicInfo info;
   std::size_t used = 0;
-  if (!rosserial_msgs_TopicInfo_deserialize(&info, payload.data(), payload.size(), &used) || used != payload.size()) {
+  if (!rosserial_msgs_TopicInfo_deserialize(&info, payload.data(), payload.size(), &used) ||
+      used != payload.size()) {
     *why = "not a rosserial_msgs/TopicInfo";
     return false;
   }
@@ -68,7 +71,8 @@ bool decode_topic_announcement(const std::vector<uint8_t> &payload, TopicAnnounc
 bool decode_device_log(const std::vector<uint8_t> &payload, DeviceLog *out) {
   rosserial_msgs_Log log;
   std::size_t used = 0;
-  if (!rosserial_msgs_Log_deserialize(&log, payload.data(), payload.size(), &used) || used != payload.size()) {
+  if (!rosserial_msgs_Log_deserialize(&log, payload.data(), payload.size(), &used) ||
+      used != payload.size()) {
     return false;
   }
   out->level = log.level;
@@ -79,7 +83,8 @@ bool decode_device_log(const std::vector<uint8_t> &payload, DeviceLog *out) {
 bool decode_param_request(const std::vector<uint8_t> &payload, std::string *name) {
   rosserial_msgs_RequestParamRequest req;
   std::size_t used = 0;
-  if (!rosserial_msgs_RequestParamRequest_deserialize(&req, payload.data(), payload.size(), &used) ||
+  if (!rosserial_msgs_RequestParamRequest_deserialize(&req, payload.data(), payload.size(),
+                                                      &used) ||
       used != payload.size()) {
     return false;
   }
@@ -89,8 +94,8 @@ bool decode_param_request(const std::vector<uint8_t> &payload, std::string *name
 
 std::size_t max_param_values_per_type() { return HA_MSGS_VAR_ARRAY_CAP; }
 
-bool encode_param_reply(const ParamValues &values, std::size_t max_payload, std::vector<uint8_t> *payload,
-                        std::string *why) {
+bool encode_param_reply(const ParamValues &values, std::size_t max_payload,
+                        std::vector<uint8_t> *payload, std::string *why) {
   const std::size_t cap = max_param_values_per_type();
   if (values.ints.size() > cap || values.floats.size() > cap || values.strings.size() > cap) {
     *why = "more than " + std::to_string(cap) + " values of one type";

@@ -28,7 +28,8 @@ struct TopicAnnouncement {
 // Decodes a TopicInfo payload and checks what ROS would refuse: the whole payload used, a user
 // topic id, a non-empty name, a type "package/Message", a 32-hex-digit md5sum. False (with the
 // reason in *why) for anything else.
-bool decode_topic_announcement(const std::vector<uint8_t> &payload, TopicAnnouncement *out, std::string *why);
+bool decode_topic_announcement(const std::vector<uint8_t> &payload, TopicAnnouncement *out,
+                               std::string *why);
 
 // "package/Message" with both parts legal ROS resource names (a letter, then letters, digits, _).
 bool is_message_type(const std::string &type);
@@ -56,8 +57,8 @@ struct ParamValues {
 std::size_t max_param_values_per_type();
 // Serializes the reply; false (with the reason in *why) if it holds more values per type than the
 // limit or does not fit max_payload bytes. An empty ParamValues is the "not set" reply.
-bool encode_param_reply(const ParamValues &values, std::size_t max_payload, std::vector<uint8_t> *payload,
-                        std::string *why);
+bool encode_param_reply(const ParamValues &values, std::size_t max_payload,
+                        std::vector<uint8_t> *payload, std::string *why);
 
 }  // namespace arduino_link
 

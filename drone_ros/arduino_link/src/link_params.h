@@ -10,13 +10,13 @@ namespace arduino_link {
 
 struct LinkParams {
   std::string port = "/dev/ttyACM0";
-  int baud = 250000;                   // programming port (16U2 USB-serial); the native port ignores it
-  double link_timeout_s = 1.0;         // no valid frame for this long: link lost
-  double reopen_period_s = 0.5;        // how often to retry opening a missing port
-  double topic_request_period_s = 1.0; // re-ask for topics while the device is silent
-  double frame_timeout_s = 0.05;       // a started frame must complete within this
-  int max_payload = 1024;              // longer announced frames are corruption
-  double lost_pwm_rate_hz = 10.0;      // /pwm with usbstatus 0 while the link is down
+  int baud = 250000;             // programming port (16U2 USB-serial); the native port ignores it
+  double link_timeout_s = 1.0;   // no valid frame for this long: link lost
+  double reopen_period_s = 0.5;  // how often to retry opening a missing port
+  double topic_request_period_s = 1.0;  // re-ask for topics while the device is silent
+  double frame_timeout_s = 0.05;        // a started frame must complete within this
+  int max_payload = 1024;               // longer announced frames are corruption
+  double lost_pwm_rate_hz = 10.0;       // /pwm with usbstatus 0 while the link is down
 };
 
 // Reads ~port, ~baud, ... ; false (with the reason in *error) if any value is unusable.

@@ -48,9 +48,11 @@ Entry entry() {
 const KnownType *find_known_type(const std::string &type, const std::string &md5) {
   // The HA's own types, and the std_msgs a stock rosserial_arduino sketch is most likely to use.
   static const Entry kKnown[] = {
-      entry<drone_ros::DecisionStatus>(), entry<drone_ros::pwm>(),     entry<drone_ros::ServoCommand>(),
-      entry<drone_ros::OperatorCommand>(), entry<drone_ros::HomePosition>(), entry<std_msgs::Time>(),     entry<std_msgs::String>(),
-      entry<std_msgs::Float32>(),          entry<std_msgs::Int32>(),    entry<std_msgs::Bool>(),
+      entry<drone_ros::DecisionStatus>(), entry<drone_ros::pwm>(),
+      entry<drone_ros::ServoCommand>(),   entry<drone_ros::OperatorCommand>(),
+      entry<drone_ros::HomePosition>(),   entry<std_msgs::Time>(),
+      entry<std_msgs::String>(),          entry<std_msgs::Float32>(),
+      entry<std_msgs::Int32>(),           entry<std_msgs::Bool>(),
   };
   for (const Entry &e : kKnown) {
     if (e.type == type && e.md5 == md5) return &e.known;

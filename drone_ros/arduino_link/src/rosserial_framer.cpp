@@ -25,7 +25,8 @@ void RosserialFramer::poll(double now_s) {
   }
 }
 
-void RosserialFramer::feed(const uint8_t *data, std::size_t len, double now_s, std::vector<Frame> *out) {
+void RosserialFramer::feed(const uint8_t *data, std::size_t len, double now_s,
+                           std::vector<Frame> *out) {
   poll(now_s);
   for (std::size_t i = 0; i < len; ++i) {
     step(data[i], now_s, out);

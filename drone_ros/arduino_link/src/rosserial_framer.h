@@ -18,12 +18,12 @@ struct Frame {
 
 struct FramerCounters {
   uint64_t frames_ok = 0;
-  uint64_t bytes_skipped = 0;        // garbage where a sync byte was due
-  uint64_t bad_protocol = 0;         // another protocol version (rosserial v1 sends 0xFF)
+  uint64_t bytes_skipped = 0;  // garbage where a sync byte was due
+  uint64_t bad_protocol = 0;   // another protocol version (rosserial v1 sends 0xFF)
   uint64_t bad_length_checksum = 0;
-  uint64_t oversized = 0;            // announced length above the limit
-  uint64_t bad_checksum = 0;         // bit flips in topic or payload
-  uint64_t timeouts = 0;             // frame stopped arriving mid-way
+  uint64_t oversized = 0;     // announced length above the limit
+  uint64_t bad_checksum = 0;  // bit flips in topic or payload
+  uint64_t timeouts = 0;      // frame stopped arriving mid-way
   uint64_t dropped() const {
     return bad_protocol + bad_length_checksum + oversized + bad_checksum + timeouts;
   }
@@ -45,7 +45,17 @@ class RosserialFramer {
   const FramerCounters &counters() const { return counters_; }
 
  private:
-  enum class State { kSync, kProtocol, kLenLo, kLenHi, kLenChecksum, kTopicLo, kTopicHi, kPayload, kChecksum };
+  enum class State {
+    kSync,
+    kProtocol,
+    kLenLo,
+    kLenHi,
+    kLenChecksum,
+    kTopicLo,
+    kTopicHi,
+    kPayload,
+    kChecksum
+  };
   void step(uint8_t byte, double now_s, std::vector<Frame> *out);
 
   std::size_t max_payload_;

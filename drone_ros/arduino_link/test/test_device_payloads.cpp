@@ -28,8 +28,8 @@ void put_string(Bytes *b, const std::string &s) {
   b->insert(b->end(), s.begin(), s.end());
 }
 // uint16 topic_id, string topic_name, string message_type, string md5sum, int32 buffer_size.
-Bytes topic_info(uint16_t id, const std::string &name, const std::string &type, const std::string &md5,
-                 int32_t buffer_size = 512) {
+Bytes topic_info(uint16_t id, const std::string &name, const std::string &type,
+                 const std::string &md5, int32_t buffer_size = 512) {
   Bytes b{static_cast<uint8_t>(id & 0xFF), static_cast<uint8_t>(id >> 8)};
   put_string(&b, name);
   put_string(&b, type);
@@ -51,7 +51,9 @@ TEST(DevicePayloads, AStockSketchsPublisherAnnouncementIsTakenWhole) {
   // ros_lib numbers the first publisher 125 (100 + 25 subscriber slots), buffer 512 on a Due.
   TopicAnnouncement a;
   std::string why;
-  ASSERT_TRUE(decode_topic_announcement(topic_info(125, "chatter", "std_msgs/String", kStringMd5), &a, &why)) << why;
+  ASSERT_TRUE(decode_topic_announcement(topic_info(125, "chatter", "std_msgs/String", kStringMd5),
+                                        &a, &why))
+      << why;
   EXPECT_EQ(a.topic_id, 125);
   EXPECT_EQ(a.name, "chatter");
   EXPECT_EQ(a.type, "std_msgs/String");
@@ -78,15 +80,16 @@ TEST(DevicePayloads, ReservedTopicIdsCannotBeAnnounced) {
     EXPECT_TRUE(refused(topic_info(id, "t", "std_msgs/String", kStringMd5), &why)) << id;
   }
   TopicAnnouncement a;
-  EXPECT_TRUE(decode_topic_announcement(topic_info(100, "t", "std_msgs/String", kStringMd5), &a, &why));
+  EXPECT_TRUE(
+      decode_topic_announcement(topic_info(100, "t", "std_msgs/String", kStringMd5), &a, &why));
 }
 
 TEST(DevicePayloads, MessageTypesArePackageSlashMessage) {
   EXPECT_TRUE(arduino_link::is_message_type("std_msgs/String"));
   EXPECT_TRUE(arduino_link::is_message_type("drone_ros/pwm"));
   EXPECT_TRUE(arduino_link::is_message_type("a1/B_2"));
-  for (const char *bad : {"", "/", "String", "std_msgs/", "/String", "std_msgs/String/x", "1pkg/M", "pkg/1M",
-                          "pkg/M sg", "pkg/M!", "std msgs/String"}) {
+  for (const char *bad : {"", "/", "String", "std_msgs/", "/String", "std_msgs/String/x", "1pkg/M",
+                          "pkg/1M", "pkg/M sg", "pkg/M!", "std msgs/String"}) {
     EXPECT_FALSE(arduino_link::is_message_type(bad)) << bad;
   }
 }
@@ -116,7 +119,8 @@ TEST(DevicePayloads, DeviceLogsDecodeAtEveryLevelAndTruncationsAreRefused) {
     EXPECT_EQ(log.level, level);
     EXPECT_EQ(log.text, "battery low");
     for (std::size_t n = 0; n < b.size(); ++n) {
-      EXPECT_FALSE(decode_device_log(Bytes(b.begin(), b.begin() + static_cast<long>(n)), &log)) << n;
+      EXPECT_FALSE(decode_device_log(Bytes(b.begin(), b.begin() + static_cast<long>(n)), &log))
+          << n;
     }
   }
 }

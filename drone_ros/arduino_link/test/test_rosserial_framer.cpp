@@ -40,7 +40,8 @@ const Bytes kPayload{0x10, 0xFF, 0xFE, 0x00, 0x7F};  // sync-like bytes inside t
 }  // namespace
 
 TEST(HostFramer, DocumentedHostFramesAreByteExact) {
-  EXPECT_EQ(arduino_link::topic_request_frame(), (Bytes{0xFF, 0xFE, 0x00, 0x00, 0xFF, 0x00, 0x00, 0xFF}));
+  EXPECT_EQ(arduino_link::topic_request_frame(),
+            (Bytes{0xFF, 0xFE, 0x00, 0x00, 0xFF, 0x00, 0x00, 0xFF}));
   EXPECT_EQ(arduino_link::tx_stop_frame(), (Bytes{0xFF, 0xFE, 0x00, 0x00, 0xFF, 0x0B, 0x00, 0xF4}));
   EXPECT_EQ(encode_frame(125, kPayload.data(), kPayload.size()), spec_frame(125, kPayload));
 }
@@ -62,7 +63,8 @@ TEST(HostFramer, HandshakeBothWaysWithTheDueSide) {
   ha_link_receive(&link, request.data(), request.size(), 0u);
   Host host;
   host.feed(wire.bytes);
-  ASSERT_EQ(host.frames.size(), 6u);  // pwm, decision_status, home; servo_op, operator_command; time
+  ASSERT_EQ(host.frames.size(),
+            6u);  // pwm, decision_status, home; servo_op, operator_command; time
   EXPECT_EQ(host.frames[0].topic_id, 0u);
   EXPECT_EQ(host.frames[2].topic_id, 0u);
   EXPECT_EQ(host.frames[3].topic_id, 1u);

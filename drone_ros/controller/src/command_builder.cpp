@@ -41,8 +41,8 @@ drone_ros::ServoCommand build_servo_command(uint32_t seq, const ros::Time &stamp
   // The HA flies the command only if the GNC itself vouches for it.
   cmd.estimator_converged = out.estimator_converged != 0 && out.command_valid != 0;
   cmd.sensor_links_healthy = links_healthy && out.inputs_finite != 0;
-  const float values[] = {cmd.throttle, cmd.elevator_deg, cmd.aileron_deg, cmd.rudder_deg,
-                          cmd.alpha_est_deg, cmd.beta_est_deg};
+  const float values[] = {cmd.throttle,   cmd.elevator_deg,  cmd.aileron_deg,
+                          cmd.rudder_deg, cmd.alpha_est_deg, cmd.beta_est_deg};
   for (float v : values) {
     if (!std::isfinite(v)) {
       cmd.throttle = static_cast<float>(throttle_min);

@@ -11,7 +11,6 @@
 
 namespace controller {
 
-
 bool load_params(const ros::NodeHandle &pnh, ControllerParams *params, ParamValues *values,
                  std::string *frame_id, std::string *error) {
   const ParamLookup lookup = [&pnh](const std::string &key, double *value) {
@@ -20,10 +19,17 @@ bool load_params(const ros::NodeHandle &pnh, ControllerParams *params, ParamValu
       return false;
     }
     switch (v.getType()) {
-      case XmlRpc::XmlRpcValue::TypeDouble: *value = static_cast<double>(v); return true;
-      case XmlRpc::XmlRpcValue::TypeInt: *value = static_cast<int>(v); return true;
-      case XmlRpc::XmlRpcValue::TypeBoolean: *value = static_cast<bool>(v) ? 1.0 : 0.0; return true;
-      default: return false;
+      case XmlRpc::XmlRpcValue::TypeDouble:
+        *value = static_cast<double>(v);
+        return true;
+      case XmlRpc::XmlRpcValue::TypeInt:
+        *value = static_cast<int>(v);
+        return true;
+      case XmlRpc::XmlRpcValue::TypeBoolean:
+        *value = static_cast<bool>(v) ? 1.0 : 0.0;
+        return true;
+      default:
+        return false;
     }
   };
   if (!build_controller_params(lookup, params, error, values)) {
@@ -36,8 +42,9 @@ bool load_params(const ros::NodeHandle &pnh, ControllerParams *params, ParamValu
   return true;
 }
 
-ControllerNode::ControllerNode(ros::NodeHandle &nh, ros::NodeHandle &pnh, const ControllerParams &params,
-                               const ParamValues &values, const std::string &frame_id)
+ControllerNode::ControllerNode(ros::NodeHandle &nh, ros::NodeHandle &pnh,
+                               const ControllerParams &params, const ParamValues &values,
+                               const std::string &frame_id)
     : pnh_(pnh), params_(params), values_(values), frame_id_(frame_id), board_(params) {
   if (gnc_initialize(&params_.gnc) != 0) {
     throw std::runtime_error("the GNC refused its parameters");
@@ -47,7 +54,8 @@ ControllerNode::ControllerNode(ros::NodeHandle &nh, ros::NodeHandle &pnh, const 
   subs_.push_back(nh.subscribe<drone_ros::HomePosition>(
       "/home", 1, [this](const drone_ros::HomePosition::ConstPtr &m) {
         if (board_.on_home(m->latitude, m->longitude, m->altitude)) {
-          ROS_INFO("home %u from the HA: %.7f %.7f %.1f m", m->seq, m->latitude, m->longitude, m->altitude);
+          ROS_INFO("home %u from the HA: %.7f %.7f %.1f m", m->seq, m->latitude, m->longitude,
+                   m->altitude);
         } else {
           ROS_WARN("home %u dropped: position not finite or out of range", m->seq);
         }
@@ -56,23 +64,26 @@ ControllerNode::ControllerNode(ros::NodeHandle &nh, ros::NodeHandle &pnh, const 
   // step declares must reach a callback to be counted, so none may be pushed out of the queue.
   pnh_.param("lockstep", lockstep_, false);
   const uint32_t q = lockstep_ ? 100 : 1;
-  subs_.push_back(nh.subscribe<drone_ros::pwm>("/pwm", q, [this](const drone_ros::pwm::ConstPtr &m) {
-    board_.on_pwm(*m, now_s());
-    if (m->usbstatus != 0) {
-      on_input(kInPwm);  // the HA's report; the node's own link-down /pwm is nobody's step
-    }
-  }));
-  subs_.push_back(nh.subscribe<drone_ros::ins>("/ins", q, [this](const drone_ros::ins::ConstPtr &m) {
-    board_.on_ins(*m, now_s());
-    on_input(kInIns);
-  }));
-  subs_.push_back(nh.subscribe<drone_ros::way>("/way", 1, [this](const drone_ros::way::ConstPtr &m) {
-    if (board_.on_way(*m)) {
-      ROS_INFO("new flight plan: %d waypoints", m->fp);
-    } else {
-      ROS_WARN("flight plan dropped: fp out of range or a waypoint not finite");
-    }
-  }));
+  subs_.push_back(
+      nh.subscribe<drone_ros::pwm>("/pwm", q, [this](const drone_ros::pwm::ConstPtr &m) {
+        board_.on_pwm(*m, now_s());
+        if (m->usbstatus != 0) {
+          on_input(kInPwm);  // the HA's report; the node's own link-down /pwm is nobody's step
+        }
+      }));
+  subs_.push_back(
+      nh.subscribe<drone_ros::ins>("/ins", q, [this](const drone_ros::ins::ConstPtr &m) {
+        board_.on_ins(*m, now_s());
+        on_input(kInIns);
+      }));
+  subs_.push_back(
+      nh.subscribe<drone_ros::way>("/way", 1, [this](const drone_ros::way::ConstPtr &m) {
+        if (board_.on_way(*m)) {
+          ROS_INFO("new flight plan: %d waypoints", m->fp);
+        } else {
+          ROS_WARN("flight plan dropped: fp out of range or a waypoint not finite");
+        }
+      }));
   subs_.push_back(nh.subscribe<sensor_msgs::NavSatFix>(
       "/gps_position", q, [this](const sensor_msgs::NavSatFix::ConstPtr &m) {
         board_.on_gps_position(*m, now_s());
@@ -83,21 +94,25 @@ ControllerNode::ControllerNode(ros::NodeHandle &nh, ros::NodeHandle &pnh, const 
         board_.on_gps_velocity(*m, now_s());
         on_input(kInGpsVelocity);
       }));
-  subs_.push_back(nh.subscribe<sensor_msgs::Imu>(
-      "/imu_PQR_acceleration", q, [this](const sensor_msgs::Imu::ConstPtr &m) {
-        board_.on_imu(*m, now_s());
-        on_input(kInImu);
-      }));
+  subs_.push_back(nh.subscribe<sensor_msgs::Imu>("/imu_PQR_acceleration", q,
+                                                 [this](const sensor_msgs::Imu::ConstPtr &m) {
+                                                   board_.on_imu(*m, now_s());
+                                                   on_input(kInImu);
+                                                 }));
   subs_.push_back(nh.subscribe<geometry_msgs::Point>(
       "/attitude", q, [this](const geometry_msgs::Point::ConstPtr &m) {
         board_.on_attitude(*m, now_s());
         on_input(kInAttitude);
       }));
   subs_.push_back(nh.subscribe<sensor_msgs::FluidPressure>(
-      "/pressure", 1, [this](const sensor_msgs::FluidPressure::ConstPtr &m) { board_.on_pressure(m->fluid_pressure); }));
+      "/pressure", 1, [this](const sensor_msgs::FluidPressure::ConstPtr &m) {
+        board_.on_pressure(m->fluid_pressure);
+      }));
   subs_.push_back(nh.subscribe<sensor_msgs::BatteryState>(
-      "/battery_state", 1, [this](const sensor_msgs::BatteryState::ConstPtr &m) { board_.on_battery(m->voltage); }));
-  subs_.push_back(nh.subscribe("/decision_status", lockstep_ ? 100 : 10, &ControllerNode::on_decision, this));
+      "/battery_state", 1,
+      [this](const sensor_msgs::BatteryState::ConstPtr &m) { board_.on_battery(m->voltage); }));
+  subs_.push_back(
+      nh.subscribe("/decision_status", lockstep_ ? 100 : 10, &ControllerNode::on_decision, this));
   servo_pub_ = nh.advertise<drone_ros::ServoCommand>("/servo_op", 10);
   data_pub_ = nh.advertise<drone_ros::data>("/data", 10);
   hil_pub_ = nh.advertise<drone_ros::hil_data>("/to_hil", 10);
@@ -107,22 +122,21 @@ ControllerNode::ControllerNode(ros::NodeHandle &nh, ros::NodeHandle &pnh, const 
   diag_.setHardwareID(std::string("controller_") + GNC_AIRCRAFT_NAME);
   diag_.add("performance controller", this, &ControllerNode::diagnose);
   if (lockstep_) {
-    lockstep_sub_ =
-        nh.subscribe("/hil/lockstep", 100, &ControllerNode::on_lockstep, this, ros::TransportHints().tcpNoDelay());
+    lockstep_sub_ = nh.subscribe("/hil/lockstep", 100, &ControllerNode::on_lockstep, this,
+                                 ros::TransportHints().tcpNoDelay());
     // Wall time: a declared message that never comes (a defect) must not stop the flight.
     lockstep_wait_timer_ = nh.createSteadyTimer(
-        ros::WallDuration(kLockstepWaitS), [this](const ros::SteadyTimerEvent &) { on_lockstep_wait_over(); }, true,
-        false);
+        ros::WallDuration(kLockstepWaitS),
+        [this](const ros::SteadyTimerEvent &) { on_lockstep_wait_over(); }, true, false);
   } else {
-    timer_ = nh.createSteadyTimer(ros::WallDuration(params_.gnc.dt_s), &ControllerNode::on_timer, this);
+    timer_ =
+        nh.createSteadyTimer(ros::WallDuration(params_.gnc.dt_s), &ControllerNode::on_timer, this);
   }
   ROS_INFO("controller_%s stepping at %.1f Hz%s", GNC_AIRCRAFT_NAME, params_.rate_hz,
            lockstep_ ? " on /hil/lockstep" : "");
 }
 
-ControllerNode::~ControllerNode() {
-  gnc_terminate();
-}
+ControllerNode::~ControllerNode() { gnc_terminate(); }
 
 void ControllerNode::restart_gnc() {
   gnc_terminate();
@@ -133,10 +147,12 @@ void ControllerNode::restart_gnc() {
   ROS_WARN("HP restart requested by the HA: GNC re-initialized (%u restarts)", restarts_);
 }
 
-bool ControllerNode::on_set_tunable(drone_ros::SetTunable::Request &req, drone_ros::SetTunable::Response &res) {
+bool ControllerNode::on_set_tunable(drone_ros::SetTunable::Request &req,
+                                    drone_ros::SetTunable::Response &res) {
   ControllerParams next;
   ParamValues next_values;
-  const TunableResult r = change_tunable(values_, req.name, req.value, hp_in_control_, &next, &next_values);
+  const TunableResult r =
+      change_tunable(values_, req.name, req.value, hp_in_control_, &next, &next_values);
   if (r.accepted && r.restart_gnc) {
     gnc_terminate();
     if (gnc_initialize(&next.gnc) != 0) {
@@ -201,8 +217,8 @@ void ControllerNode::on_timer(const ros::SteadyTimerEvent &event) {
 // node's /servo_op before it goes on. The step runs once every message the simulator declares
 // has been received here (LockstepGate), whichever connection brings it last.
 void ControllerNode::on_lockstep(const drone_ros::LockstepStep::ConstPtr &msg) {
-  gate_.declare({msg->ins, msg->attitude, msg->gps_position, msg->gps_velocity, msg->imu_pqr_acceleration, msg->pwm,
-                 msg->decision_status});
+  gate_.declare({msg->ins, msg->attitude, msg->gps_position, msg->gps_velocity,
+                 msg->imu_pqr_acceleration, msg->pwm, msg->decision_status});
   const int64_t dt_ns = static_cast<int64_t>(std::llround(params_.gnc.dt_s * 1e9));
   const int64_t index = static_cast<int64_t>(msg->clock.toNSec()) / dt_ns;
   if (index <= lockstep_index_) {
@@ -274,8 +290,8 @@ void ControllerNode::step(double now, const ros::Time &stamp) {
     gnc_step(&in_, &out_);
   }
   unhealthy_mask_ = board_.unhealthy_links(now);
-  const drone_ros::ServoCommand cmd = build_servo_command(seq_++, stamp, out_, unhealthy_mask_ == 0,
-                                                          params_.gnc.throttle_min);
+  const drone_ros::ServoCommand cmd =
+      build_servo_command(seq_++, stamp, out_, unhealthy_mask_ == 0, params_.gnc.throttle_min);
   if (!cmd.estimator_converged || !cmd.sensor_links_healthy) {
     ++invalid_steps_;
   }
@@ -305,7 +321,8 @@ void ControllerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper &stat)
   if (!stale.empty()) {
     stat.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "sensor links unhealthy: " + stale);
   } else if (!out_.command_valid) {
-    stat.summary(diagnostic_msgs::DiagnosticStatus::WARN, "command invalid (estimator not converged or no home)");
+    stat.summary(diagnostic_msgs::DiagnosticStatus::WARN,
+                 "command invalid (estimator not converged or no home)");
   } else {
     stat.summary(diagnostic_msgs::DiagnosticStatus::OK, "flying");
   }

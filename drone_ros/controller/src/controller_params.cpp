@@ -67,8 +67,8 @@ constexpr double kPi = 3.14159265358979323846;
 
 }  // namespace
 
-bool build_controller_params(const ParamLookup &lookup, ControllerParams *params, std::string *error,
-                             ParamValues *used) {
+bool build_controller_params(const ParamLookup &lookup, ControllerParams *params,
+                             std::string *error, ParamValues *used) {
   if (params == nullptr) {
     return false;
   }
@@ -98,9 +98,12 @@ bool build_controller_params(const ParamLookup &lookup, ControllerParams *params
   const double pitch_limit_deg = r.get_limit(limits_ranges::kStatePitchLimitDeg);
 
   p.throttle_trim = r.get("throttle_trim", g.throttle_min, g.throttle_max);
-  p.elevator_trim_rad = r.get("elevator_trim", -g.elevator_limit_deg * kPi / 180.0, g.elevator_limit_deg * kPi / 180.0);
-  p.aileron_trim_rad = r.get("aileron_trim", -g.aileron_limit_deg * kPi / 180.0, g.aileron_limit_deg * kPi / 180.0);
-  p.rudder_trim_rad = r.get("rudder_trim", -g.rudder_limit_deg * kPi / 180.0, g.rudder_limit_deg * kPi / 180.0);
+  p.elevator_trim_rad = r.get("elevator_trim", -g.elevator_limit_deg * kPi / 180.0,
+                              g.elevator_limit_deg * kPi / 180.0);
+  p.aileron_trim_rad =
+      r.get("aileron_trim", -g.aileron_limit_deg * kPi / 180.0, g.aileron_limit_deg * kPi / 180.0);
+  p.rudder_trim_rad =
+      r.get("rudder_trim", -g.rudder_limit_deg * kPi / 180.0, g.rudder_limit_deg * kPi / 180.0);
   g.vt_trim_ftps = r.get("VTtrim", 0.0, 300.0);
   r.require(g.vt_trim_ftps > g.stall_speed_ftps, "VTtrim must be above limits' stall_speed_ftps");
   g.alpha0_rad = r.get("alpha", -0.5, 0.5);
@@ -148,9 +151,12 @@ using tunables::Tunable;
 
 TunableKind kind_of(tunables::Apply apply) {
   switch (apply) {
-    case tunables::Apply::kLive: return TunableKind::kLive;
-    case tunables::Apply::kGncRestart: return TunableKind::kGncRestart;
-    case tunables::Apply::kFixed: return TunableKind::kFixed;
+    case tunables::Apply::kLive:
+      return TunableKind::kLive;
+    case tunables::Apply::kGncRestart:
+      return TunableKind::kGncRestart;
+    case tunables::Apply::kFixed:
+      return TunableKind::kFixed;
   }
   return TunableKind::kNone;
 }

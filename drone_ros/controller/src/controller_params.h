@@ -19,7 +19,7 @@ using ParamLookup = std::function<bool(const std::string &key, double *value)>;
 
 struct ControllerParams {
   GncParams gnc{};
-  double rate_hz = 0.0;           // 1 / dt
+  double rate_hz = 0.0;  // 1 / dt
   double sensor_timeout_s = 0.0;
   double q_weight = 0.0;
   // start trims, until the pilot's RC trims are captured
@@ -35,25 +35,25 @@ using ParamValues = std::map<std::string, double>;
 
 // Fills params; on any missing or out-of-range value returns false and names it in *error.
 // With `used`, also records every value it read (the base a later change is checked against).
-bool build_controller_params(const ParamLookup &lookup, ControllerParams *params, std::string *error,
-                             ParamValues *used = nullptr);
+bool build_controller_params(const ParamLookup &lookup, ControllerParams *params,
+                             std::string *error, ParamValues *used = nullptr);
 
 // How a tunable can change while the controller runs (set from the ground: PARAM_SET ->
 // microhard_gs -> ~set_tunable).
 enum class TunableKind {
-  kNone,        // not a tunable: limits.yaml (the aircraft's envelope), frame_id, hmcmd, unknown keys
-  kFixed,       // read at start-up only (dt, Q_weight): refused with the reason
-  kLive,        // used afresh every step (start trims, sensor_timeout_s): applied at once
+  kNone,   // not a tunable: limits.yaml (the aircraft's envelope), frame_id, hmcmd, unknown keys
+  kFixed,  // read at start-up only (dt, Q_weight): refused with the reason
+  kLive,   // used afresh every step (start trims, sensor_timeout_s): applied at once
   kGncRestart,  // taken by the GNC only when it initializes: applied by re-initializing it
 };
 TunableKind tunable_kind(const std::string &name);
 
 struct TunableResult {
   bool accepted = false;
-  bool changed = false;       // accepted and different from the value in force
-  bool restart_gnc = false;   // the change needs the GNC re-initialized
+  bool changed = false;      // accepted and different from the value in force
+  bool restart_gnc = false;  // the change needs the GNC re-initialized
   double value_in_force = 0.0;
-  std::string reason;         // why refused
+  std::string reason;  // why refused
 };
 
 // Checks setting `name` to `value` against the set in force: the whole set is rebuilt with the

@@ -19,13 +19,20 @@ bool finite(std::initializer_list<double> values) {
 
 const char *link_name(Link link) {
   switch (link) {
-    case kLinkPwm: return "/pwm";
-    case kLinkIns: return "/ins";
-    case kLinkGpsPosition: return "/gps_position";
-    case kLinkGpsVelocity: return "/gps_velocity";
-    case kLinkImu: return "/imu_PQR_acceleration";
-    case kLinkAttitude: return "/attitude";
-    default: return "?";
+    case kLinkPwm:
+      return "/pwm";
+    case kLinkIns:
+      return "/ins";
+    case kLinkGpsPosition:
+      return "/gps_position";
+    case kLinkGpsVelocity:
+      return "/gps_velocity";
+    case kLinkImu:
+      return "/imu_PQR_acceleration";
+    case kLinkAttitude:
+      return "/attitude";
+    default:
+      return "?";
   }
 }
 
@@ -40,8 +47,10 @@ void SensorBoard::apply_params(const ControllerParams &params) {
   // A trim set from the ground is the trim flown from now on (until the pilot next flies and
   // the RC positions are captured again); trims not touched keep whatever is in use.
   if (params.throttle_trim != params_.throttle_trim) throttle_trim_ = params.throttle_trim;
-  if (params.elevator_trim_rad != params_.elevator_trim_rad) elevator_trim_rad_ = params.elevator_trim_rad;
-  if (params.aileron_trim_rad != params_.aileron_trim_rad) aileron_trim_rad_ = params.aileron_trim_rad;
+  if (params.elevator_trim_rad != params_.elevator_trim_rad)
+    elevator_trim_rad_ = params.elevator_trim_rad;
+  if (params.aileron_trim_rad != params_.aileron_trim_rad)
+    aileron_trim_rad_ = params.aileron_trim_rad;
   if (params.rudder_trim_rad != params_.rudder_trim_rad) rudder_trim_rad_ = params.rudder_trim_rad;
   params_ = params;
 }
@@ -100,7 +109,8 @@ void SensorBoard::restamp_arrivals(double now_s) {
 }
 
 bool SensorBoard::on_home(double lat_deg, double lon_deg, double alt_m) {
-  if (!finite({lat_deg, lon_deg, alt_m}) || std::fabs(lat_deg) > 90.0 || std::fabs(lon_deg) > 180.0) {
+  if (!finite({lat_deg, lon_deg, alt_m}) || std::fabs(lat_deg) > 90.0 ||
+      std::fabs(lon_deg) > 180.0) {
     return drop();
   }
   home_valid_ = true;

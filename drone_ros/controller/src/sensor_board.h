@@ -22,12 +22,12 @@ namespace controller {
 
 // The links the command's sensor_links_healthy vouches for.
 enum Link : uint32_t {
-  kLinkPwm = 0,       // /pwm: the HA computer (RC, pitot), and its usbstatus
-  kLinkIns,           // /ins: the VN-200 link status
-  kLinkGpsPosition,   // /gps_position
-  kLinkGpsVelocity,   // /gps_velocity
-  kLinkImu,           // /imu_PQR_acceleration
-  kLinkAttitude,      // /attitude
+  kLinkPwm = 0,      // /pwm: the HA computer (RC, pitot), and its usbstatus
+  kLinkIns,          // /ins: the VN-200 link status
+  kLinkGpsPosition,  // /gps_position
+  kLinkGpsVelocity,  // /gps_velocity
+  kLinkImu,          // /imu_PQR_acceleration
+  kLinkAttitude,     // /attitude
   kLinkCount
 };
 

@@ -17,6 +17,4 @@ int c_boundary_step_uninitialized(double *throttle_out) {
   return out.command_valid;
 }
 
-int c_boundary_initialize_null(void) {
-  return DG808_GNC_initialize(NULL);
-}
+int c_boundary_initialize_null(void) { return DG808_GNC_initialize(NULL); }

@@ -21,11 +21,13 @@ controller::ControllerParams aircraft(const std::map<std::string, double> &overr
   const auto values = controller_test::aircraft_params(AIRCRAFT_DIR, overrides);
   controller::ControllerParams p;
   std::string error;
-  EXPECT_TRUE(controller::build_controller_params(controller_test::lookup_in(values), &p, &error)) << error;
+  EXPECT_TRUE(controller::build_controller_params(controller_test::lookup_in(values), &p, &error))
+      << error;
   return p;
 }
 
-std::string refusal(const std::map<std::string, double> &overrides, const std::string &remove = "") {
+std::string refusal(const std::map<std::string, double> &overrides,
+                    const std::string &remove = "") {
   auto values = controller_test::aircraft_params(AIRCRAFT_DIR, overrides);
   if (!remove.empty()) {
     values.erase(remove);
@@ -69,9 +71,11 @@ TEST(ControllerParams, AircraftFilesAreAcceptedAndRateFollowsDt) {
 
 TEST(ControllerParams, OutOfRangeOrMissingValuesAreRefusedByName) {
   EXPECT_NE(refusal({{"dt", 0.005}}).find("dt"), std::string::npos);
-  EXPECT_NE(refusal({{"mpf_radius", std::numeric_limits<double>::quiet_NaN()}}).find("mpf_radius"), std::string::npos);
+  EXPECT_NE(refusal({{"mpf_radius", std::numeric_limits<double>::quiet_NaN()}}).find("mpf_radius"),
+            std::string::npos);
   EXPECT_NE(refusal({{"path_select", 0.5}}).find("path_select"), std::string::npos);
-  EXPECT_NE(refusal({}, "limits/state/stall_speed_ftps").find("stall_speed_ftps"), std::string::npos);
+  EXPECT_NE(refusal({}, "limits/state/stall_speed_ftps").find("stall_speed_ftps"),
+            std::string::npos);
   EXPECT_NE(refusal({{"Q_weight", 2.0}}).find("design_gains.py"), std::string::npos);
   EXPECT_NE(refusal({{"max_bank_deg", 70.0}}).find("max_bank_deg"), std::string::npos);
 }
@@ -83,7 +87,8 @@ struct InForce {
   InForce() {
     const auto files = controller_test::aircraft_params(AIRCRAFT_DIR);
     std::string error;
-    EXPECT_TRUE(controller::build_controller_params(controller_test::lookup_in(files), &params, &error, &values))
+    EXPECT_TRUE(controller::build_controller_params(controller_test::lookup_in(files), &params,
+                                                    &error, &values))
         << error;
   }
   controller::TunableResult set(const std::string &name, double value, bool hp_in_command = false) {
@@ -155,11 +160,30 @@ TEST(Tunables, GncChangeWaitsForTheHaToFlyButATrimGoesLive) {
 
 TEST(Tunables, EveryTunableIsAValueTheControllerReads) {
   InForce f;
-  for (const char *name : {"dt", "Q_weight", "throttle_trim", "elevator_trim", "aileron_trim", "rudder_trim",
-                           "sensor_timeout_s", "VTtrim", "alpha", "beta", "guidance_selection", "mpf_switch",
-                           "mpf_radius", "path_select", "max_allow_error", "dist2b", "KpLon", "KiLon",
-                           "max_bank_deg", "max_pitch_cmd_deg", "attitude_cmd_rate_deg_s", "min_airspeed_cmd_ftps",
-                           "airspeed_valid_min_ftps", "converged_sigma_deg"}) {
+  for (const char *name : {"dt",
+                           "Q_weight",
+                           "throttle_trim",
+                           "elevator_trim",
+                           "aileron_trim",
+                           "rudder_trim",
+                           "sensor_timeout_s",
+                           "VTtrim",
+                           "alpha",
+                           "beta",
+                           "guidance_selection",
+                           "mpf_switch",
+                           "mpf_radius",
+                           "path_select",
+                           "max_allow_error",
+                           "dist2b",
+                           "KpLon",
+                           "KiLon",
+                           "max_bank_deg",
+                           "max_pitch_cmd_deg",
+                           "attitude_cmd_rate_deg_s",
+                           "min_airspeed_cmd_ftps",
+                           "airspeed_valid_min_ftps",
+                           "converged_sigma_deg"}) {
     EXPECT_NE(controller::tunable_kind(name), controller::TunableKind::kNone) << name;
     EXPECT_TRUE(f.set(name, f.values.at(name)).accepted) << name;
   }
@@ -306,20 +330,21 @@ TEST(ServoCommand, InvalidGncOutputOrBadLinksAreFlaggedNotHidden) {
   out.estimator_converged = 1;
   out.command_valid = 0;
   out.inputs_finite = 1;
-  EXPECT_FALSE(controller::build_servo_command(1, ros::Time(1, 0), out, true, 0.0).estimator_converged);
+  EXPECT_FALSE(
+      controller::build_servo_command(1, ros::Time(1, 0), out, true, 0.0).estimator_converged);
   out.command_valid = 1;
-  EXPECT_FALSE(controller::build_servo_command(1, ros::Time(1, 0), out, false, 0.0).sensor_links_healthy);
+  EXPECT_FALSE(
+      controller::build_servo_command(1, ros::Time(1, 0), out, false, 0.0).sensor_links_healthy);
   out.inputs_finite = 0;
-  EXPECT_FALSE(controller::build_servo_command(1, ros::Time(1, 0), out, true, 0.0).sensor_links_healthy);
+  EXPECT_FALSE(
+      controller::build_servo_command(1, ros::Time(1, 0), out, true, 0.0).sensor_links_healthy);
 }
 
 }  // namespace
 
 // Lockstep: the step waits for every message the simulator declares, however late its
 // connection brings it.
-controller::LockstepCounts one_packet_and_one_report() {
-  return {1, 1, 1, 1, 1, 1, 1};
-}
+controller::LockstepCounts one_packet_and_one_report() { return {1, 1, 1, 1, 1, 1, 1}; }
 
 void receive_all(controller::LockstepGate *gate) {
   for (uint32_t i = 0; i < controller::kLockstepInputCount; ++i) {

@@ -16,7 +16,8 @@ void GsCore::send_command_ack(const mavlink_message_t& msg, uint16_t command, ui
   a.target_system = msg.sysid;
   a.target_component = msg.compid;
   emit([&](mavlink_message_t* m) {
-    mavlink_msg_command_ack_encode_status(config_.system_id, config_.component_id, &tx_status_, m, &a);
+    mavlink_msg_command_ack_encode_status(config_.system_id, config_.component_id, &tx_status_, m,
+                                          &a);
   });
 }
 
@@ -41,10 +42,12 @@ void GsCore::on_command(const mavlink_message_t& msg, uint16_t command, const fl
     if (want_version) send_autopilot_version();
     if (want_home) send_home_position();
     const bool request = command == MAV_CMD_REQUEST_MESSAGE;
-    if (request && params[0] == static_cast<float>(MAVLINK_MSG_ID_CURRENT_MODE)) send_current_mode();
+    if (request && params[0] == static_cast<float>(MAVLINK_MSG_ID_CURRENT_MODE))
+      send_current_mode();
     if (request && params[0] == static_cast<float>(MAVLINK_MSG_ID_AVAILABLE_MODES)) {
       const int index = static_cast<int>(params[1]);
-      for (int i = index == 0 ? 1 : index; i <= (index == 0 ? kModeCount : index); ++i) send_available_mode(i);
+      for (int i = index == 0 ? 1 : index; i <= (index == 0 ? kModeCount : index); ++i)
+        send_available_mode(i);
     }
   }
 }
@@ -65,7 +68,8 @@ uint8_t GsCore::execute_command(uint16_t command, const float params[7]) {
       const uint32_t flags = static_cast<uint32_t>(params[0]);
       if ((flags & MAV_MODE_FLAG_CUSTOM_MODE_ENABLED) == 0) return MAV_RESULT_DENIED;
       if (params[1] == 0.0f || params[1] == 1.0f) {
-        operator_requests_.push_back(params[1] == 0.0f ? OperatorRequest::kSelectHp : OperatorRequest::kSelectHa);
+        operator_requests_.push_back(params[1] == 0.0f ? OperatorRequest::kSelectHp
+                                                       : OperatorRequest::kSelectHa);
         intended_custom_mode_ = params[1] == 0.0f ? kControllerHp : kControllerHa;
         return MAV_RESULT_ACCEPTED;
       }
@@ -86,14 +90,17 @@ uint8_t GsCore::execute_command(uint16_t command, const float params[7]) {
       operator_requests_.push_back(OperatorRequest::kSelfTest);
       return MAV_RESULT_ACCEPTED;
     case MAV_CMD_DO_SET_HOME:
-      return command_int_ ? set_home_command(params[0], command_int_x_ * 1e-7, command_int_y_ * 1e-7, params[6])
+      return command_int_ ? set_home_command(params[0], command_int_x_ * 1e-7,
+                                             command_int_y_ * 1e-7, params[6])
                           : set_home_command(params[0], params[4], params[5], params[6]);
     case MAV_CMD_REQUEST_AUTOPILOT_CAPABILITIES:
     case MAV_CMD_GET_HOME_POSITION:
-      if (command == MAV_CMD_GET_HOME_POSITION && !home_known_) return MAV_RESULT_TEMPORARILY_REJECTED;
+      if (command == MAV_CMD_GET_HOME_POSITION && !home_known_)
+        return MAV_RESULT_TEMPORARILY_REJECTED;
       return MAV_RESULT_ACCEPTED;
     case MAV_CMD_REQUEST_MESSAGE:
-      if (params[0] == static_cast<float>(MAVLINK_MSG_ID_AUTOPILOT_VERSION)) return MAV_RESULT_ACCEPTED;
+      if (params[0] == static_cast<float>(MAVLINK_MSG_ID_AUTOPILOT_VERSION))
+        return MAV_RESULT_ACCEPTED;
       if (params[0] == static_cast<float>(MAVLINK_MSG_ID_HOME_POSITION)) {
         return home_known_ ? MAV_RESULT_ACCEPTED : MAV_RESULT_TEMPORARILY_REJECTED;
       }

@@ -12,7 +12,8 @@ constexpr uint64_t kHeartbeatPeriodMs = 1000;
 
 }  // namespace
 
-GsCore::GsCore(const GsConfig& config, const ParamTable& params) : config_(config), params_(params) {
+GsCore::GsCore(const GsConfig& config, const ParamTable& params)
+    : config_(config), params_(params) {
   if (config_.signing) start_signing();
   if (config_.home_fixed) {
     home_ = config_.home;
@@ -41,11 +42,13 @@ void GsCore::handle_bytes(const uint8_t* data, size_t len, const Clock& now) {
       if (msg.msgid == MAVLINK_MSG_ID_COMMAND_LONG) {
         mavlink_command_long_t c;
         mavlink_msg_command_long_decode(&msg, &c);
-        if (c.target_system == config_.system_id) send_command_ack(msg, c.command, MAV_RESULT_DENIED);
+        if (c.target_system == config_.system_id)
+          send_command_ack(msg, c.command, MAV_RESULT_DENIED);
       } else if (msg.msgid == MAVLINK_MSG_ID_COMMAND_INT) {
         mavlink_command_int_t c;
         mavlink_msg_command_int_decode(&msg, &c);
-        if (c.target_system == config_.system_id) send_command_ack(msg, c.command, MAV_RESULT_DENIED);
+        if (c.target_system == config_.system_id)
+          send_command_ack(msg, c.command, MAV_RESULT_DENIED);
       }
     }
   }
@@ -66,9 +69,15 @@ void GsCore::dispatch(const mavlink_message_t& msg, const Clock& now) {
       if (addressed_to_us(m.target_system, m.target_component)) on_param_request_list();
       break;
     }
-    case MAVLINK_MSG_ID_PARAM_REQUEST_READ: on_param_request_read(msg); break;
-    case MAVLINK_MSG_ID_PARAM_SET: on_param_set(msg, now); break;
-    case MAVLINK_MSG_ID_MISSION_COUNT: on_mission_count(msg, now); break;
+    case MAVLINK_MSG_ID_PARAM_REQUEST_READ:
+      on_param_request_read(msg);
+      break;
+    case MAVLINK_MSG_ID_PARAM_SET:
+      on_param_set(msg, now);
+      break;
+    case MAVLINK_MSG_ID_MISSION_COUNT:
+      on_mission_count(msg, now);
+      break;
     case MAVLINK_MSG_ID_MISSION_ITEM_INT: {
       mavlink_mission_item_int_t m;
       mavlink_msg_mission_item_int_decode(&msg, &m);
@@ -83,11 +92,21 @@ void GsCore::dispatch(const mavlink_message_t& msg, const Clock& now) {
                       true, now);
       break;
     }
-    case MAVLINK_MSG_ID_MISSION_REQUEST_LIST: on_mission_request_list(msg); break;
-    case MAVLINK_MSG_ID_MISSION_REQUEST_INT: on_mission_request(msg, false); break;
-    case MAVLINK_MSG_ID_MISSION_REQUEST: on_mission_request(msg, true); break;
-    case MAVLINK_MSG_ID_MISSION_CLEAR_ALL: on_mission_clear_all(msg); break;
-    case MAVLINK_MSG_ID_MISSION_ACK: on_mission_ack(msg); break;
+    case MAVLINK_MSG_ID_MISSION_REQUEST_LIST:
+      on_mission_request_list(msg);
+      break;
+    case MAVLINK_MSG_ID_MISSION_REQUEST_INT:
+      on_mission_request(msg, false);
+      break;
+    case MAVLINK_MSG_ID_MISSION_REQUEST:
+      on_mission_request(msg, true);
+      break;
+    case MAVLINK_MSG_ID_MISSION_CLEAR_ALL:
+      on_mission_clear_all(msg);
+      break;
+    case MAVLINK_MSG_ID_MISSION_ACK:
+      on_mission_ack(msg);
+      break;
     case MAVLINK_MSG_ID_COMMAND_LONG: {
       mavlink_command_long_t c;
       mavlink_msg_command_long_decode(&msg, &c);
@@ -98,8 +117,9 @@ void GsCore::dispatch(const mavlink_message_t& msg, const Clock& now) {
     case MAVLINK_MSG_ID_COMMAND_INT: {
       mavlink_command_int_t c;
       mavlink_msg_command_int_decode(&msg, &c);
-      const float p[7] = {c.param1, c.param2, c.param3, c.param4, static_cast<float>(c.x),
-                          static_cast<float>(c.y), c.z};
+      const float p[7] = {
+          c.param1, c.param2, c.param3, c.param4, static_cast<float>(c.x), static_cast<float>(c.y),
+          c.z};
       command_int_ = true;
       command_int_x_ = c.x;
       command_int_y_ = c.y;
@@ -129,7 +149,8 @@ void GsCore::tick(const Clock& now) {
     send_telemetry_set(now);
     // Step the schedule by the period (not from now) so the rate holds without drift; after a
     // long stall, restart the schedule instead of bursting.
-    const uint64_t period_ms = static_cast<uint64_t>(std::llround(1000.0 / config_.telemetry_rate_hz));
+    const uint64_t period_ms =
+        static_cast<uint64_t>(std::llround(1000.0 / config_.telemetry_rate_hz));
     next_telemetry_ms_ += std::max<uint64_t>(1, period_ms);
     if (next_telemetry_ms_ <= now.mono_ms) next_telemetry_ms_ = now.mono_ms + period_ms;
   }
@@ -172,6 +193,8 @@ std::vector<T> take(std::vector<T>* v) {
 std::vector<std::vector<uint8_t>> GsCore::take_frames() { return take(&frames_); }
 std::vector<WayPlan> GsCore::take_way_plans() { return take(&way_plans_); }
 std::vector<OperatorRequest> GsCore::take_operator_requests() { return take(&operator_requests_); }
-std::vector<ParamSetRequest> GsCore::take_param_set_requests() { return take(&param_set_requests_); }
+std::vector<ParamSetRequest> GsCore::take_param_set_requests() {
+  return take(&param_set_requests_);
+}
 
 }  // namespace microhard_gs

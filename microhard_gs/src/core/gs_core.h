@@ -63,7 +63,12 @@ struct DecisionInfo {
 };
 
 // Operator requests; values match drone_ros/OperatorCommand's constants.
-enum class OperatorRequest : uint8_t { kSelectHp = 1, kSelectHa = 2, kRestartHp = 3, kSelfTest = 4 };
+enum class OperatorRequest : uint8_t {
+  kSelectHp = 1,
+  kSelectHa = 2,
+  kRestartHp = 3,
+  kSelfTest = 4
+};
 
 // A SET_HOME for the HA to decide (OperatorCommand SET_HOME): to a position, or where the HA's
 // INS says the aircraft is (use_current).
@@ -88,10 +93,10 @@ struct ParamSetAnswer {
 
 struct Counters {
   uint64_t frames_ok = 0;
-  uint64_t frames_bad_crc = 0;       // corrupt frames (CRC or length), dropped
-  uint64_t refused_unsigned = 0;     // signing on: unsigned message that changes something
+  uint64_t frames_bad_crc = 0;    // corrupt frames (CRC or length), dropped
+  uint64_t refused_unsigned = 0;  // signing on: unsigned message that changes something
   uint64_t refused_bad_signature = 0;
-  uint64_t ignored_other_target = 0; // addressed to another system
+  uint64_t ignored_other_target = 0;  // addressed to another system
   uint64_t missions_accepted = 0;
   uint64_t missions_rejected = 0;
   uint64_t mission_request_retries = 0;
@@ -100,7 +105,7 @@ struct Counters {
   uint64_t commands_refused = 0;
   uint64_t telemetry_sets_sent = 0;
   uint64_t param_sets_accepted = 0;
-  uint64_t param_sets_refused = 0;     // by the controller, or because it did not answer
+  uint64_t param_sets_refused = 0;  // by the controller, or because it did not answer
   uint64_t param_sets_timed_out = 0;
 };
 
@@ -264,6 +269,7 @@ class GsCore {
 std::string reason_names(uint32_t reasons);
 // The STATUSTEXT for a decision status that changes who flies, naming why ("Controller HP->HA:
 // NO_COMMAND,STALL"); `previous` is null for the first status seen. Sets *severity.
-std::string decision_announcement(const DecisionInfo* previous, const DecisionInfo& now, uint8_t* severity);
+std::string decision_announcement(const DecisionInfo* previous, const DecisionInfo& now,
+                                  uint8_t* severity);
 
 }  // namespace microhard_gs

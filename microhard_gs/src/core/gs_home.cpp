@@ -30,7 +30,8 @@ bool GsCore::set_home(const GeoPoint& home) {
 // decides: ACCEPTED means forwarded, the new home comes back on /home as HOME_POSITION.
 uint8_t GsCore::set_home_command(float use_current, double lat_deg, double lon_deg, float alt_m) {
   if (!have_decision_) {
-    send_statustext(MAV_SEVERITY_WARNING, "Set home refused: no HA status, cannot tell it is on the ground");
+    send_statustext(MAV_SEVERITY_WARNING,
+                    "Set home refused: no HA status, cannot tell it is on the ground");
     return MAV_RESULT_TEMPORARILY_REJECTED;
   }
   if (decision_.altitude_agl_ft > config_.airborne_agl_ft) {

@@ -22,7 +22,8 @@ void GsCore::send_mission_ack(uint8_t sys, uint8_t comp, uint8_t result, uint8_t
   a.type = result;
   a.mission_type = mission_type;
   emit([&](mavlink_message_t* m) {
-    mavlink_msg_mission_ack_encode_status(config_.system_id, config_.component_id, &tx_status_, m, &a);
+    mavlink_msg_mission_ack_encode_status(config_.system_id, config_.component_id, &tx_status_, m,
+                                          &a);
   });
 }
 
@@ -73,7 +74,8 @@ void GsCore::request_next_item(const Clock& now) {
     r.seq = seq;
     r.mission_type = MAV_MISSION_TYPE_MISSION;
     emit([&](mavlink_message_t* m) {
-      mavlink_msg_mission_request_encode_status(config_.system_id, config_.component_id, &tx_status_, m, &r);
+      mavlink_msg_mission_request_encode_status(config_.system_id, config_.component_id,
+                                                &tx_status_, m, &r);
     });
   } else {
     mavlink_mission_request_int_t r{};
@@ -82,7 +84,8 @@ void GsCore::request_next_item(const Clock& now) {
     r.seq = seq;
     r.mission_type = MAV_MISSION_TYPE_MISSION;
     emit([&](mavlink_message_t* m) {
-      mavlink_msg_mission_request_int_encode_status(config_.system_id, config_.component_id, &tx_status_, m, &r);
+      mavlink_msg_mission_request_int_encode_status(config_.system_id, config_.component_id,
+                                                    &tx_status_, m, &r);
     });
   }
   upload_.last_request_ms = now.mono_ms;
@@ -103,8 +106,9 @@ void GsCore::finish_upload(uint8_t result, const std::string& reason, const Cloc
   upload_.active = false;
 }
 
-void GsCore::on_mission_item(const mavlink_message_t& msg, const MissionItem& item, uint8_t target_sys,
-                             uint8_t target_comp, uint8_t mission_type, bool legacy, const Clock& now) {
+void GsCore::on_mission_item(const mavlink_message_t& msg, const MissionItem& item,
+                             uint8_t target_sys, uint8_t target_comp, uint8_t mission_type,
+                             bool legacy, const Clock& now) {
   if (!addressed_to_us(target_sys, target_comp) || mission_type != MAV_MISSION_TYPE_MISSION) return;
   if (!upload_.active || msg.sysid != upload_.partner_sys || msg.compid != upload_.partner_comp) {
     // The GCS repeats the last item when our final MISSION_ACK was lost: answer it again.
@@ -137,7 +141,8 @@ void GsCore::on_mission_item(const mavlink_message_t& msg, const MissionItem& it
     return;
   }
   WayPlan plan;
-  const MissionVerdict all = build_way_plan(upload_.items, upload_.count, home_, config_.limits, &plan);
+  const MissionVerdict all =
+      build_way_plan(upload_.items, upload_.count, home_, config_.limits, &plan);
   if (!all.ok()) {
     finish_upload(all.result, all.reason, now);
     return;
@@ -163,7 +168,8 @@ void GsCore::on_mission_request_list(const mavlink_message_t& msg) {
   c.count = m.mission_type == MAV_MISSION_TYPE_MISSION ? static_cast<uint16_t>(mission_count_) : 0;
   c.mission_type = m.mission_type;
   emit([&](mavlink_message_t* out) {
-    mavlink_msg_mission_count_encode_status(config_.system_id, config_.component_id, &tx_status_, out, &c);
+    mavlink_msg_mission_count_encode_status(config_.system_id, config_.component_id, &tx_status_,
+                                            out, &c);
   });
 }
 
@@ -194,7 +200,8 @@ void GsCore::on_mission_request(const mavlink_message_t& msg, bool legacy) {
     m.target_component = msg.compid;
     m.current = seq == 0 ? 1 : 0;
     emit([&](mavlink_message_t* out) {
-      mavlink_msg_mission_item_encode_status(config_.system_id, config_.component_id, &tx_status_, out, &m);
+      mavlink_msg_mission_item_encode_status(config_.system_id, config_.component_id, &tx_status_,
+                                             out, &m);
     });
   } else {
     mavlink_mission_item_int_t m = to_item_int(mission_[seq]);
@@ -202,7 +209,8 @@ void GsCore::on_mission_request(const mavlink_message_t& msg, bool legacy) {
     m.target_component = msg.compid;
     m.current = seq == 0 ? 1 : 0;
     emit([&](mavlink_message_t* out) {
-      mavlink_msg_mission_item_int_encode_status(config_.system_id, config_.component_id, &tx_status_, out, &m);
+      mavlink_msg_mission_item_int_encode_status(config_.system_id, config_.component_id,
+                                                 &tx_status_, out, &m);
     });
   }
 }

@@ -35,7 +35,8 @@ void GsCore::send_param(size_t index) {
   pv.param_count = static_cast<uint16_t>(params_.size());
   pv.param_index = static_cast<uint16_t>(index);
   emit([&](mavlink_message_t* m) {
-    mavlink_msg_param_value_encode_status(config_.system_id, config_.component_id, &tx_status_, m, &pv);
+    mavlink_msg_param_value_encode_status(config_.system_id, config_.component_id, &tx_status_, m,
+                                          &pv);
   });
 }
 
@@ -53,7 +54,8 @@ void GsCore::on_param_request_read(const mavlink_message_t& msg) {
     std::memcpy(id, m.param_id, sizeof id);
     index = params_.find(id, sizeof id);
   }
-  if (index >= 0 && static_cast<size_t>(index) < params_.size()) send_param(static_cast<size_t>(index));
+  if (index >= 0 && static_cast<size_t>(index) < params_.size())
+    send_param(static_cast<size_t>(index));
 }
 
 void GsCore::on_param_set(const mavlink_message_t& msg, const Clock& now) {
@@ -91,7 +93,8 @@ void GsCore::on_param_set(const mavlink_message_t& msg, const Clock& now) {
 void GsCore::refuse_param_set(size_t index, const std::string& reason) {
   ++counters_.param_sets_refused;
   send_param(index);  // the old value: how MAVLink tells a GCS that the set did not happen
-  send_statustext(MAV_SEVERITY_WARNING, "Param " + params_.at(index).mav_id + " refused: " + reason);
+  send_statustext(MAV_SEVERITY_WARNING,
+                  "Param " + params_.at(index).mav_id + " refused: " + reason);
 }
 
 void GsCore::param_set_answered(const ParamSetRequest& request, const ParamSetAnswer& answer) {
@@ -105,7 +108,8 @@ void GsCore::param_set_answered(const ParamSetRequest& request, const ParamSetAn
     params_.store(i, answer.value_in_force);
     ++counters_.param_sets_accepted;
     send_param(i);
-    send_statustext(MAV_SEVERITY_NOTICE, "Param " + params_.at(i).mav_id + " set after all (late answer)");
+    send_statustext(MAV_SEVERITY_NOTICE,
+                    "Param " + params_.at(i).mav_id + " set after all (late answer)");
     return;
   }
   const size_t i = it->index;

@@ -22,7 +22,8 @@ std::string reason_names(uint32_t reasons) {
   return out;
 }
 
-std::string decision_announcement(const DecisionInfo* previous, const DecisionInfo& now, uint8_t* severity) {
+std::string decision_announcement(const DecisionInfo* previous, const DecisionInfo& now,
+                                  uint8_t* severity) {
   const uint32_t why = now.reasons_at_switch != 0 ? now.reasons_at_switch : now.reasons;
   const std::string reasons = why != 0 ? reason_names(why) : std::string();
   std::string reason;
@@ -35,7 +36,8 @@ std::string decision_announcement(const DecisionInfo* previous, const DecisionIn
       *severity = MAV_SEVERITY_WARNING;
       reason = reasons.empty() ? "no reason reported" : reasons;
       break;
-    case kControllerRecovering:  // the HA still flies, the HP's command is valid again and on probation
+    case kControllerRecovering:  // the HA still flies, the HP's command is valid again and on
+                                 // probation
       *severity = MAV_SEVERITY_NOTICE;
       reason = "HP command valid, watching its stability";
       break;
@@ -52,13 +54,15 @@ std::string decision_announcement(const DecisionInfo* previous, const DecisionIn
       reason = reasons.empty() ? "no reason reported" : reasons;
       break;
   }
-  if (previous != nullptr && previous->controller == kControllerManual && now.controller != kControllerManual) {
+  if (previous != nullptr && previous->controller == kControllerManual &&
+      now.controller != kControllerManual) {
     reason = "PIC switch to computer; " + reason;
   }
   if (previous == nullptr) {
     // The first status this node sees: at boot, or mid-flight after a respawn. Either way the
     // operator has not been told who flies, nor why.
-    return std::string("Controller ") + controller_name(now.controller) + " (first report): " + reason;
+    return std::string("Controller ") + controller_name(now.controller) +
+           " (first report): " + reason;
   }
   return std::string("Controller ") + controller_name(previous->controller) + "->" +
          controller_name(now.controller) + ": " + reason;
@@ -68,7 +72,8 @@ void GsCore::set_decision(const DecisionInfo& d) {
   const bool changed = !have_decision_ || d.controller != decision_.controller;
   if (changed) {
     uint8_t severity = MAV_SEVERITY_NOTICE;
-    const std::string text = decision_announcement(have_decision_ ? &decision_ : nullptr, d, &severity);
+    const std::string text =
+        decision_announcement(have_decision_ ? &decision_ : nullptr, d, &severity);
     send_statustext(severity, text);
   }
   decision_ = d;
@@ -95,7 +100,8 @@ void GsCore::send_statustext(uint8_t severity, const std::string& text) {
     s.id = id;
     s.chunk_seq = static_cast<uint8_t>(seq);
     emit([&](mavlink_message_t* m) {
-      mavlink_msg_statustext_encode_status(config_.system_id, config_.component_id, &tx_status_, m, &s);
+      mavlink_msg_statustext_encode_status(config_.system_id, config_.component_id, &tx_status_, m,
+                                           &s);
     });
     if (!multi) break;
   }

@@ -44,11 +44,13 @@ void GsCore::set_telemetry(const Telemetry& t, const Clock& now) {
 void GsCore::send_autopilot_version() {
   mavlink_autopilot_version_t v{};
   v.capabilities = MAV_PROTOCOL_CAPABILITY_MISSION_INT | MAV_PROTOCOL_CAPABILITY_MAVLINK2 |
-                   MAV_PROTOCOL_CAPABILITY_COMMAND_INT | MAV_PROTOCOL_CAPABILITY_PARAM_ENCODE_BYTEWISE;
+                   MAV_PROTOCOL_CAPABILITY_COMMAND_INT |
+                   MAV_PROTOCOL_CAPABILITY_PARAM_ENCODE_BYTEWISE;
   v.flight_sw_version = 0x00010000u;  // 0.1.0, the drone_ros package version
   v.uid = config_.system_id;
   emit([&](mavlink_message_t* m) {
-    mavlink_msg_autopilot_version_encode_status(config_.system_id, config_.component_id, &tx_status_, m, &v);
+    mavlink_msg_autopilot_version_encode_status(config_.system_id, config_.component_id,
+                                                &tx_status_, m, &v);
   });
 }
 
@@ -60,7 +62,8 @@ void GsCore::send_home_position() {
   h.altitude = clamp_i32(home_.alt_m * 1000.0);
   h.q[0] = 1.0f;
   emit([&](mavlink_message_t* m) {
-    mavlink_msg_home_position_encode_status(config_.system_id, config_.component_id, &tx_status_, m, &h);
+    mavlink_msg_home_position_encode_status(config_.system_id, config_.component_id, &tx_status_, m,
+                                            &h);
   });
 }
 
@@ -68,14 +71,17 @@ void GsCore::send_available_mode(int mode_index) {
   mavlink_available_modes_t m{};
   if (!available_mode(mode_index, &m)) return;
   emit([&](mavlink_message_t* out) {
-    mavlink_msg_available_modes_encode_status(config_.system_id, config_.component_id, &tx_status_, out, &m);
+    mavlink_msg_available_modes_encode_status(config_.system_id, config_.component_id, &tx_status_,
+                                              out, &m);
   });
 }
 
 void GsCore::send_current_mode() {
-  const mavlink_current_mode_t m = current_mode(have_decision_, decision_.controller, intended_custom_mode_);
+  const mavlink_current_mode_t m =
+      current_mode(have_decision_, decision_.controller, intended_custom_mode_);
   emit([&](mavlink_message_t* out) {
-    mavlink_msg_current_mode_encode_status(config_.system_id, config_.component_id, &tx_status_, out, &m);
+    mavlink_msg_current_mode_encode_status(config_.system_id, config_.component_id, &tx_status_,
+                                           out, &m);
   });
 }
 
@@ -88,12 +94,14 @@ void GsCore::send_heartbeat() {
   hb.base_mode = heartbeat_base_mode(have_decision_, decision_.controller, airborne);
   hb.custom_mode = have_decision_ ? decision_.controller : kCustomModeUnknown;
   hb.system_status = airborne ? MAV_STATE_ACTIVE : MAV_STATE_STANDBY;
-  if (have_decision_ && (decision_.controller == kControllerHa || decision_.controller == kControllerHaLatched)) {
+  if (have_decision_ &&
+      (decision_.controller == kControllerHa || decision_.controller == kControllerHaLatched)) {
     hb.system_status = MAV_STATE_CRITICAL;  // flying on the safety controller
   }
   hb.mavlink_version = 3;
   emit([&](mavlink_message_t* m) {
-    mavlink_msg_heartbeat_encode_status(config_.system_id, config_.component_id, &tx_status_, m, &hb);
+    mavlink_msg_heartbeat_encode_status(config_.system_id, config_.component_id, &tx_status_, m,
+                                        &hb);
   });
   send_current_mode();  // streamed with the heartbeat (the protocol asks for about 0.5 Hz)
 }
@@ -110,8 +118,11 @@ void GsCore::send_telemetry_set(const Clock& now) {
   s.onboard_control_sensors_present = sensors;
   s.onboard_control_sensors_enabled = sensors;
   uint32_t health = 0;
-  if (fresh && t.ins_link_up) health |= MAV_SYS_STATUS_SENSOR_3D_GYRO | MAV_SYS_STATUS_SENSOR_3D_ACCEL | MAV_SYS_STATUS_SENSOR_GPS;
-  if (fresh && t.ha_link_up) health |= MAV_SYS_STATUS_SENSOR_DIFFERENTIAL_PRESSURE | MAV_SYS_STATUS_SENSOR_ABSOLUTE_PRESSURE;
+  if (fresh && t.ins_link_up)
+    health |=
+        MAV_SYS_STATUS_SENSOR_3D_GYRO | MAV_SYS_STATUS_SENSOR_3D_ACCEL | MAV_SYS_STATUS_SENSOR_GPS;
+  if (fresh && t.ha_link_up)
+    health |= MAV_SYS_STATUS_SENSOR_DIFFERENTIAL_PRESSURE | MAV_SYS_STATUS_SENSOR_ABSOLUTE_PRESSURE;
   // No geofence: neither present nor enabled, and healthy (never breached), as ArduPilot reports
   // it. A ground station that starts out assuming the fence healthy (MAVProxy) would otherwise
   // announce "fence breach" on the first SYS_STATUS.
@@ -121,7 +132,8 @@ void GsCore::send_telemetry_set(const Clock& now) {
   s.battery_remaining = -1;
   s.errors_comm = clamp_u16(static_cast<double>(counters_.frames_bad_crc % 65535));
   emit([&](mavlink_message_t* m) {
-    mavlink_msg_sys_status_encode_status(config_.system_id, config_.component_id, &tx_status_, m, &s);
+    mavlink_msg_sys_status_encode_status(config_.system_id, config_.component_id, &tx_status_, m,
+                                         &s);
   });
   if (!fresh) return;  // no position or attitude to claim
 
@@ -152,7 +164,8 @@ void GsCore::send_telemetry_set(const Clock& now) {
   g.vz = clamp_i16(t.v_down_mps * 100.0);
   g.hdg = clamp_u16(hdg_deg * 100.0);
   emit([&](mavlink_message_t* m) {
-    mavlink_msg_global_position_int_encode_status(config_.system_id, config_.component_id, &tx_status_, m, &g);
+    mavlink_msg_global_position_int_encode_status(config_.system_id, config_.component_id,
+                                                  &tx_status_, m, &g);
   });
 
   mavlink_vfr_hud_t v{};
@@ -175,10 +188,12 @@ void GsCore::send_telemetry_set(const Clock& now) {
   r.eph = UINT16_MAX;
   r.epv = UINT16_MAX;
   r.vel = clamp_u16(ground_mps * 100.0);
-  r.cog = clamp_u16(std::fmod(std::atan2(t.v_east_mps, t.v_north_mps) * 180.0 / kPi + 360.0, 360.0) * 100.0);
+  r.cog = clamp_u16(
+      std::fmod(std::atan2(t.v_east_mps, t.v_north_mps) * 180.0 / kPi + 360.0, 360.0) * 100.0);
   r.satellites_visible = 255;  // unknown: /data does not carry it
   emit([&](mavlink_message_t* m) {
-    mavlink_msg_gps_raw_int_encode_status(config_.system_id, config_.component_id, &tx_status_, m, &r);
+    mavlink_msg_gps_raw_int_encode_status(config_.system_id, config_.component_id, &tx_status_, m,
+                                          &r);
   });
 
   send_home_position();
@@ -186,13 +201,15 @@ void GsCore::send_telemetry_set(const Clock& now) {
   if (mission_count_ > 0) {
     mavlink_mission_current_t c{};
     // The controller counts the waypoints on /way; the GCS counts mission items (home, speeds).
-    const int32_t wp = std::max<int32_t>(0, std::min<int32_t>(t.waypoint_index, mission_plan_.fp - 1));
+    const int32_t wp =
+        std::max<int32_t>(0, std::min<int32_t>(t.waypoint_index, mission_plan_.fp - 1));
     c.seq = static_cast<uint16_t>(mission_plan_.fp > 0 ? mission_plan_.item_seq[wp] : 0);
     c.total = static_cast<uint16_t>(mission_count_);
     c.mission_state = MISSION_STATE_ACTIVE;
     c.mission_mode = t.computer_in_command ? 1 : 2;
     emit([&](mavlink_message_t* m) {
-      mavlink_msg_mission_current_encode_status(config_.system_id, config_.component_id, &tx_status_, m, &c);
+      mavlink_msg_mission_current_encode_status(config_.system_id, config_.component_id,
+                                                &tx_status_, m, &c);
     });
   }
   ++counters_.telemetry_sets_sent;

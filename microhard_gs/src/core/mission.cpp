@@ -51,18 +51,22 @@ MissionVerdict check_mission_item(const MissionItem& item, const GeoPoint& home,
     return verdict(MAV_MISSION_ACCEPTED, "");
   }
   if (item.command != MAV_CMD_NAV_WAYPOINT) {
-    return verdict(MAV_MISSION_UNSUPPORTED, text("Item %d: command %u not supported", n, item.command));
+    return verdict(MAV_MISSION_UNSUPPORTED,
+                   text("Item %d: command %u not supported", n, item.command));
   }
   if (!is_global_frame(item.frame)) {
-    return verdict(MAV_MISSION_UNSUPPORTED_FRAME, text("Item %d: frame %u not supported", n, item.frame));
+    return verdict(MAV_MISSION_UNSUPPORTED_FRAME,
+                   text("Item %d: frame %u not supported", n, item.frame));
   }
   const double lat_deg = item.x * 1e-7;
   const double lon_deg = item.y * 1e-7;
   if (lat_deg < -90.0 || lat_deg > 90.0) {
-    return verdict(MAV_MISSION_INVALID_PARAM5_X, text("Item %d: latitude %.1f invalid", n, lat_deg));
+    return verdict(MAV_MISSION_INVALID_PARAM5_X,
+                   text("Item %d: latitude %.1f invalid", n, lat_deg));
   }
   if (lon_deg < -180.0 || lon_deg > 180.0) {
-    return verdict(MAV_MISSION_INVALID_PARAM6_Y, text("Item %d: longitude %.1f invalid", n, lon_deg));
+    return verdict(MAV_MISSION_INVALID_PARAM6_Y,
+                   text("Item %d: longitude %.1f invalid", n, lon_deg));
   }
   double height_ft = 0.0;
   if (!height_above_home_ft(item.frame, item.z, home, &height_ft)) {
@@ -80,8 +84,8 @@ MissionVerdict check_mission_item(const MissionItem& item, const GeoPoint& home,
   const NorthEastFt ne = geodetic_to_north_east_ft(home, lat_deg, lon_deg);
   const double range_ft = std::hypot(ne.north_ft, ne.east_ft);
   if (range_ft > limits.max_radius_ft) {
-    return verdict(MAV_MISSION_INVALID_PARAM5_X,
-                   text("Item %d: %.0f ft from home, max %.0f ft", n, range_ft, limits.max_radius_ft));
+    return verdict(MAV_MISSION_INVALID_PARAM5_X, text("Item %d: %.0f ft from home, max %.0f ft", n,
+                                                      range_ft, limits.max_radius_ft));
   }
   return verdict(MAV_MISSION_ACCEPTED, "");
 }
@@ -89,7 +93,8 @@ MissionVerdict check_mission_item(const MissionItem& item, const GeoPoint& home,
 MissionVerdict build_way_plan(const MissionItem* items, int count, const GeoPoint& home,
                               const MissionLimits& limits, WayPlan* plan) {
   if (count < 0 || count > kMaxMissionItems) {
-    return verdict(MAV_MISSION_NO_SPACE, text("Mission of %d items, max %d", count, kMaxMissionItems));
+    return verdict(MAV_MISSION_NO_SPACE,
+                   text("Mission of %d items, max %d", count, kMaxMissionItems));
   }
   WayPlan out;
   double speed_ftps = limits.default_speed_ftps;

@@ -25,9 +25,9 @@ struct MissionItem {
   float param2 = 0.0f;
   float param3 = 0.0f;
   float param4 = 0.0f;
-  int32_t x = 0;  // latitude [deg * 1e7]
-  int32_t y = 0;  // longitude [deg * 1e7]
-  float z = 0.0f; // altitude [m], meaning set by frame
+  int32_t x = 0;   // latitude [deg * 1e7]
+  int32_t y = 0;   // longitude [deg * 1e7]
+  float z = 0.0f;  // altitude [m], meaning set by frame
 };
 
 struct MissionLimits {
@@ -51,7 +51,8 @@ struct WayPlan {
   double east_ft[kMaxMissionItems] = {};
   double height_ft[kMaxMissionItems] = {};
   double velocity_ftps[kMaxMissionItems] = {};
-  int item_seq[kMaxMissionItems] = {};  // the mission item each waypoint came from (MISSION_CURRENT)
+  int item_seq[kMaxMissionItems] =
+      {};  // the mission item each waypoint came from (MISSION_CURRENT)
 };
 
 // Item 0 as home (ArduPilot's convention, which MAVProxy's and QGroundControl's ArduPilot-mode

@@ -8,7 +8,8 @@ namespace {
 
 int32_t degrees_to_e7(double deg) {
   if (!std::isfinite(deg)) return INT32_MAX;  // out of range: the item check refuses it
-  return static_cast<int32_t>(std::max(-2147483647.0, std::min(2147483647.0, std::round(deg * 1e7))));
+  return static_cast<int32_t>(
+      std::max(-2147483647.0, std::min(2147483647.0, std::round(deg * 1e7))));
 }
 
 int32_t to_i32(float v) {

@@ -6,7 +6,9 @@ namespace microhard_gs {
 namespace {
 
 // By DO_SET_MODE from the ground: the others are the decision logic's.
-bool selectable(uint8_t controller) { return controller == kControllerHp || controller == kControllerHa; }
+bool selectable(uint8_t controller) {
+  return controller == kControllerHp || controller == kControllerHa;
+}
 
 bool known(uint8_t controller) { return controller < kModeCount; }
 
@@ -21,7 +23,8 @@ uint8_t heartbeat_base_mode(bool have_decision, uint8_t controller, bool airborn
   if (have_decision) {
     switch (controller) {
       case kControllerHp:
-        base |= MAV_MODE_FLAG_AUTO_ENABLED | MAV_MODE_FLAG_GUIDED_ENABLED | MAV_MODE_FLAG_STABILIZE_ENABLED;
+        base |= MAV_MODE_FLAG_AUTO_ENABLED | MAV_MODE_FLAG_GUIDED_ENABLED |
+                MAV_MODE_FLAG_STABILIZE_ENABLED;
         break;
       case kControllerHa:
       case kControllerRecovering:
@@ -47,13 +50,15 @@ bool available_mode(int mode_index, mavlink_available_modes_t* out) {
   m.mode_index = static_cast<uint8_t>(mode_index);
   m.standard_mode = MAV_STANDARD_MODE_NON_STANDARD;  // none of them is a standard mode's behaviour
   m.custom_mode = controller;
-  m.properties = selectable(controller) ? 0u : static_cast<uint32_t>(MAV_MODE_PROPERTY_NOT_USER_SELECTABLE);
+  m.properties =
+      selectable(controller) ? 0u : static_cast<uint32_t>(MAV_MODE_PROPERTY_NOT_USER_SELECTABLE);
   std::strncpy(m.mode_name, kControllerNames[controller], sizeof m.mode_name - 1);
   *out = m;
   return true;
 }
 
-mavlink_current_mode_t current_mode(bool have_decision, uint8_t controller, uint32_t intended_custom_mode) {
+mavlink_current_mode_t current_mode(bool have_decision, uint8_t controller,
+                                    uint32_t intended_custom_mode) {
   mavlink_current_mode_t m{};
   m.standard_mode = MAV_STANDARD_MODE_NON_STANDARD;
   m.custom_mode = have_decision ? controller : kCustomModeUnknown;

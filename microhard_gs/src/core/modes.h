@@ -32,6 +32,7 @@ bool available_mode(int mode_index, mavlink_available_modes_t* out);
 
 // CURRENT_MODE: who flies, and the operator's last selection (0 = none, as the message defines
 // it; selecting the HP, custom_mode 0, therefore reads as "none").
-mavlink_current_mode_t current_mode(bool have_decision, uint8_t controller, uint32_t intended_custom_mode);
+mavlink_current_mode_t current_mode(bool have_decision, uint8_t controller,
+                                    uint32_t intended_custom_mode);
 
 }  // namespace microhard_gs

@@ -10,7 +10,8 @@ namespace microhard_gs {
 const std::vector<ParamSpec>& controller_param_specs() {
   static const std::vector<ParamSpec> specs = [] {
     std::vector<ParamSpec> out;
-    for (const tunables::Tunable& t : tunables::kTunables) out.push_back(ParamSpec{t.name, t.mav_id, t.is_integer});
+    for (const tunables::Tunable& t : tunables::kTunables)
+      out.push_back(ParamSpec{t.name, t.mav_id, t.is_integer});
     return out;
   }();
   return specs;

@@ -37,8 +37,10 @@ static_assert(kControllerHp == drone_ros::DecisionStatus::CONTROLLER_HP &&
 Clock now_clock() {
   using namespace std::chrono;
   Clock c;
-  c.mono_ms = static_cast<uint64_t>(duration_cast<milliseconds>(steady_clock::now().time_since_epoch()).count());
-  c.unix_us = static_cast<uint64_t>(duration_cast<microseconds>(system_clock::now().time_since_epoch()).count());
+  c.mono_ms = static_cast<uint64_t>(
+      duration_cast<milliseconds>(steady_clock::now().time_since_epoch()).count());
+  c.unix_us = static_cast<uint64_t>(
+      duration_cast<microseconds>(system_clock::now().time_since_epoch()).count());
   return c;
 }
 
@@ -71,7 +73,8 @@ Telemetry to_telemetry(const drone_ros::data& d) {
 // request out on its own clock; an answer arriving later is still passed on.
 class TunableClient {
  public:
-  explicit TunableClient(std::string service) : service_(std::move(service)), worker_([this] { run(); }) {}
+  explicit TunableClient(std::string service)
+      : service_(std::move(service)), worker_([this] { run(); }) {}
   ~TunableClient() {
     {
       std::lock_guard<std::mutex> lock(mutex_);
@@ -117,8 +120,9 @@ class TunableClient {
     ParamSetAnswer a;
     if (!ros::service::call(service_, srv)) {
       // Not running (or just restarting): nobody can vouch for a new value, so none is claimed.
-      a.reason = ros::service::exists(service_, false) ? "the controller's " + service_ + " call failed"
-                                                       : "controller not running (no " + service_ + ")";
+      a.reason = ros::service::exists(service_, false)
+                     ? "the controller's " + service_ + " call failed"
+                     : "controller not running (no " + service_ + ")";
       return a;
     }
     a.accepted = srv.response.accepted;
@@ -159,7 +163,8 @@ class Node {
       report_link_change();
       // The receive is the loop's wait: 5 ms, well inside a 50 Hz telemetry period.
       long n = link_->receive(buf, sizeof buf, 5);
-      for (int i = 0; i < 64 && n != 0; ++i) {  // drain, but keep ROS callbacks flowing under a flood
+      for (int i = 0; i < 64 && n != 0;
+           ++i) {  // drain, but keep ROS callbacks flowing under a flood
         if (n < 0) {
           ++link_errors_;
           break;
@@ -175,7 +180,9 @@ class Node {
   }
 
  private:
-  void on_data(const drone_ros::data::ConstPtr& msg) { core_.set_telemetry(to_telemetry(*msg), now_clock()); }
+  void on_data(const drone_ros::data::ConstPtr& msg) {
+    core_.set_telemetry(to_telemetry(*msg), now_clock());
+  }
 
   void on_home(const drone_ros::HomePosition::ConstPtr& msg) {
     GeoPoint h;
@@ -202,7 +209,8 @@ class Node {
     if (h.up == link_was_up_ && h.last_error == last_link_error_) return;
     if (h.up) {
       ROS_INFO("microhard_gs: %s up (open %llu, %llu outages so far)", link_->describe().c_str(),
-               static_cast<unsigned long long>(h.opens), static_cast<unsigned long long>(h.outages));
+               static_cast<unsigned long long>(h.opens),
+               static_cast<unsigned long long>(h.outages));
     } else {
       ROS_WARN("microhard_gs: %s down: %s; retrying every %.2f s, telemetry not sent meanwhile",
                link_->describe().c_str(), h.last_error.c_str(), config_.reopen_period_s);
@@ -216,8 +224,8 @@ class Node {
     for (const ParamSetRequest& r : core_.take_param_set_requests()) tunables_.submit(r);
     for (const auto& answered : tunables_.take_answers()) {
       if (!answered.second.accepted) {
-        ROS_WARN("microhard_gs: %s = %g refused: %s", answered.first.ros_name.c_str(), answered.first.value,
-                 answered.second.reason.c_str());
+        ROS_WARN("microhard_gs: %s = %g refused: %s", answered.first.ros_name.c_str(),
+                 answered.first.value, answered.second.reason.c_str());
       }
       core_.param_set_answered(answered.first, answered.second);
     }

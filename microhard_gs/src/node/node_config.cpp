@@ -31,7 +31,8 @@ bool in_range(const std::string& name, double v, double lo, double hi, std::stri
 }
 
 // A limits.yaml key, in the range every component accepts (aircraft/limits_ranges.yaml).
-bool need_limit(const ros::NodeHandle& nh, const limits_ranges::Range& range, double* out, std::string* error) {
+bool need_limit(const ros::NodeHandle& nh, const limits_ranges::Range& range, double* out,
+                std::string* error) {
   const std::string name = std::string("limits/") + range.key;
   return need(nh, name, out, error) && in_range(name, *out, range.min, range.max, error);
 }
@@ -78,10 +79,12 @@ bool read_node_config(const ros::NodeHandle& nh, NodeConfig* c, std::string* err
 
   double rate_hz = 0, floor_ft = 0, radius_ft = 0, speed_ftps = 0, timeout_s = 0, retries = 0;
   double ceiling_ft = 0, stall_ftps = 0, airborne_ft = 0;
-  if (!need(nh, "telemetry_rate_hz", &rate_hz, error) || !need(nh, "mission/floor_agl_ft", &floor_ft, error) ||
+  if (!need(nh, "telemetry_rate_hz", &rate_hz, error) ||
+      !need(nh, "mission/floor_agl_ft", &floor_ft, error) ||
       !need(nh, "mission/max_radius_ft", &radius_ft, error) ||
       !need(nh, "mission/default_speed_ftps", &speed_ftps, error) ||
-      !need(nh, "mission/item_timeout_s", &timeout_s, error) || !need(nh, "mission/max_retries", &retries, error) ||
+      !need(nh, "mission/item_timeout_s", &timeout_s, error) ||
+      !need(nh, "mission/max_retries", &retries, error) ||
       !need_limit(nh, limits_ranges::kStateCeilingAglFt, &ceiling_ft, error) ||
       !need_limit(nh, limits_ranges::kStateStallSpeedFtps, &stall_ftps, error) ||
       !need_limit(nh, limits_ranges::kStateAirborneAglFt, &airborne_ft, error)) {

@@ -61,6 +61,8 @@ bool SerialTransport::send(const uint8_t* data, size_t len) {
   return port_.is_open() && port_.write_all(data, len);
 }
 
-std::string SerialTransport::describe() const { return "serial " + path_ + " @" + std::to_string(baud_); }
+std::string SerialTransport::describe() const {
+  return "serial " + path_ + " @" + std::to_string(baud_);
+}
 
 }  // namespace microhard_gs

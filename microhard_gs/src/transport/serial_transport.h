@@ -17,7 +17,9 @@ class SerialTransport : public Transport {
   // Nothing is opened here: the first maintain() tries, so a missing port is an outage, not an
   // error. `port` may be a symlink (udev's by-id name); it is followed on every open.
   SerialTransport(const std::string& port, int baud, uint64_t reopen_period_ms);
-  static bool is_supported_baud(int baud) { return drone_ros_common::SerialPort::baud_supported(baud); }
+  static bool is_supported_baud(int baud) {
+    return drone_ros_common::SerialPort::baud_supported(baud);
+  }
   long receive(uint8_t* buf, size_t cap, int timeout_ms) override;
   bool send(const uint8_t* data, size_t len) override;
   void maintain(uint64_t now_ms) override;

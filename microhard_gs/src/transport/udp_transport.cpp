@@ -28,7 +28,8 @@ std::unique_ptr<UdpTransport> UdpTransport::open(const UdpConfig& config, std::s
     return nullptr;
   }
   if (!make_address(config.remote_address, config.remote_port, &remote)) {
-    *error = "bad UDP remote address " + config.remote_address + ":" + std::to_string(config.remote_port);
+    *error = "bad UDP remote address " + config.remote_address + ":" +
+             std::to_string(config.remote_port);
     return nullptr;
   }
   const int fd = socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
@@ -37,7 +38,8 @@ std::unique_ptr<UdpTransport> UdpTransport::open(const UdpConfig& config, std::s
     return nullptr;
   }
   if (bind(fd, reinterpret_cast<const sockaddr*>(&local), sizeof local) != 0) {
-    *error = "bind " + config.bind_address + ":" + std::to_string(config.bind_port) + ": " + std::strerror(errno);
+    *error = "bind " + config.bind_address + ":" + std::to_string(config.bind_port) + ": " +
+             std::strerror(errno);
     close(fd);
     return nullptr;
   }
@@ -56,20 +58,22 @@ long UdpTransport::receive(uint8_t* buf, size_t cap, int timeout_ms) {
   socklen_t from_len = sizeof from;
   const ssize_t n = recvfrom(fd_, buf, cap, 0, reinterpret_cast<sockaddr*>(&from), &from_len);
   if (n < 0) return (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR) ? 0 : -1;
-  if (config_.follow_sender && from_len == sizeof from && from.sin_family == AF_INET) remote_ = from;
+  if (config_.follow_sender && from_len == sizeof from && from.sin_family == AF_INET)
+    remote_ = from;
   return n;
 }
 
 bool UdpTransport::send(const uint8_t* data, size_t len) {
-  const ssize_t n = sendto(fd_, data, len, 0, reinterpret_cast<const sockaddr*>(&remote_), sizeof remote_);
+  const ssize_t n =
+      sendto(fd_, data, len, 0, reinterpret_cast<const sockaddr*>(&remote_), sizeof remote_);
   return n == static_cast<ssize_t>(len);
 }
 
 std::string UdpTransport::describe() const {
   char addr[INET_ADDRSTRLEN] = "?";
   inet_ntop(AF_INET, &remote_.sin_addr, addr, sizeof addr);
-  return "udp " + config_.bind_address + ":" + std::to_string(config_.bind_port) + " -> " + addr + ":" +
-         std::to_string(ntohs(remote_.sin_port));
+  return "udp " + config_.bind_address + ":" + std::to_string(config_.bind_port) + " -> " + addr +
+         ":" + std::to_string(ntohs(remote_.sin_port));
 }
 
 }  // namespace microhard_gs

@@ -10,9 +10,9 @@
 namespace microhard_gs {
 
 struct UdpConfig {
-  std::string bind_address;   // local address to listen on
+  std::string bind_address;  // local address to listen on
   int bind_port = 0;
-  std::string remote_address; // where telemetry goes until a GCS speaks to us
+  std::string remote_address;  // where telemetry goes until a GCS speaks to us
   int remote_port = 0;
   bool follow_sender = true;  // answer whichever address last sent us a datagram
 };

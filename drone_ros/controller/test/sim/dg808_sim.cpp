@@ -17,9 +17,8 @@ Eigen::Matrix3d body_to_ned(const Eigen::Vector3d &e) {
   const double ct = std::cos(e.y()), st = std::sin(e.y());
   const double cp = std::cos(e.z()), sp = std::sin(e.z());
   Eigen::Matrix3d r;
-  r << ct * cp, sf * st * cp - cf * sp, cf * st * cp + sf * sp,
-      ct * sp, sf * st * sp + cf * cp, cf * st * sp - sf * cp,
-      -st, sf * ct, cf * ct;
+  r << ct * cp, sf * st * cp - cf * sp, cf * st * cp + sf * sp, ct * sp, sf * st * sp + cf * cp,
+      cf * st * sp - sf * cp, -st, sf * ct, cf * ct;
   return r;
 }
 
@@ -33,7 +32,8 @@ void Sim::set_trimmed_flight(double airspeed_ftps, double height_ft, double psi_
   pos_ned_m_ = Eigen::Vector3d(0.0, 0.0, -height_ft / kFtPerM);
   euler_ = Eigen::Vector3d(0.0, DG808_TRIM_THETA_RAD, psi_rad);
   rates_radps_.setZero();
-  const Eigen::Vector3d va(vt * std::cos(DG808_TRIM_ALPHA_RAD), 0.0, vt * std::sin(DG808_TRIM_ALPHA_RAD));
+  const Eigen::Vector3d va(vt * std::cos(DG808_TRIM_ALPHA_RAD), 0.0,
+                           vt * std::sin(DG808_TRIM_ALPHA_RAD));
   vel_body_mps_ = va + body_to_ned(euler_).transpose() * config_.wind_ned_mps;
   specific_force_mps2_ = Eigen::Vector3d(0.0, 0.0, -DG808_GRAVITY_M_S2);
 }
@@ -104,10 +104,10 @@ Sim::State Sim::derivatives(const State &x, const DG808_GNC_Output &cmd,
                     DG808_CN_RUDDER_PER_RAD * dr;
   const double s = DG808_WING_AREA_M2;
   const double lift = qbar * s * cl, drag = qbar * s * cd;
-  const double thrust = cmd.throttle * DG808_MAX_THRUST_N * (1.0 - vt / DG808_ZERO_THRUST_SPEED_M_S);
+  const double thrust =
+      cmd.throttle * DG808_MAX_THRUST_N * (1.0 - vt / DG808_ZERO_THRUST_SPEED_M_S);
   const Eigen::Vector3d force(-drag * std::cos(alpha) + lift * std::sin(alpha) + thrust,
-                              qbar * s * cy,
-                              -drag * std::sin(alpha) - lift * std::cos(alpha));
+                              qbar * s * cy, -drag * std::sin(alpha) - lift * std::cos(alpha));
   const Eigen::Vector3d moment(qbar * s * DG808_WING_SPAN_M * croll,
                                qbar * s * DG808_MEAN_CHORD_M * cm,
                                qbar * s * DG808_WING_SPAN_M * cn);
@@ -121,7 +121,8 @@ Sim::State Sim::derivatives(const State &x, const DG808_GNC_Output &cmd,
       config_.mass_scale * Eigen::Vector3d(DG808_IXX_KG_M2, DG808_IYY_KG_M2, DG808_IZZ_KG_M2);
   const Eigen::Vector3d iw = inertia.cwiseProduct(w);
   const Eigen::Vector3d wdot = (moment - w.cross(iw)).cwiseQuotient(inertia);
-  const double sf = std::sin(e.x()), cf = std::cos(e.x()), ct = std::cos(e.y()), tt = std::tan(e.y());
+  const double sf = std::sin(e.x()), cf = std::cos(e.x()), ct = std::cos(e.y()),
+               tt = std::tan(e.y());
   State d;
   d.segment<3>(0) = r_nb * v;
   d.segment<3>(3) = f + g_body - w.cross(v);

@@ -48,7 +48,8 @@ class Sim {
 
  private:
   using State = Eigen::Matrix<double, 12, 1>;  // pos NED, v body (ground), pqr, euler
-  State derivatives(const State &x, const DG808_GNC_Output &cmd, Eigen::Vector3d *specific_force) const;
+  State derivatives(const State &x, const DG808_GNC_Output &cmd,
+                    Eigen::Vector3d *specific_force) const;
   void unpack(const State &x);
   State pack() const;
 
