@@ -171,7 +171,8 @@ int main(void) {
     ha_append_u32(line, sizeof line, BUDGET_INSNS);
     ha_append_str(line, sizeof line, " instructions per step: ");
     ha_append_str(line, sizeof line, worst < BUDGET_INSNS ? "MET" : "NOT MET");
-    ha_append_str(line, sizeof line, " (2% of a 10 ms period at 84 MHz; timing is reported, never asserted)\n");
+    ha_append_str(line, sizeof line,
+                  " (2% of a 10 ms period at 84 MHz; timing is reported, never asserted)\n");
     ha_semihost_write0(line);
   }
   return 0;

@@ -18,8 +18,7 @@ void ha_semihost_write0(const char *text) {
 }
 
 void ha_semihost_exit(int success) {
-  (void)semihost_call(SYS_EXIT,
-                      success ? ADP_STOPPED_APPLICATION_EXIT : ADP_STOPPED_RUNTIME_ERROR);
+  (void)semihost_call(SYS_EXIT, success ? ADP_STOPPED_APPLICATION_EXIT : ADP_STOPPED_RUNTIME_ERROR);
   for (;;) {
   }
 }

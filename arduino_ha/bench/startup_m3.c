@@ -39,6 +39,6 @@ typedef void (*HaVector)(void);
 /* Initial stack pointer, reset, then NMI, HardFault, MemManage, BusFault, UsageFault. */
 __attribute__((section(".isr_vector"), used)) static const HaVector ha_vectors[7] = {
     (HaVector)(uintptr_t)&_stack_top, ha_bench_reset_handler, ha_bench_fault_handler,
-    ha_bench_fault_handler,           ha_bench_fault_handler,  ha_bench_fault_handler,
+    ha_bench_fault_handler,           ha_bench_fault_handler, ha_bench_fault_handler,
     ha_bench_fault_handler,
 };

@@ -38,10 +38,10 @@
 
 #include "../src/core/ha_aircraft.h"
 #include "../src/core/ha_app.h"
+#include "../src/vn200/ha_vn200_feed.h"
 #include "ha_link.h"
 #include "ha_link_report.h"
 #include "ha_sil_channel.h"
-#include "../src/vn200/ha_vn200_feed.h"
 
 static volatile sig_atomic_t g_stop = 0;
 static volatile sig_atomic_t g_unplug = 0;
@@ -71,15 +71,15 @@ typedef struct {
   uint32_t commands;
   uint32_t negotiations_seen;
   const char *param_name;
-  uint32_t errors_logged;     /* sum of the drop counters last reported */
-  uint32_t errors_logged_us;  /* when */
+  uint32_t errors_logged;    /* sum of the drop counters last reported */
+  uint32_t errors_logged_us; /* when */
   /* In the loop of a simulator */
-  int vn_fd;                  /* the HA's VN-200 port, -1 without --vn200 */
+  int vn_fd;       /* the HA's VN-200 port, -1 without --vn200 */
   HaVn200Feed ins; /* the VN-200 port, read by the Due's own rule (src/vn200/ha_vn200_feed.c) */
-  int channel_fd;             /* the simulator's control channel, -1 without --lockstep */
-  int sim_clock;              /* 1: board micros() is sim_now_us (lockstep) */
+  int channel_fd;  /* the simulator's control channel, -1 without --lockstep */
+  int sim_clock;   /* 1: board micros() is sim_now_us (lockstep) */
   uint32_t sim_now_us;
-  HaSilStep board_in;         /* the latest board inputs from the simulator */
+  HaSilStep board_in; /* the latest board inputs from the simulator */
   int have_board_in;
   int hp_reset;
   uint32_t last_cmd_seq;
@@ -172,12 +172,14 @@ static void link_on_command(void *ctx, const HaHpCommand *cmd, uint32_t arrival_
 
 static void link_on_operator(void *ctx, const drone_ros_OperatorCommand *op, uint32_t arrival_us) {
   Sil *sil = (Sil *)ctx;
-  static const char *const kSetHome[] = {"SET_HOME: home moved", "SET_HOME refused: not parked on the ground",
+  static const char *const kSetHome[] = {"SET_HOME: home moved",
+                                         "SET_HOME refused: not parked on the ground",
                                          "SET_HOME refused: position out of range"};
   if (op->command == HA_OP_SET_HOME) { /* home is the INS adapter's, not the decision logic's */
-    const int r = ha_ins_set_home(&sil->ins.ins, &ha_aircraft_config, op->use_current ? 1u : 0u, op->latitude,
-                                  op->longitude, op->altitude, arrival_us);
-    (void)ha_link_log(&sil->link, r == HA_INS_SET_HOME_OK ? ROSSERIAL_MSGS_LOG_INFO : ROSSERIAL_MSGS_LOG_WARN,
+    const int r = ha_ins_set_home(&sil->ins.ins, &ha_aircraft_config, op->use_current ? 1u : 0u,
+                                  op->latitude, op->longitude, op->altitude, arrival_us);
+    (void)ha_link_log(&sil->link,
+                      r == HA_INS_SET_HOME_OK ? ROSSERIAL_MSGS_LOG_INFO : ROSSERIAL_MSGS_LOG_WARN,
                       kSetHome[r >= 0 && r <= 2 ? r : 1]);
     return;
   }
@@ -199,8 +201,8 @@ static void link_on_param(void *ctx, const rosserial_msgs_RequestParamResponse *
 /* --- the device's own view of bad input, sent to the host as a log --- */
 static uint32_t link_errors(const HaLink *link) {
   const HaLinkFrameCounters *f = &link->decoder.counters;
-  return f->bytes_skipped + f->bad_protocol + f->bad_length_checksum + f->oversized + f->bad_checksum +
-         f->timeouts + link->counters.unknown_topic + link->counters.bad_payload;
+  return f->bytes_skipped + f->bad_protocol + f->bad_length_checksum + f->oversized +
+         f->bad_checksum + f->timeouts + link->counters.unknown_topic + link->counters.bad_payload;
 }
 
 /* Whenever the device has dropped something new, it says what, at most every 200 ms: the host
@@ -264,8 +266,8 @@ static void unplug(Sil *sil) {
 
 /* The period's pwm, decision_status and home, built as the Due builds them. */
 static void send_sensors(Sil *sil, uint32_t now_us) {
-  ha_link_report_period(&sil->link, &ha_aircraft_config, &sil->app.inputs, &sil->app.outputs, &sil->ins.ins,
-                        now_us);
+  ha_link_report_period(&sil->link, &ha_aircraft_config, &sil->app.inputs, &sil->app.outputs,
+                        &sil->ins.ins, now_us);
 }
 
 /* A (re)negotiated link says so in the host's log and asks for --param. */
@@ -388,7 +390,8 @@ static int decode_step(const uint8_t *b, size_t len, HaSilStep *st) {
 }
 
 /* Lockstep: the simulator waits for each reply, so the send may block. Real time: the SIL keeps
- * its own clock and never waits for the simulator; a reply that finds the socket full is dropped. */
+ * its own clock and never waits for the simulator; a reply that finds the socket full is dropped.
+ */
 static void send_reply(Sil *sil, uint16_t flags, uint64_t t_us, uint32_t wait_us) {
   const HaOutputs *o = &sil->app.outputs;
   uint8_t b[REPLY_RECORD_LEN];
@@ -425,7 +428,8 @@ static void send_reply(Sil *sil, uint16_t flags, uint64_t t_us, uint32_t wait_us
   put_u32(b, &at, vn_framer_bad_packets(&sil->ins.framer.stats) + sil->ins.counts.decode_errors);
   put_u32(b, &at, wait_us);
   {
-    const ssize_t n = send(sil->channel_fd, b, at, MSG_NOSIGNAL | (sil->sim_clock ? 0 : MSG_DONTWAIT));
+    const ssize_t n =
+        send(sil->channel_fd, b, at, MSG_NOSIGNAL | (sil->sim_clock ? 0 : MSG_DONTWAIT));
     if (n != (ssize_t)at && !(n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK))) {
       g_stop = 1; /* the simulator is gone: so is the world this HA lives in */
     }
@@ -479,7 +483,8 @@ static uint16_t gather_period_inputs(Sil *sil, const HaSilStep *st) {
       return 0u;
     }
     if (wall_s() >= deadline || g_stop) {
-      return (uint16_t)((want_cmd ? HA_SIL_R_COMMAND_TIMEOUT : 0u) | (want_vn ? HA_SIL_R_VN_TIMEOUT : 0u));
+      return (uint16_t)((want_cmd ? HA_SIL_R_COMMAND_TIMEOUT : 0u) |
+                        (want_vn ? HA_SIL_R_VN_TIMEOUT : 0u));
     }
     if (sil->master_fd >= 0) {
       p[np].fd = sil->master_fd;
@@ -597,8 +602,9 @@ int main(int argc, char **argv) {
     }
   }
   if ((sil.port_path == NULL) || !(rate_hz >= 1.0 && rate_hz <= 1000.0)) {
-    fprintf(stderr, "usage: ha_sil --port PATH [--rate-hz 1..1000] [--unplug-ms N] [--latency-log FILE]\n"
-                    "              [--param NAME] [--vn200 PATH] [--lockstep SOCKET [--realtime]]\n");
+    fprintf(stderr,
+            "usage: ha_sil --port PATH [--rate-hz 1..1000] [--unplug-ms N] [--latency-log FILE]\n"
+            "              [--param NAME] [--vn200 PATH] [--lockstep SOCKET [--realtime]]\n");
     return 2;
   }
   signal(SIGINT, on_stop);
@@ -630,7 +636,8 @@ int main(int argc, char **argv) {
     return 1;
   }
   if (channel_path != NULL && connect_channel(&sil, channel_path) != 0) {
-    fprintf(stderr, "ha_sil: cannot connect to the simulator at %s: %s\n", channel_path, strerror(errno));
+    fprintf(stderr, "ha_sil: cannot connect to the simulator at %s: %s\n", channel_path,
+            strerror(errno));
     return 1;
   }
   if (plug(&sil) != 0) {
@@ -709,10 +716,12 @@ int main(int argc, char **argv) {
   if (sil.latency_log != NULL) {
     fclose(sil.latency_log);
   }
-  fprintf(stderr, "ha_sil: %u commands, frames ok %u, bad checksum %u, skipped %u, unknown topic %u, "
+  fprintf(stderr,
+          "ha_sil: %u commands, frames ok %u, bad checksum %u, skipped %u, unknown topic %u, "
           "VN-200 bytes %llu\n",
           (unsigned)sil.commands, (unsigned)sil.link.decoder.counters.frames_ok,
-          (unsigned)sil.link.decoder.counters.bad_checksum, (unsigned)sil.link.decoder.counters.bytes_skipped,
+          (unsigned)sil.link.decoder.counters.bad_checksum,
+          (unsigned)sil.link.decoder.counters.bytes_skipped,
           (unsigned)sil.link.counters.unknown_topic, (unsigned long long)sil.ins.counts.bytes_read);
   return 0;
 }

@@ -33,29 +33,30 @@
 #define HA_SIL_WAIT_COMMAND 1u /* wait for the HP command cmd_seq before stepping */
 #define HA_SIL_AIRSPEED_OK 2u  /* the AMS5812 read succeeded (else the core gets -1) */
 #define HA_SIL_BATTERY_OK 4u
-#define HA_SIL_RC_VALID 8u     /* every RC channel captured recently */
+#define HA_SIL_RC_VALID 8u /* every RC channel captured recently */
 /* With HA_SIL_WAIT_COMMAND: cmd_seq counts the HP commands the link must have delivered since the
  * start, not a sequence number (a fault relay may repeat or replay sequence numbers). */
 #define HA_SIL_WAIT_COUNT 16u
 
 /* HaSilReply.flags */
-#define HA_SIL_R_LINK_CONNECTED 1u /* the host negotiated topics: /pwm and /decision_status go out */
+#define HA_SIL_R_LINK_CONNECTED \
+  1u /* the host negotiated topics: /pwm and /decision_status go out */
 #define HA_SIL_R_COMMAND_TIMEOUT 2u /* the wait for cmd_seq ran out */
 #define HA_SIL_R_VN_TIMEOUT 4u      /* the wait for vn_bytes ran out */
 #define HA_SIL_R_STATE_VALID 8u     /* the INS state the core used was valid */
 #define HA_SIL_R_HP_RESET 16u       /* the HP reset line is asserted */
 #define HA_SIL_R_RESTART_REQUESTED 32u
-#define HA_SIL_R_STEPPED 64u        /* this reply follows a period of the core */
+#define HA_SIL_R_STEPPED 64u /* this reply follows a period of the core */
 
 /* Layout: "<IHHQQIIHHHHHHff" (64 bytes). */
 typedef struct {
   uint32_t magic;
   uint16_t version;
   uint16_t flags;
-  uint64_t t_us;     /* simulation time of this period */
-  uint64_t vn_bytes; /* VN-200 bytes written to the HA's port since the start */
-  uint32_t cmd_seq;  /* with HA_SIL_WAIT_COMMAND: the HP command to wait for */
-  uint32_t wait_ms;  /* bound on each wall-clock wait */
+  uint64_t t_us;           /* simulation time of this period */
+  uint64_t vn_bytes;       /* VN-200 bytes written to the HA's port since the start */
+  uint32_t cmd_seq;        /* with HA_SIL_WAIT_COMMAND: the HP command to wait for */
+  uint32_t wait_ms;        /* bound on each wall-clock wait */
   uint16_t rc_pulse_us[5]; /* HA_RC_* order: throttle, elevator, aileron, rudder, PIC */
   uint16_t reserved;
   float airspeed_ftps; /* AMS5812 reading as the board layer converts it */

@@ -21,10 +21,10 @@ Rates MaxRates(const Timeline& t, size_t from) {
   for (size_t i = from + 1; i < t.board.servo_writes.size(); ++i) {
     const HaSurfaces& a = t.board.servo_writes[i - 1];
     const HaSurfaces& b = t.board.servo_writes[i];
-    r.surface_deg_per_s = std::max({r.surface_deg_per_s,
-                                    std::fabs(b.elevator_deg - a.elevator_deg) / dt,
-                                    std::fabs(b.aileron_deg - a.aileron_deg) / dt,
-                                    std::fabs(b.rudder_deg - a.rudder_deg) / dt});
+    r.surface_deg_per_s =
+        std::max({r.surface_deg_per_s, std::fabs(b.elevator_deg - a.elevator_deg) / dt,
+                  std::fabs(b.aileron_deg - a.aileron_deg) / dt,
+                  std::fabs(b.rudder_deg - a.rudder_deg) / dt});
     r.throttle_per_s = std::max(r.throttle_per_s, std::fabs(b.throttle - a.throttle) / dt);
   }
   return r;
@@ -105,13 +105,12 @@ TEST(HaBumpless, PilotsStickReversalsPassUnlimitedAfterTheHandover) {
   for (int i = 0; i < 50; ++i) t.StepWithGood(-12.0f, 5.0f, 0.0f, 0.1f);
   t.board.SetPilotInCommand(true);
   const float dt = t.cfg.period_us * 1e-6f;
-  const float surface_full_s = 2.0f * std::max({t.cfg.elevator_limit_deg, t.cfg.aileron_limit_deg,
-                                                t.cfg.rudder_limit_deg}) /
-                               t.cfg.surface_rate_limit_deg_per_s;
+  const float surface_full_s =
+      2.0f * std::max({t.cfg.elevator_limit_deg, t.cfg.aileron_limit_deg, t.cfg.rudder_limit_deg}) /
+      t.cfg.surface_rate_limit_deg_per_s;
   const float throttle_full_s =
       (t.cfg.throttle_max - t.cfg.throttle_min) / t.cfg.throttle_rate_limit_per_s;
-  const int handover_periods =
-      static_cast<int>(std::max(surface_full_s, throttle_full_s) / dt) + 2;
+  const int handover_periods = static_cast<int>(std::max(surface_full_s, throttle_full_s) / dt) + 2;
   int lagging = 0;
   for (int i = 0; i < 100 * 10; ++i) {
     // Full aileron reversals every 0.25 s, throttle swept up and down over 1.2 s each way.

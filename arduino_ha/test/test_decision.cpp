@@ -314,9 +314,11 @@ TEST(HaDecision, PilotSwitchBeatsEverything) {
   one.max_restarts = 1;
   Timeline l(one);
   ASSERT_GT(l.ReachHp(), 0);
-  l.Step(); l.Step();  // crash 1: restart
+  l.Step();
+  l.Step();  // crash 1: restart
   ASSERT_GT(l.ReachHp(), 0);
-  l.Step(); l.Step();  // crash 2: latched
+  l.Step();
+  l.Step();  // crash 2: latched
   ASSERT_EQ(l.controller(), HA_CONTROLLER_HA_LATCHED);
   l.board.SetPilotInCommand(true);
   l.Step();

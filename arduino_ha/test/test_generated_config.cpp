@@ -26,8 +26,8 @@ std::string Generate(const std::string& yaml, int* status) {
   const int fd = mkstemp(name);
   EXPECT_GE(fd, 0);
   close(fd);
-  const std::string cmd = std::string(HA_PYTHON) + " " + HA_CONFIG_GENERATOR + " " + yaml + " " +
-                          name + " 2>/dev/null";
+  const std::string cmd =
+      std::string(HA_PYTHON) + " " + HA_CONFIG_GENERATOR + " " + yaml + " " + name + " 2>/dev/null";
   *status = std::system(cmd.c_str());
   std::string text = Slurp(name);
   std::remove(name);
@@ -104,8 +104,8 @@ int GenerateWithMessage(const std::string& key, const std::string& value, std::s
   close(fd);
   std::ofstream(name) << yaml.substr(0, at) + key + ": " + value + yaml.substr(end);
   const std::string err = std::string(name) + ".err";
-  const std::string cmd = std::string(HA_PYTHON) + " " + HA_CONFIG_GENERATOR + " " + name +
-                          " - >/dev/null 2>" + err;
+  const std::string cmd =
+      std::string(HA_PYTHON) + " " + HA_CONFIG_GENERATOR + " " + name + " - >/dev/null 2>" + err;
   const int status = std::system(cmd.c_str());
   *message = Slurp(err);
   std::remove(name);
@@ -126,7 +126,7 @@ TEST(HaGeneratedConfig, GeneratorRefusesWhatTheCoreCannotHoldNamingKeyAndReason)
       {"max_restarts", "1.9", "whole"},                   // silently 1
       {"late_periods_tolerated", "1.5", "whole"},
       {"pulse_min_us", "1000.5", "whole"},
-      {"no_command_timeout_s", "0.005", "period"},        // shorter than one period
+      {"no_command_timeout_s", "0.005", "period"},  // shorter than one period
       {"state_timeout_s", "0.004", "period"},
       {"late_periods_tolerated", "5", "no_command_timeout_s"},  // the timeout fires first
   };

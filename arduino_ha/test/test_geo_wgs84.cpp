@@ -17,8 +17,8 @@ struct ArcRow {
   double lat_deg, lat_arc_m, lon_arc_m;
 };
 constexpr ArcRow kPublished[] = {
-    {0.0, 110574.0, 111320.0},  {15.0, 110649.0, 107551.0}, {30.0, 110852.0, 96486.0},
-    {45.0, 111132.0, 78847.0},  {60.0, 111412.0, 55800.0},  {75.0, 111618.0, 28902.0},
+    {0.0, 110574.0, 111320.0}, {15.0, 110649.0, 107551.0}, {30.0, 110852.0, 96486.0},
+    {45.0, 111132.0, 78847.0}, {60.0, 111412.0, 55800.0},  {75.0, 111618.0, 28902.0},
 };
 
 struct Ecef {
@@ -27,7 +27,8 @@ struct Ecef {
 Ecef ecef(long double lat_deg, long double lon_deg, long double h_m) {
   const long double la = lat_deg * 3.14159265358979323846264L / 180.0L;
   const long double lo = lon_deg * 3.14159265358979323846264L / 180.0L;
-  const long double n = GEO_WGS84_A_M / std::sqrt(1.0L - GEO_WGS84_E2 * std::sin(la) * std::sin(la));
+  const long double n =
+      GEO_WGS84_A_M / std::sqrt(1.0L - GEO_WGS84_E2 * std::sin(la) * std::sin(la));
   return {(n + h_m) * std::cos(la) * std::cos(lo), (n + h_m) * std::cos(la) * std::sin(lo),
           (n * (1.0L - GEO_WGS84_E2) + h_m) * std::sin(la)};
 }

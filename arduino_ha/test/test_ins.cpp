@@ -122,7 +122,8 @@ TEST_F(InsAdapter, SetHomeOnTheGroundMovesHomeAndTheStateFollows) {
   HaInsSample moved = Parked();
   moved.lon_deg += 0.0002;
   ASSERT_EQ(Update(moved, 4000u), 1);
-  ASSERT_EQ(ha_ins_set_home(&ins, &ha_aircraft_config, 1u, 0.0, 0.0, 0.0, 5000u), HA_INS_SET_HOME_OK);
+  ASSERT_EQ(ha_ins_set_home(&ins, &ha_aircraft_config, 1u, 0.0, 0.0, 0.0, 5000u),
+            HA_INS_SET_HOME_OK);
   EXPECT_EQ(ins.home.lon_deg, kHomeLonDeg + 0.0002);
   EXPECT_EQ(ins.home.alt_m, kHomeAltM);
   ASSERT_EQ(Update(moved, 6000u), 1);
@@ -146,8 +147,9 @@ TEST_F(InsAdapter, SetHomeInFlightIsRefusedAndHomeStays) {
 
 TEST_F(InsAdapter, SetHomeBeforeAnyHomeOrToANonsensePositionIsRefused) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_EQ(ha_ins_set_home(&ins, &ha_aircraft_config, 0u, kHomeLatDeg, kHomeLonDeg, kHomeAltM, 10u),
-            HA_INS_SET_HOME_NOT_ON_GROUND);
+  EXPECT_EQ(
+      ha_ins_set_home(&ins, &ha_aircraft_config, 0u, kHomeLatDeg, kHomeLonDeg, kHomeAltM, 10u),
+      HA_INS_SET_HOME_NOT_ON_GROUND);
   EXPECT_EQ(ins.home_latched, 0u);
   ASSERT_EQ(Update(Parked(), 1000u), 1);
   EXPECT_EQ(ha_ins_set_home(&ins, &ha_aircraft_config, 0u, nan, kHomeLonDeg, kHomeAltM, 1100u),
@@ -177,9 +179,9 @@ TEST_F(InsAdapter, NanAttitudeIsDroppedUnstamped) {
   HaInsSample s = Flying(30.0, 0.0, 0.0);
   s.ypr_deg[2] = std::numeric_limits<float>::quiet_NaN();
   EXPECT_EQ(Update(s, 20u), 0);
-  EXPECT_EQ(in.state_valid, 1u);        // the last good state stays, to age out in the core
-  EXPECT_EQ(in.state_rx_us, 10u);       // not stamped
-  EXPECT_FLOAT_EQ(in.roll_deg, 0.0f);   // not written
+  EXPECT_EQ(in.state_valid, 1u);       // the last good state stays, to age out in the core
+  EXPECT_EQ(in.state_rx_us, 10u);      // not stamped
+  EXPECT_FLOAT_EQ(in.roll_deg, 0.0f);  // not written
   EXPECT_FALSE(std::isnan(in.roll_deg));
   EXPECT_EQ(ins.solutions_rejected, 1u);
 
@@ -208,10 +210,10 @@ TEST_F(InsAdapter, NonFiniteOrImpossibleValuesAreRejected) {
 TEST_F(InsAdapter, InsWithoutFixIsDroppedUnstamped) {
   ASSERT_EQ(Update(Parked(), 10u), 1);
   const uint16_t statuses[] = {
-      0x0002u,           // tracking, GNSS fix bit clear
-      0x0001u | 0x0004u, // aligning
-      0x0003u | 0x0004u, // GNSS lost for long: position dead-reckoned
-      0x0000u,           // not tracking
+      0x0002u,                     // tracking, GNSS fix bit clear
+      0x0001u | 0x0004u,           // aligning
+      0x0003u | 0x0004u,           // GNSS lost for long: position dead-reckoned
+      0x0000u,                     // not tracking
       kTrackingWithFix | 0x0010u,  // an error flag
   };
   for (uint16_t status : statuses) {

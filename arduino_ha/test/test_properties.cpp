@@ -35,19 +35,25 @@ class Hostile {
 
   float AnyFloat() {
     switch (rng_() % 9) {
-      case 0: return std::numeric_limits<float>::quiet_NaN();
-      case 1: return (rng_() & 1) ? std::numeric_limits<float>::infinity()
-                                  : -std::numeric_limits<float>::infinity();
-      case 2: return ((rng_() & 1) ? 1.0f : -1.0f) * Uniform(1e30f, 3.4e38f);
-      case 3: return ((rng_() & 1) ? 1.0f : -1.0f) * Uniform(1e-45f, 1e-38f);  // denormals
-      case 4: return (rng_() & 1) ? 0.0f : -0.0f;
+      case 0:
+        return std::numeric_limits<float>::quiet_NaN();
+      case 1:
+        return (rng_() & 1) ? std::numeric_limits<float>::infinity()
+                            : -std::numeric_limits<float>::infinity();
+      case 2:
+        return ((rng_() & 1) ? 1.0f : -1.0f) * Uniform(1e30f, 3.4e38f);
+      case 3:
+        return ((rng_() & 1) ? 1.0f : -1.0f) * Uniform(1e-45f, 1e-38f);  // denormals
+      case 4:
+        return (rng_() & 1) ? 0.0f : -0.0f;
       case 5: {  // any bit pattern, signalling NaNs included
         const uint32_t bits = U32();
         float f;
         std::memcpy(&f, &bits, sizeof f);
         return f;
       }
-      default: return Uniform(-1000.0f, 1000.0f);
+      default:
+        return Uniform(-1000.0f, 1000.0f);
     }
   }
   // A sane value most of the time, anything with probability p.
@@ -77,8 +83,8 @@ Source SourceOf(const HaOutputs& out) {
 // every source on either side of it. Within one source's steady run it does not hold by design:
 // the HP's accepted command passes bit for bit (property 2), the pilot's sticks pass straight
 // through, and the safety controller's PID output is only saturated.
-bool WithinRateLimit(const HaAircraftConfig& cfg, const HaSurfaces& before,
-                     const HaSurfaces& after, uint32_t dt_us) {
+bool WithinRateLimit(const HaAircraftConfig& cfg, const HaSurfaces& before, const HaSurfaces& after,
+                     uint32_t dt_us) {
   const double dt_s = dt_us * 1e-6;
   const double surface_step = cfg.surface_rate_limit_deg_per_s * dt_s + 1e-4;
   const double throttle_step = cfg.throttle_rate_limit_per_s * dt_s + 1e-6;
@@ -124,8 +130,7 @@ TEST(HaProperties, ServosAlwaysFiniteInsideSuAndOutsideCommandsNeverReachThem) {
       in.p_deg_s = h.Maybe(p, parked ? h.Uniform(-1.0f, 1.0f) : h.Uniform(-5.0f, 5.0f));
       in.q_deg_s = h.Maybe(p, parked ? h.Uniform(-1.0f, 1.0f) : h.Uniform(-5.0f, 5.0f));
       in.r_deg_s = h.Maybe(p, parked ? h.Uniform(-1.0f, 1.0f) : h.Uniform(-5.0f, 5.0f));
-      in.altitude_agl_ft =
-          h.Maybe(p, parked ? h.Uniform(0.0f, 10.0f) : h.Uniform(100.0f, 250.0f));
+      in.altitude_agl_ft = h.Maybe(p, parked ? h.Uniform(0.0f, 10.0f) : h.Uniform(100.0f, 250.0f));
       in.north_ft = h.Maybe(p, h.Uniform(-1000.0f, 1000.0f));
       in.east_ft = h.Maybe(p, h.Uniform(-1000.0f, 1000.0f));
       in.groundspeed_ftps = h.Maybe(p, parked ? h.Uniform(0.0f, 1.0f) : h.Uniform(50.0f, 70.0f));
@@ -144,15 +149,23 @@ TEST(HaProperties, ServosAlwaysFiniteInsideSuAndOutsideCommandsNeverReachThem) {
       }
       // The HP command: mostly valid and fresh; sometimes late, stale, corrupt or hostile.
       if (!h.Chance(p)) {
-        HaHpCommand c = MakeCommand(h.Chance(p) ? seq : ++seq, h.Uniform(0.0f, 1.0f),
-                                    h.Uniform(-10.0f, 10.0f), h.Uniform(-10.0f, 10.0f),
-                                    h.Uniform(-10.0f, 10.0f));
+        HaHpCommand c =
+            MakeCommand(h.Chance(p) ? seq : ++seq, h.Uniform(0.0f, 1.0f), h.Uniform(-10.0f, 10.0f),
+                        h.Uniform(-10.0f, 10.0f), h.Uniform(-10.0f, 10.0f));
         if (h.Chance(p * 5.0)) {  // beyond S_u with a valid CRC: only the region check can stop it
           switch (h.U32() % 4u) {
-            case 0: c.elevator_deg = h.Beyond(cfg.elevator_limit_deg); break;
-            case 1: c.aileron_deg = h.Beyond(cfg.aileron_limit_deg); break;
-            case 2: c.rudder_deg = h.Beyond(cfg.rudder_limit_deg); break;
-            default: c.throttle = h.Chance(0.5) ? h.Uniform(-0.1f, 1.1f) : h.AnyFloat(); break;
+            case 0:
+              c.elevator_deg = h.Beyond(cfg.elevator_limit_deg);
+              break;
+            case 1:
+              c.aileron_deg = h.Beyond(cfg.aileron_limit_deg);
+              break;
+            case 2:
+              c.rudder_deg = h.Beyond(cfg.rudder_limit_deg);
+              break;
+            default:
+              c.throttle = h.Chance(0.5) ? h.Uniform(-0.1f, 1.1f) : h.AnyFloat();
+              break;
           }
           SealCommand(&c);
         }
@@ -180,12 +193,11 @@ TEST(HaProperties, ServosAlwaysFiniteInsideSuAndOutsideCommandsNeverReachThem) {
         ++pilot_handed;
       } else if (source_now != source || was_in_transition) {
         ASSERT_TRUE(WithinRateLimit(cfg, applied_before, out.surfaces, dt_us))
-            << "episode " << episode << " step " << i << " from source "
-            << static_cast<int>(source) << " to " << static_cast<int>(source_now)
-            << " dt_us " << dt_us << " aileron " << applied_before.aileron_deg << " -> "
-            << out.surfaces.aileron_deg << " elevator " << applied_before.elevator_deg << " -> "
-            << out.surfaces.elevator_deg << " throttle " << applied_before.throttle << " -> "
-            << out.surfaces.throttle;
+            << "episode " << episode << " step " << i << " from source " << static_cast<int>(source)
+            << " to " << static_cast<int>(source_now) << " dt_us " << dt_us << " aileron "
+            << applied_before.aileron_deg << " -> " << out.surfaces.aileron_deg << " elevator "
+            << applied_before.elevator_deg << " -> " << out.surfaces.elevator_deg << " throttle "
+            << applied_before.throttle << " -> " << out.surfaces.throttle;
         ++rate_limited;
         ++handovers[static_cast<int>(source)][static_cast<int>(source_now)];
       }
@@ -197,8 +209,8 @@ TEST(HaProperties, ServosAlwaysFiniteInsideSuAndOutsideCommandsNeverReachThem) {
       if (cmd_outside) {
         ASSERT_NE(out.controller, HA_CONTROLLER_HP)
             << "episode " << episode << " step " << i << " command " << cmd.throttle << " "
-            << cmd.elevator_deg << " " << cmd.aileron_deg << " " << cmd.rudder_deg
-            << " region " << out.actuator_region_max;
+            << cmd.elevator_deg << " " << cmd.aileron_deg << " " << cmd.rudder_deg << " region "
+            << out.actuator_region_max;
         ++outside_rejected;
       }
       if (out.controller == HA_CONTROLLER_HP) {
@@ -218,11 +230,12 @@ TEST(HaProperties, ServosAlwaysFiniteInsideSuAndOutsideCommandsNeverReachThem) {
     }
   }
   RecordProperty("steps", static_cast<int>(steps));
-  std::printf("steps: %llu, HP in control: %llu, outside-S_u commands rejected: %llu, "
-              "rate-limited transition periods: %llu\n",
-              static_cast<unsigned long long>(steps), static_cast<unsigned long long>(hp_steps),
-              static_cast<unsigned long long>(outside_rejected),
-              static_cast<unsigned long long>(rate_limited));
+  std::printf(
+      "steps: %llu, HP in control: %llu, outside-S_u commands rejected: %llu, "
+      "rate-limited transition periods: %llu\n",
+      static_cast<unsigned long long>(steps), static_cast<unsigned long long>(hp_steps),
+      static_cast<unsigned long long>(outside_rejected),
+      static_cast<unsigned long long>(rate_limited));
   // The property must have been exercised, not vacuously true.
   EXPECT_EQ(steps, static_cast<uint64_t>(kEpisodes) * kStepsPerEpisode);
   EXPECT_GT(hp_steps, steps / 10);
@@ -246,7 +259,14 @@ TEST(HaProperties, BitComparisonsGiveTheFloatComparisonsVerdicts) {
   // ha_in_range and ha_greater decide on the IEEE-754 bits; they must agree with the float
   // comparisons they replace, for every kind of value incl. +/-0, denormals, inf and NaN.
   Hostile h(0xc0ffeeu);
-  const float kSpecial[] = {0.0f, -0.0f, 1e-45f, -1e-45f, 1.0f, -1.0f, 3.4e38f, -3.4e38f,
+  const float kSpecial[] = {0.0f,
+                            -0.0f,
+                            1e-45f,
+                            -1e-45f,
+                            1.0f,
+                            -1.0f,
+                            3.4e38f,
+                            -3.4e38f,
                             std::numeric_limits<float>::infinity(),
                             -std::numeric_limits<float>::infinity()};
   for (int i = 0; i < 2000000; ++i) {
@@ -254,7 +274,10 @@ TEST(HaProperties, BitComparisonsGiveTheFloatComparisonsVerdicts) {
     const float b = i < 100 ? kSpecial[i / 10] : (h.Chance(0.3) ? a : h.AnyFloat());
     float lo = h.Chance(0.5) ? h.Uniform(-100.0f, 100.0f) : (i % 2 ? -0.0f : 0.0f);
     float hi = h.Chance(0.1) ? lo : lo + h.Uniform(0.0f, 100.0f);
-    if (h.Chance(0.05)) { lo = a; hi = a; }  // a bound exactly on the value
+    if (h.Chance(0.05)) {
+      lo = a;
+      hi = a;
+    }  // a bound exactly on the value
     if (!std::isnan(a) && !std::isnan(b)) {
       ASSERT_EQ(ha_greater(a, b) != 0, a > b) << a << " > " << b;
     }

@@ -49,8 +49,8 @@ Envelope Fly(const Start& s, float seconds, float settle_s, Envelope* whole) {
     ha_core_step(&core, &in, now, &out);
     EXPECT_NE(out.controller, HA_CONTROLLER_HP);
     ac.Step(out.surfaces, dt);
-    float x[HA_X_DIM] = {0, 0, ac.roll_deg, ac.pitch_deg, ac.p_deg_s, ac.q_deg_s, ac.r_deg_s,
-                         ac.altitude_ft};
+    float x[HA_X_DIM] = {0,          0,          ac.roll_deg, ac.pitch_deg,
+                         ac.p_deg_s, ac.q_deg_s, ac.r_deg_s,  ac.altitude_ft};
     for (Envelope* e : {whole, i * dt >= settle_s ? &settled : nullptr}) {
       if (e == nullptr) continue;
       e->min_airspeed_ftps = std::min(e->min_airspeed_ftps, ac.airspeed_ftps);
@@ -77,11 +77,12 @@ TEST(HaSafetyCtrl, KeepsAircraftInsideRegionWithHpGone) {
     SCOPED_TRACE(s.name);
     Envelope whole;
     const Envelope e = Fly(s, 600.0f, 90.0f, &whole);
-    std::printf("%-34s whole: V>=%.1f ft/s h=[%.0f,%.0f] ft region<=%.2f | settled: V>=%.1f "
-                "h=[%.0f,%.0f] |roll|<=%.1f r=[%.0f,%.0f] ft region<=%.2f\n",
-                s.name, whole.min_airspeed_ftps, whole.min_altitude_ft, whole.max_altitude_ft,
-                whole.max_region, e.min_airspeed_ftps, e.min_altitude_ft, e.max_altitude_ft,
-                e.max_abs_roll_deg, e.min_radius_ft, e.max_radius_ft, e.max_region);
+    std::printf(
+        "%-34s whole: V>=%.1f ft/s h=[%.0f,%.0f] ft region<=%.2f | settled: V>=%.1f "
+        "h=[%.0f,%.0f] |roll|<=%.1f r=[%.0f,%.0f] ft region<=%.2f\n",
+        s.name, whole.min_airspeed_ftps, whole.min_altitude_ft, whole.max_altitude_ft,
+        whole.max_region, e.min_airspeed_ftps, e.min_altitude_ft, e.max_altitude_ft,
+        e.max_abs_roll_deg, e.min_radius_ft, e.max_radius_ft, e.max_region);
     // Never out of the region, never stalled, never above the ceiling, from the first period.
     EXPECT_LE(whole.max_region, 1.0f);
     EXPECT_GT(whole.min_airspeed_ftps, cfg.stall_speed_ftps);

@@ -31,7 +31,8 @@ int main(void) {
     printf("FAIL ZeroPressureCountsAreAReading\n");
     ++failures;
   }
-  expect_near("ZeroPressureReadsZeroAirspeed", ams5812_airspeed_ftps(r.diff_pressure_pa), 0.0, 1e-3);
+  expect_near("ZeroPressureReadsZeroAirspeed", ams5812_airspeed_ftps(r.diff_pressure_pa), 0.0,
+              1e-3);
   expect_near("TenPercentCountsAreMinusTwentyFiveC", r.temperature_c, -25.0, 1e-3);
   /* 90 % point: full scale, 2068.43 Pa -> 58.112 m/s = 190.66 ft/s. */
   (void)decode(29491u, 29491u, &r);

@@ -9,13 +9,13 @@
 #include <cstdio>
 #include <cstring>
 
+#include "arduino_shim/fake_arduino.h"
 #include "src/board_due/due_board.h"
 #include "src/board_due/due_config.h"
 #include "src/board_due/due_ins_seam.h"
 #include "src/board_due/due_main.h"
 #include "src/core/ha_aircraft.h"
 #include "src/vn200/vn_checksum.h"
-#include "arduino_shim/fake_arduino.h"
 
 namespace {
 
@@ -32,8 +32,8 @@ void check(bool ok, const char *story, const char *what) {
 
 const uint32_t kRcPins[5] = {DUE_PIN_RC_THROTTLE, DUE_PIN_RC_ELEVATOR, DUE_PIN_RC_AILERON,
                              DUE_PIN_RC_RUDDER, DUE_PIN_RC_PIC};
-const uint32_t kServoPins[4] = {DUE_PIN_SERVO_ELEVATOR, DUE_PIN_SERVO_AILERON,
-                                DUE_PIN_SERVO_RUDDER, DUE_PIN_SERVO_THROTTLE};
+const uint32_t kServoPins[4] = {DUE_PIN_SERVO_ELEVATOR, DUE_PIN_SERVO_AILERON, DUE_PIN_SERVO_RUDDER,
+                                DUE_PIN_SERVO_THROTTLE};
 
 const fake::ServoRecord *servo_on(uint32_t pin) {
   for (uint32_t i = 0u; i < fake::state.servo_count; ++i) {
@@ -84,12 +84,18 @@ struct Vn200Solution {
   uint8_t gps_fix;
 };
 
-const Vn200Solution kParkedAtHome = {
-    {10.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}, {45.0, -122.0, 100.0}, {0.0f, 0.0f, 0.0f},
-    0x0006u /* tracking, GNSS fix */, 3u};
-const Vn200Solution kFlying50mUp = {
-    {90.0f, 4.0f, -15.0f}, {0.1f, 0.0f, -0.2f}, {45.0, -122.0, 150.0}, {0.0f, 25.0f, 0.0f},
-    0x0006u, 3u};
+const Vn200Solution kParkedAtHome = {{10.0f, 0.0f, 0.0f},
+                                     {0.0f, 0.0f, 0.0f},
+                                     {45.0, -122.0, 100.0},
+                                     {0.0f, 0.0f, 0.0f},
+                                     0x0006u /* tracking, GNSS fix */,
+                                     3u};
+const Vn200Solution kFlying50mUp = {{90.0f, 4.0f, -15.0f},
+                                    {0.1f, 0.0f, -0.2f},
+                                    {45.0, -122.0, 150.0},
+                                    {0.0f, 25.0f, 0.0f},
+                                    0x0006u,
+                                    3u};
 
 size_t put(uint8_t *out, size_t n, const void *value, size_t size) {
   std::memcpy(out + n, value, size);  // the host is little-endian like the sensor's fields
@@ -131,8 +137,8 @@ int main() {
   watchdogSetup();  // the SAM core's init() calls it before setup()
   due_main_setup();
 
-  check(fake::state.watchdog_timeout_ms == DUE_WATCHDOG_TIMEOUT_MS,
-        "WatchdogEnabledBeforeSetup", "watchdogSetup() did not enable the watchdog");
+  check(fake::state.watchdog_timeout_ms == DUE_WATCHDOG_TIMEOUT_MS, "WatchdogEnabledBeforeSetup",
+        "watchdogSetup() did not enable the watchdog");
   check(fake::state.servo_count == 0u, "NothingDrivenBeforeFirstPeriod",
         "servos attached before the core decided anything");
   check(fake::state.pin_mode[DUE_PIN_HP_RESET] == OUTPUT &&
@@ -217,8 +223,7 @@ int main() {
     due_ins_feed(pkt, len, &in, 123456u);
     check(in.state_valid == 1u && in.state_rx_us == 123456u &&
               std::fabs(in.altitude_agl_ft - 164.04f) < 0.01f &&
-              std::fabs(in.heading_deg - 90.0f) < 1e-4f &&
-              std::fabs(in.roll_deg + 15.0f) < 1e-4f &&
+              std::fabs(in.heading_deg - 90.0f) < 1e-4f && std::fabs(in.roll_deg + 15.0f) < 1e-4f &&
               std::fabs(in.r_deg_s + 11.459f) < 0.01f && std::fabs(in.north_ft) < 0.01f &&
               in.on_ground == 0u,
           "Vn200SolutionInHaUnitsFromHome", "decoded state not in ft, deg, deg/s from home");

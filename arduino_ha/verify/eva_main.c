@@ -18,10 +18,10 @@
 #include <stdint.h>
 
 #include "__fc_builtin.h"
+#include "geo_wgs84.h"
 #include "ha_aircraft.h"
 #include "ha_app.h"
 #include "ha_core.h"
-#include "geo_wgs84.h"
 #include "ha_ins.h"
 
 #ifndef HA_EVA_STEPS

@@ -1,6 +1,7 @@
 /* Negative control for make verify-ha-eva (tools/eva.sh --negative): a deliberately wrong "core"
- * that the same checks must flag, so a broken analysis setup (no alarms because nothing was analysed, or the alarm counter reading
- * the wrong lines) cannot pass silently. Two planted defects:
+ * that the same checks must flag, so a broken analysis setup (no alarms because nothing was
+ * analysed, or the alarm counter reading the wrong lines) cannot pass silently. Two planted
+ * defects:
  *  - a clamp written with comparisons that NaN slips through (caught as an unproven servo
  *    assertion in the any-bits mode);
  *  - a square of a huge finite input (caught as an overflow-to-inf alarm in the finite mode). */

@@ -26,20 +26,20 @@ static void on_command(void *ctx, const HaHpCommand *cmd, uint32_t at_us) {
 }
 
 /* Deserialize, and if that succeeds the re-serialization must reproduce the consumed bytes. */
-#define ROUND_TRIP(type)                                                        \
-  do {                                                                          \
-    type msg;                                                                   \
-    size_t used = 0u;                                                           \
-    size_t written = 0u;                                                        \
-    static uint8_t again[4096];                                                 \
-    if (type##_deserialize(&msg, data, size, &used)) {                          \
-      if (used > size) abort();                                                 \
-      if (!type##_serialize(&msg, again, sizeof again, &written)) {             \
-        if (used <= sizeof again) abort();                                      \
-      } else if (written != used || memcmp(again, data, used) != 0) {           \
-        abort();                                                                \
-      }                                                                         \
-    }                                                                           \
+#define ROUND_TRIP(type)                                              \
+  do {                                                                \
+    type msg;                                                         \
+    size_t used = 0u;                                                 \
+    size_t written = 0u;                                              \
+    static uint8_t again[4096];                                       \
+    if (type##_deserialize(&msg, data, size, &used)) {                \
+      if (used > size) abort();                                       \
+      if (!type##_serialize(&msg, again, sizeof again, &written)) {   \
+        if (used <= sizeof again) abort();                            \
+      } else if (written != used || memcmp(again, data, used) != 0) { \
+        abort();                                                      \
+      }                                                               \
+    }                                                                 \
   } while (0)
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {

@@ -71,14 +71,30 @@ static inline bool ha_get_uint(const uint8_t *in, size_t len, size_t *pos, uint6
   return true;
 }
 
-static inline bool ha_put_u8(uint8_t *o, size_t c, size_t *p, uint8_t v) { return ha_put_uint(o, c, p, v, 1u); }
-static inline bool ha_put_i8(uint8_t *o, size_t c, size_t *p, int8_t v) { return ha_put_uint(o, c, p, (uint8_t)v, 1u); }
-static inline bool ha_put_u16(uint8_t *o, size_t c, size_t *p, uint16_t v) { return ha_put_uint(o, c, p, v, 2u); }
-static inline bool ha_put_i16(uint8_t *o, size_t c, size_t *p, int16_t v) { return ha_put_uint(o, c, p, (uint16_t)v, 2u); }
-static inline bool ha_put_u32(uint8_t *o, size_t c, size_t *p, uint32_t v) { return ha_put_uint(o, c, p, v, 4u); }
-static inline bool ha_put_i32(uint8_t *o, size_t c, size_t *p, int32_t v) { return ha_put_uint(o, c, p, (uint32_t)v, 4u); }
-static inline bool ha_put_u64(uint8_t *o, size_t c, size_t *p, uint64_t v) { return ha_put_uint(o, c, p, v, 8u); }
-static inline bool ha_put_i64(uint8_t *o, size_t c, size_t *p, int64_t v) { return ha_put_uint(o, c, p, (uint64_t)v, 8u); }
+static inline bool ha_put_u8(uint8_t *o, size_t c, size_t *p, uint8_t v) {
+  return ha_put_uint(o, c, p, v, 1u);
+}
+static inline bool ha_put_i8(uint8_t *o, size_t c, size_t *p, int8_t v) {
+  return ha_put_uint(o, c, p, (uint8_t)v, 1u);
+}
+static inline bool ha_put_u16(uint8_t *o, size_t c, size_t *p, uint16_t v) {
+  return ha_put_uint(o, c, p, v, 2u);
+}
+static inline bool ha_put_i16(uint8_t *o, size_t c, size_t *p, int16_t v) {
+  return ha_put_uint(o, c, p, (uint16_t)v, 2u);
+}
+static inline bool ha_put_u32(uint8_t *o, size_t c, size_t *p, uint32_t v) {
+  return ha_put_uint(o, c, p, v, 4u);
+}
+static inline bool ha_put_i32(uint8_t *o, size_t c, size_t *p, int32_t v) {
+  return ha_put_uint(o, c, p, (uint32_t)v, 4u);
+}
+static inline bool ha_put_u64(uint8_t *o, size_t c, size_t *p, uint64_t v) {
+  return ha_put_uint(o, c, p, v, 8u);
+}
+static inline bool ha_put_i64(uint8_t *o, size_t c, size_t *p, int64_t v) {
+  return ha_put_uint(o, c, p, (uint64_t)v, 8u);
+}
 
 static inline bool ha_put_f32(uint8_t *o, size_t c, size_t *p, float v) {
   uint32_t bits;
@@ -125,14 +141,14 @@ static inline bool ha_put_string(uint8_t *o, size_t c, size_t *p, const HaRosStr
   return true;
 }
 
-#define HA_GET_AS(name, type, n)                                              \
+#define HA_GET_AS(name, type, n)                                                     \
   static inline bool ha_get_##name(const uint8_t *i, size_t l, size_t *p, type *v) { \
-    uint64_t raw = 0u; /* defined on every path, for the analyzer too */      \
-    if (!ha_get_uint(i, l, p, &raw, n)) {                                     \
-      return false;                                                           \
-    }                                                                         \
-    *v = (type)raw;                                                           \
-    return true;                                                              \
+    uint64_t raw = 0u; /* defined on every path, for the analyzer too */             \
+    if (!ha_get_uint(i, l, p, &raw, n)) {                                            \
+      return false;                                                                  \
+    }                                                                                \
+    *v = (type)raw;                                                                  \
+    return true;                                                                     \
   }
 HA_GET_AS(u8, uint8_t, 1u)
 HA_GET_AS(u16, uint16_t, 2u)
@@ -142,56 +158,74 @@ HA_GET_AS(u64, uint64_t, 8u)
 
 static inline bool ha_get_i8(const uint8_t *i, size_t l, size_t *p, int8_t *v) {
   uint8_t u = 0u;
-  if (!ha_get_u8(i, l, p, &u)) { return false; }
+  if (!ha_get_u8(i, l, p, &u)) {
+    return false;
+  }
   memcpy(v, &u, 1u); /* two's complement reinterpretation without implementation-defined casts */
   return true;
 }
 static inline bool ha_get_i16(const uint8_t *i, size_t l, size_t *p, int16_t *v) {
   uint16_t u = 0u;
-  if (!ha_get_u16(i, l, p, &u)) { return false; }
+  if (!ha_get_u16(i, l, p, &u)) {
+    return false;
+  }
   memcpy(v, &u, 2u);
   return true;
 }
 static inline bool ha_get_i32(const uint8_t *i, size_t l, size_t *p, int32_t *v) {
   uint32_t u = 0u;
-  if (!ha_get_u32(i, l, p, &u)) { return false; }
+  if (!ha_get_u32(i, l, p, &u)) {
+    return false;
+  }
   memcpy(v, &u, 4u);
   return true;
 }
 static inline bool ha_get_i64(const uint8_t *i, size_t l, size_t *p, int64_t *v) {
   uint64_t u = 0u;
-  if (!ha_get_u64(i, l, p, &u)) { return false; }
+  if (!ha_get_u64(i, l, p, &u)) {
+    return false;
+  }
   memcpy(v, &u, 8u);
   return true;
 }
 static inline bool ha_get_f32(const uint8_t *i, size_t l, size_t *p, float *v) {
   uint32_t u = 0u;
-  if (!ha_get_u32(i, l, p, &u)) { return false; }
+  if (!ha_get_u32(i, l, p, &u)) {
+    return false;
+  }
   memcpy(v, &u, 4u);
   return true;
 }
 static inline bool ha_get_f64(const uint8_t *i, size_t l, size_t *p, double *v) {
   uint64_t u = 0u;
-  if (!ha_get_u64(i, l, p, &u)) { return false; }
+  if (!ha_get_u64(i, l, p, &u)) {
+    return false;
+  }
   memcpy(v, &u, 8u);
   return true;
 }
 static inline bool ha_get_time(const uint8_t *i, size_t l, size_t *p, HaRosTime *t) {
   size_t q = *p;
-  if (!ha_get_u32(i, l, &q, &t->sec) || !ha_get_u32(i, l, &q, &t->nsec)) { return false; }
+  if (!ha_get_u32(i, l, &q, &t->sec) || !ha_get_u32(i, l, &q, &t->nsec)) {
+    return false;
+  }
   *p = q;
   return true;
 }
 static inline bool ha_get_duration(const uint8_t *i, size_t l, size_t *p, HaRosDuration *t) {
   size_t q = *p;
-  if (!ha_get_i32(i, l, &q, &t->sec) || !ha_get_i32(i, l, &q, &t->nsec)) { return false; }
+  if (!ha_get_i32(i, l, &q, &t->sec) || !ha_get_i32(i, l, &q, &t->nsec)) {
+    return false;
+  }
   *p = q;
   return true;
 }
 static inline bool ha_get_string(const uint8_t *i, size_t l, size_t *p, HaRosString *s) {
   size_t q = *p;
   uint32_t n = 0u;
-  if (!ha_get_u32(i, l, &q, &n) || !ha_room(l, &q, n)) { return false; }
+  if (!ha_get_u32(i, l, &q, &n) || !ha_room(l, &q, n)) {
+    return false;
+  }
   s->data = (const char *)&i[q];
   s->len = n;
   *p = q + n;

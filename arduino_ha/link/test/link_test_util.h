@@ -46,7 +46,8 @@ inline Bytes frame(uint16_t topic, const Bytes &payload) {
 
 struct Cmd {
   uint32_t seq = 7, sec = 1700000000, nsec = 500;
-  float throttle = 0.5f, elevator = -2.0f, aileron = 1.0f, rudder = 0.25f, alpha = 3.0f, beta = -0.5f;
+  float throttle = 0.5f, elevator = -2.0f, aileron = 1.0f, rudder = 0.25f, alpha = 3.0f,
+        beta = -0.5f;
   uint8_t converged = 1, healthy = 1;
   uint32_t crc = 0xA5A5A5A5u;
 };

@@ -35,7 +35,8 @@ struct Device {
       static_cast<Device *>(ctx)->last_operator = *op;
     };
     cb.on_param = [](void *ctx, const rosserial_msgs_RequestParamResponse *r) {
-      for (uint32_t i = 0; i < r->ints_count; ++i) static_cast<Device *>(ctx)->param_ints.push_back(r->ints[i]);
+      for (uint32_t i = 0; i < r->ints_count; ++i)
+        static_cast<Device *>(ctx)->param_ints.push_back(r->ints[i]);
     };
     cb.ctx = this;
     ha_link_init(&link, &cb);
@@ -66,7 +67,8 @@ TopicInfoWire parse_topic_info(const Bytes &p) {
   size_t pos = 0;
   auto u32 = [&]() {
     uint32_t v = static_cast<uint32_t>(p.at(pos)) | static_cast<uint32_t>(p.at(pos + 1)) << 8 |
-                 static_cast<uint32_t>(p.at(pos + 2)) << 16 | static_cast<uint32_t>(p.at(pos + 3)) << 24;
+                 static_cast<uint32_t>(p.at(pos + 2)) << 16 |
+                 static_cast<uint32_t>(p.at(pos + 3)) << 24;
     pos += 4;
     return v;
   };
@@ -209,7 +211,7 @@ TEST(HaLinkSession, HomeIsSentWhenItChangesAndEveryTwoSecondsNotEveryPeriod) {
   EXPECT_EQ(frames.back().second.size(), 36u);
   for (; t < 3100000u; t += 10000u) ha_link_offer_home(&d.link, &home, t);
   EXPECT_EQ(homes_sent(), 2u);  // the repeat, 2 s after the first
-  home.seq = 2;  // moved (an accepted SET_HOME): at once
+  home.seq = 2;                 // moved (an accepted SET_HOME): at once
   ha_link_offer_home(&d.link, &home, t);
   EXPECT_EQ(homes_sent(), 3u);
   d.rx(kTopicRequest, t + 10000u);  // the host came back: it hears home at once

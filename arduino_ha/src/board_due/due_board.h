@@ -12,7 +12,7 @@
 
 typedef struct {
   const HaAircraftConfig *cfg;
-  uint8_t servos_attached;  /* servos are attached at the first command: nothing is driven before */
+  uint8_t servos_attached; /* servos are attached at the first command: nothing is driven before */
   uint32_t airspeed_failures; /* I2C reads that returned no plausible reading */
   HaBoard board;
 } DueBoard;

@@ -21,11 +21,11 @@
 
 typedef struct {
   uint32_t bytes_read;
-  uint32_t binary_packets;  /* intact binary packets (CRC good) */
-  uint32_t ascii_frames;    /* ignored */
-  uint32_t decode_errors;   /* intact packets vn_bin_decode refused (incl. non-finite values) */
-  uint32_t bad_packets;     /* framer: corrupt or truncated packets */
-  uint32_t solutions_used;  /* solutions that made the state valid */
+  uint32_t binary_packets; /* intact binary packets (CRC good) */
+  uint32_t ascii_frames;   /* ignored */
+  uint32_t decode_errors;  /* intact packets vn_bin_decode refused (incl. non-finite values) */
+  uint32_t bad_packets;    /* framer: corrupt or truncated packets */
+  uint32_t solutions_used; /* solutions that made the state valid */
   uint32_t solutions_rejected;
 } DueInsStats;
 

@@ -4,8 +4,8 @@
 
 #include "../link/ha_link.h"
 #include "../link/ha_link_report.h"
-#include "due_ins_seam.h"
 #include "due_config.h"
+#include "due_ins_seam.h"
 
 namespace {
 
@@ -17,7 +17,8 @@ UARTClass &g_port = Serial;
 #elif DUE_HP_LINK_PORT == DUE_HP_LINK_PORT_NATIVE
 Serial_ &g_port = SerialUSB;
 #else
-#error "DUE_HP_LINK_PORT must be DUE_HP_LINK_PORT_PROGRAMMING or DUE_HP_LINK_PORT_NATIVE (due_config.h)"
+#error \
+    "DUE_HP_LINK_PORT must be DUE_HP_LINK_PORT_PROGRAMMING or DUE_HP_LINK_PORT_NATIVE (due_config.h)"
 #endif
 
 HaLink g_link;
@@ -41,10 +42,11 @@ void link_operator(void *ctx, const drone_ros_OperatorCommand *cmd, uint32_t arr
   if (cmd->command == HA_OP_SET_HOME) {  // home is the INS adapter's, not the decision logic's
     const int r = due_ins_set_home(cmd->use_current ? 1u : 0u, cmd->latitude, cmd->longitude,
                                    cmd->altitude, arrival_us);
-    (void)ha_link_log(&g_link, r == HA_INS_SET_HOME_OK ? ROSSERIAL_MSGS_LOG_INFO : ROSSERIAL_MSGS_LOG_WARN,
-                      r == HA_INS_SET_HOME_OK ? "SET_HOME: home moved"
-                      : r == HA_INS_SET_HOME_BAD_POSITION ? "SET_HOME refused: position out of range"
-                                                          : "SET_HOME refused: not parked on the ground");
+    (void)ha_link_log(
+        &g_link, r == HA_INS_SET_HOME_OK ? ROSSERIAL_MSGS_LOG_INFO : ROSSERIAL_MSGS_LOG_WARN,
+        r == HA_INS_SET_HOME_OK             ? "SET_HOME: home moved"
+        : r == HA_INS_SET_HOME_BAD_POSITION ? "SET_HOME refused: position out of range"
+                                            : "SET_HOME refused: not parked on the ground");
     return;
   }
   ha_inputs_put_operator(g_inputs, cmd->command, cmd->request_id);

@@ -86,8 +86,8 @@ void geo_from_neu_m(const GeoRef *ref, const double neu_m[3], double *lat_deg, d
   *alt_m = ref->alt_m + neu_m[2];
 }
 
-void geo_from_neu_ft(const GeoRef *ref, const double neu_ft[3], double *lat_deg,
-                     double *lon_deg, double *alt_m) {
+void geo_from_neu_ft(const GeoRef *ref, const double neu_ft[3], double *lat_deg, double *lon_deg,
+                     double *alt_m) {
   const double neu_m[3] = {neu_ft[0] / GEO_FT_PER_M, neu_ft[1] / GEO_FT_PER_M,
                            neu_ft[2] / GEO_FT_PER_M};
   geo_from_neu_m(ref, neu_m, lat_deg, lon_deg, alt_m);

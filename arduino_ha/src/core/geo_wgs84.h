@@ -47,8 +47,7 @@ int geo_ref_init(GeoRef *ref, double lat_deg, double lon_deg, double alt_m);
 double geo_dlon_deg(const GeoRef *ref, double lon_deg);
 
 /* North, east, up [m] of a point from the reference. */
-void geo_to_neu_m(const GeoRef *ref, double lat_deg, double lon_deg, double alt_m,
-                  double neu_m[3]);
+void geo_to_neu_m(const GeoRef *ref, double lat_deg, double lon_deg, double alt_m, double neu_m[3]);
 /* The same in ft. */
 void geo_to_neu_ft(const GeoRef *ref, double lat_deg, double lon_deg, double alt_m,
                    double neu_ft[3]);
@@ -61,8 +60,8 @@ void geo_to_ne_ft_f(const GeoRef *ref, double lat_deg, double lon_deg, float *no
  * [-180, 180]. */
 void geo_from_neu_m(const GeoRef *ref, const double neu_m[3], double *lat_deg, double *lon_deg,
                     double *alt_m);
-void geo_from_neu_ft(const GeoRef *ref, const double neu_ft[3], double *lat_deg,
-                     double *lon_deg, double *alt_m);
+void geo_from_neu_ft(const GeoRef *ref, const double neu_ft[3], double *lat_deg, double *lon_deg,
+                     double *alt_m);
 
 #ifdef __cplusplus
 }

@@ -1,7 +1,7 @@
 /* The narrow Board interface between the portable HA core and the hardware. The Due layer
- * (arduino_ha/src/board_due/) and the host fake board (arduino_ha/test/) implement it; the core never
- * calls it directly: ha_app.c reads it once per period, hands plain values to ha_core_step and
- * writes the outputs back. Every function gets the implementation's context pointer first. */
+ * (arduino_ha/src/board_due/) and the host fake board (arduino_ha/test/) implement it; the core
+ * never calls it directly: ha_app.c reads it once per period, hands plain values to ha_core_step
+ * and writes the outputs back. Every function gets the implementation's context pointer first. */
 #ifndef HA_BOARD_H
 #define HA_BOARD_H
 

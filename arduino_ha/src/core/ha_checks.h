@@ -8,10 +8,10 @@
 #include "ha_core.h"
 
 /* Reasons that concern the HP command itself (they reset the stable window). */
-#define HA_REASONS_COMMAND                                                                 \
-  (HA_REASON_NO_COMMAND | HA_REASON_DEADLINE_MISS | HA_REASON_NOT_FINITE |                 \
-   HA_REASON_ACTUATOR_REGION | HA_REASON_ALPHA_BETA | HA_REASON_SENSOR_LINK |              \
-   HA_REASON_FROZEN | HA_REASON_INTEGRITY | HA_REASON_ESTIMATOR)
+#define HA_REASONS_COMMAND                                                                       \
+  (HA_REASON_NO_COMMAND | HA_REASON_DEADLINE_MISS | HA_REASON_NOT_FINITE |                       \
+   HA_REASON_ACTUATOR_REGION | HA_REASON_ALPHA_BETA | HA_REASON_SENSOR_LINK | HA_REASON_FROZEN | \
+   HA_REASON_INTEGRITY | HA_REASON_ESTIMATOR)
 
 /* Reasons that are no fault of the HP: the HA's own sensors, the operator's choice. A switch for
  * these alone neither resets the HP nor counts towards the restart cap. */
@@ -42,11 +42,11 @@ typedef struct {
 
 /* What the core's bookkeeping knows about the HP command this period. */
 typedef struct {
-  uint8_t have_cmd;     /* a command has ever arrived */
-  uint8_t intact;       /* the latest command's CRC matches its fields */
-  uint32_t age_us;      /* since the latest arrived */
-  uint32_t late_periods; /* consecutive periods without a new command */
-  uint8_t frozen;       /* the latest command repeated its predecessor's seq */
+  uint8_t have_cmd;       /* a command has ever arrived */
+  uint8_t intact;         /* the latest command's CRC matches its fields */
+  uint32_t age_us;        /* since the latest arrived */
+  uint32_t late_periods;  /* consecutive periods without a new command */
+  uint8_t frozen;         /* the latest command repeated its predecessor's seq */
   const HaHpCommand *cmd; /* never NULL; meaningful only when have_cmd */
 } HaCmdFacts;
 

@@ -78,9 +78,9 @@ typedef struct {
   float beta_limit_deg;
   float stall_speed_ftps;
   float ceiling_agl_ft;
-  float airborne_agl_ft; /* one signal of flight among several (ha_core.c: airborne latch) */
+  float airborne_agl_ft;      /* one signal of flight among several (ha_core.c: airborne latch) */
   uint32_t landed_confirm_us; /* a landing evident this long clears the airborne latch */
-  float max_airspeed_ftps; /* a reading above this is a broken sensor, not a fast aircraft */
+  float max_airspeed_ftps;    /* a reading above this is a broken sensor, not a fast aircraft */
   /* A reading more than this below the INS's groundspeed is a lying pitot, not a stall. */
   float max_wind_ftps;
   uint32_t state_timeout_us; /* attitude/position older than this is not trusted */

@@ -31,8 +31,8 @@ void ha_core_init(HaCore *core, const HaAircraftConfig *cfg) {
 /* Period length actually elapsed, bounded: past the no-command timeout everything has timed out
  * anyway, and a bound keeps one late call from driving a huge integrator or slew step. */
 static uint32_t period_dt_us(const HaCore *core, uint32_t now_us) {
-  const uint32_t dt = core->have_step ? ha_elapsed_us(now_us, core->last_step_us)
-                                      : core->cfg->period_us;
+  const uint32_t dt =
+      core->have_step ? ha_elapsed_us(now_us, core->last_step_us) : core->cfg->period_us;
   return dt < core->cfg->no_command_timeout_us ? dt : core->cfg->no_command_timeout_us;
 }
 
@@ -41,8 +41,7 @@ static void track_command(HaCore *core, const HaInputs *in, uint32_t now_us, uin
                           HaCmdFacts *f) {
   /* Checked every period, not only on arrival: the checks below judge whatever in->hp_cmd
    * holds now, so its integrity must be judged on the same bytes. */
-  const uint8_t intact =
-      (uint8_t)(ha_hp_command_compute_crc(&in->hp_cmd) == in->hp_cmd.crc32);
+  const uint8_t intact = (uint8_t)(ha_hp_command_compute_crc(&in->hp_cmd) == in->hp_cmd.crc32);
   if (in->hp_cmd_count != core->seen_cmd_count) {
     core->seen_cmd_count = in->hp_cmd_count;
     core->have_cmd = 1u;
@@ -74,8 +73,7 @@ static void track_command(HaCore *core, const HaInputs *in, uint32_t now_us, uin
 /* The INS state's age restarts with each newly stamped valid state, and otherwise counts up by
  * the elapsed periods, saturating: never recomputed from the wrapping clock. A pitot reading in
  * range restarts the airspeed's age; a failed one (-1 from ha_app) ages the last good one. */
-static void track_own_sensors(HaCore *core, const HaInputs *in, uint32_t now_us,
-                              uint32_t dt_us) {
+static void track_own_sensors(HaCore *core, const HaInputs *in, uint32_t now_us, uint32_t dt_us) {
   HaOwnSensors *own = &core->own;
   const float max_ftps = core->cfg->max_airspeed_ftps;
   if (in->state_valid != 0u && in->state_rx_us != core->seen_state_rx_us) {
@@ -269,10 +267,9 @@ void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *
   policy.ground_command = core->ground_command;
   policy.reasons = reasons;
   policy.stable = (uint8_t)(core->stable_for_us >= cfg->stable_window_us);
-  policy.inner = (uint8_t)(!(reasons & HA_REASONS_STATE) &&
-                           !ha_greater(sx_max, cfg->inner_region_fraction) &&
-                           (!view.airborne ||
-                            ha_greater(view.airspeed_ftps, cfg->handback_airspeed_ftps)));
+  policy.inner =
+      (uint8_t)(!(reasons & HA_REASONS_STATE) && !ha_greater(sx_max, cfg->inner_region_fraction) &&
+                (!view.airborne || ha_greater(view.airspeed_ftps, cfg->handback_airspeed_ftps)));
   policy.restart_cap_reached = (uint8_t)restart_cap_reached(core);
   policy.boot_overdue = (uint8_t)boot_overdue(core, now_us);
   policy.hp_dead = (uint8_t)(facts.have_cmd && (reasons & HA_REASON_NO_COMMAND) &&
@@ -298,8 +295,8 @@ void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *
     ha_surfaces_from_rc(cfg, &in->rc, &target);
   } else if (source == SRC_HP) {
     ha_surfaces_from_cmd(&in->hp_cmd, &target); /* every check passed: finite, inside S_u */
-  } else if (source == SRC_SELF_TEST && !ha_self_test_target(&core->self_test, cfg, now_us,
-                                                              &target)) {
+  } else if (source == SRC_SELF_TEST &&
+             !ha_self_test_target(&core->self_test, cfg, now_us, &target)) {
     target = ha_cmd; /* the sequence just ended */
     source = SRC_HA;
   }

@@ -31,19 +31,19 @@ typedef struct {
    * from the INS through the link and carry their arrival time. Anything NaN/inf/out of range or
    * stale fails the state checks; the core never uses it unchecked. */
   float airspeed_ftps;
-  float roll_deg;     /* right wing down positive */
-  float pitch_deg;    /* nose up positive */
-  float heading_deg;  /* true, clockwise from north, any wrap */
-  float p_deg_s;      /* body roll rate */
-  float q_deg_s;      /* body pitch rate */
-  float r_deg_s;      /* body yaw rate, nose right positive */
+  float roll_deg;    /* right wing down positive */
+  float pitch_deg;   /* nose up positive */
+  float heading_deg; /* true, clockwise from north, any wrap */
+  float p_deg_s;     /* body roll rate */
+  float q_deg_s;     /* body pitch rate */
+  float r_deg_s;     /* body yaw rate, nose right positive */
   float altitude_agl_ft;
-  float north_ft;     /* position relative to the home/rally point the HA circles */
+  float north_ft; /* position relative to the home/rally point the HA circles */
   float east_ft;
   float groundspeed_ftps; /* horizontal speed over the ground (INS) */
-  uint8_t on_ground;  /* 1: weight on wheels / landed as reported by the INS side */
-  uint8_t state_valid;  /* 0 until the link has delivered a state at least once */
-  uint32_t state_rx_us; /* when that state arrived */
+  uint8_t on_ground;      /* 1: weight on wheels / landed as reported by the INS side */
+  uint8_t state_valid;    /* 0 until the link has delivered a state at least once */
+  uint32_t state_rx_us;   /* when that state arrived */
 
   HaRcInputs rc;
   float battery_v; /* reported only */
@@ -65,8 +65,8 @@ typedef struct {
   /* The safety controller's own command this period, whoever flies (before any rate limit):
    * what the HA would fly if it took over now. Reported, never driven from here. */
   HaSurfaces ha_command;
-  uint8_t controller;  /* HA_CONTROLLER_* */
-  uint32_t reasons;    /* HA_REASON_* failing this period */
+  uint8_t controller; /* HA_CONTROLLER_* */
+  uint32_t reasons;   /* HA_REASON_* failing this period */
   uint32_t reasons_at_switch;
   uint16_t restart_count;
   uint8_t restart_requested; /* 1 in the period a restart is requested (send it to the HP side) */
@@ -113,21 +113,21 @@ typedef struct {
 
 typedef struct {
   const HaAircraftConfig *cfg;
-  uint8_t controller;       /* HA_CONTROLLER_* */
-  uint8_t latched;          /* the restart cap was reached: HA for good */
-  uint8_t ground_command;   /* the operator selected the HA */
+  uint8_t controller;     /* HA_CONTROLLER_* */
+  uint8_t latched;        /* the restart cap was reached: HA for good */
+  uint8_t ground_command; /* the operator selected the HA */
   uint32_t reasons_at_switch;
-  uint8_t have_step;        /* 0 before the first step */
+  uint8_t have_step; /* 0 before the first step */
   uint32_t last_step_us;
   /* HP command bookkeeping */
   uint32_t seen_cmd_count;
-  uint8_t have_cmd;         /* some command arrived, intact or not */
-  uint8_t have_seq;         /* last_seq is that of an intact command */
+  uint8_t have_cmd; /* some command arrived, intact or not */
+  uint8_t have_seq; /* last_seq is that of an intact command */
   uint8_t frozen;
   uint32_t last_seq;
   uint32_t late_periods;
   uint32_t cmd_age_us;
-  uint32_t stable_for_us;   /* the command has been valid this long (saturating) */
+  uint32_t stable_for_us; /* the command has been valid this long (saturating) */
   /* The HA's own sensors across periods */
   uint32_t seen_state_rx_us;
   HaOwnSensors own;
@@ -141,13 +141,13 @@ typedef struct {
   uint8_t reset_active;
   uint32_t reset_started_us;
   uint32_t reset_released_us;
-  uint8_t awaiting_boot;    /* reset, and no valid command since */
+  uint8_t awaiting_boot; /* reset, and no valid command since */
   /* operator */
   uint32_t seen_operator_count;
   uint32_t operator_ack_id;
   uint8_t operator_ack_accepted;
   /* bumpless transfer */
-  HaSurfaces applied;       /* what went to the servos last period */
+  HaSurfaces applied; /* what went to the servos last period */
   uint8_t transition_active;
   uint32_t manual_handover_left_us; /* into MANUAL: rate-limited at most this much longer */
   uint8_t last_source;

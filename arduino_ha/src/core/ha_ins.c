@@ -101,8 +101,8 @@ static void latch_home(HaIns *ins, const Checked *s) {
   }
 }
 
-int ha_ins_update(HaIns *ins, const HaAircraftConfig *cfg, const HaInsSample *s,
-                  uint32_t now_us, HaInputs *in) {
+int ha_ins_update(HaIns *ins, const HaAircraftConfig *cfg, const HaInsSample *s, uint32_t now_us,
+                  HaInputs *in) {
   Checked c;
   float agl_ft;
   /* A rejected solution is dropped without touching the state: the last good one stays, and
@@ -131,8 +131,9 @@ int ha_ins_update(HaIns *ins, const HaAircraftConfig *cfg, const HaInsSample *s,
   agl_ft = (float)(c.alt_m - ins->home.alt_m) * (float)HA_INS_FT_PER_M;
   in->altitude_agl_ft = agl_ft;
   geo_to_ne_ft_f(&ins->home, c.lat_deg, c.lon_deg, &in->north_ft, &in->east_ft);
-  in->groundspeed_ftps = sqrtf(c.vel_ned_mps[0] * c.vel_ned_mps[0] +
-                               c.vel_ned_mps[1] * c.vel_ned_mps[1]) * (float)HA_INS_FT_PER_M;
+  in->groundspeed_ftps =
+      sqrtf(c.vel_ned_mps[0] * c.vel_ned_mps[0] + c.vel_ned_mps[1] * c.vel_ned_mps[1]) *
+      (float)HA_INS_FT_PER_M;
   /* The INS has no weight-on-wheels: parked and no higher than the airborne altitude. The core
    * adds its own airspeed check before it trusts this. */
   in->on_ground = (uint8_t)(parked(cfg, &c) && agl_ft <= cfg->airborne_agl_ft);

@@ -32,9 +32,8 @@ extern "C" {
 #define HA_INS_HAS_VEL_NED 0x08u
 #define HA_INS_HAS_STATUS 0x10u
 #define HA_INS_HAS_GPS_FIX 0x20u
-#define HA_INS_HAS_REQUIRED                                                                   \
-  (HA_INS_HAS_YPR | HA_INS_HAS_RATE | HA_INS_HAS_POSITION | HA_INS_HAS_VEL_NED |              \
-   HA_INS_HAS_STATUS)
+#define HA_INS_HAS_REQUIRED \
+  (HA_INS_HAS_YPR | HA_INS_HAS_RATE | HA_INS_HAS_POSITION | HA_INS_HAS_VEL_NED | HA_INS_HAS_STATUS)
 
 /* INS status word (VN-200 manual, "INS Status"): mode in bits 0-1 (2 = tracking, the solution is
  * good), GNSS fix in bit 2, error flags in bits 3-6. */
@@ -43,13 +42,13 @@ extern "C" {
 
 /* One INS solution, as the sensor sends it (units in the names). */
 typedef struct {
-  uint8_t has;                  /* HA_INS_HAS_* */
-  float ypr_deg[3];             /* yaw, pitch, roll */
-  float angular_rate_radps[3];  /* body x, y, z */
+  uint8_t has;                    /* HA_INS_HAS_* */
+  float ypr_deg[3];               /* yaw, pitch, roll */
+  float angular_rate_radps[3];    /* body x, y, z */
   double lat_deg, lon_deg, alt_m; /* WGS84, ellipsoid height */
   float vel_ned_mps[3];
   uint16_t ins_status;
-  uint8_t gps_fix;              /* 0 none, 1 time only, 2 2D, 3 3D */
+  uint8_t gps_fix; /* 0 none, 1 time only, 2 2D, 3 3D */
 } HaInsSample;
 
 typedef struct {

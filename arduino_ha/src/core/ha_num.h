@@ -61,8 +61,6 @@ static inline float ha_clampf(float v, float lo, float hi) {
 }
 
 /* Microseconds from then to now on the wrapping 32-bit clock. */
-static inline uint32_t ha_elapsed_us(uint32_t now_us, uint32_t then_us) {
-  return now_us - then_us;
-}
+static inline uint32_t ha_elapsed_us(uint32_t now_us, uint32_t then_us) { return now_us - then_us; }
 
 #endif /* HA_NUM_H */

@@ -8,9 +8,7 @@
 #define HA_DEG_PER_RAD 57.29578f
 
 /* Wraps a finite angle in [-1080, 1080] deg into [-180, 180). */
-static float wrap180(float deg) {
-  return deg - 360.0f * floorf((deg + 180.0f) / 360.0f);
-}
+static float wrap180(float deg) { return deg - 360.0f * floorf((deg + 180.0f) / 360.0f); }
 
 /* One PID channel with conditional-integration anti-windup and output saturation. When another
  * controller drives the surface, the integrator is back-calculated so pd + integ == applied, as
@@ -49,8 +47,7 @@ static float bank_command_deg(const HaAircraftConfig *cfg, const HaStateView *s)
   distance_ft = sqrtf(s->north_ft * s->north_ft + s->east_ft * s->east_ft);
   bearing_deg = atan2f(s->east_ft, s->north_ft) * HA_DEG_PER_RAD;
   correction_deg = ha_clampf(cfg->sc_radial_gain_deg_per_ft * (distance_ft - radius_ft),
-                             -cfg->sc_radial_correction_max_deg,
-                             cfg->sc_radial_correction_max_deg);
+                             -cfg->sc_radial_correction_max_deg, cfg->sc_radial_correction_max_deg);
   /* Tangent to the circle, turned inwards when outside and outwards when inside. */
   course_deg = bearing_deg + dir * (90.0f + correction_deg);
   /* Feed-forward: the bank of a steady turn of this radius at the target speed. */
@@ -79,9 +76,8 @@ static float pitch_command_deg(const HaAircraftConfig *cfg, const HaStateView *s
   return ha_clampf(pitch_deg, -cfg->sc_pitch_cmd_limit_deg, cfg->sc_pitch_cmd_limit_deg);
 }
 
-void ha_safety_ctrl_step(HaSafetyCtrlState *st, const HaAircraftConfig *cfg,
-                         const HaStateView *s, const HaSurfaces *applied, int in_control,
-                         float dt_s, HaSurfaces *out) {
+void ha_safety_ctrl_step(HaSafetyCtrlState *st, const HaAircraftConfig *cfg, const HaStateView *s,
+                         const HaSurfaces *applied, int in_control, float dt_s, HaSurfaces *out) {
   const float target_ftps = cfg->stall_speed_ftps * cfg->sc_cruise_margin;
   const float throttle_half = 0.5f * (cfg->throttle_max - cfg->throttle_min);
   const float throttle_mid = cfg->throttle_min + throttle_half;

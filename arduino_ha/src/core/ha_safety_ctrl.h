@@ -8,9 +8,8 @@
 
 /* in_control: out of the previous period is what went to the servos (applied). Otherwise the
  * integrators are set so that the output equals applied. out is inside S_u. */
-void ha_safety_ctrl_step(HaSafetyCtrlState *st, const HaAircraftConfig *cfg,
-                         const HaStateView *s, const HaSurfaces *applied, int in_control,
-                         float dt_s, HaSurfaces *out);
+void ha_safety_ctrl_step(HaSafetyCtrlState *st, const HaAircraftConfig *cfg, const HaStateView *s,
+                         const HaSurfaces *applied, int in_control, float dt_s, HaSurfaces *out);
 
 void ha_safety_ctrl_reset(HaSafetyCtrlState *st);
 

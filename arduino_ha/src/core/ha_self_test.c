@@ -3,15 +3,14 @@
 #include "ha_num.h"
 
 typedef struct {
-  uint8_t actuator;  /* HA_U_* */
-  int8_t direction;  /* surfaces: fraction of the limit; throttle: halves of the test maximum */
+  uint8_t actuator; /* HA_U_* */
+  int8_t direction; /* surfaces: fraction of the limit; throttle: halves of the test maximum */
 } HaSelfTestStep;
 
 static const HaSelfTestStep kSteps[] = {
-    {HA_U_ELEVATOR_DEG, 1}, {HA_U_ELEVATOR_DEG, -1}, {HA_U_ELEVATOR_DEG, 0},
-    {HA_U_AILERON_DEG, 1},  {HA_U_AILERON_DEG, -1},  {HA_U_AILERON_DEG, 0},
-    {HA_U_RUDDER_DEG, 1},   {HA_U_RUDDER_DEG, -1},   {HA_U_RUDDER_DEG, 0},
-    {HA_U_THROTTLE, 1},     {HA_U_THROTTLE, 2},      {HA_U_THROTTLE, 0},
+    {HA_U_ELEVATOR_DEG, 1}, {HA_U_ELEVATOR_DEG, -1}, {HA_U_ELEVATOR_DEG, 0}, {HA_U_AILERON_DEG, 1},
+    {HA_U_AILERON_DEG, -1}, {HA_U_AILERON_DEG, 0},   {HA_U_RUDDER_DEG, 1},   {HA_U_RUDDER_DEG, -1},
+    {HA_U_RUDDER_DEG, 0},   {HA_U_THROTTLE, 1},      {HA_U_THROTTLE, 2},     {HA_U_THROTTLE, 0},
 };
 #define HA_SELF_TEST_STEPS (sizeof kSteps / sizeof kSteps[0])
 

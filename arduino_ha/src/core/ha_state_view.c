@@ -33,12 +33,11 @@ void ha_state_view(const HaAircraftConfig *cfg, const HaInputs *in, const HaHpCo
     out->x[j] = cfg->x0[j];
   }
   out->attitude_ok = (uint8_t)(fresh && attitude_plausible(in));
-  out->altitude_ok =
-      (uint8_t)(fresh && ha_within_span(in->altitude_agl_ft, HA_ALT_SPAN_FT));
+  out->altitude_ok = (uint8_t)(fresh && ha_within_span(in->altitude_agl_ft, HA_ALT_SPAN_FT));
   out->position_ok = (uint8_t)(fresh && position_plausible(in));
   out->airspeed_ok = (uint8_t)(own->airspeed_age_us <= cfg->airspeed_timeout_us);
-  out->alpha_beta_ok = (uint8_t)(have_cmd && ha_finite(cmd->alpha_est_deg) &&
-                                 ha_finite(cmd->beta_est_deg));
+  out->alpha_beta_ok =
+      (uint8_t)(have_cmd && ha_finite(cmd->alpha_est_deg) && ha_finite(cmd->beta_est_deg));
   if (out->attitude_ok) {
     out->x[HA_X_ROLL_DEG] = ha_clampf(in->roll_deg, -HA_ROLL_SPAN_DEG, HA_ROLL_SPAN_DEG);
     out->x[HA_X_PITCH_DEG] = ha_clampf(in->pitch_deg, -HA_PITCH_SPAN_DEG, HA_PITCH_SPAN_DEG);
@@ -69,19 +68,18 @@ void ha_state_view(const HaAircraftConfig *cfg, const HaInputs *in, const HaHpCo
    * INS above alt0, the INS not parked (moving or climbing); a landing needs them all to agree. */
   {
     const int fast = out->airspeed_ok && ha_greater(out->airspeed_ftps, cfg->stall_speed_ftps);
-    const int high =
-        out->altitude_ok && ha_greater(out->x[HA_X_ALT_AGL_FT], cfg->airborne_agl_ft);
+    const int high = out->altitude_ok && ha_greater(out->x[HA_X_ALT_AGL_FT], cfg->airborne_agl_ft);
     out->flying_evidence = (uint8_t)(fast || high || (fresh && in->on_ground == 0u));
     out->landed_evidence = (uint8_t)(out->altitude_ok && in->on_ground != 0u && !high && !fast);
     out->blind = (uint8_t)(!fresh && !out->airspeed_ok);
   }
-  out->still = (uint8_t)(out->attitude_ok &&
-                         ha_within_span(in->roll_deg, cfg->self_test_max_tilt_deg) &&
-                         ha_within_span(in->pitch_deg, cfg->self_test_max_tilt_deg) &&
-                         ha_within_span(in->p_deg_s, cfg->self_test_max_rate_deg_s) &&
-                         ha_within_span(in->q_deg_s, cfg->self_test_max_rate_deg_s) &&
-                         ha_within_span(in->r_deg_s, cfg->self_test_max_rate_deg_s) &&
-                         ha_within_span(in->groundspeed_ftps, cfg->self_test_max_groundspeed_ftps));
+  out->still =
+      (uint8_t)(out->attitude_ok && ha_within_span(in->roll_deg, cfg->self_test_max_tilt_deg) &&
+                ha_within_span(in->pitch_deg, cfg->self_test_max_tilt_deg) &&
+                ha_within_span(in->p_deg_s, cfg->self_test_max_rate_deg_s) &&
+                ha_within_span(in->q_deg_s, cfg->self_test_max_rate_deg_s) &&
+                ha_within_span(in->r_deg_s, cfg->self_test_max_rate_deg_s) &&
+                ha_within_span(in->groundspeed_ftps, cfg->self_test_max_groundspeed_ftps));
   out->airborne = 1u; /* until the core has decided */
   out->on_ground = 0u;
 }

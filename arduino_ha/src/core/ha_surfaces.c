@@ -3,8 +3,7 @@
 #include "ha_num.h"
 
 void ha_surfaces_saturate(const HaAircraftConfig *cfg, HaSurfaces *s) {
-  s->elevator_deg =
-      ha_clampf(s->elevator_deg, -cfg->elevator_limit_deg, cfg->elevator_limit_deg);
+  s->elevator_deg = ha_clampf(s->elevator_deg, -cfg->elevator_limit_deg, cfg->elevator_limit_deg);
   s->aileron_deg = ha_clampf(s->aileron_deg, -cfg->aileron_limit_deg, cfg->aileron_limit_deg);
   s->rudder_deg = ha_clampf(s->rudder_deg, -cfg->rudder_limit_deg, cfg->rudder_limit_deg);
   s->throttle = ha_clampf(s->throttle, cfg->throttle_min, cfg->throttle_max);
@@ -46,12 +45,15 @@ static float pulse_above_min_us(const HaAircraftConfig *cfg, uint16_t pulse_us) 
 }
 
 void ha_surfaces_from_rc(const HaAircraftConfig *cfg, const HaRcInputs *rc, HaSurfaces *out) {
-  out->elevator_deg = pulse_above_min_us(cfg, rc->pulse_us[HA_RC_ELEVATOR]) *
-                          cfg->rc_elevator_deg_per_us - cfg->elevator_limit_deg;
-  out->aileron_deg = pulse_above_min_us(cfg, rc->pulse_us[HA_RC_AILERON]) *
-                         cfg->rc_aileron_deg_per_us - cfg->aileron_limit_deg;
-  out->rudder_deg = pulse_above_min_us(cfg, rc->pulse_us[HA_RC_RUDDER]) *
-                        cfg->rc_rudder_deg_per_us - cfg->rudder_limit_deg;
+  out->elevator_deg =
+      pulse_above_min_us(cfg, rc->pulse_us[HA_RC_ELEVATOR]) * cfg->rc_elevator_deg_per_us -
+      cfg->elevator_limit_deg;
+  out->aileron_deg =
+      pulse_above_min_us(cfg, rc->pulse_us[HA_RC_AILERON]) * cfg->rc_aileron_deg_per_us -
+      cfg->aileron_limit_deg;
+  out->rudder_deg =
+      pulse_above_min_us(cfg, rc->pulse_us[HA_RC_RUDDER]) * cfg->rc_rudder_deg_per_us -
+      cfg->rudder_limit_deg;
   out->throttle = pulse_above_min_us(cfg, rc->pulse_us[HA_RC_THROTTLE]) * cfg->rc_throttle_per_us +
                   cfg->throttle_min;
   ha_surfaces_saturate(cfg, out); /* a rounding at either end stays inside S_u */

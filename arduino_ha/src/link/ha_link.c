@@ -15,7 +15,8 @@ static const HaLinkTopic kTopics[HA_LINK_TOPIC_COUNT] = {
     {HA_LINK_TOPIC_DECISION_STATUS, true, "decision_status", DRONE_ROS_DECISIONSTATUS_TYPE,
      DRONE_ROS_DECISIONSTATUS_MD5},
     {HA_LINK_TOPIC_HOME, true, "home", DRONE_ROS_HOMEPOSITION_TYPE, DRONE_ROS_HOMEPOSITION_MD5},
-    {HA_LINK_TOPIC_SERVO_OP, false, "servo_op", DRONE_ROS_SERVOCOMMAND_TYPE, DRONE_ROS_SERVOCOMMAND_MD5},
+    {HA_LINK_TOPIC_SERVO_OP, false, "servo_op", DRONE_ROS_SERVOCOMMAND_TYPE,
+     DRONE_ROS_SERVOCOMMAND_MD5},
     {HA_LINK_TOPIC_OPERATOR_COMMAND, false, "operator_command", DRONE_ROS_OPERATORCOMMAND_TYPE,
      DRONE_ROS_OPERATORCOMMAND_MD5},
 };
@@ -72,7 +73,7 @@ static void negotiate_topics(HaLink *link, uint32_t now_us) {
   }
   link->counters.topic_requests++;
   link->configured = true;
-  link->home_sent_seq = 0u; /* a (re)connected host hears home at once */
+  link->home_sent_seq = 0u;          /* a (re)connected host hears home at once */
   link->last_sync_reply_us = now_us; /* the host just spoke: give it a full sync window */
   request_time(link, now_us);
 }
@@ -137,7 +138,8 @@ static void dispatch(HaLink *link, const HaLinkFrame *frame, uint32_t now_us) {
     case TOPIC_ID_PARAMETER_REQUEST: {
       rosserial_msgs_RequestParamResponse reply;
       memset(&reply, 0, sizeof reply);
-      if (rosserial_msgs_RequestParamResponse_deserialize(&reply, frame->payload, frame->payload_len, &used) &&
+      if (rosserial_msgs_RequestParamResponse_deserialize(&reply, frame->payload,
+                                                          frame->payload_len, &used) &&
           (used == frame->payload_len)) {
         link->counters.param_replies++;
         if (link->cb.on_param != NULL) {

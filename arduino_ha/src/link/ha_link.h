@@ -12,8 +12,8 @@
 #include <stdint.h>
 
 #include "../core/hp_command.h"
-#include "ha_link_msgs.h"
 #include "ha_link_frame.h"
+#include "ha_link_msgs.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -48,43 +48,44 @@ typedef struct {
 } HaLinkTopic;
 
 typedef struct {
-  uint32_t topic_requests;   /* host's topic requests answered */
-  uint32_t time_syncs;       /* time replies applied */
-  uint32_t commands;         /* ServoCommand payloads decoded and handed to the core */
+  uint32_t topic_requests; /* host's topic requests answered */
+  uint32_t time_syncs;     /* time replies applied */
+  uint32_t commands;       /* ServoCommand payloads decoded and handed to the core */
   uint32_t operator_commands;
   uint32_t param_replies;
-  uint32_t unknown_topic;    /* valid frame on a topic id the device does not know */
-  uint32_t bad_payload;      /* valid frame whose payload does not decode as its type */
-  uint32_t tx_dropped;       /* a message that could not be sent (too big, or not connected) */
-  uint32_t tx_stops;         /* host said it is going away */
-  uint32_t sync_losses;      /* the host stopped answering time requests */
+  uint32_t unknown_topic; /* valid frame on a topic id the device does not know */
+  uint32_t bad_payload;   /* valid frame whose payload does not decode as its type */
+  uint32_t tx_dropped;    /* a message that could not be sent (too big, or not connected) */
+  uint32_t tx_stops;      /* host said it is going away */
+  uint32_t sync_losses;   /* the host stopped answering time requests */
 } HaLinkCounters;
 
 typedef void (*HaLinkWriteFn)(void *ctx, const uint8_t *bytes, size_t len);
 typedef void (*HaLinkCommandFn)(void *ctx, const HaHpCommand *cmd, uint32_t arrival_us);
-typedef void (*HaLinkOperatorFn)(void *ctx, const drone_ros_OperatorCommand *cmd, uint32_t arrival_us);
+typedef void (*HaLinkOperatorFn)(void *ctx, const drone_ros_OperatorCommand *cmd,
+                                 uint32_t arrival_us);
 typedef void (*HaLinkParamFn)(void *ctx, const rosserial_msgs_RequestParamResponse *reply);
 
 typedef struct {
   HaLinkWriteFn write;
   HaLinkCommandFn on_command;
-  HaLinkOperatorFn on_operator;   /* may be NULL */
-  HaLinkParamFn on_param;         /* may be NULL */
+  HaLinkOperatorFn on_operator; /* may be NULL */
+  HaLinkParamFn on_param;       /* may be NULL */
   void *ctx;
 } HaLinkCallbacks;
 
 typedef struct {
   HaLinkDecoder decoder;
   HaLinkCallbacks cb;
-  bool configured;               /* the host asked for topics and answers time requests */
-  bool time_valid;               /* at least one time sync since boot */
+  bool configured; /* the host asked for topics and answers time requests */
+  bool time_valid; /* at least one time sync since boot */
   uint32_t last_sync_request_us;
   uint32_t last_sync_reply_us;
   uint32_t sync_request_sent_us;
-  HaRosTime ros_at_sync;         /* host time at sync_local_us */
+  HaRosTime ros_at_sync; /* host time at sync_local_us */
   uint32_t sync_local_us;
   HaLinkCounters counters;
-  uint32_t home_sent_seq;        /* the home last sent (0: none since the last negotiation) */
+  uint32_t home_sent_seq; /* the home last sent (0: none since the last negotiation) */
   uint32_t home_sent_us;
   uint8_t tx[HA_LINK_TX_MAX];
   uint8_t scratch[HA_LINK_MAX_PAYLOAD];

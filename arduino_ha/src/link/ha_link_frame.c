@@ -12,7 +12,8 @@ void ha_link_decoder_init(HaLinkDecoder *dec, uint32_t timeout_us) {
 
 void ha_link_decoder_poll(HaLinkDecoder *dec, uint32_t now_us) {
   /* Unsigned subtraction stays right across the 71-minute wrap of the microsecond clock. */
-  if ((dec->state != HA_LINK_RX_SYNC) && ((uint32_t)(now_us - dec->frame_start_us) > dec->timeout_us)) {
+  if ((dec->state != HA_LINK_RX_SYNC) &&
+      ((uint32_t)(now_us - dec->frame_start_us) > dec->timeout_us)) {
     dec->counters.timeouts++;
     dec->state = HA_LINK_RX_SYNC;
   }
@@ -51,7 +52,8 @@ bool ha_link_decoder_feed(HaLinkDecoder *dec, uint8_t byte, uint32_t now_us, HaL
       dec->state = HA_LINK_RX_LEN_CHECKSUM;
       break;
     case HA_LINK_RX_LEN_CHECKSUM: {
-      const uint32_t len_sum = (uint32_t)(dec->length & 0xFFu) + (uint32_t)(dec->length >> 8) + byte;
+      const uint32_t len_sum =
+          (uint32_t)(dec->length & 0xFFu) + (uint32_t)(dec->length >> 8) + byte;
       if ((len_sum % 256u) != 255u) {
         dec->counters.bad_length_checksum++;
         dec->state = HA_LINK_RX_SYNC;

@@ -61,8 +61,7 @@ void watchdogReset(void) { fake::state.watchdog_kicks++; }
  * nothing in these tests (the HP link sees silence). */
 void UARTClass::begin(unsigned long baud) { (void)baud; }
 int UARTClass::available(void) {
-  return this == &Serial1 ? static_cast<int>(fake::state.serial1_len - fake::state.serial1_pos)
-                          : 0;
+  return this == &Serial1 ? static_cast<int>(fake::state.serial1_len - fake::state.serial1_pos) : 0;
 }
 int UARTClass::read(void) {
   if (this != &Serial1 || fake::state.serial1_pos >= fake::state.serial1_len) {
@@ -137,8 +136,9 @@ size_t TwoWire::write(uint8_t data) {
 }
 int TwoWire::available(void) { return fake::state.i2c_reply_len - fake::state.i2c_pos; }
 int TwoWire::read(void) {
-  return fake::state.i2c_pos < fake::state.i2c_reply_len ? fake::state.i2c_reply[fake::state.i2c_pos++]
-                                                        : -1;
+  return fake::state.i2c_pos < fake::state.i2c_reply_len
+             ? fake::state.i2c_reply[fake::state.i2c_pos++]
+             : -1;
 }
 TwoWire Wire;
 TwoWire Wire1;
