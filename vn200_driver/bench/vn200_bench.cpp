@@ -54,9 +54,9 @@ Result parse(const std::vector<uint8_t>& stream, size_t read_size, int repeats) 
 
 std::vector<uint8_t> imuPacket(uint64_t t_ns) {
   // A lean 800 Hz stream: time, YPR, rates, acceleration, INS status (52 bytes).
-  VnPacketBuilder b(VN_GROUP_COMMON, {VN_COMMON_TIME_STARTUP | VN_COMMON_YPR |
-                                      VN_COMMON_ANGULAR_RATE | VN_COMMON_ACCEL |
-                                      VN_COMMON_INS_STATUS});
+  VnPacketBuilder b(VN_GROUP_COMMON,
+                    {VN_COMMON_TIME_STARTUP | VN_COMMON_YPR | VN_COMMON_ANGULAR_RATE |
+                     VN_COMMON_ACCEL | VN_COMMON_INS_STATUS});
   b.u64(t_ns).f32(1).f32(2).f32(3).f32(0.1f).f32(0.2f).f32(0.3f).f32(0).f32(0).f32(-9.81f).u16(2);
   return b.finish();
 }
@@ -77,7 +77,6 @@ std::string machine() {
 }
 
 }  // namespace
-
 
 int main() {
   std::vector<uint8_t> node_stream, imu_stream;

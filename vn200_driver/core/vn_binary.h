@@ -94,72 +94,72 @@ size_t vn_bin_max_packet_len(void);
 
 /* Presence bits of VnBinaryData.has. */
 enum {
-    VN_HAS_TIME_STARTUP = 1u << 0,
-    VN_HAS_TIME_GPS = 1u << 1,
-    VN_HAS_GPS_TOW = 1u << 2,
-    VN_HAS_GPS_WEEK = 1u << 3,
-    VN_HAS_YPR = 1u << 4,
-    VN_HAS_QUATERNION = 1u << 5,
-    VN_HAS_ANGULAR_RATE = 1u << 6,
-    VN_HAS_POSITION_LLA = 1u << 7,
-    VN_HAS_VEL_NED = 1u << 8,
-    VN_HAS_ACCEL = 1u << 9,
-    VN_HAS_MAG = 1u << 10,
-    VN_HAS_TEMP = 1u << 11,
-    VN_HAS_PRESSURE = 1u << 12,
-    VN_HAS_INS_STATUS = 1u << 13,
-    VN_HAS_NUM_SATS = 1u << 14,
-    VN_HAS_GPS_FIX = 1u << 15,
-    VN_HAS_YPR_UNC = 1u << 16,
-    VN_HAS_INS_POS_UNC = 1u << 17,
-    VN_HAS_INS_VEL_UNC = 1u << 18,
-    VN_HAS_GPS_POS_UNC = 1u << 19,
-    VN_HAS_GPS_VEL_UNC = 1u << 20,
-    VN_HAS_GPS_LLA = 1u << 21,
-    VN_HAS_GPS_VEL_NED = 1u << 22
+  VN_HAS_TIME_STARTUP = 1u << 0,
+  VN_HAS_TIME_GPS = 1u << 1,
+  VN_HAS_GPS_TOW = 1u << 2,
+  VN_HAS_GPS_WEEK = 1u << 3,
+  VN_HAS_YPR = 1u << 4,
+  VN_HAS_QUATERNION = 1u << 5,
+  VN_HAS_ANGULAR_RATE = 1u << 6,
+  VN_HAS_POSITION_LLA = 1u << 7,
+  VN_HAS_VEL_NED = 1u << 8,
+  VN_HAS_ACCEL = 1u << 9,
+  VN_HAS_MAG = 1u << 10,
+  VN_HAS_TEMP = 1u << 11,
+  VN_HAS_PRESSURE = 1u << 12,
+  VN_HAS_INS_STATUS = 1u << 13,
+  VN_HAS_NUM_SATS = 1u << 14,
+  VN_HAS_GPS_FIX = 1u << 15,
+  VN_HAS_YPR_UNC = 1u << 16,
+  VN_HAS_INS_POS_UNC = 1u << 17,
+  VN_HAS_INS_VEL_UNC = 1u << 18,
+  VN_HAS_GPS_POS_UNC = 1u << 19,
+  VN_HAS_GPS_VEL_UNC = 1u << 20,
+  VN_HAS_GPS_LLA = 1u << 21,
+  VN_HAS_GPS_VEL_NED = 1u << 22
 };
 
 /* One decoded binary packet. Frames: attitude and velocity relative to local NED, body rates and
  * accelerations in the sensor's body frame (x forward, y right, z down). */
 typedef struct {
-    uint32_t has;
-    uint8_t groups;
-    uint16_t masks[VN_BIN_GROUP_COUNT]; /* indexed by group, 0 when the group is absent */
-    uint64_t time_startup_ns;
-    uint64_t time_gps_ns;    /* since the GPS epoch 1980-01-06 */
-    uint64_t gps_tow_ns;     /* GPS time of week */
-    uint16_t gps_week;
-    float ypr_deg[3];        /* yaw, pitch, roll */
-    float quat_xyzw[4];      /* body relative to NED, scalar last as the sensor sends it */
-    float angular_rate_radps[3];
-    double lat_deg, lon_deg, alt_m; /* INS (or Common) position, WGS84 ellipsoid height */
-    float vel_ned_mps[3];
-    float accel_mps2[3];
-    float mag_gauss[3];
-    float temp_c;
-    float pressure_kpa;
-    uint16_t ins_status;
-    uint8_t num_sats;
-    uint8_t gps_fix;         /* 0 none, 1 time only, 2 2D, 3 3D */
-    double gps_lat_deg, gps_lon_deg, gps_alt_m;
-    float gps_vel_ned_mps[3];
-    float ypr_unc_deg[3];
-    float ins_pos_unc_m;
-    float ins_vel_unc_mps;
-    float gps_pos_unc_ned_m[3];
-    float gps_vel_unc_mps;
+  uint32_t has;
+  uint8_t groups;
+  uint16_t masks[VN_BIN_GROUP_COUNT]; /* indexed by group, 0 when the group is absent */
+  uint64_t time_startup_ns;
+  uint64_t time_gps_ns; /* since the GPS epoch 1980-01-06 */
+  uint64_t gps_tow_ns;  /* GPS time of week */
+  uint16_t gps_week;
+  float ypr_deg[3];   /* yaw, pitch, roll */
+  float quat_xyzw[4]; /* body relative to NED, scalar last as the sensor sends it */
+  float angular_rate_radps[3];
+  double lat_deg, lon_deg, alt_m; /* INS (or Common) position, WGS84 ellipsoid height */
+  float vel_ned_mps[3];
+  float accel_mps2[3];
+  float mag_gauss[3];
+  float temp_c;
+  float pressure_kpa;
+  uint16_t ins_status;
+  uint8_t num_sats;
+  uint8_t gps_fix; /* 0 none, 1 time only, 2 2D, 3 3D */
+  double gps_lat_deg, gps_lon_deg, gps_alt_m;
+  float gps_vel_ned_mps[3];
+  float ypr_unc_deg[3];
+  float ins_pos_unc_m;
+  float ins_vel_unc_mps;
+  float gps_pos_unc_ned_m[3];
+  float gps_vel_unc_mps;
 } VnBinaryData;
 
 typedef enum {
-    VN_BIN_OK = 0,
-    VN_BIN_ERR_NULL,
-    VN_BIN_ERR_SHORT,      /* fewer bytes than the header announces */
-    VN_BIN_ERR_SYNC,
-    VN_BIN_ERR_GROUPS,     /* no group or an undocumented group bit */
-    VN_BIN_ERR_FIELD,      /* an undocumented field bit */
-    VN_BIN_ERR_LENGTH,     /* length differs from what the masks imply */
-    VN_BIN_ERR_CRC,
-    VN_BIN_ERR_NONFINITE   /* a decoded float field is NaN or infinite */
+  VN_BIN_OK = 0,
+  VN_BIN_ERR_NULL,
+  VN_BIN_ERR_SHORT, /* fewer bytes than the header announces */
+  VN_BIN_ERR_SYNC,
+  VN_BIN_ERR_GROUPS, /* no group or an undocumented group bit */
+  VN_BIN_ERR_FIELD,  /* an undocumented field bit */
+  VN_BIN_ERR_LENGTH, /* length differs from what the masks imply */
+  VN_BIN_ERR_CRC,
+  VN_BIN_ERR_NONFINITE /* a decoded float field is NaN or infinite */
 } VnBinResult;
 
 /* Decodes one complete packet (sync through CRC). `out` is fully written on every return.
@@ -168,7 +168,7 @@ VnBinResult vn_bin_decode(const uint8_t *pkt, size_t len, VnBinaryData *out);
 
 /* INS status word helpers (manual, "INS Status" in the INS group): mode in bits 0-1, GNSS fix in
  * bit 2, error flags in bits 3-6. */
-#define VN_INS_STATUS_MODE(s) ((unsigned)((s) & 0x3u))
+#define VN_INS_STATUS_MODE(s) ((unsigned)((s)&0x3u))
 #define VN_INS_STATUS_GNSS_FIX(s) ((unsigned)(((s) >> 2) & 0x1u))
 
 #ifdef __cplusplus

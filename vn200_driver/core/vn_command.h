@@ -29,18 +29,18 @@ typedef enum { VN_CK_XOR8 = 0, VN_CK_CRC16 = 1 } VnChecksumMode;
 
 /* AsyncMode of a binary output register: which serial port(s) the packets go to. */
 typedef enum {
-    VN_ASYNC_NONE = 0,
-    VN_ASYNC_PORT1 = 1,
-    VN_ASYNC_PORT2 = 2,
-    VN_ASYNC_BOTH = 3
+  VN_ASYNC_NONE = 0,
+  VN_ASYNC_PORT1 = 1,
+  VN_ASYNC_PORT2 = 2,
+  VN_ASYNC_BOTH = 3
 } VnAsyncMode;
 
 typedef struct {
-    uint8_t output;        /* 1..3: register 75, 76 or 77 */
-    uint8_t async_mode;    /* VnAsyncMode */
-    uint16_t rate_divisor; /* output rate = 800 Hz / divisor, 1..65535 */
-    uint8_t groups;        /* VN_GROUP_* */
-    uint16_t masks[VN_BIN_GROUP_COUNT]; /* by group index; must be 0 for absent groups */
+  uint8_t output;                     /* 1..3: register 75, 76 or 77 */
+  uint8_t async_mode;                 /* VnAsyncMode */
+  uint16_t rate_divisor;              /* output rate = 800 Hz / divisor, 1..65535 */
+  uint8_t groups;                     /* VN_GROUP_* */
+  uint16_t masks[VN_BIN_GROUP_COUNT]; /* by group index; must be 0 for absent groups */
 } VnBinaryOutputConfig;
 
 size_t vn_cmd_read_register(char *buf, size_t cap, unsigned reg, VnChecksumMode ck);

@@ -25,30 +25,30 @@ extern "C" {
 typedef enum { VN_FRAME_BINARY = 1, VN_FRAME_ASCII = 2 } VnFrameKind;
 
 typedef struct {
-    VnFrameKind kind;
-    const uint8_t *data; /* valid until the next vn_framer_next() call */
-    size_t len;
+  VnFrameKind kind;
+  const uint8_t *data; /* valid until the next vn_framer_next() call */
+  size_t len;
 } VnFrame;
 
 typedef struct {
-    uint32_t binary_frames;
-    uint32_t ascii_frames;
-    uint32_t dropped_bytes;       /* every byte discarded: noise and the bytes of bad packets */
-    uint32_t bad_binary_groups;   /* groups byte zero or with an undocumented group */
-    uint32_t bad_binary_field;    /* a field mask bit with no documented size */
-    uint32_t bad_binary_crc;
-    uint32_t bad_ascii_char;      /* a non-printable byte or a lone CR/LF inside a sentence */
-    uint32_t bad_ascii_too_long;
-    uint32_t bad_ascii_checksum;  /* missing, malformed or wrong checksum */
+  uint32_t binary_frames;
+  uint32_t ascii_frames;
+  uint32_t dropped_bytes;     /* every byte discarded: noise and the bytes of bad packets */
+  uint32_t bad_binary_groups; /* groups byte zero or with an undocumented group */
+  uint32_t bad_binary_field;  /* a field mask bit with no documented size */
+  uint32_t bad_binary_crc;
+  uint32_t bad_ascii_char; /* a non-printable byte or a lone CR/LF inside a sentence */
+  uint32_t bad_ascii_too_long;
+  uint32_t bad_ascii_checksum; /* missing, malformed or wrong checksum */
 } VnFramerStats;
 
 typedef struct {
-    uint8_t buf[VN_FRAME_MAX];
-    size_t len;
-    size_t scan;     /* ASCII: bytes already examined */
-    size_t need;     /* binary: packet length once the header is known, 0 before */
-    size_t emitted;  /* length of the frame handed out by the previous call */
-    VnFramerStats stats;
+  uint8_t buf[VN_FRAME_MAX];
+  size_t len;
+  size_t scan;    /* ASCII: bytes already examined */
+  size_t need;    /* binary: packet length once the header is known, 0 before */
+  size_t emitted; /* length of the frame handed out by the previous call */
+  VnFramerStats stats;
 } VnFramer;
 
 void vn_framer_init(VnFramer *f);

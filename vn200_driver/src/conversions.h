@@ -25,6 +25,6 @@ Vec3 ned_to_enu(const Vec3& v);
 // East/north/up offset [m] of (lat, lon, alt) from a reference, on a local tangent plane
 // (adequate over the few kilometres of a research flight).
 Vec3 lla_to_local_enu(double lat_deg, double lon_deg, double alt_m, double ref_lat_deg,
-                   double ref_lon_deg, double ref_alt_m);
+                      double ref_lon_deg, double ref_alt_m);
 
 }  // namespace vn200

@@ -62,8 +62,8 @@ bool load_params(const ros::NodeHandle& pnh, NodeParams* p, std::string* error) 
     return false;
   }
   const VnBinaryOutputConfig cfg = node_output_config(static_cast<unsigned>(p->rate_hz),
-                                                    static_cast<VnAsyncMode>(p->sensor_port),
-                                                    static_cast<unsigned>(p->binary_output));
+                                                      static_cast<VnAsyncMode>(p->sensor_port),
+                                                      static_cast<unsigned>(p->binary_output));
   if (!replay && stream_bits_per_second(cfg, static_cast<unsigned>(p->rate_hz)) > p->baud) {
     *error = "~rate_hz " + std::to_string(p->rate_hz) + " needs more than ~baud " +
              std::to_string(p->baud) + " carries (the sensor would answer $VNERR 12)";
@@ -75,8 +75,9 @@ bool load_params(const ros::NodeHandle& pnh, NodeParams* p, std::string* error) 
   }
   if (!(p->replay_speed > 0.0) || !(p->reconnect_period_s > 0.0) || !(p->data_timeout_s > 0.0) ||
       !(p->response_timeout_s > 0.0) || !(p->replay_delay_s >= 0.0)) {
-    *error = "~replay_speed, ~reconnect_period_s, ~data_timeout_s, ~response_timeout_s must be > 0 "
-             "and ~replay_delay_s >= 0";
+    *error =
+        "~replay_speed, ~reconnect_period_s, ~data_timeout_s, ~response_timeout_s must be > 0 "
+        "and ~replay_delay_s >= 0";
     return false;
   }
   return true;

@@ -30,8 +30,10 @@ std_msgs::Header header(const ros::Time& stamp, const std::string& frame_id) {
 }  // namespace
 
 Quat attitude_ned(const VnBinaryData& d) {
-  if (d.has & VN_HAS_QUATERNION) return {d.quat_xyzw[0], d.quat_xyzw[1], d.quat_xyzw[2], d.quat_xyzw[3]};
-  return quat_from_ypr_ned(d.ypr_deg[0] * kDegToRad, d.ypr_deg[1] * kDegToRad, d.ypr_deg[2] * kDegToRad);
+  if (d.has & VN_HAS_QUATERNION)
+    return {d.quat_xyzw[0], d.quat_xyzw[1], d.quat_xyzw[2], d.quat_xyzw[3]};
+  return quat_from_ypr_ned(d.ypr_deg[0] * kDegToRad, d.ypr_deg[1] * kDegToRad,
+                           d.ypr_deg[2] * kDegToRad);
 }
 
 drone_ros::ins to_ins(const VnBinaryData& d, const ros::Time& stamp, const std::string& frame_id) {
@@ -68,7 +70,8 @@ geometry_msgs::Twist to_gps_velocity(const VnBinaryData& d) {
   return v;
 }
 
-sensor_msgs::Imu to_imu_pqr(const VnBinaryData& d, const ros::Time& stamp, const std::string& frd_frame_id) {
+sensor_msgs::Imu to_imu_pqr(const VnBinaryData& d, const ros::Time& stamp,
+                            const std::string& frd_frame_id) {
   sensor_msgs::Imu pqr;
   pqr.header = header(stamp, frd_frame_id);
   set_quat(&pqr.orientation, attitude_ned(d));
@@ -77,11 +80,12 @@ sensor_msgs::Imu to_imu_pqr(const VnBinaryData& d, const ros::Time& stamp, const
   return pqr;
 }
 
-sensor_msgs::NavSatFix to_nav_sat_fix(const VnBinaryData& d, const ros::Time& stamp, const std::string& frame_id) {
+sensor_msgs::NavSatFix to_nav_sat_fix(const VnBinaryData& d, const ros::Time& stamp,
+                                      const std::string& frame_id) {
   sensor_msgs::NavSatFix fix;
   fix.header = header(stamp, frame_id);
-  fix.status.status =
-      d.gps_fix >= 2 ? sensor_msgs::NavSatStatus::STATUS_FIX : sensor_msgs::NavSatStatus::STATUS_NO_FIX;
+  fix.status.status = d.gps_fix >= 2 ? sensor_msgs::NavSatStatus::STATUS_FIX
+                                     : sensor_msgs::NavSatStatus::STATUS_NO_FIX;
   fix.status.service = sensor_msgs::NavSatStatus::SERVICE_GPS;
   fix.latitude = d.lat_deg;
   fix.longitude = d.lon_deg;
@@ -106,7 +110,8 @@ geometry_msgs::TwistStamped to_velocity_enu(const VnBinaryData& d, const ros::Ti
   return ve;
 }
 
-sensor_msgs::Imu to_imu(const VnBinaryData& d, const ros::Time& stamp, const std::string& frame_id) {
+sensor_msgs::Imu to_imu(const VnBinaryData& d, const ros::Time& stamp,
+                        const std::string& frame_id) {
   sensor_msgs::Imu imu;
   imu.header = header(stamp, frame_id);
   set_quat(&imu.orientation, ned_frd_to_enu_flu(attitude_ned(d)));
@@ -120,7 +125,8 @@ sensor_msgs::Imu to_imu(const VnBinaryData& d, const ros::Time& stamp, const std
   return imu;
 }
 
-sensor_msgs::MagneticField to_magnetic_field(const VnBinaryData& d, const std_msgs::Header& header) {
+sensor_msgs::MagneticField to_magnetic_field(const VnBinaryData& d,
+                                             const std_msgs::Header& header) {
   sensor_msgs::MagneticField mag;
   mag.header = header;
   const Vec3 m = frd_to_flu(vec3(d.mag_gauss));
@@ -128,7 +134,8 @@ sensor_msgs::MagneticField to_magnetic_field(const VnBinaryData& d, const std_ms
   return mag;
 }
 
-sensor_msgs::FluidPressure to_fluid_pressure(const VnBinaryData& d, const std_msgs::Header& header) {
+sensor_msgs::FluidPressure to_fluid_pressure(const VnBinaryData& d,
+                                             const std_msgs::Header& header) {
   sensor_msgs::FluidPressure pr;
   pr.header = header;
   pr.fluid_pressure = d.pressure_kpa * kKpaToPa;
@@ -143,12 +150,14 @@ sensor_msgs::Temperature to_temperature(const VnBinaryData& d, const std_msgs::H
 }
 
 geometry_msgs::TransformStamped to_transform(const VnBinaryData& d, const ros::Time& stamp,
-                                             const std::string& world_frame_id, const std::string& frame_id,
-                                             double ref_lat_deg, double ref_lon_deg, double ref_alt_m) {
+                                             const std::string& world_frame_id,
+                                             const std::string& frame_id, double ref_lat_deg,
+                                             double ref_lon_deg, double ref_alt_m) {
   geometry_msgs::TransformStamped tf;
   tf.header = header(stamp, world_frame_id);
   tf.child_frame_id = frame_id;
-  const Vec3 p = lla_to_local_enu(d.lat_deg, d.lon_deg, d.alt_m, ref_lat_deg, ref_lon_deg, ref_alt_m);
+  const Vec3 p =
+      lla_to_local_enu(d.lat_deg, d.lon_deg, d.alt_m, ref_lat_deg, ref_lon_deg, ref_alt_m);
   tf.transform.translation.x = p[0];
   tf.transform.translation.y = p[1];
   tf.transform.translation.z = p[2];

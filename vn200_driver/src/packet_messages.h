@@ -35,11 +35,13 @@ geometry_msgs::Point to_attitude(const VnBinaryData& d);
 // north, east, down [m/s] in linear.
 geometry_msgs::Twist to_gps_velocity(const VnBinaryData& d);
 // Body rates P, Q, R and specific force in the sensor's own (FRD) axes, attitude relative to NED.
-sensor_msgs::Imu to_imu_pqr(const VnBinaryData& d, const ros::Time& stamp, const std::string& frd_frame_id);
+sensor_msgs::Imu to_imu_pqr(const VnBinaryData& d, const ros::Time& stamp,
+                            const std::string& frd_frame_id);
 
 // --- REP-103/105 topics ---
 // Position with the INS uncertainty (approximated), else the GPS one (diagonal known).
-sensor_msgs::NavSatFix to_nav_sat_fix(const VnBinaryData& d, const ros::Time& stamp, const std::string& frame_id);
+sensor_msgs::NavSatFix to_nav_sat_fix(const VnBinaryData& d, const ros::Time& stamp,
+                                      const std::string& frame_id);
 // Velocity in ENU.
 geometry_msgs::TwistStamped to_velocity_enu(const VnBinaryData& d, const ros::Time& stamp,
                                             const std::string& world_frame_id);
@@ -50,7 +52,8 @@ sensor_msgs::FluidPressure to_fluid_pressure(const VnBinaryData& d, const std_ms
 sensor_msgs::Temperature to_temperature(const VnBinaryData& d, const std_msgs::Header& header);
 // The sensor's pose in a local ENU frame anchored at (ref_lat_deg, ref_lon_deg, ref_alt_m).
 geometry_msgs::TransformStamped to_transform(const VnBinaryData& d, const ros::Time& stamp,
-                                             const std::string& world_frame_id, const std::string& frame_id,
-                                             double ref_lat_deg, double ref_lon_deg, double ref_alt_m);
+                                             const std::string& world_frame_id,
+                                             const std::string& frame_id, double ref_lat_deg,
+                                             double ref_lon_deg, double ref_alt_m);
 
 }  // namespace vn200

@@ -101,20 +101,34 @@ void SensorSession::handle_ascii(const VnFrame& frame, double now_s) {
 
 const char* sensor_error_text(uint8_t code) {
   switch (code) {
-    case VN_ERR_HARD_FAULT: return "hard fault";
-    case VN_ERR_SERIAL_BUFFER_OVERFLOW: return "serial buffer overflow";
-    case VN_ERR_INVALID_CHECKSUM: return "invalid checksum";
-    case VN_ERR_INVALID_COMMAND: return "invalid command";
-    case VN_ERR_NOT_ENOUGH_PARAMETERS: return "not enough parameters";
-    case VN_ERR_TOO_MANY_PARAMETERS: return "too many parameters";
-    case VN_ERR_INVALID_PARAMETER: return "invalid parameter";
-    case VN_ERR_INVALID_REGISTER: return "invalid register";
-    case VN_ERR_UNAUTHORIZED_ACCESS: return "unauthorized access";
-    case VN_ERR_WATCHDOG_RESET: return "watchdog reset";
-    case VN_ERR_OUTPUT_BUFFER_OVERFLOW: return "output buffer overflow";
-    case VN_ERR_INSUFFICIENT_BAUD_RATE: return "insufficient baud rate";
-    case VN_ERR_ERROR_BUFFER_OVERFLOW: return "error buffer overflow";
-    default: return "none";
+    case VN_ERR_HARD_FAULT:
+      return "hard fault";
+    case VN_ERR_SERIAL_BUFFER_OVERFLOW:
+      return "serial buffer overflow";
+    case VN_ERR_INVALID_CHECKSUM:
+      return "invalid checksum";
+    case VN_ERR_INVALID_COMMAND:
+      return "invalid command";
+    case VN_ERR_NOT_ENOUGH_PARAMETERS:
+      return "not enough parameters";
+    case VN_ERR_TOO_MANY_PARAMETERS:
+      return "too many parameters";
+    case VN_ERR_INVALID_PARAMETER:
+      return "invalid parameter";
+    case VN_ERR_INVALID_REGISTER:
+      return "invalid register";
+    case VN_ERR_UNAUTHORIZED_ACCESS:
+      return "unauthorized access";
+    case VN_ERR_WATCHDOG_RESET:
+      return "watchdog reset";
+    case VN_ERR_OUTPUT_BUFFER_OVERFLOW:
+      return "output buffer overflow";
+    case VN_ERR_INSUFFICIENT_BAUD_RATE:
+      return "insufficient baud rate";
+    case VN_ERR_ERROR_BUFFER_OVERFLOW:
+      return "error buffer overflow";
+    default:
+      return "none";
   }
 }
 

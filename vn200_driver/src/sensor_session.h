@@ -32,7 +32,7 @@ class SensorSession {
     uint64_t packets_decoded = 0;
     uint64_t binary_decode_errors = 0;  // framed with a valid CRC but not decodable
     uint64_t ascii_decode_errors = 0;
-    uint64_t sensor_errors = 0;         // $VNERR received
+    uint64_t sensor_errors = 0;  // $VNERR received
     uint8_t last_sensor_error = 0;
     uint64_t config_resends = 0;
     uint64_t bytes = 0;

@@ -14,9 +14,9 @@ namespace {
 
 SensorSession::Options session_options(const NodeParams& p) {
   SensorSession::Options o;
-  o.output = node_output_config(static_cast<unsigned>(p.rate_hz),
-                              static_cast<VnAsyncMode>(p.sensor_port),
-                              static_cast<unsigned>(p.binary_output));
+  o.output =
+      node_output_config(static_cast<unsigned>(p.rate_hz), static_cast<VnAsyncMode>(p.sensor_port),
+                         static_cast<unsigned>(p.binary_output));
   o.response_timeout_s = p.response_timeout_s;
   return o;
 }
@@ -62,8 +62,7 @@ void Vn200Node::try_open(double now_s) {
     char cmd[VN_CMD_MAX];
     const size_t n =
         vn_cmd_set_baud(cmd, sizeof cmd, static_cast<uint32_t>(params_.baud), VN_CK_XOR8);
-    if (port_.open(params_.port, params_.sensor_baud, &error) && n > 0 &&
-        port_.write_all(cmd, n)) {
+    if (port_.open(params_.port, params_.sensor_baud, &error) && n > 0 && port_.write_all(cmd, n)) {
       uint8_t sink[256];
       size_t got = 0;
       const ros::WallTime until = ros::WallTime::now() + ros::WallDuration(0.1);
@@ -152,9 +151,9 @@ int Vn200Node::run_port() {
 }
 
 bool Vn200Node::every_data_topic_subscribed() const {
-  for (const ros::Publisher* pub : {&ins_pub_, &gps_position_pub_, &gps_velocity_pub_, &imu_pqr_pub_,
-                                    &attitude_pub_, &imu_pub_, &fix_pub_, &velocity_pub_, &mag_pub_,
-                                    &pressure_pub_, &temperature_pub_}) {
+  for (const ros::Publisher* pub :
+       {&ins_pub_, &gps_position_pub_, &gps_velocity_pub_, &imu_pqr_pub_, &attitude_pub_, &imu_pub_,
+        &fix_pub_, &velocity_pub_, &mag_pub_, &pressure_pub_, &temperature_pub_}) {
     if (pub->getNumSubscribers() == 0) return false;
   }
   return true;
@@ -178,8 +177,9 @@ int Vn200Node::run_replay() {
     if (!replay_done_) {
       in.read(buf, sizeof buf);
       const std::streamsize n = in.gcount();
-      if (n > 0) session_.on_bytes(reinterpret_cast<const uint8_t*>(buf), static_cast<size_t>(n),
-                                  wall_now());
+      if (n > 0)
+        session_.on_bytes(reinterpret_cast<const uint8_t*>(buf), static_cast<size_t>(n),
+                          wall_now());
       if (!in) {
         if (params_.replay_loop) {
           in.clear();
@@ -256,7 +256,8 @@ void Vn200Node::publish_packet(const VnBinaryData& d) {
     ref_lon_deg = ref_lon_deg_;
     ref_alt_m = ref_alt_m_;
   }
-  if (params_.publish_tf && have_ref && (d.has & VN_HAS_POSITION_LLA) && VN_INS_STATUS_MODE(d.ins_status) >= 1) {
+  if (params_.publish_tf && have_ref && (d.has & VN_HAS_POSITION_LLA) &&
+      VN_INS_STATUS_MODE(d.ins_status) >= 1) {
     tf_.sendTransform(to_transform(d, stamp, params_.world_frame_id, params_.frame_id, ref_lat_deg,
                                    ref_lon_deg, ref_alt_m));
   }
@@ -298,8 +299,9 @@ void Vn200Node::diag_link(diagnostic_updater::DiagnosticStatusWrapper& stat) {
 }
 
 void Vn200Node::on_home(const drone_ros::HomePosition::ConstPtr& msg) {
-  if (!std::isfinite(msg->latitude) || !std::isfinite(msg->longitude) || !std::isfinite(msg->altitude) ||
-      std::fabs(msg->latitude) > 90.0 || std::fabs(msg->longitude) > 180.0) {
+  if (!std::isfinite(msg->latitude) || !std::isfinite(msg->longitude) ||
+      !std::isfinite(msg->altitude) || std::fabs(msg->latitude) > 90.0 ||
+      std::fabs(msg->longitude) > 180.0) {
     ROS_WARN("vn200: home %u dropped: not a valid position", msg->seq);
     return;
   }

@@ -47,7 +47,7 @@ class Vn200Node {
   ros::Publisher ins_pub_, gps_position_pub_, gps_velocity_pub_, imu_pqr_pub_, attitude_pub_;
   ros::Publisher imu_pub_, fix_pub_, velocity_pub_, mag_pub_, pressure_pub_, temperature_pub_;
 
-  bool link_up_ = false;        // decoded packets are arriving
+  bool link_up_ = false;  // decoded packets are arriving
   double next_open_s_ = 0.0;
   double next_down_report_s_ = 0.0;
   double opened_at_s_ = 0.0;

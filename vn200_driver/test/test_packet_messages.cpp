@@ -12,9 +12,9 @@ constexpr uint64_t kNsPerWeek = 604800ull * 1000000000ull;
 
 VnBinaryData packet() {
   VnBinaryData d{};
-  d.ypr_deg[0] = 90.0f;  // heading east
-  d.ypr_deg[1] = 5.0f;   // nose up
-  d.ypr_deg[2] = -10.0f; // left wing down
+  d.ypr_deg[0] = 90.0f;   // heading east
+  d.ypr_deg[1] = 5.0f;    // nose up
+  d.ypr_deg[2] = -10.0f;  // left wing down
   d.lat_deg = 40.11;
   d.lon_deg = -88.22;
   d.alt_m = 220.0;

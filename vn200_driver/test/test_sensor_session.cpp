@@ -52,7 +52,7 @@ TEST(SensorSession, SilenceAndErrorsCauseResendsThenFailure) {
   s.start(0.0);
   std::string c1 = s.poll_command(0.0);
   EXPECT_EQ(c1, s.poll_command(0.6));  // no echo within the timeout: sent again
-  feed(s, "$VNERR,03*72\r\n", 0.7);   // the sensor saw a bad checksum: resend at once
+  feed(s, "$VNERR,03*72\r\n", 0.7);    // the sensor saw a bad checksum: resend at once
   EXPECT_EQ(1u, s.counters().sensor_errors);
   EXPECT_EQ(VN_ERR_INVALID_CHECKSUM, s.counters().last_sensor_error);
   EXPECT_EQ(c1, s.poll_command(0.7));

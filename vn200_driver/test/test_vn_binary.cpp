@@ -18,7 +18,8 @@ uint16_t bitwiseCrc(const uint8_t* d, size_t n) {
   for (size_t i = 0; i < n; ++i) {
     crc ^= static_cast<uint16_t>(d[i] << 8);
     for (int b = 0; b < 8; ++b) {
-      crc = (crc & 0x8000) ? static_cast<uint16_t>((crc << 1) ^ 0x1021) : static_cast<uint16_t>(crc << 1);
+      crc = (crc & 0x8000) ? static_cast<uint16_t>((crc << 1) ^ 0x1021)
+                           : static_cast<uint16_t>(crc << 1);
     }
   }
   return crc;
@@ -61,11 +62,10 @@ TEST(VnBinary, NodePacketDecodesEveryFieldInUnits) {
   EXPECT_FLOAT_EQ(2.5f, d.ins_pos_unc_m);
   EXPECT_FLOAT_EQ(0.15f, d.ins_vel_unc_mps);
   const uint32_t want = VN_HAS_TIME_STARTUP | VN_HAS_TIME_GPS | VN_HAS_YPR | VN_HAS_QUATERNION |
-                        VN_HAS_ANGULAR_RATE | VN_HAS_POSITION_LLA | VN_HAS_VEL_NED |
-                        VN_HAS_ACCEL | VN_HAS_MAG | VN_HAS_TEMP | VN_HAS_PRESSURE |
-                        VN_HAS_INS_STATUS | VN_HAS_NUM_SATS | VN_HAS_GPS_FIX | VN_HAS_YPR_UNC |
-                        VN_HAS_INS_POS_UNC | VN_HAS_INS_VEL_UNC | VN_HAS_GPS_POS_UNC |
-                        VN_HAS_GPS_VEL_UNC;
+                        VN_HAS_ANGULAR_RATE | VN_HAS_POSITION_LLA | VN_HAS_VEL_NED | VN_HAS_ACCEL |
+                        VN_HAS_MAG | VN_HAS_TEMP | VN_HAS_PRESSURE | VN_HAS_INS_STATUS |
+                        VN_HAS_NUM_SATS | VN_HAS_GPS_FIX | VN_HAS_YPR_UNC | VN_HAS_INS_POS_UNC |
+                        VN_HAS_INS_VEL_UNC | VN_HAS_GPS_POS_UNC | VN_HAS_GPS_VEL_UNC;
   EXPECT_EQ(want, d.has);
 }
 
@@ -135,7 +135,8 @@ TEST(VnBinary, EveryGroupCombinationDecodesToItsDocumentedLength) {
       // Bytes below 0x40 keep every float exponent finite (NaN/inf packets are refused).
       for (size_t i = 0; i < payload; ++i) b.u8(static_cast<uint8_t>((i * 13) & 0x3F));
       std::vector<uint8_t> p = b.finish();
-      EXPECT_EQ(p.size(), vn_bin_packet_len(static_cast<uint8_t>(groups), masks.data(), masks.size()));
+      EXPECT_EQ(p.size(),
+                vn_bin_packet_len(static_cast<uint8_t>(groups), masks.data(), masks.size()));
       VnBinaryData d;
       EXPECT_EQ(VN_BIN_OK, vn_bin_decode(p.data(), p.size(), &d)) << "groups " << groups;
       EXPECT_EQ(groups, d.groups);
@@ -145,15 +146,18 @@ TEST(VnBinary, EveryGroupCombinationDecodesToItsDocumentedLength) {
 
 TEST(VnBinary, NanOrInfinityInAUsedFieldRejectsThePacket) {
   VnBinaryData d;
-  std::vector<uint8_t> nan_yaw = VnPacketBuilder(VN_GROUP_COMMON, {VN_COMMON_YPR})
-                                     .f32(std::nanf("")).f32(1).f32(2).finish();
+  std::vector<uint8_t> nan_yaw =
+      VnPacketBuilder(VN_GROUP_COMMON, {VN_COMMON_YPR}).f32(std::nanf("")).f32(1).f32(2).finish();
   EXPECT_EQ(VN_BIN_ERR_NONFINITE, vn_bin_decode(nan_yaw.data(), nan_yaw.size(), &d));
   EXPECT_EQ(0u, d.has);
-  std::vector<uint8_t> inf_lat = VnPacketBuilder(VN_GROUP_INS, {VN_INS_POS_LLA})
-                                     .f64(HUGE_VAL).f64(1).f64(2).finish();
+  std::vector<uint8_t> inf_lat =
+      VnPacketBuilder(VN_GROUP_INS, {VN_INS_POS_LLA}).f64(HUGE_VAL).f64(1).f64(2).finish();
   EXPECT_EQ(VN_BIN_ERR_NONFINITE, vn_bin_decode(inf_lat.data(), inf_lat.size(), &d));
   std::vector<uint8_t> fine = VnPacketBuilder(VN_GROUP_COMMON, {VN_COMMON_YPR})
-                                  .f32(-0.0f).f32(1e-40f).f32(3.4e38f).finish();
+                                  .f32(-0.0f)
+                                  .f32(1e-40f)
+                                  .f32(3.4e38f)
+                                  .finish();
   EXPECT_EQ(VN_BIN_OK, vn_bin_decode(fine.data(), fine.size(), &d));
 }
 

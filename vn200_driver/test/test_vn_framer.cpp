@@ -96,9 +96,8 @@ TEST(VnFramer, BadCrcIsCountedAndDropped) {
 TEST(VnFramer, AsciiWithWrongChecksumOrBinaryNoiseIsCounted) {
   VnFramer f;
   vn_framer_init(&f);
-  Bytes stream = cat({ascii("$VNYPR,+010.071,+000.278,-002.026*61\r\n"),
-                      ascii("$VNYPR,+0"), Bytes{0x01, 0x02}, ascii("\r\n"),
-                      ascii("$VNYPR\rX\r\n"), ascii(kYpr)});
+  Bytes stream = cat({ascii("$VNYPR,+010.071,+000.278,-002.026*61\r\n"), ascii("$VNYPR,+0"),
+                      Bytes{0x01, 0x02}, ascii("\r\n"), ascii("$VNYPR\rX\r\n"), ascii(kYpr)});
   auto got = frames(&f, stream);
   ASSERT_EQ(1u, got.size());
   EXPECT_EQ(ascii(kYpr), got[0]);
@@ -110,8 +109,8 @@ TEST(VnFramer, UndocumentedGroupsOrFieldsResynchronise) {
   VnFramer f;
   vn_framer_init(&f);
   Bytes good = makeNodePacket();
-  auto got = frames(&f, cat({Bytes{0xFA, 0x80}, Bytes{0xFA, 0x00}, Bytes{0xFA, 0x01, 0x00, 0x80},
-                             good}));
+  auto got =
+      frames(&f, cat({Bytes{0xFA, 0x80}, Bytes{0xFA, 0x00}, Bytes{0xFA, 0x01, 0x00, 0x80}, good}));
   ASSERT_EQ(1u, got.size());
   EXPECT_EQ(good, got[0]);
   EXPECT_EQ(2u, f.stats.bad_binary_groups);
@@ -119,8 +118,8 @@ TEST(VnFramer, UndocumentedGroupsOrFieldsResynchronise) {
 }
 
 TEST(VnFramer, PacketsSplitAtEveryByteBoundaryReassemble) {
-  Bytes stream = cat({ascii(kYpr), makeNodePacket(1.0f), makeNodePacket(2.0f),
-                      ascii("$VNWRG,06,0*6C\r\n")});
+  Bytes stream =
+      cat({ascii(kYpr), makeNodePacket(1.0f), makeNodePacket(2.0f), ascii("$VNWRG,06,0*6C\r\n")});
   for (size_t split = 0; split <= stream.size(); ++split) {
     VnFramer f;
     vn_framer_init(&f);
