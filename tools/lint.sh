@@ -2,7 +2,7 @@
 # `make lint` after catkin_lint:
 #  1. layout: clang-format (.clang-format) must leave every file of tools/clang_format_checked.txt
 #     unchanged, and every tracked C/C++ source outside generated/ must be listed there or in
-#     tools/clang_format_todo.txt (not formatted yet), so a new file is placed on purpose;
+#     tools/clang_format_generated.txt (checked in as generated), so a new file is placed on purpose;
 #  2. naming: clang-tidy's readability-identifier-naming (.clang-tidy) over the C++ nodes, with
 #     the workspace's compile_commands.json (`make build` exports it);
 #  3. Python: pyflakes (requirements.txt) over every tracked .py file: unused imports and
@@ -12,7 +12,7 @@ set -uo pipefail
 ws=${1:?usage: lint.sh WS}
 root=$(cd "$(dirname "$0")/.." && pwd)
 checked=$root/tools/clang_format_checked.txt
-todo=$root/tools/clang_format_todo.txt
+generated=$root/tools/clang_format_generated.txt
 status=0
 for tool in clang-format run-clang-tidy; do
   if ! command -v "$tool" > /dev/null; then
@@ -24,9 +24,9 @@ cd "$root" || exit 2
 
 listed() { sed 's/#.*//; s/[[:space:]]*$//; /^$/d' "$@"; }
 unlisted=$(comm -23 <(git ls-files '*.c' '*.cpp' '*.h' '*.hpp' | grep -v '/generated/' | LC_ALL=C sort) \
-  <(listed "$checked" "$todo" | LC_ALL=C sort -u))
+  <(listed "$checked" "$generated" | LC_ALL=C sort -u))
 if [ -n "$unlisted" ]; then
-  echo "lint: C/C++ files in neither tools/clang_format_checked.txt nor tools/clang_format_todo.txt:"
+  echo "lint: C/C++ files in neither tools/clang_format_checked.txt nor tools/clang_format_generated.txt:"
   echo "$unlisted" | sed 's/^/  /'
   status=1
 fi
