@@ -10,6 +10,8 @@ VENV := $(ROOT)/.venv
 # venv's Python (PyPI packages over Debian's) runs tests, benchmarks and mavgen.
 PYTHON := /usr/bin/python3
 JOBS ?= 2
+# The one aircraft (aircraft/<name>/) a build is for: catkin's drone_ros_AIRCRAFT and the kit's.
+AIRCRAFT ?= DG808
 # Every ROS-aware command runs with the workspace sourced and the venv's Python first on PATH.
 ROSENV := source $(WS)/devel/setup.bash && export PATH=$(VENV)/bin:$$PATH &&
 
@@ -35,7 +37,7 @@ $(WS)/src/drone_ros:
 	@mkdir -p $(WS)/src && ln -sfn ../../.. $(WS)/src/drone_ros && touch $(ROOT)/.build/CATKIN_IGNORE
 
 build: deps $(WS)/src/drone_ros
-	@cd $(WS) && PATH=/usr/bin:$$PATH catkin_make -j$(JOBS) -DPYTHON_EXECUTABLE=$(PYTHON) \
+	@cd $(WS) && PATH=/usr/bin:$$PATH catkin_make -j$(JOBS) -DPYTHON_EXECUTABLE=$(PYTHON) -Ddrone_ros_AIRCRAFT=$(AIRCRAFT) \
 	  -DCATKIN_ENABLE_TESTING=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_EXPORT_COMPILE_COMMANDS=ON \
 	  > $(ROOT)/.build/build.log 2>&1 \
 	  || { tail -n 60 $(ROOT)/.build/build.log; echo "build failed: full log in .build/build.log"; exit 1; }

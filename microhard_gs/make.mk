@@ -28,10 +28,9 @@ $(GS_FUZZ_DIR)/mavlink/development/mavlink.h:
 	  "$$($(VENV)/bin/python -c 'import os, pymavlink; print(os.path.join(os.path.dirname(pymavlink.__file__), "dialects/v20/development.xml"))')" > /dev/null
 
 # The parameter table is the aircraft's tunables list, written by the controller's generator.
-GS_FUZZ_AIRCRAFT ?= DG808
-$(GS_FUZZ_DIR)/tunables/tunables_table.h: $(ROOT)/tools/gen_tunables.py $(ROOT)/aircraft/$(GS_FUZZ_AIRCRAFT)/tunables.yaml $(ROOT)/aircraft/$(GS_FUZZ_AIRCRAFT)/controller_param.yaml
-	@$(PYTHON) $(ROOT)/tools/gen_tunables.py $(ROOT)/aircraft/$(GS_FUZZ_AIRCRAFT)/tunables.yaml \
-	  $(ROOT)/aircraft/$(GS_FUZZ_AIRCRAFT)/controller_param.yaml $@
+$(GS_FUZZ_DIR)/tunables/tunables_table.h: $(ROOT)/tools/gen_tunables.py $(ROOT)/aircraft/$(AIRCRAFT)/tunables.yaml $(ROOT)/aircraft/$(AIRCRAFT)/controller_param.yaml
+	@$(PYTHON) $(ROOT)/tools/gen_tunables.py $(ROOT)/aircraft/$(AIRCRAFT)/tunables.yaml \
+	  $(ROOT)/aircraft/$(AIRCRAFT)/controller_param.yaml $@
 
 $(GS_FUZZ_DIR)/generated/decision_status_names.h: $(ROOT)/tools/gen_decision_status.py $(ROOT)/msg/DecisionStatus.msg
 	@$(PYTHON) $(ROOT)/tools/gen_decision_status.py --cpp $(ROOT)/msg/DecisionStatus.msg $@
