@@ -24,7 +24,7 @@ FUZZ_SMOKE_TARGETS :=
 # fuzz-smoke-<c> (before the aggregate targets below, which list them).
 include $(ROOT)/tools/kit.mk
 
-.PHONY: help deps build test run lint verify bench fuzz fuzz-smoke check-user-ws clean
+.PHONY: help deps build test test-each run lint verify bench fuzz fuzz-smoke check-user-ws clean
 help:
 	@echo "make run    set up and fly the main job"
 	@echo "make test   set up, build and run every test"
@@ -53,6 +53,10 @@ lint: build
 
 test: build lint
 	@$(ROSENV) $(ROOT)/tools/run_tests.sh $(WS) $(VENV)
+
+# Each Python test file alone, in a process of its own (tools/run_tests_each.sh).
+test-each: build
+	@$(ROSENV) $(ROOT)/tools/run_tests_each.sh $(WS) $(VENV)
 
 run: build
 	@$(ROSENV) $(ROOT)/tools/run_main.sh $(WS)
