@@ -233,6 +233,14 @@ int main() {
     due_ins_feed(pkt, no_fix_len, &in, 223456u);
     check(in.state_rx_us == 123456u, "Vn200WithoutFixIsDroppedUnstamped",
           "a solution without GNSS fix stamped the state");
+    Vn200Solution nan_roll = kFlying50mUp;
+    nan_roll.ypr_deg[2] = std::nanf("");  // CRC-valid, one field NaN
+    const size_t nan_len = vn200_packet(nan_roll, pkt);
+    due_ins_feed(pkt, nan_len, &in, 323456u);
+    check(
+        in.state_valid == 1u && in.state_rx_us == 123456u && std::fabs(in.roll_deg + 15.0f) < 1e-4f,
+        "Vn200NanPacketLeavesLastGoodState",
+        "a CRC-valid packet with a NaN field invalidated or changed the last good state");
   }
 
   // The board's own readings, through the HaBoard interface of a second board instance.

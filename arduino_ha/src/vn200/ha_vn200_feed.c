@@ -36,11 +36,10 @@ static void apply_packet(HaVn200Feed *feed, const VnFrame *frame, HaInputs *inpu
   HaInsSample sample;
   const VnBinResult result = vn_bin_decode(frame->data, frame->len, &feed->scratch);
   if (result != VN_BIN_OK) {
+    /* NaN/inf in a CRC-valid packet is dropped like any rejected solution: the last good state
+     * stays and the core's state_timeout_s ages it out. Invalidating it here made one such
+     * packet a takeover and kept the HP out for the whole stable window. */
     feed->counts.decode_errors++;
-    if (result == VN_BIN_ERR_NONFINITE) {
-      /* The sensor sent NaN/inf: its solution cannot be trusted until a clean one arrives. */
-      inputs->state_valid = 0u;
-    }
     return;
   }
   ha_vn200_sample_from_vn(&feed->scratch, &sample);
