@@ -288,12 +288,6 @@ def build(doc):
     c["sc_integrator_authority"] = need(sc, "integrator_authority", 0.0, 1.0)
     c["sc_blind_fade_per_s"] = 1.0 / positive(sc, "blind_fade_s")
 
-    c["manual_handover_us"] = us(max(
-        2.0 * max(c["elevator_limit_deg"], c["aileron_limit_deg"], c["rudder_limit_deg"])
-        / c["surface_rate_limit_deg_per_s"],
-        (c["throttle_max"] - c["throttle_min"]) / c["throttle_rate_limit_per_s"]),
-        "surface_rate_limit_deg_per_s")
-
     step_s = positive(selft, "step_s")
     c["self_test_throttle_max"] = need(selft, "throttle_max", c["throttle_min"],
                                        c["throttle_max"])

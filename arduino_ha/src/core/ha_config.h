@@ -68,10 +68,6 @@ typedef struct {
   float throttle_max;
   float surface_rate_limit_deg_per_s;
   float throttle_rate_limit_per_s;
-  /* The longest a handover into MANUAL may be rate-limited: the time the limiter needs to cross
-   * any surface's or the throttle's full range, derived by the generator. After it the pilot's
-   * sticks pass unchanged, even if they moved faster than the limiter could follow. */
-  uint32_t manual_handover_us;
 
   /* State checks. */
   float alpha_limit_deg;

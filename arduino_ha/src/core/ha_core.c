@@ -303,13 +303,12 @@ void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *
   ha_surfaces_saturate(cfg, &target);
   if (source != core->last_source || source == SRC_SELF_TEST) {
     core->transition_active = 1u;
-    core->manual_handover_left_us = cfg->manual_handover_us;
   }
-  if (source == SRC_MANUAL && core->transition_active) {
-    /* The limit covers the handover into MANUAL at most, never the pilot's own inputs after. */
-    core->manual_handover_left_us =
-        core->manual_handover_left_us > dt_us ? core->manual_handover_left_us - dt_us : 0u;
-    core->transition_active = (uint8_t)(core->manual_handover_left_us != 0u);
+  if (source == SRC_MANUAL) {
+    /* Bumpless transfer is for the computers, not the pilot: a safety pilot who flips the switch
+     * to save the aircraft gets the sticks on the servos in this very period, as PX4 and
+     * ArduPilot give manual control (a rate-limited handover took 0.67 s to full deflection). */
+    core->transition_active = 0u;
   }
   if (core->transition_active) {
     HaSurfaces limited;

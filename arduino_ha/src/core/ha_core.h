@@ -149,7 +149,6 @@ typedef struct {
   /* bumpless transfer */
   HaSurfaces applied; /* what went to the servos last period */
   uint8_t transition_active;
-  uint32_t manual_handover_left_us; /* into MANUAL: rate-limited at most this much longer */
   uint8_t last_source;
   HaSafetyCtrlState sc;
   HaSelfTestState self_test;

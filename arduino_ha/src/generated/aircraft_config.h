@@ -109,7 +109,6 @@
     .servo_pulse_min_us = 1000u, \
     .servo_pulse_max_us = 2000u, \
     .pic_threshold_us = 1500u, \
-    .manual_handover_us = 2000000u, \
     .self_test_step_us = 1000000u, \
   }
 
