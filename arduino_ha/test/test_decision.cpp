@@ -786,6 +786,61 @@ TEST(HaDecision, DeadHpIsRestartedWhileTheOperatorHoldsTheHa) {
   EXPECT_GT(t.ReachHp(), 0);
 }
 
+// An HP that fails while alive (its sensor link lost) is restarted whoever flies, as a silent one
+// is: it was never restarted while the pilot or the operator's HA flew (issue 22, F9).
+HaHpCommand LinkLostCommand(Timeline* t) {
+  HaHpCommand c = MakeCommand(t->NextSeq(), 0.45f, -1.0f, 2.0f, 0.5f);
+  c.sensor_links_healthy = 0u;
+  SealCommand(&c);
+  return c;
+}
+
+TEST(HaDecision, HpThatLosesItsSensorLinkWhileThePilotFliesIsRestarted) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  t.board.SetPilotInCommand(true);
+  for (int i = 0; i < 100; ++i) t.StepWithGood();
+  ASSERT_EQ(t.controller(), HA_CONTROLLER_MANUAL);
+  for (int i = 0; i < 500; ++i) {
+    t.StepWith(LinkLostCommand(&t));
+    ASSERT_EQ(t.controller(), HA_CONTROLLER_MANUAL);
+  }
+  EXPECT_EQ(t.out().restart_count, 1u);
+  EXPECT_EQ(t.board.hp_reset_assertions, 1);
+  // It comes back healthy, and the pilot hands back to the computers.
+  for (int i = 0; i < 100; ++i) t.StepWithGood();
+  t.board.SetPilotInCommand(false);
+  EXPECT_GT(t.ReachHp(), 0);
+  EXPECT_EQ(t.out().restart_count, 1u);
+}
+
+TEST(HaDecision, HpThatLosesItsSensorLinkWhileTheOperatorHoldsTheHaIsRestarted) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  t.Operator(HA_OP_SELECT_HA);
+  for (int i = 0; i < 100; ++i) t.StepWithGood();
+  ASSERT_EQ(t.controller(), HA_CONTROLLER_HA);
+  for (int i = 0; i < 500; ++i) t.StepWith(LinkLostCommand(&t));
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HA);
+  EXPECT_EQ(t.out().restart_count, 1u);
+  EXPECT_EQ(t.board.hp_reset_assertions, 1);
+}
+
+// At power-up the HP's first commands say its estimator has not converged yet: it is booting,
+// not failing, and is not restarted for it.
+TEST(HaDecision, HpStillConvergingAtPowerUpIsNotRestarted) {
+  Timeline t;
+  for (int i = 0; i < 500; ++i) {
+    HaHpCommand c = MakeCommand(t.NextSeq(), 0.45f, -1.0f, 2.0f, 0.5f);
+    c.estimator_converged = 0u;
+    SealCommand(&c);
+    t.StepWith(c);
+  }
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HA);
+  EXPECT_EQ(t.out().restart_count, 0u);
+  EXPECT_GT(t.ReachHp(), 0);
+}
+
 // One reset pulse is one restart, however many reasons asked for it in that period.
 TEST(HaDecision, OperatorRestartDuringAFailedRecoveryCountsOnce) {
   Timeline t;

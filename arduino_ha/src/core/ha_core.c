@@ -145,6 +145,7 @@ static void request_restart(HaCore *core, uint32_t now_us, HaOutputs *out) {
   core->reset_active = 1u;
   core->reset_started_us = now_us;
   core->awaiting_boot = 1u;
+  core->hp_up = 0u;
   out->restart_requested = 1u;
 }
 
@@ -254,6 +255,7 @@ void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *
   core->stable_for_us = (reasons & HA_REASONS_COMMAND) ? 0u : add_sat(core->stable_for_us, dt_us);
   if (!(reasons & HA_REASONS_COMMAND)) {
     core->awaiting_boot = 0u; /* the HP is back */
+    core->hp_up = 1u;
   }
   prune_restarts(core, now_us);
 
@@ -272,8 +274,12 @@ void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *
                 (!view.airborne || ha_greater(view.airspeed_ftps, cfg->handback_airspeed_ftps)));
   policy.restart_cap_reached = (uint8_t)restart_cap_reached(core);
   policy.boot_overdue = (uint8_t)boot_overdue(core, now_us);
-  policy.hp_dead = (uint8_t)(facts.have_cmd && (reasons & HA_REASON_NO_COMMAND) &&
-                             !core->awaiting_boot && !core->reset_active);
+  /* An HP that had been up and fails while the pilot or the operator's HA flies is restarted as
+   * if it had lost control: silent, or alive but failing a check (its sensor link lost). An HP
+   * still booting at power-up (estimator not yet converged) has never been up. */
+  policy.hp_failed = (uint8_t)(!core->awaiting_boot && !core->reset_active &&
+                               ((facts.have_cmd && (reasons & HA_REASON_NO_COMMAND)) ||
+                                (core->hp_up && (reasons & HA_REASONS_COMMAND))));
   {
     const uint8_t next = ha_policy_decide(&policy);
     const uint8_t restart = ha_policy_restart(&policy, next);

@@ -142,6 +142,7 @@ typedef struct {
   uint32_t reset_started_us;
   uint32_t reset_released_us;
   uint8_t awaiting_boot; /* reset, and no valid command since */
+  uint8_t hp_up;         /* a wholly valid command since power-up or the last reset */
   /* operator */
   uint32_t seen_operator_count;
   uint32_t operator_ack_id;

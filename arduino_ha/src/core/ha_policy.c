@@ -38,6 +38,6 @@ uint8_t ha_policy_restart(const HaPolicyIn *p, uint8_t next) {
   if (leaving_hp && hp_fault) return 1u; /* the HP failed a check */
   if (p->restart_cap_reached) return 0u; /* K within T: no more of our own */
   if (p->boot_overdue) return 1u;        /* reset, and not back in time */
-  if (p->hp_dead) return 1u;             /* it died while someone else flew */
+  if (p->hp_failed) return 1u;           /* it failed while someone else flew */
   return 0u;
 }

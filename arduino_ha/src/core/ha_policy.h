@@ -15,8 +15,8 @@ typedef struct {
   uint8_t inner;               /* inside the inner region, no state reason, airspeed margin */
   uint8_t restart_cap_reached; /* K restarts already within T */
   uint8_t boot_overdue;        /* reset, released, and no valid command within the boot timeout */
-  uint8_t hp_dead;             /* it had been up, and is silent now, with no reset under way */
-  uint8_t operator_restart;    /* the operator's RESTART_HP was accepted this period */
+  uint8_t hp_failed;        /* it had been up, and now fails a command check, no reset under way */
+  uint8_t operator_restart; /* the operator's RESTART_HP was accepted this period */
 } HaPolicyIn;
 
 uint8_t ha_policy_decide(const HaPolicyIn *p);
