@@ -644,6 +644,28 @@ TEST(HaDecision, InsSilentAcrossTheClockWrapStaysStale) {
   EXPECT_LT(t.board.now_us, 0x10000000u);  // it did wrap
 }
 
+// An INS that delivers every 150 ms, past state_timeout_s every other period: the HA cannot check
+// the HP part of the time and holds the servos, instead of handing back on each fresh state
+// (86 controller changes a minute with a healthy HP, issue 22 F10).
+TEST(HaDecision, InsEvery150msDoesNotSwapTheControllerEveryFewPeriods) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  int hp_changes = 0;  // into or out of the HP's hands
+  bool hp = true;
+  for (int i = 0; i < 6000; ++i) {
+    t.refresh_state = i % 15 == 0;
+    t.StepWithGood();
+    hp_changes += (t.controller() == HA_CONTROLLER_HP) != hp ? 1 : 0;
+    hp = t.controller() == HA_CONTROLLER_HP;
+  }
+  EXPECT_EQ(hp_changes, 1);
+  EXPECT_NE(t.controller(), HA_CONTROLLER_HP);
+  EXPECT_EQ(t.out().restart_count, 0u);  // the HA's own sensor is no HP fault
+  // The INS back at its rate: the HP earns control after the stable window.
+  t.refresh_state = true;
+  EXPECT_GT(t.ReachHp(), 0);
+}
+
 // Feeds the INS adapter one solution per period, the way the board layer does.
 struct InsFeed {
   explicit InsFeed(Timeline* timeline) : t(timeline) {

@@ -253,6 +253,8 @@ void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *
   reasons = ha_checks_evaluate(cfg, &facts, &view, &sx_max, &su_max) |
             (core->ground_command ? HA_REASON_GROUND_COMMAND : 0u);
   core->stable_for_us = (reasons & HA_REASONS_COMMAND) ? 0u : add_sat(core->stable_for_us, dt_us);
+  core->own_state_for_us =
+      (reasons & HA_REASON_NO_HA_STATE) ? 0u : add_sat(core->own_state_for_us, dt_us);
   if (!(reasons & HA_REASONS_COMMAND)) {
     core->awaiting_boot = 0u; /* the HP is back */
     core->hp_up = 1u;
@@ -269,9 +271,13 @@ void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *
   policy.ground_command = core->ground_command;
   policy.reasons = reasons;
   policy.stable = (uint8_t)(core->stable_for_us >= cfg->stable_window_us);
+  /* The HA hands back only on a state it has had whole for the stable window too: an INS that
+   * comes every 150 ms, stale every other period, otherwise swapped the controller 86 times a
+   * minute, each hand-back on one fresh state. */
   policy.inner =
       (uint8_t)(!(reasons & HA_REASONS_STATE) && !ha_greater(sx_max, cfg->inner_region_fraction) &&
-                (!view.airborne || ha_greater(view.airspeed_ftps, cfg->handback_airspeed_ftps)));
+                (!view.airborne || ha_greater(view.airspeed_ftps, cfg->handback_airspeed_ftps)) &&
+                core->own_state_for_us >= cfg->stable_window_us);
   policy.restart_cap_reached = (uint8_t)restart_cap_reached(core);
   policy.boot_overdue = (uint8_t)boot_overdue(core, now_us);
   /* An HP that had been up and fails while the pilot or the operator's HA flies is restarted as

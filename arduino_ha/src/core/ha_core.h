@@ -127,7 +127,8 @@ typedef struct {
   uint32_t last_seq;
   uint32_t late_periods;
   uint32_t cmd_age_us;
-  uint32_t stable_for_us; /* the command has been valid this long (saturating) */
+  uint32_t stable_for_us;    /* the command has been valid this long (saturating) */
+  uint32_t own_state_for_us; /* the HA's own state has been whole this long (saturating) */
   /* The HA's own sensors across periods */
   uint32_t seen_state_rx_us;
   HaOwnSensors own;
