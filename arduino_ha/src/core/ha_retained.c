@@ -28,7 +28,7 @@ static double from_fixed(uint32_t w, double scale) { return (double)(int32_t)w /
 
 /* CRC-32 of the first seven words, little endian whatever the machine. */
 static uint32_t record_crc(const uint32_t words[HA_RETAINED_WORDS]) {
-  uint8_t b[4u * (HA_RETAINED_WORDS - 1u)];
+  uint8_t b[4u * (HA_RETAINED_WORDS - 1u)] = {0u};
   uint32_t i;
   for (i = 0u; i < 4u * (HA_RETAINED_WORDS - 1u); ++i) {
     b[i] = (uint8_t)(words[i / 4u] >> (8u * (i % 4u)));
