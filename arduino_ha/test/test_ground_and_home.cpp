@@ -198,6 +198,38 @@ TEST(GroundAndHome, RetainedWordsWithoutAGoodRecordAreAPowerUp) {
   EXPECT_EQ(ha.t.app.core.airborne, 0u);
 }
 
+// The HA's own latches are kept too: an HA latched at the restart cap stays latched, and the
+// operator's HA selection stands, across a reset (only a power cycle clears them).
+TEST(GroundAndHome, ResetKeepsTheRestartCapLatchAndTheOperatorsChoice) {
+  for (const bool latch : {true, false}) {
+    Timeline t;
+    HaIns ins;
+    ha_ins_init(&ins);
+    ha_app_restore(&t.app, &t.board.iface, &ins);
+    if (latch) {
+      for (uint32_t crash = 0; crash <= t.cfg.max_restarts; ++crash) {
+        ASSERT_GT(t.ReachHp(), 0);
+        t.Step();
+        t.Step();
+        for (int i = 0; i < 20; ++i) t.Step();
+      }
+      ASSERT_EQ(t.controller(), HA_CONTROLLER_HA_LATCHED);
+    } else {
+      ASSERT_GT(t.ReachHp(), 0);
+      t.Operator(HA_OP_SELECT_HA);
+      t.StepWithGood();
+      ASSERT_EQ(t.controller(), HA_CONTROLLER_HA);
+    }
+    ha_app_init(&t.app, &t.cfg);  // the reset
+    ha_ins_init(&ins);
+    ha_app_restore(&t.app, &t.board.iface, &ins);
+    t.Cruise();
+    for (int i = 0; i < 1000; ++i) t.StepWithGood();
+    EXPECT_EQ(t.controller(), latch ? HA_CONTROLLER_HA_LATCHED : HA_CONTROLLER_HA);
+    EXPECT_EQ(t.out().reasons & HA_REASON_GROUND_COMMAND, latch ? 0u : HA_REASON_GROUND_COMMAND);
+  }
+}
+
 // K8: 20 ft up at 70 ft/s airspeed into a 30 ft/s headwind, the INS alone calls it parked (40 ft/s
 // over the ground, level, under 30 ft). A SET_HOME there moved home 1.1 km and 100 m up; the
 // height then read -308 ft. The core's one rule says flying: refused, home stays.
