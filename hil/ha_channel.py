@@ -9,11 +9,12 @@ from collections import namedtuple
 MAGIC_STEP = 0x50545348
 MAGIC_POLL = 0x4C505348
 MAGIC_REPLY = 0x4C505248
+MAGIC_RESET = 0x54535248
 VERSION = 1
 
 WAIT_COMMAND, AIRSPEED_OK, BATTERY_OK, RC_VALID, WAIT_COUNT = 1, 2, 4, 8, 16
 R_LINK_CONNECTED, R_COMMAND_TIMEOUT, R_VN_TIMEOUT, R_STATE_VALID = 1, 2, 4, 8
-R_HP_RESET, R_RESTART_REQUESTED, R_STEPPED = 16, 32, 64
+R_HP_RESET, R_RESTART_REQUESTED, R_STEPPED, R_HOME = 16, 32, 64, 128
 
 STEP = struct.Struct("<IHHQQII5HHff")
 REPLY = struct.Struct("<IHHQ4f4fBBHIIIIfffIIIII")
@@ -64,6 +65,19 @@ class HaChannel:
     def poll(self, timeout_s=5.0):
         return self._exchange(STEP.pack(MAGIC_POLL, VERSION, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0.0, 0.0),
                               timeout_s)
+
+    def reset(self, timeout_s=30.0):
+        """Lockstep: resets the HA as a watchdog or brown-out reset does (RAM afresh, the board's
+        retained words kept); answered with a reply, without a period of the core."""
+        return self._exchange(self._reset_record(), timeout_s)
+
+    def send_reset(self):
+        """Real time: the same reset; the SIL's next period replies as usual."""
+        self.conn.send(self._reset_record())
+
+    @staticmethod
+    def _reset_record():
+        return STEP.pack(MAGIC_RESET, VERSION, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0.0, 0.0)
 
     def step(self, t_us, vn_bytes, cmd_seq, wait_ms, rc_pulses_us, rc_valid, airspeed_ftps,
              battery_v, airspeed_ok=True, battery_ok=True, timeout_s=30.0, wait_count=False):

@@ -198,6 +198,7 @@ class Vn200Port:
         self.packets = 0
         self.log = []
         self.on_written = None  # on_written(index of the first packet, count) after each write
+        self.solution_filter = None  # solution_filter(sensor_t_s, solution) -> solution (faults)
 
     def service_commands(self):
         """Answers whatever ASCII commands the driver wrote (any time, also while time stands)."""
@@ -244,6 +245,8 @@ class Vn200Port:
         while self.next_index / rate <= t_s + 1e-9:
             ts = self.next_index / rate
             sol = self.errors.solution(truth_at(ts - lat), ts, 1.0 / rate)
+            if self.solution_filter is not None:
+                sol = self.solution_filter(ts, sol)
             out += binary_packet(groups, masks, sol)
             self.next_index += 1
             n += 1

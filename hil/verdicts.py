@@ -280,8 +280,10 @@ def fault_record(sim):
         return {"class": "none", "at_s": None, "duration_s": None, "params": {}, "took_effect": True,
                 "evidence": "no fault injected"}
     took, evidence = f.effect()
+    detail = getattr(f, "detail", None)  # a class's own figures for its story test, if it has any
     return {"class": f.name, "at_s": f.at_s, "duration_s": f.duration_s, "params": f.params,
-            "took_effect": bool(took), "evidence": evidence, "notes": f.notes}
+            "took_effect": bool(took), "evidence": evidence, "notes": f.notes,
+            "detail": detail() if callable(detail) else None}
 
 
 def summarize(sim):

@@ -106,7 +106,7 @@ static uint32_t ins_update_max_insns(void) {
     s.ins_status = 0x0006u;
     s.gps_fix = 3u;
     t0 = ha_insn_timer_read();
-    (void)ha_ins_update(&ins, &ha_aircraft_config, &s, 1000u * k, &in);
+    (void)ha_ins_update(&ins, &ha_aircraft_config, &s, 1u, 1000u * k, &in);
     n = (t0 - ha_insn_timer_read()) * HA_INSN_PER_TICK;
     worst = n > worst ? n : worst;
   }

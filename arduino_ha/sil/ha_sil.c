@@ -83,6 +83,10 @@ typedef struct {
   int have_board_in;
   int hp_reset;
   uint32_t last_cmd_seq;
+  HaLinkCallbacks link_cb;
+  /* The board's retained words (the Due's backup registers): kept across a reset of the HA. */
+  uint32_t retained[HA_RETAINED_WORDS];
+  uint32_t resets;
 } Sil;
 
 /* --- the board: a host clock or the simulator's; without a simulator a healthy RC receiver in
@@ -139,6 +143,15 @@ static void board_set_leds(void *ctx, uint8_t leds) {
   (void)leds;
 }
 static void board_kick(void *ctx) { (void)ctx; }
+static int board_read_retained(void *ctx, uint32_t words[HA_RETAINED_WORDS]) {
+  const Sil *sil = (const Sil *)ctx;
+  memcpy(words, sil->retained, sizeof sil->retained);
+  return 1;
+}
+static void board_write_retained(void *ctx, const uint32_t words[HA_RETAINED_WORDS]) {
+  Sil *sil = (Sil *)ctx;
+  memcpy(sil->retained, words, sizeof sil->retained);
+}
 
 /* --- the link's callbacks --- */
 static void link_write(void *ctx, const uint8_t *bytes, size_t len) {
@@ -176,8 +189,10 @@ static void link_on_operator(void *ctx, const drone_ros_OperatorCommand *op, uin
                                          "SET_HOME refused: not parked on the ground",
                                          "SET_HOME refused: position out of range"};
   if (op->command == HA_OP_SET_HOME) { /* home is the INS adapter's, not the decision logic's */
-    const int r = ha_ins_set_home(&sil->ins.ins, &ha_aircraft_config, op->use_current ? 1u : 0u,
-                                  op->latitude, op->longitude, op->altitude, arrival_us);
+    const int r =
+        ha_ins_set_home(&sil->ins.ins, sil->app.outputs.on_ground, op->use_current ? 1u : 0u,
+                        op->latitude, op->longitude, op->altitude);
+    (void)arrival_us;
     (void)ha_link_log(&sil->link,
                       r == HA_INS_SET_HOME_OK ? ROSSERIAL_MSGS_LOG_INFO : ROSSERIAL_MSGS_LOG_WARN,
                       kSetHome[r >= 0 && r <= 2 ? r : 1]);
@@ -385,7 +400,8 @@ static int decode_step(const uint8_t *b, size_t len, HaSilStep *st) {
   st->reserved = get_u16(b, &at);
   st->airspeed_ftps = get_f32(b, &at);
   st->battery_v = get_f32(b, &at);
-  return (st->magic == HA_SIL_MAGIC_STEP || st->magic == HA_SIL_MAGIC_POLL) &&
+  return (st->magic == HA_SIL_MAGIC_STEP || st->magic == HA_SIL_MAGIC_POLL ||
+          st->magic == HA_SIL_MAGIC_RESET) &&
          st->version == HA_SIL_VERSION;
 }
 
@@ -398,6 +414,7 @@ static void send_reply(Sil *sil, uint16_t flags, uint64_t t_us, uint32_t wait_us
   size_t at = 0u;
   if (ha_link_connected(&sil->link)) flags |= HA_SIL_R_LINK_CONNECTED;
   if (sil->app.inputs.state_valid) flags |= HA_SIL_R_STATE_VALID;
+  if (sil->ins.ins.home_latched) flags |= HA_SIL_R_HOME;
   if (sil->hp_reset) flags |= HA_SIL_R_HP_RESET;
   if (o->restart_requested && (flags & HA_SIL_R_STEPPED)) flags |= HA_SIL_R_RESTART_REQUESTED;
   put_u32(b, &at, HA_SIL_MAGIC_REPLY);
@@ -449,7 +466,8 @@ static size_t drain_inputs(Sil *sil, uint32_t now_us) {
   }
   if (sil->vn_fd >= 0) {
     while ((n = read(sil->vn_fd, buf, sizeof buf)) > 0) {
-      ha_vn200_feed_bytes(&sil->ins, buf, (size_t)n, &sil->app.inputs, now_us);
+      ha_vn200_feed_bytes(&sil->ins, buf, (size_t)n, &sil->app.inputs, sil->app.outputs.on_ground,
+                          now_us);
       taken += (size_t)n;
     }
   }
@@ -505,6 +523,30 @@ static void take_board_inputs(Sil *sil, const HaSilStep *st) {
   sil->have_board_in = 1;
 }
 
+/* The firmware's state from power-up or a reset, as the Due's setup() makes it: the core, the INS
+ * adapter and the link device afresh, then what the board retained taken back. What the Due does
+ * not reset is kept: the retained words, the pty (the USB bridge stays up), and the SIL's own
+ * counts the simulator waits on (VN-200 bytes taken, commands delivered). */
+static void firmware_start(Sil *sil, const HaBoard *board) {
+  const uint64_t vn_bytes = sil->ins.counts.bytes_read;
+  ha_app_init(&sil->app, &ha_aircraft_config);
+  ha_vn200_feed_init(&sil->ins, &ha_aircraft_config);
+  sil->ins.counts.bytes_read = vn_bytes;
+  ha_link_init(&sil->link, &sil->link_cb);
+  sil->negotiations_seen = 0u; /* the link's own counts start afresh with it */
+  sil->errors_logged = 0u;
+  ha_app_restore(&sil->app, board, &sil->ins.ins);
+  sil->hp_reset = 0; /* the Due's pins come up low: the HP out of reset */
+}
+
+static void firmware_reset(Sil *sil, const HaBoard *board) {
+  sil->resets++;
+  firmware_start(sil, board);
+  fprintf(stderr, "ha_sil: reset %u (as a watchdog reset): home %s, airborne %u\n",
+          (unsigned)sil->resets, sil->ins.ins.home_latched ? "kept" : "none",
+          (unsigned)sil->app.core.airborne);
+}
+
 /* Lockstep: the simulator's records drive everything; between them the SIL sleeps. */
 static int run_lockstep(Sil *sil, const HaBoard *board) {
   uint8_t rec[128];
@@ -524,6 +566,11 @@ static int run_lockstep(Sil *sil, const HaBoard *board) {
     }
     if (!decode_step(rec, (size_t)n, &st)) {
       fprintf(stderr, "ha_sil: dropped a control record of %zd bytes (not a step or poll)\n", n);
+      continue;
+    }
+    if (st.magic == HA_SIL_MAGIC_RESET) {
+      firmware_reset(sil, board);
+      send_reply(sil, 0u, sil->sim_now_us, 0u);
       continue;
     }
     if (st.magic == HA_SIL_MAGIC_POLL) {
@@ -621,8 +668,8 @@ int main(int argc, char **argv) {
   board.set_hp_reset = board_set_hp_reset;
   board.set_leds = board_set_leds;
   board.kick_watchdog = board_kick;
-  ha_app_init(&sil.app, &ha_aircraft_config);
-  ha_vn200_feed_init(&sil.ins, &ha_aircraft_config);
+  board.read_retained = board_read_retained;
+  board.write_retained = board_write_retained;
 
   memset(&cb, 0, sizeof cb);
   cb.write = link_write;
@@ -630,7 +677,8 @@ int main(int argc, char **argv) {
   cb.on_operator = link_on_operator;
   cb.on_param = link_on_param;
   cb.ctx = &sil;
-  ha_link_init(&sil.link, &cb);
+  sil.link_cb = cb;
+  firmware_start(&sil, &board); /* power-up: the retained words hold no record yet */
   if (vn200_path != NULL && open_vn200(&sil, vn200_path) != 0) {
     fprintf(stderr, "ha_sil: cannot open the VN-200 port %s: %s\n", vn200_path, strerror(errno));
     return 1;
@@ -676,7 +724,8 @@ int main(int argc, char **argv) {
       if (sil.vn_fd >= 0) {
         const ssize_t n = read(sil.vn_fd, buf, sizeof buf);
         if (n > 0) {
-          ha_vn200_feed_bytes(&sil.ins, buf, (size_t)n, &sil.app.inputs, now_us);
+          ha_vn200_feed_bytes(&sil.ins, buf, (size_t)n, &sil.app.inputs, sil.app.outputs.on_ground,
+                              now_us);
         }
       }
       if (sil.channel_fd >= 0) {
@@ -687,6 +736,8 @@ int main(int argc, char **argv) {
         }
         if (n > 0 && decode_step(buf, (size_t)n, &st) && st.magic == HA_SIL_MAGIC_STEP) {
           take_board_inputs(&sil, &st);
+        } else if (n > 0 && decode_step(buf, (size_t)n, &st) && st.magic == HA_SIL_MAGIC_RESET) {
+          firmware_reset(&sil, &board);
         }
       }
       ha_link_poll(&sil.link, now_us);

@@ -18,7 +18,12 @@
  * services the link and the VN-200 port at the current clock (before the first step, while the
  * host negotiates topics) and answers a reply without stepping.
  * Real time (--rate-hz clock, --lockstep PATH --realtime): STEP records only set the board inputs
- * (t_us ignored); the SIL answers a reply after each of its own periods. */
+ * (t_us ignored); the SIL answers a reply after each of its own periods.
+ * HA_SIL_RESET (same layout, every other field ignored) resets the HA as a watchdog or brown-out
+ * reset resets the Due: the core, the INS adapter and the link device start afresh (the link
+ * silent until the host asks for topics again), the board's retained words (ha_board.h) are kept,
+ * and ha_app_restore takes them back. The pty, the clock and the SIL's own counts (bytes, commands)
+ * go on. In lockstep it is answered with a reply without stepping. */
 #ifndef HA_SIL_CHANNEL_H
 #define HA_SIL_CHANNEL_H
 
@@ -27,6 +32,7 @@
 #define HA_SIL_MAGIC_STEP 0x50545348u  /* "HSTP" */
 #define HA_SIL_MAGIC_POLL 0x4C505348u  /* "HSPL" */
 #define HA_SIL_MAGIC_REPLY 0x4C505248u /* "HRPL" */
+#define HA_SIL_MAGIC_RESET 0x54535248u /* "HRST" */
 #define HA_SIL_VERSION 1u
 
 /* HaSilStep.flags */
@@ -47,6 +53,7 @@
 #define HA_SIL_R_HP_RESET 16u       /* the HP reset line is asserted */
 #define HA_SIL_R_RESTART_REQUESTED 32u
 #define HA_SIL_R_STEPPED 64u /* this reply follows a period of the core */
+#define HA_SIL_R_HOME 128u   /* the HA's INS adapter has a home (latched, set or kept) */
 
 /* Layout: "<IHHQQIIHHHHHHff" (64 bytes). */
 typedef struct {

@@ -32,6 +32,16 @@ void set_leds(void* ctx, uint8_t leds) { self(ctx)->leds = leds; }
 
 void kick_watchdog(void* ctx) { self(ctx)->watchdog_kicks++; }
 
+int read_retained(void* ctx, uint32_t words[HA_RETAINED_WORDS]) {
+  for (uint32_t i = 0; i < HA_RETAINED_WORDS; ++i) words[i] = self(ctx)->retained[i];
+  return 1;
+}
+
+void write_retained(void* ctx, const uint32_t words[HA_RETAINED_WORDS]) {
+  for (uint32_t i = 0; i < HA_RETAINED_WORDS; ++i) self(ctx)->retained[i] = words[i];
+  self(ctx)->retained_writes++;
+}
+
 }  // namespace
 
 FakeBoard::FakeBoard() {
@@ -44,6 +54,8 @@ FakeBoard::FakeBoard() {
   iface.set_hp_reset = set_hp_reset;
   iface.set_leds = set_leds;
   iface.kick_watchdog = kick_watchdog;
+  iface.read_retained = read_retained;
+  iface.write_retained = write_retained;
   CenterSticks();
 }
 

@@ -29,6 +29,9 @@ struct FakeBoard {
   int hp_reset_assertions = 0;  // rising edges of the reset line
   uint8_t leds = 0;
   uint64_t watchdog_kicks = 0;
+  // The backup registers: kept across a reset of the HA (a new HaApp on the same board).
+  uint32_t retained[HA_RETAINED_WORDS] = {};
+  uint32_t retained_writes = 0;
 };
 
 #endif  // ARDUINO_HA_TEST_FAKE_BOARD_H

@@ -677,7 +677,8 @@ struct InsFeed {
     home.alt_m = 100.0;
     home.ins_status = 0x0006u;  // tracking, GNSS fix
     home.gps_fix = 3;
-    ha_ins_update(&ins, &t->cfg, &home, t->board.now_us, &t->app.inputs);
+    // Home was latched on the ground, before this story starts: the core said so (1).
+    ha_ins_update(&ins, &t->cfg, &home, 1u, t->board.now_us, &t->app.inputs);
     flying = home;
     flying.alt_m += 61.0;
     flying.lat_deg += 0.0011;  // about the circle's radius north of home
@@ -686,7 +687,8 @@ struct InsFeed {
     t->refresh_state = false;
   }
   void Deliver(const HaInsSample& s) {
-    ha_ins_update(&ins, &t->cfg, &s, t->board.now_us + t->cfg.period_us / 2u, &t->app.inputs);
+    ha_ins_update(&ins, &t->cfg, &s, t->app.outputs.on_ground,
+                  t->board.now_us + t->cfg.period_us / 2u, &t->app.inputs);
   }
   Timeline* t;
   HaIns ins;

@@ -48,10 +48,13 @@ class InsAdapter : public ::testing::Test {
  protected:
   void SetUp() override { ha_ins_init(&ins); }
   int Update(const HaInsSample& s, uint32_t now_us) {
-    return ha_ins_update(&ins, &ha_aircraft_config, &s, now_us, &in);
+    return ha_ins_update(&ins, &ha_aircraft_config, &s, ha_on_ground, now_us, &in);
   }
   HaIns ins{};
   HaInputs in{};
+  // The core's verdict (HaOutputs.on_ground): here it says on the ground, so the adapter's own
+  // rules are what these tests see (test_ground_and_home.cpp goes through the core).
+  uint8_t ha_on_ground = 1u;
 };
 
 TEST_F(InsAdapter, InsSolutionBecomesHaStateInHaUnits) {
@@ -91,8 +94,10 @@ TEST_F(InsAdapter, HomeLatchedAtFirstFixOnTheGround) {
   HaInsSample no_3d = Parked();
   no_3d.gps_fix = 2;
   no_3d.alt_m = 90.0;
-  EXPECT_EQ(Update(no_3d, 10u), 0);
-  EXPECT_EQ(in.state_valid, 0u);
+  // Without a 3D fix no home: attitude and speed only (issue 22, F5: no longer no state at all).
+  EXPECT_EQ(Update(no_3d, 10u), 1);
+  EXPECT_EQ(in.state_valid, 1u);
+  EXPECT_EQ(in.home_unknown, 1u);
   EXPECT_EQ(ins.home_latched, 0u);
 
   ASSERT_EQ(Update(Parked(), 20u), 1);  // first 3D fix on the ground: home at 100 m
@@ -111,8 +116,7 @@ TEST_F(InsAdapter, SetHomeOnTheGroundMovesHomeAndTheStateFollows) {
   ASSERT_EQ(Update(Parked(), 1000u), 1);
   EXPECT_EQ(ins.home_seq, 1u);
   // The operator puts home 0.001 deg north, 5 m higher.
-  ASSERT_EQ(ha_ins_set_home(&ins, &ha_aircraft_config, 0u, kHomeLatDeg + 0.001, kHomeLonDeg,
-                            kHomeAltM + 5.0, 2000u),
+  ASSERT_EQ(ha_ins_set_home(&ins, 1u, 0u, kHomeLatDeg + 0.001, kHomeLonDeg, kHomeAltM + 5.0),
             HA_INS_SET_HOME_OK);
   EXPECT_EQ(ins.home_seq, 2u);  // the link republishes it at once
   ASSERT_EQ(Update(Parked(), 3000u), 1);
@@ -122,8 +126,7 @@ TEST_F(InsAdapter, SetHomeOnTheGroundMovesHomeAndTheStateFollows) {
   HaInsSample moved = Parked();
   moved.lon_deg += 0.0002;
   ASSERT_EQ(Update(moved, 4000u), 1);
-  ASSERT_EQ(ha_ins_set_home(&ins, &ha_aircraft_config, 1u, 0.0, 0.0, 0.0, 5000u),
-            HA_INS_SET_HOME_OK);
+  ASSERT_EQ(ha_ins_set_home(&ins, 1u, 1u, 0.0, 0.0, 0.0), HA_INS_SET_HOME_OK);
   EXPECT_EQ(ins.home.lon_deg, kHomeLonDeg + 0.0002);
   EXPECT_EQ(ins.home.alt_m, kHomeAltM);
   ASSERT_EQ(Update(moved, 6000u), 1);
@@ -133,44 +136,44 @@ TEST_F(InsAdapter, SetHomeOnTheGroundMovesHomeAndTheStateFollows) {
 TEST_F(InsAdapter, SetHomeInFlightIsRefusedAndHomeStays) {
   ASSERT_EQ(Update(Parked(), 1000u), 1);
   ASSERT_EQ(Update(Flying(60.0, 0.001, 0.0), 2000u), 1);
-  EXPECT_EQ(ha_ins_set_home(&ins, &ha_aircraft_config, 1u, 0.0, 0.0, 0.0, 3000u),
-            HA_INS_SET_HOME_NOT_ON_GROUND);
+  EXPECT_EQ(ha_ins_set_home(&ins, 1u, 1u, 0.0, 0.0, 0.0), HA_INS_SET_HOME_NOT_ON_GROUND);
   EXPECT_EQ(ins.home_seq, 1u);
   EXPECT_EQ(ins.home.lat_deg, kHomeLatDeg);
-  // Back on the ground but the INS gone quiet: it cannot tell, so it refuses too.
+  // Back on the ground but the core says no (its INS state timed out, or the pitot or the airborne
+  // latch say flying): refused too.
   ASSERT_EQ(Update(Parked(), 4000u), 1);
-  EXPECT_EQ(ha_ins_set_home(&ins, &ha_aircraft_config, 1u, 0.0, 0.0, 0.0,
-                            4000u + ha_aircraft_config.state_timeout_us + 1u),
-            HA_INS_SET_HOME_NOT_ON_GROUND);
+  EXPECT_EQ(ha_ins_set_home(&ins, 0u, 1u, 0.0, 0.0, 0.0), HA_INS_SET_HOME_NOT_ON_GROUND);
   EXPECT_EQ(ins.home_seq, 1u);
 }
 
 TEST_F(InsAdapter, SetHomeBeforeAnyHomeOrToANonsensePositionIsRefused) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_EQ(
-      ha_ins_set_home(&ins, &ha_aircraft_config, 0u, kHomeLatDeg, kHomeLonDeg, kHomeAltM, 10u),
-      HA_INS_SET_HOME_NOT_ON_GROUND);
+  EXPECT_EQ(ha_ins_set_home(&ins, 1u, 0u, kHomeLatDeg, kHomeLonDeg, kHomeAltM),
+            HA_INS_SET_HOME_NOT_ON_GROUND);
   EXPECT_EQ(ins.home_latched, 0u);
   ASSERT_EQ(Update(Parked(), 1000u), 1);
-  EXPECT_EQ(ha_ins_set_home(&ins, &ha_aircraft_config, 0u, nan, kHomeLonDeg, kHomeAltM, 1100u),
+  EXPECT_EQ(ha_ins_set_home(&ins, 1u, 0u, nan, kHomeLonDeg, kHomeAltM),
             HA_INS_SET_HOME_BAD_POSITION);
-  EXPECT_EQ(ha_ins_set_home(&ins, &ha_aircraft_config, 0u, kHomeLatDeg, 200.0, kHomeAltM, 1100u),
+  EXPECT_EQ(ha_ins_set_home(&ins, 1u, 0u, kHomeLatDeg, 200.0, kHomeAltM),
             HA_INS_SET_HOME_BAD_POSITION);
-  EXPECT_EQ(ha_ins_set_home(&ins, &ha_aircraft_config, 0u, kHomeLatDeg, kHomeLonDeg, 1.0e6, 1100u),
+  EXPECT_EQ(ha_ins_set_home(&ins, 1u, 0u, kHomeLatDeg, kHomeLonDeg, 1.0e6),
             HA_INS_SET_HOME_BAD_POSITION);
   EXPECT_EQ(ins.home_seq, 1u);
   EXPECT_EQ(ins.home.lat_deg, kHomeLatDeg);
 }
 
 TEST_F(InsAdapter, FirstFixInFlightDoesNotBecomeHome) {
-  // Powered up in the air: no home, so no altitude AGL and no circle centre; the state stays
-  // invalid (the HA keeps control) rather than circling wherever the fix happened.
-  EXPECT_EQ(Update(Flying(300.0, 0.0, 0.0), 10u), 0);
+  // Powered up in the air: no home, so no altitude AGL and no circle centre (the HA keeps
+  // control) rather than circling wherever the fix happened. Attitude, rates and speed are
+  // still the HA's (issue 22, F5: before, the whole state stayed invalid and the HA flew blind).
+  EXPECT_EQ(Update(Flying(300.0, 0.0, 0.0), 10u), 1);
   EXPECT_EQ(ins.home_latched, 0u);
-  EXPECT_EQ(in.state_valid, 0u);
+  EXPECT_EQ(in.state_valid, 1u);
+  EXPECT_EQ(in.home_unknown, 1u);
+  EXPECT_EQ(in.on_ground, 0u);
   HaInsSample climbing = Parked();
   climbing.vel_ned_mps[2] = -3.0f;  // slow over the ground but climbing: not parked either
-  EXPECT_EQ(Update(climbing, 20u), 0);
+  EXPECT_EQ(Update(climbing, 20u), 1);
   EXPECT_EQ(ins.home_latched, 0u);
 }
 
@@ -253,13 +256,15 @@ TEST(HaInsStory, Vn200SolutionsLetTheHpTakeControl) {
     HaIns ins;
     ha_ins_init(&ins);
     HaInsSample home = Parked();
-    ha_ins_update(&ins, &t.cfg, &home, t.board.now_us, &t.app.inputs);
+    // Home was latched on the ground, before this story starts: the core said so (1).
+    ha_ins_update(&ins, &t.cfg, &home, 1u, t.board.now_us, &t.app.inputs);
     t.board.airspeed_ftps = 60.0f;
     bool hp_in_control = false;
     for (int i = 0; i < 1000 && !hp_in_control; ++i) {
       if (with_ins) {
         const HaInsSample s = Flying(61.0, 0.0, 0.0);
-        ha_ins_update(&ins, &t.cfg, &s, t.board.now_us + t.cfg.period_us / 2u, &t.app.inputs);
+        ha_ins_update(&ins, &t.cfg, &s, t.app.outputs.on_ground,
+                      t.board.now_us + t.cfg.period_us / 2u, &t.app.inputs);
       } else {
         t.app.inputs.state_valid = 0u;
       }

@@ -194,11 +194,26 @@ int main() {
   check(fake::state.watchdog_kicks - kicks_at_stall == 1u, "StalledLoopRunsOnePeriodNotABurst",
         "catch-up burst after a stall");
 
-  // The VN-200 talks to the Due on Serial1: parked at home first (home latched), then flying;
-  // a packet corrupted on the wire in between is counted and dropped.
+  // The VN-200 talks to the Due on Serial1: parked at home first, then flying; a packet
+  // corrupted on the wire in between is counted and dropped. Home latches only when the core says
+  // on the ground (its verdict of the period after a parked solution): with no pitot it cannot.
   const DueInsStats ins_before = due_ins_stats();
   send_vn200(kParkedAtHome);
   run_ms(20u, cic, true);
+  send_vn200(kParkedAtHome);
+  run_ms(20u, cic, true);
+  check(due_ins_state()->home_latched == 0u, "NoHomeWithoutAPitotToVouchForTheGround",
+        "home latched while the pitot read nothing");
+  const uint8_t still_air[4] = {0x0Cu, 0xCDu, 0x40u, 0x00u};  // 3277 counts: 0 Pa
+  for (uint32_t i = 0u; i < 4u; ++i) {
+    fake::state.i2c_reply[i] = still_air[i];
+  }
+  fake::state.i2c_reply_len = 4u;
+  run_ms(20u, cic, true);
+  send_vn200(kParkedAtHome);
+  run_ms(20u, cic, true);
+  check(due_ins_state()->home_latched == 1u, "HomeLatchedParkedOnTheGround",
+        "no home after a parked solution with the pitot reading still air");
   {
     uint8_t pkt[VN_BIN_MAX_PACKET];
     const size_t len = vn200_packet(kFlying50mUp, pkt);
@@ -209,9 +224,9 @@ int main() {
   // Split across loop passes as the UART delivers it: a 64-byte read never holds a whole packet.
   run_ms(40u, cic, true);
   const DueInsStats ins_after = due_ins_stats();
-  check(ins_after.bytes_read > ins_before.bytes_read && ins_after.binary_packets == 2u &&
-            ins_after.solutions_used == 2u,
-        "Vn200PacketsOnSerial1BecomeHaState", "two intact packets did not give two solutions");
+  check(ins_after.bytes_read > ins_before.bytes_read && ins_after.binary_packets == 4u &&
+            ins_after.solutions_used == 4u,
+        "Vn200PacketsOnSerial1BecomeHaState", "four intact packets did not give four solutions");
   check(ins_after.bad_packets == 1u && ins_after.solutions_rejected == 0u,
         "CorruptedVn200PacketCountedAndDropped", "the corrupted packet was not counted as bad");
   {
@@ -220,7 +235,7 @@ int main() {
     const size_t len = vn200_packet(kFlying50mUp, pkt);
     HaInputs in;
     std::memset(&in, 0, sizeof in);
-    due_ins_feed(pkt, len, &in, 123456u);
+    due_ins_feed(pkt, len, &in, 0u, 123456u);
     check(in.state_valid == 1u && in.state_rx_us == 123456u &&
               std::fabs(in.altitude_agl_ft - 164.04f) < 0.01f &&
               std::fabs(in.heading_deg - 90.0f) < 1e-4f && std::fabs(in.roll_deg + 15.0f) < 1e-4f &&
@@ -230,17 +245,33 @@ int main() {
     Vn200Solution no_fix = kFlying50mUp;
     no_fix.ins_status = 0x0002u;  // tracking but the GNSS fix bit clear
     const size_t no_fix_len = vn200_packet(no_fix, pkt);
-    due_ins_feed(pkt, no_fix_len, &in, 223456u);
+    due_ins_feed(pkt, no_fix_len, &in, 0u, 223456u);
     check(in.state_rx_us == 123456u, "Vn200WithoutFixIsDroppedUnstamped",
           "a solution without GNSS fix stamped the state");
     Vn200Solution nan_roll = kFlying50mUp;
     nan_roll.ypr_deg[2] = std::nanf("");  // CRC-valid, one field NaN
     const size_t nan_len = vn200_packet(nan_roll, pkt);
-    due_ins_feed(pkt, nan_len, &in, 323456u);
+    due_ins_feed(pkt, nan_len, &in, 0u, 323456u);
     check(
         in.state_valid == 1u && in.state_rx_us == 123456u && std::fabs(in.roll_deg + 15.0f) < 1e-4f,
         "Vn200NanPacketLeavesLastGoodState",
         "a CRC-valid packet with a NaN field invalidated or changed the last good state");
+  }
+
+  // A watchdog reset in flight: setup() runs again with RAM afresh; the backup registers bring
+  // back home and the airborne latch (a power-up with them cleared brings back neither).
+  {
+    const GeoRef home = due_ins_state()->home;
+    due_main_setup();
+    check(due_ins_state()->home_latched == 1u && due_ins_state()->home.lat_deg == home.lat_deg &&
+              std::fabs(due_ins_state()->home.alt_m - home.alt_m) < 1e-3,
+          "HomeKeptAcrossAWatchdogReset", "home lost or moved by a reset");
+    for (uint32_t i = 0u; i < HA_RETAINED_WORDS; ++i) {
+      fake_gpbr.SYS_GPBR[i] = 0u;  // the power went
+    }
+    due_main_setup();
+    check(due_ins_state()->home_latched == 0u, "NoHomeAfterAPowerUp",
+          "home came back from cleared backup registers");
   }
 
   // The board's own readings, through the HaBoard interface of a second board instance.

@@ -90,6 +90,7 @@ static void any_link_inputs(HaInputs *in) {
   in->groundspeed_ftps = any_float();
   in->on_ground = any_u8();
   in->state_valid = any_u8();
+  in->home_unknown = any_u8();
   in->state_rx_us = any_u32();
   if (Frama_C_nondet(0, 1)) {
     any_hp_command(&cmd);
@@ -172,6 +173,19 @@ static void eva_set_leds(void *ctx, uint8_t leds) {
   (void)leds;
 }
 static void eva_kick_watchdog(void *ctx) { (void)ctx; }
+/* Backup registers holding anything at all: a power-up's random bits, a torn write. */
+static int eva_read_retained(void *ctx, uint32_t words[HA_RETAINED_WORDS]) {
+  uint32_t i;
+  (void)ctx;
+  for (i = 0u; i < HA_RETAINED_WORDS; ++i) {
+    words[i] = any_u32();
+  }
+  return Frama_C_nondet(0, 1);
+}
+static void eva_write_retained(void *ctx, const uint32_t words[HA_RETAINED_WORDS]) {
+  (void)ctx;
+  (void)words;
+}
 
 /* The decision reported to the HP side is always one of the defined values. */
 static void check_decision(const HaOutputs *out) {
@@ -232,11 +246,10 @@ static void one_period(const HaBoard *board) {
   any_link_inputs(&app.inputs);
   if (Frama_C_nondet(0, 1)) {
     any_ins_sample(&sample);
-    (void)ha_ins_update(&ins, &ha_aircraft_config, &sample, any_u32(), &app.inputs);
+    (void)ha_ins_update(&ins, &ha_aircraft_config, &sample, any_u8(), any_u32(), &app.inputs);
   }
-  if (Frama_C_nondet(0, 1)) { /* an operator's SET_HOME, any position, any time */
-    (void)ha_ins_set_home(&ins, &ha_aircraft_config, any_u8(), any_double(), any_double(),
-                          any_double(), any_u32());
+  if (Frama_C_nondet(0, 1)) { /* an operator's SET_HOME, any position, any verdict */
+    (void)ha_ins_set_home(&ins, any_u8(), any_u8(), any_double(), any_double(), any_double());
   }
   ha_app_period(&app, board);
   check_servo_command(&app.outputs.surfaces);
@@ -260,10 +273,14 @@ int main(void) {
       .set_hp_reset = eva_set_hp_reset,
       .set_leds = eva_set_leds,
       .kick_watchdog = eva_kick_watchdog,
+      .read_retained = eva_read_retained,
+      .write_retained = eva_write_retained,
   };
   ha_app_init(&app, &ha_aircraft_config);
   ha_core_init(&core, &ha_aircraft_config);
   ha_ins_init(&ins);
+  /* After any reset: whatever the backup registers hold comes back through the record's checks. */
+  ha_app_restore(&app, &board, &ins);
   /* The first period starts from init with unknown inputs ... */
 #if HA_EVA_STEPS > 0
   {

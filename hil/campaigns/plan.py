@@ -106,7 +106,7 @@ PARAM_SPACE = {
 }
 # Faults that steer the aircraft need time to take it anywhere; a crash has no duration.
 LONG_FAULTS = ("climb", "stall", "bank", "divergence")
-NO_DURATION = ("crash", "pic_switch")
+NO_DURATION = ("crash", "pic_switch", "ha_reset", "cold_start")
 
 
 def _class_params(fault_class, rng):

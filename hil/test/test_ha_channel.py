@@ -97,3 +97,49 @@ def test_pilot_switch_from_the_simulated_receiver_gives_the_pilot_the_servos(rig
                       0.0, 12.4)
     assert r.controller == 4  # MANUAL
     assert r.applied[0] > 5.0  # the elevator stick at 1800 us
+
+
+class Cruising(Parked):
+    """200 ft above the field, 60 ft/s to the north-east."""
+    alt_msl_m = Parked.alt_msl_m + 61.0
+    vn_mps = ve_mps = 13.0
+
+
+def test_a_reset_in_flight_keeps_home_and_the_airborne_latch(rig):
+    """Issue 22, F5: the HA reset in flight (RAM afresh, as a watchdog reset does) comes back with
+    its home and its airborne latch from the board's retained words: its state is valid at the
+    first solution after the reset (home cannot latch in flight) and the motor keeps running."""
+    chan, vn, _ = rig
+    k = 0
+    for k in range(k, 100):
+        r = step(chan, vn, k, Parked)  # the pitot reads still air: home latches on the ground
+    assert r.flags & ha_channel.R_HOME and r.flags & ha_channel.R_STATE_VALID
+    for k in range(100, 400):
+        r = step(chan, vn, k, Cruising, airspeed=60.0)
+    assert r.applied[3] > 0.2  # flying: the HA's throttle loop holds the speed
+    r = chan.reset()
+    assert not r.flags & ha_channel.R_STEPPED
+    assert r.flags & ha_channel.R_HOME  # taken back before the first period
+    assert r.vn_bytes_read == vn.pty.written  # the SIL's byte count goes on (the simulator waits on it)
+    for k in range(400, 410):
+        r = step(chan, vn, k, Cruising, airspeed=60.0)
+    assert r.flags & ha_channel.R_HOME and r.flags & ha_channel.R_STATE_VALID
+    assert r.controller == 1  # the HA, no HP in this rig
+    for k in range(410, 600):
+        r = step(chan, vn, k, Cruising, airspeed=60.0)
+    assert r.applied[3] > 0.2  # still airborne: not idled as on a power-up on the ground
+
+
+def test_a_power_up_in_the_air_never_latches_home(rig):
+    """Issue 22, K9: the first solution arrives in the air (a level leg into a headwind looks
+    parked to the INS): no home, however long, while the pitot says flying; the HA keeps its
+    attitude (the state is stamped) but no height."""
+    chan, vn, _ = rig
+
+    class IntoWind(Cruising):
+        vn_mps = ve_mps = 6.0  # 28 ft/s over the ground: below the stall speed, level
+    for k in range(500):
+        r = step(chan, vn, k, IntoWind, airspeed=60.0)
+    assert not r.flags & ha_channel.R_HOME
+    assert r.flags & ha_channel.R_STATE_VALID
+    assert r.ins_solutions_used > 0

@@ -100,6 +100,25 @@ void board_kick_watchdog(void *ctx) {
   watchdogReset();
 }
 
+/* The SAM3X8E's eight general-purpose backup registers (SUPC backup domain, datasheet 17/18):
+ * kept across watchdog, software and user resets and a brown-out of the core supply, lost when
+ * the power goes (the Due has no backup battery on VDDBU). Random at power-up: the record's CRC
+ * tells (core/ha_retained.c). */
+int board_read_retained(void *ctx, uint32_t words[HA_RETAINED_WORDS]) {
+  (void)ctx;
+  for (uint32_t i = 0u; i < HA_RETAINED_WORDS; ++i) {
+    words[i] = GPBR->SYS_GPBR[i];
+  }
+  return 1;
+}
+
+void board_write_retained(void *ctx, const uint32_t words[HA_RETAINED_WORDS]) {
+  (void)ctx;
+  for (uint32_t i = 0u; i < HA_RETAINED_WORDS; ++i) {
+    GPBR->SYS_GPBR[i] = words[i];
+  }
+}
+
 }  // namespace
 
 /* Called by the SAM core's init() before setup(). The SAM3X watchdog mode register can be
@@ -120,6 +139,8 @@ void due_board_begin(DueBoard *due, const HaAircraftConfig *cfg) {
   due->board.set_hp_reset = board_set_hp_reset;
   due->board.set_leds = board_set_leds;
   due->board.kick_watchdog = board_kick_watchdog;
+  due->board.read_retained = board_read_retained;
+  due->board.write_retained = board_write_retained;
 
   pinMode(DUE_PIN_HP_RESET, OUTPUT);
   digitalWrite(DUE_PIN_HP_RESET, LOW);

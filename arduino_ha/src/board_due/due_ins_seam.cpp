@@ -19,18 +19,19 @@ void due_ins_begin(const HaAircraftConfig *cfg) {
   Serial1.begin(DUE_VN200_BAUD);
 }
 
-void due_ins_feed(const uint8_t *bytes, size_t len, HaInputs *inputs, uint32_t now_us) {
-  ha_vn200_feed_bytes(&g_feed, bytes, len, inputs, now_us);
+void due_ins_feed(const uint8_t *bytes, size_t len, HaInputs *inputs, uint8_t ha_on_ground,
+                  uint32_t now_us) {
+  ha_vn200_feed_bytes(&g_feed, bytes, len, inputs, ha_on_ground, now_us);
 }
 
-void due_ins_poll(HaInputs *inputs, uint32_t now_us) {
+void due_ins_poll(HaInputs *inputs, uint8_t ha_on_ground, uint32_t now_us) {
   uint8_t bytes[kMaxBytesPerPoll];
   size_t len = 0u;
   while (len < kMaxBytesPerPoll && Serial1.available() > 0) {
     bytes[len++] = static_cast<uint8_t>(Serial1.read());
   }
   if (len > 0u) {
-    due_ins_feed(bytes, len, inputs, now_us);
+    due_ins_feed(bytes, len, inputs, ha_on_ground, now_us);
   }
 }
 
@@ -48,8 +49,10 @@ DueInsStats due_ins_stats(void) {
 
 const HaIns *due_ins_state(void) { return &g_feed.ins; }
 
-int due_ins_set_home(uint8_t use_current, double lat_deg, double lon_deg, double alt_m,
-                     uint32_t now_us) {
+HaIns *due_ins_adapter(void) { return &g_feed.ins; }
+
+int due_ins_set_home(uint8_t ha_on_ground, uint8_t use_current, double lat_deg, double lon_deg,
+                     double alt_m) {
   if (g_feed.cfg == nullptr) return HA_INS_SET_HOME_NOT_ON_GROUND;  // before due_ins_begin
-  return ha_ins_set_home(&g_feed.ins, g_feed.cfg, use_current, lat_deg, lon_deg, alt_m, now_us);
+  return ha_ins_set_home(&g_feed.ins, ha_on_ground, use_current, lat_deg, lon_deg, alt_m);
 }

@@ -33,20 +33,26 @@ typedef struct {
  * cfg is the aircraft configuration the adapter reads (stall speed, airborne altitude). */
 void due_ins_begin(const HaAircraftConfig *cfg);
 
-/* Reads what Serial1 has buffered (bounded per call) and applies it with due_ins_feed(). */
-void due_ins_poll(HaInputs *inputs, uint32_t now_us);
+/* Reads what Serial1 has buffered (bounded per call) and applies it with due_ins_feed().
+ * ha_on_ground: the core's latest verdict (HaOutputs.on_ground), on which alone home latches. */
+void due_ins_poll(HaInputs *inputs, uint8_t ha_on_ground, uint32_t now_us);
 
 /* Frames, decodes and applies bytes from the VN-200 stream, received at now_us. Partial packets
  * are kept for the next call. A packet with a non-finite value makes the state invalid. */
-void due_ins_feed(const uint8_t *bytes, size_t len, HaInputs *inputs, uint32_t now_us);
+void due_ins_feed(const uint8_t *bytes, size_t len, HaInputs *inputs, uint8_t ha_on_ground,
+                  uint32_t now_us);
 
 DueInsStats due_ins_stats(void);
 
 /* The INS adapter's state: home (latched from this INS) for the link to publish. */
 const HaIns *due_ins_state(void);
 
-/* The operator's SET_HOME, judged by the INS adapter (ha_ins_set_home). */
-int due_ins_set_home(uint8_t use_current, double lat_deg, double lon_deg, double alt_m,
-                     uint32_t now_us);
+/* The adapter itself, for ha_app_restore: home kept across a reset of the Due. */
+HaIns *due_ins_adapter(void);
+
+/* The operator's SET_HOME, judged by the INS adapter (ha_ins_set_home) on the core's latest
+ * on-the-ground verdict (HaOutputs.on_ground). */
+int due_ins_set_home(uint8_t ha_on_ground, uint8_t use_current, double lat_deg, double lon_deg,
+                     double alt_m);
 
 #endif /* DUE_INS_SEAM_H */

@@ -23,6 +23,7 @@ Serial_ &g_port = SerialUSB;
 
 HaLink g_link;
 HaInputs *g_inputs = nullptr;
+const HaOutputs *g_outputs = nullptr;
 
 /* Bytes handed to the link per loop; the port's buffer holds more, the next loop takes them. */
 const size_t kMaxBytesPerPoll = 64u;
@@ -40,8 +41,9 @@ void link_command(void *ctx, const HaHpCommand *cmd, uint32_t arrival_us) {
 void link_operator(void *ctx, const drone_ros_OperatorCommand *cmd, uint32_t arrival_us) {
   (void)ctx;
   if (cmd->command == HA_OP_SET_HOME) {  // home is the INS adapter's, not the decision logic's
-    const int r = due_ins_set_home(cmd->use_current ? 1u : 0u, cmd->latitude, cmd->longitude,
-                                   cmd->altitude, arrival_us);
+    (void)arrival_us;
+    const int r = due_ins_set_home(g_outputs->on_ground, cmd->use_current ? 1u : 0u, cmd->latitude,
+                                   cmd->longitude, cmd->altitude);
     (void)ha_link_log(
         &g_link, r == HA_INS_SET_HOME_OK ? ROSSERIAL_MSGS_LOG_INFO : ROSSERIAL_MSGS_LOG_WARN,
         r == HA_INS_SET_HOME_OK             ? "SET_HOME: home moved"
@@ -54,8 +56,9 @@ void link_operator(void *ctx, const drone_ros_OperatorCommand *cmd, uint32_t arr
 
 }  // namespace
 
-void due_link_begin(HaInputs *inputs) {
+void due_link_begin(HaInputs *inputs, const HaOutputs *outputs) {
   g_inputs = inputs;
+  g_outputs = outputs;
   g_port.begin(DUE_HP_LINK_BAUD); /* the native port ignores the rate */
   HaLinkCallbacks cb;
   cb.write = link_write;

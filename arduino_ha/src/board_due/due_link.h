@@ -9,7 +9,8 @@
 
 #include "../core/ha_core.h"
 
-void due_link_begin(HaInputs *inputs);
+/* outputs: the core's, read for its on-the-ground verdict when a SET_HOME arrives. */
+void due_link_begin(HaInputs *inputs, const HaOutputs *outputs);
 
 /* Every loop: feeds received bytes to the link and keeps its time sync going. */
 void due_link_poll(uint32_t now_us);

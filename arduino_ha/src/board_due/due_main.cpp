@@ -22,7 +22,10 @@ void due_main_setup(void) {
   ha_app_init(&g_app, cfg);
   /* The VN-200 on Serial1 feeds the core's state directly: see due_ins_seam.h. */
   due_ins_begin(cfg);
-  due_link_begin(&g_app.inputs);
+  /* After a watchdog or brown-out reset in flight: home, the airborne latch and the HA's latches
+   * as they were (the SAM3X's backup registers, due_board.cpp). */
+  ha_app_restore(&g_app, due_board_interface(&g_board), due_ins_adapter());
+  due_link_begin(&g_app.inputs, &g_app.outputs);
   g_next_period_us = micros();
 }
 
@@ -32,7 +35,7 @@ void due_main_setup(void) {
 void due_main_loop(void) {
   const HaAircraftConfig *cfg = &ha_aircraft_config;
   const uint32_t now_us = micros();
-  due_ins_poll(&g_app.inputs, now_us);
+  due_ins_poll(&g_app.inputs, g_app.outputs.on_ground, now_us);
   due_link_poll(now_us);
   if (static_cast<int32_t>(now_us - g_next_period_us) < 0) {
     return;

@@ -15,6 +15,38 @@ void ha_app_init(HaApp *app, const HaAircraftConfig *cfg) {
  * range checks reject it, without the core ever seeing a NaN it did not make itself. */
 static float reading_or_invalid(int ok, float value) { return ok ? value : -1.0f; }
 
+/* The retained record follows the core and the adapter; it is rewritten (and its CRC computed)
+ * only in a period where one of the kept values changed, so a steady flight costs a few compares.
+ */
+static void keep_retained(HaApp *app, const HaBoard *board) {
+  HaRetained now;
+  uint32_t words[HA_RETAINED_WORDS];
+  const HaIns *ins = app->ins;
+  const HaRetained *k = &app->kept;
+  if (!app->retain || board->write_retained == NULL) {
+    return;
+  }
+  memset(&now, 0, sizeof now);
+  now.airborne = app->core.airborne;
+  now.restart_latched = app->core.latched;
+  now.ground_command = app->core.ground_command;
+  if (ins != NULL && ins->home_latched) {
+    now.home_latched = 1u;
+    now.home_seq = ins->home_seq;
+    now.home_lat_deg = ins->home.lat_deg;
+    now.home_lon_deg = ins->home.lon_deg;
+    now.home_alt_m = ins->home.alt_m;
+  }
+  if (now.airborne == k->airborne && now.restart_latched == k->restart_latched &&
+      now.ground_command == k->ground_command && now.home_latched == k->home_latched &&
+      now.home_seq == k->home_seq) {
+    return;
+  }
+  ha_retained_pack(&now, words);
+  board->write_retained(board->ctx, words);
+  app->kept = now;
+}
+
 void ha_app_period(HaApp *app, const HaBoard *board) {
   float airspeed_ftps = 0.0f;
   float battery_v = 0.0f;
@@ -28,5 +60,24 @@ void ha_app_period(HaApp *app, const HaBoard *board) {
   board->write_servos(board->ctx, &app->outputs.surfaces);
   board->set_hp_reset(board->ctx, app->outputs.hp_reset_asserted);
   board->set_leds(board->ctx, app->outputs.leds);
+  keep_retained(app, board);
   board->kick_watchdog(board->ctx);
+}
+
+void ha_app_restore(HaApp *app, const HaBoard *board, HaIns *ins) {
+  uint32_t words[HA_RETAINED_WORDS];
+  HaRetained r;
+  app->ins = ins;
+  app->retain = 1u;
+  memset(&app->kept, 0, sizeof app->kept);
+  if (board->read_retained == NULL || !board->read_retained(board->ctx, words) ||
+      !ha_retained_unpack(words, &r)) {
+    return; /* power-up: on the ground, no home */
+  }
+  if (r.home_latched && ins != NULL &&
+      !ha_ins_restore_home(ins, r.home_lat_deg, r.home_lon_deg, r.home_alt_m, r.home_seq)) {
+    r.home_latched = 0u;
+  }
+  ha_core_restore(&app->core, r.airborne, r.restart_latched, r.ground_command);
+  app->kept = r;
 }

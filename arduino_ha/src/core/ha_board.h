@@ -7,6 +7,7 @@
 
 #include <stdint.h>
 
+#include "ha_retained.h"
 #include "ha_types.h"
 
 #ifdef __cplusplus
@@ -31,6 +32,12 @@ typedef struct {
   void (*set_leds)(void *ctx, uint8_t leds);
   /* Called once per completed period; a hung loop stops kicking and the watchdog resets. */
   void (*kick_watchdog)(void *ctx);
+  /* HA_RETAINED_WORDS (ha_retained.h) words of memory kept across a reset of the HA (watchdog,
+   * brown-out of the core, software) and lost only with the power: the Due's SAM3X backup
+   * registers. read_retained returns 1 and fills words[] (whatever they hold: the core checks
+   * them), or 0 when the board keeps none; either pointer may be NULL for such a board. */
+  int (*read_retained)(void *ctx, uint32_t words[HA_RETAINED_WORDS]);
+  void (*write_retained)(void *ctx, const uint32_t words[HA_RETAINED_WORDS]);
 } HaBoard;
 
 #ifdef __cplusplus

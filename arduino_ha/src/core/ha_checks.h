@@ -28,11 +28,13 @@ typedef struct {
   /* Airborne is decided by the core from these, latched (ha_core.c): any one signal of flight
    * sets it, and only a landing evident for landed_confirm_us clears it. */
   uint8_t flying_evidence; /* above stall (pitot), above alt0 (INS), or the INS not parked */
-  uint8_t landed_evidence; /* the INS parked and low, and the pitot (if alive) below stall */
-  uint8_t blind;           /* neither a fresh INS state nor a live pitot: cannot tell */
-  uint8_t still;           /* INS: level, no body rates, no ground speed (self-test gate) */
-  uint8_t airborne;        /* set by the core: latched, or blind */
-  uint8_t on_ground;       /* set by the core: not airborne, parked: the self-test may run */
+  /* The pitot alive and below stall, and a fresh INS state parked and low. A dead pitot or a
+   * stale INS is never evidence of a landing: it cannot tell flying from parked. */
+  uint8_t landed_evidence;
+  uint8_t still;     /* INS: level, no body rates, no ground speed (self-test gate) */
+  uint8_t airborne;  /* set by the core: the latch */
+  uint8_t on_ground; /* set by the core: the one rule (HaOutputs.on_ground) */
+  uint8_t parked;    /* set by the core: on the ground, still, at a known height: self-test */
   float x[HA_X_DIM];
   float airspeed_ftps;
   float heading_deg;

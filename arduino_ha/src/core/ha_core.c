@@ -28,6 +28,12 @@ void ha_core_init(HaCore *core, const HaAircraftConfig *cfg) {
   ha_safety_ctrl_reset(&core->sc);
 }
 
+void ha_core_restore(HaCore *core, uint8_t airborne, uint8_t latched, uint8_t ground_command) {
+  core->airborne = (uint8_t)(airborne != 0u);
+  core->latched = (uint8_t)(latched != 0u);
+  core->ground_command = (uint8_t)(ground_command != 0u);
+}
+
 /* Period length actually elapsed, bounded: past the no-command timeout everything has timed out
  * anyway, and a bound keeps one late call from driving a huge integrator or slew step. */
 static uint32_t period_dt_us(const HaCore *core, uint32_t now_us) {
@@ -101,9 +107,15 @@ static void track_own_sensors(HaCore *core, const HaInputs *in, uint32_t now_us,
 }
 
 /* Airborne from several signals, latched: never decided by height alone, so a low pass or
- * terrain below the launch point keeps the motor and the stall check. Without any sensor the
- * HA cannot rule flight out and counts as airborne. The self-test additionally needs parked. */
-static void decide_airborne(HaCore *core, const HaInputs *in, uint32_t dt_us, HaStateView *v) {
+ * terrain below the launch point keeps the motor and the stall check. At power-up the latch is
+ * clear (on the ground until a sign of flight; a reset in flight restores it: ha_app.c), and it
+ * holds while the sensors cannot tell: a dead pitot or a lost INS never clears it.
+ * On the ground is one rule, for the self-test, the first home and SET_HOME (the INS adapter
+ * takes it from HaOutputs.on_ground): the latch clear (no sign of flight now or since the last
+ * confirmed landing) and every sensor saying landed now: the pitot alive and below stall, a
+ * fresh INS parked and low. The motor runs on the latch alone: it idles until a sign of flight,
+ * and keeps running while the sensors cannot tell. */
+static void decide_airborne(HaCore *core, uint32_t dt_us, HaStateView *v) {
   if (v->flying_evidence) {
     core->airborne = 1u;
     core->landed_for_us = 0u;
@@ -115,9 +127,9 @@ static void decide_airborne(HaCore *core, const HaInputs *in, uint32_t dt_us, Ha
   } else {
     core->landed_for_us = 0u;
   }
-  v->airborne = (uint8_t)(core->airborne || v->blind);
-  v->on_ground = (uint8_t)(!v->airborne && in->on_ground != 0u && v->still && v->airspeed_ok &&
-                           ha_greater(core->cfg->stall_speed_ftps, v->airspeed_ftps));
+  v->airborne = core->airborne;
+  v->on_ground = (uint8_t)(!core->airborne && v->landed_evidence);
+  v->parked = (uint8_t)(v->on_ground && v->still && v->altitude_ok);
 }
 
 /* Forget restarts older than the window (before the 32-bit clock could wrap onto them). */
@@ -174,7 +186,7 @@ static int handle_operator(HaCore *core, const HaInputs *in, const HaStateView *
              core->controller != HA_CONTROLLER_HP) {
     restart = 1;
     accepted = 1;
-  } else if (in->operator_command == HA_OP_SELF_TEST && view->on_ground &&
+  } else if (in->operator_command == HA_OP_SELF_TEST && view->parked &&
              core->controller != HA_CONTROLLER_HP && core->controller != HA_CONTROLLER_MANUAL) {
     ha_self_test_start(&core->self_test, now_us);
     accepted = 1;
@@ -224,6 +236,7 @@ static void fill_outputs(const HaCore *core, const HaStateView *view, const HaIn
   out->beta_deg = view->alpha_beta_ok ? in->hp_cmd.beta_est_deg : 0.0f;
   out->state_region_max = sx_max;
   out->actuator_region_max = su_max;
+  out->on_ground = view->on_ground;
   out->self_test_active = core->self_test.active;
   out->leds = (uint8_t)(kLeds[core->controller <= HA_CONTROLLER_MANUAL ? core->controller : 1u] |
                         (reasons != 0u ? HA_LED_FAULT : 0u));
@@ -248,7 +261,7 @@ void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *
   track_command(core, in, now_us, dt_us, &facts);
   track_own_sensors(core, in, now_us, dt_us);
   ha_state_view(cfg, in, facts.cmd, facts.have_cmd, &core->own, &view);
-  decide_airborne(core, in, dt_us, &view);
+  decide_airborne(core, dt_us, &view);
   policy.operator_restart = (uint8_t)handle_operator(core, in, &view, now_us);
   reasons = ha_checks_evaluate(cfg, &facts, &view, &sx_max, &su_max) |
             (core->ground_command ? HA_REASON_GROUND_COMMAND : 0u);
@@ -263,7 +276,7 @@ void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *
 
   policy.controller = core->controller;
   policy.manual = (uint8_t)(in->rc.valid && in->rc.pulse_us[HA_RC_PIC] >= cfg->pic_threshold_us);
-  if (policy.manual || !view.on_ground) {
+  if (policy.manual || !view.parked) {
     core->self_test.active = 0u; /* the pilot or a lift-off ends the self-test */
   }
   policy.latched = core->latched;

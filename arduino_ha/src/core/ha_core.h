@@ -43,7 +43,10 @@ typedef struct {
   float groundspeed_ftps; /* horizontal speed over the ground (INS) */
   uint8_t on_ground;      /* 1: weight on wheels / landed as reported by the INS side */
   uint8_t state_valid;    /* 0 until the link has delivered a state at least once */
-  uint32_t state_rx_us;   /* when that state arrived */
+  /* 1: the state carries attitude, rates, groundspeed and on_ground but no home yet, so no
+   * altitude AGL and no position (the INS adapter before its first home: ha_ins.h). */
+  uint8_t home_unknown;
+  uint32_t state_rx_us; /* when that state arrived */
 
   HaRcInputs rc;
   float battery_v; /* reported only */
@@ -80,6 +83,10 @@ typedef struct {
   float beta_deg;
   float state_region_max;    /* max_i (S_x (x - x0))_i */
   float actuator_region_max; /* max_i (S_u (u - u0))_i of the HP command */
+  /* The one "on the ground" verdict of this period (ha_core.c, decide_airborne): the airborne
+   * latch clear, the pitot alive and below stall, and a fresh INS state parked and low. The INS
+   * adapter takes its first home and accepts SET_HOME only on it (ha_ins.h). */
+  uint8_t on_ground;
   uint8_t self_test_active;
   uint8_t leds; /* HA_LED_* */
   /* Acknowledgement of the latest operator request: operator_ack_count equals the input's
@@ -159,6 +166,11 @@ typedef struct {
 /* cfg must outlive core (it is the generated const). A core that has not been stepped drives
  * nothing; the first step starts in HA_CONTROLLER_HA. */
 void ha_core_init(HaCore *core, const HaAircraftConfig *cfg);
+
+/* After a reset of the HA in flight (ha_app_restore, ha_retained.h): the airborne latch, the
+ * restart cap's latch and the operator's HA selection as they were before it. Call after
+ * ha_core_init, before the first step. */
+void ha_core_restore(HaCore *core, uint8_t airborne, uint8_t latched, uint8_t ground_command);
 
 /* One control period at now_us (free-running, wrapping microsecond clock). */
 void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *out);

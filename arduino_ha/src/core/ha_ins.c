@@ -101,10 +101,10 @@ static void latch_home(HaIns *ins, const Checked *s) {
   }
 }
 
-int ha_ins_update(HaIns *ins, const HaAircraftConfig *cfg, const HaInsSample *s, uint32_t now_us,
-                  HaInputs *in) {
+int ha_ins_update(HaIns *ins, const HaAircraftConfig *cfg, const HaInsSample *s,
+                  uint8_t ha_on_ground, uint32_t now_us, HaInputs *in) {
   Checked c;
-  float agl_ft;
+  int is_parked;
   /* A rejected solution is dropped without touching the state: the last good one stays, and
    * the core's state timeout, not one bad packet, decides when it is too old to trust. */
   if (!sample_in_range(s) || !ins_tracking(s->ins_status)) {
@@ -112,14 +112,12 @@ int ha_ins_update(HaIns *ins, const HaAircraftConfig *cfg, const HaInsSample *s,
     return 0;
   }
   checked_from(s, &c);
-  if (!ins->home_latched && (s->has & HA_INS_HAS_GPS_FIX) != 0u &&
-      s->gps_fix >= HA_INS_GPS_FIX_3D && parked(cfg, &c)) {
+  is_parked = parked(cfg, &c);
+  /* The first home needs the core's on-the-ground verdict as well as this solution parked: the
+   * INS alone calls a level leg into a headwind parked, and would latch home in the air. */
+  if (!ins->home_latched && ha_on_ground != 0u && (s->has & HA_INS_HAS_GPS_FIX) != 0u &&
+      s->gps_fix >= HA_INS_GPS_FIX_3D && is_parked) {
     latch_home(ins, &c);
-  }
-  if (!ins->home_latched) {
-    in->state_valid = 0u; /* nothing has ever been valid: no home, no altitude AGL */
-    ins->solutions_rejected += 1u;
-    return 0;
   }
   in->heading_deg = c.yaw_deg;
   in->pitch_deg = c.pitch_deg;
@@ -128,19 +126,29 @@ int ha_ins_update(HaIns *ins, const HaAircraftConfig *cfg, const HaInsSample *s,
   in->p_deg_s = c.rate_radps[0] * HA_INS_DEG_PER_RAD;
   in->q_deg_s = c.rate_radps[1] * HA_INS_DEG_PER_RAD;
   in->r_deg_s = c.rate_radps[2] * HA_INS_DEG_PER_RAD;
-  agl_ft = (float)(c.alt_m - ins->home.alt_m) * (float)HA_INS_FT_PER_M;
-  in->altitude_agl_ft = agl_ft;
-  geo_to_ne_ft_f(&ins->home, c.lat_deg, c.lon_deg, &in->north_ft, &in->east_ft);
   in->groundspeed_ftps =
       sqrtf(c.vel_ned_mps[0] * c.vel_ned_mps[0] + c.vel_ned_mps[1] * c.vel_ned_mps[1]) *
       (float)HA_INS_FT_PER_M;
-  /* The INS has no weight-on-wheels: parked and no higher than the airborne altitude. The core
-   * adds its own airspeed check before it trusts this. */
-  in->on_ground = (uint8_t)(parked(cfg, &c) && agl_ft <= cfg->airborne_agl_ft);
+  if (ins->home_latched) {
+    const float agl_ft = (float)(c.alt_m - ins->home.alt_m) * (float)HA_INS_FT_PER_M;
+    in->altitude_agl_ft = agl_ft;
+    geo_to_ne_ft_f(&ins->home, c.lat_deg, c.lon_deg, &in->north_ft, &in->east_ft);
+    /* The INS has no weight-on-wheels: parked and no higher than the airborne altitude. The
+     * core adds its own airspeed check before it trusts this. */
+    in->on_ground = (uint8_t)(is_parked && agl_ft <= cfg->airborne_agl_ft);
+    in->home_unknown = 0u;
+  } else {
+    /* No home: no height and no place; parked is all the INS can say about the ground. */
+    in->altitude_agl_ft = 0.0f;
+    in->north_ft = 0.0f;
+    in->east_ft = 0.0f;
+    in->on_ground = (uint8_t)is_parked;
+    in->home_unknown = 1u;
+  }
   ins->last_lat_deg = c.lat_deg;
   ins->last_lon_deg = c.lon_deg;
   ins->last_alt_m = c.alt_m;
-  ins->last_on_ground = in->on_ground;
+  ins->last_on_ground = (uint8_t)(ins->home_latched && in->on_ground);
   ins->last_used_us = now_us;
   in->state_valid = 1u;
   in->state_rx_us = now_us;
@@ -148,11 +156,13 @@ int ha_ins_update(HaIns *ins, const HaAircraftConfig *cfg, const HaInsSample *s,
   return 1;
 }
 
-int ha_ins_set_home(HaIns *ins, const HaAircraftConfig *cfg, uint8_t use_current, double lat_deg,
-                    double lon_deg, double alt_m, uint32_t now_us) {
+int ha_ins_set_home(HaIns *ins, uint8_t ha_on_ground, uint8_t use_current, double lat_deg,
+                    double lon_deg, double alt_m) {
   GeoRef moved = ins->home; /* every field defined, whatever geo_ref_init does */
-  const int fresh = ins->solutions_used > 0u && now_us - ins->last_used_us <= cfg->state_timeout_us;
-  if (!ins->home_latched || !fresh || ins->last_on_ground == 0u) {
+  /* On the ground by the core's one rule, which also judged the INS state fresh by an age that
+   * saturates: a wrapping difference of two clock readings would call a solution 2^32 us old
+   * fresh. The adapter's own last solution must say parked and low too. */
+  if (!ins->home_latched || ha_on_ground == 0u || ins->last_on_ground == 0u) {
     return HA_INS_SET_HOME_NOT_ON_GROUND;
   }
   if (use_current != 0u) {
@@ -168,4 +178,17 @@ int ha_ins_set_home(HaIns *ins, const HaAircraftConfig *cfg, uint8_t use_current
   ins->home = moved;
   ins->home_seq += 1u;
   return HA_INS_SET_HOME_OK;
+}
+
+int ha_ins_restore_home(HaIns *ins, double lat_deg, double lon_deg, double alt_m,
+                        uint32_t home_seq) {
+  GeoRef kept = ins->home;
+  if (!in_range_d(alt_m, HA_INS_MIN_ALT_M, HA_INS_MAX_ALT_M) ||
+      !geo_ref_init(&kept, lat_deg, lon_deg, alt_m)) {
+    return 0;
+  }
+  ins->home = kept;
+  ins->home_latched = 1u;
+  ins->home_seq = home_seq;
+  return 1;
 }

@@ -8,10 +8,14 @@
  * r nose right positive); only units change (rad/s -> deg/s, m -> ft).
  *
  * Home: the position origin the HA circles and the zero of altitude AGL. It is latched once, at
- * the first valid solution with a 3D GNSS fix taken while parked (ground speed below the stall
- * speed and no vertical speed to speak of), and never moved afterwards: re-latching in flight
- * would shift the circle. Until home is latched the state stays invalid (no altitude AGL, no
- * position), so the core keeps the HA in control. */
+ * the first valid solution with a 3D GNSS fix taken parked while the core says the aircraft is on
+ * the ground (HaOutputs.on_ground: the airborne latch clear, the pitot alive and below stall, the
+ * INS parked; the INS alone calls a level leg into a headwind parked), and never moved afterwards
+ * but by SET_HOME on the ground: re-latching in flight would shift the circle and the ceiling.
+ * Until home is latched the state carries attitude, rates, groundspeed and parked but no height
+ * or position (HaInputs.home_unknown): the core keeps the HA in control, which can still level
+ * the wings and hold the airspeed. A home kept across a reset of the HA comes back through
+ * ha_ins_restore_home (ha_app.c, the Board's retained words). */
 #ifndef HA_INS_H
 #define HA_INS_H
 
@@ -69,24 +73,32 @@ void ha_ins_init(HaIns *ins);
 
 /* Applies one solution received at now_us. Returns 1 and writes every state field of *inputs
  * with state_valid = 1 and state_rx_us = now_us when the INS is tracking with a GNSS fix and no
- * error flag, every field it needs is present, finite and inside the sensor's range, and home is
- * latched. Otherwise returns 0 and leaves every field alone (state_valid = 0 only while home is
- * not latched): one rejected packet is not a lost INS, the core's state timeout ages the last
- * good state out.
- * cfg supplies the aircraft's stall speed and airborne altitude (on_ground, parked). */
+ * error flag, and every field it needs is present, finite and inside the sensor's range (before
+ * home is latched with home_unknown = 1: no altitude AGL, no position). Otherwise returns 0 and
+ * leaves every field alone: one rejected packet is not a lost INS, the core's state timeout ages
+ * the last good state out.
+ * ha_on_ground is the core's verdict of the last period (HaOutputs.on_ground): home latches only
+ * on it. cfg supplies the aircraft's stall speed and airborne altitude (on_ground, parked). */
 int ha_ins_update(HaIns *ins, const HaAircraftConfig *cfg, const HaInsSample *sample,
-                  uint32_t now_us, HaInputs *inputs);
+                  uint8_t ha_on_ground, uint32_t now_us, HaInputs *inputs);
 
 /* The operator's SET_HOME (MAV_CMD_DO_SET_HOME through the ground station): moves home to
  * (lat_deg, lon_deg, alt_m), or to where the aircraft is when use_current is nonzero. Accepted
- * (returns HA_INS_SET_HOME_OK, home_seq advances) only on the ground: home latched, the last used
- * solution no older than cfg->state_timeout_us at now_us and taken parked below the airborne
+ * (returns HA_INS_SET_HOME_OK, home_seq advances) only on the ground by the core's one rule:
+ * ha_on_ground is its latest verdict (HaOutputs.on_ground, which also says the INS state is fresh,
+ * by an age that saturates), home latched, and the last used solution parked below the airborne
  * altitude. Otherwise home stays where it is and the return value says why. */
 #define HA_INS_SET_HOME_OK 0
 #define HA_INS_SET_HOME_NOT_ON_GROUND 1 /* flying, or no fresh solution to tell */
 #define HA_INS_SET_HOME_BAD_POSITION 2  /* not finite or out of range */
-int ha_ins_set_home(HaIns *ins, const HaAircraftConfig *cfg, uint8_t use_current, double lat_deg,
-                    double lon_deg, double alt_m, uint32_t now_us);
+int ha_ins_set_home(HaIns *ins, uint8_t ha_on_ground, uint8_t use_current, double lat_deg,
+                    double lon_deg, double alt_m);
+
+/* Home as kept across a reset of the HA (ha_retained.h): latched again at (lat_deg, lon_deg,
+ * alt_m) with home_seq, so the link republishes the same home. Returns 1 when taken (in range),
+ * else 0 and the adapter stays without home. */
+int ha_ins_restore_home(HaIns *ins, double lat_deg, double lon_deg, double alt_m,
+                        uint32_t home_seq);
 
 #ifdef __cplusplus
 }

@@ -33,8 +33,10 @@ void ha_state_view(const HaAircraftConfig *cfg, const HaInputs *in, const HaHpCo
     out->x[j] = cfg->x0[j];
   }
   out->attitude_ok = (uint8_t)(fresh && attitude_plausible(in));
-  out->altitude_ok = (uint8_t)(fresh && ha_within_span(in->altitude_agl_ft, HA_ALT_SPAN_FT));
-  out->position_ok = (uint8_t)(fresh && position_plausible(in));
+  /* Before its first home the INS gives attitude, rates and speed, but no height or place. */
+  out->altitude_ok = (uint8_t)(fresh && in->home_unknown == 0u &&
+                               ha_within_span(in->altitude_agl_ft, HA_ALT_SPAN_FT));
+  out->position_ok = (uint8_t)(fresh && in->home_unknown == 0u && position_plausible(in));
   out->airspeed_ok = (uint8_t)(own->airspeed_age_us <= cfg->airspeed_timeout_us);
   out->alpha_beta_ok =
       (uint8_t)(have_cmd && ha_finite(cmd->alpha_est_deg) && ha_finite(cmd->beta_est_deg));
@@ -65,13 +67,17 @@ void ha_state_view(const HaAircraftConfig *cfg, const HaInputs *in, const HaHpCo
   out->east_ft =
       out->position_ok ? ha_clampf(in->east_ft, -HA_POSITION_SPAN_FT, HA_POSITION_SPAN_FT) : 0.0f;
   /* Signals for the core's airborne latch. Each alone says flying: a pitot above stall, the
-   * INS above alt0, the INS not parked (moving or climbing); a landing needs them all to agree. */
+   * INS above alt0, the INS not parked (moving or climbing). A landing needs every sensor to
+   * say so: the pitot alive and below stall (a dead pitot cannot tell 55 ft/s into a headwind
+   * from parked) and a fresh INS parked at a known height (before its first home it has no
+   * height to tell: parked alone). */
   {
     const int fast = out->airspeed_ok && ha_greater(out->airspeed_ftps, cfg->stall_speed_ftps);
     const int high = out->altitude_ok && ha_greater(out->x[HA_X_ALT_AGL_FT], cfg->airborne_agl_ft);
+    const int ins_low = (out->altitude_ok || in->home_unknown != 0u) && !high;
     out->flying_evidence = (uint8_t)(fast || high || (fresh && in->on_ground == 0u));
-    out->landed_evidence = (uint8_t)(out->altitude_ok && in->on_ground != 0u && !high && !fast);
-    out->blind = (uint8_t)(!fresh && !out->airspeed_ok);
+    out->landed_evidence =
+        (uint8_t)(out->airspeed_ok && !fast && fresh && in->on_ground != 0u && ins_low);
   }
   out->still =
       (uint8_t)(out->attitude_ok && ha_within_span(in->roll_deg, cfg->self_test_max_tilt_deg) &&
@@ -82,4 +88,5 @@ void ha_state_view(const HaAircraftConfig *cfg, const HaInputs *in, const HaHpCo
                 ha_within_span(in->groundspeed_ftps, cfg->self_test_max_groundspeed_ftps));
   out->airborne = 1u; /* until the core has decided */
   out->on_ground = 0u;
+  out->parked = 0u;
 }

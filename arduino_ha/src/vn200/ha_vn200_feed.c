@@ -32,7 +32,7 @@ void ha_vn200_feed_init(HaVn200Feed *feed, const HaAircraftConfig *cfg) {
 }
 
 static void apply_packet(HaVn200Feed *feed, const VnFrame *frame, HaInputs *inputs,
-                         uint32_t now_us) {
+                         uint8_t ha_on_ground, uint32_t now_us) {
   HaInsSample sample;
   const VnBinResult result = vn_bin_decode(frame->data, frame->len, &feed->scratch);
   if (result != VN_BIN_OK) {
@@ -43,11 +43,11 @@ static void apply_packet(HaVn200Feed *feed, const VnFrame *frame, HaInputs *inpu
     return;
   }
   ha_vn200_sample_from_vn(&feed->scratch, &sample);
-  (void)ha_ins_update(&feed->ins, feed->cfg, &sample, now_us, inputs);
+  (void)ha_ins_update(&feed->ins, feed->cfg, &sample, ha_on_ground, now_us, inputs);
 }
 
 void ha_vn200_feed_bytes(HaVn200Feed *feed, const uint8_t *bytes, size_t len, HaInputs *inputs,
-                         uint32_t now_us) {
+                         uint8_t ha_on_ground, uint32_t now_us) {
   size_t offset = 0u;
   size_t pass;
   if (feed->cfg == NULL) {
@@ -66,7 +66,7 @@ void ha_vn200_feed_bytes(HaVn200Feed *feed, const uint8_t *bytes, size_t len, Ha
     }
     if (frame.kind == VN_FRAME_BINARY) {
       feed->counts.binary_packets++;
-      apply_packet(feed, &frame, inputs, now_us);
+      apply_packet(feed, &frame, inputs, ha_on_ground, now_us);
     } else {
       feed->counts.ascii_frames++;
     }

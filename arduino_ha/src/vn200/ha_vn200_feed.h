@@ -42,9 +42,10 @@ typedef struct {
 void ha_vn200_feed_init(HaVn200Feed *feed, const HaAircraftConfig *cfg);
 
 /* Frames, decodes and applies bytes received at now_us. Partial packets are kept for the next
- * call. A packet with a non-finite value makes the state invalid. */
+ * call. A packet with a non-finite value makes the state invalid. ha_on_ground: the core's latest
+ * verdict (HaOutputs.on_ground), on which alone home latches (ha_ins_update). */
 void ha_vn200_feed_bytes(HaVn200Feed *feed, const uint8_t *bytes, size_t len, HaInputs *inputs,
-                         uint32_t now_us);
+                         uint8_t ha_on_ground, uint32_t now_us);
 
 /* The copy from the VN-200 decoder's struct into the core's (units unchanged). */
 void ha_vn200_sample_from_vn(const VnBinaryData *vn, HaInsSample *sample);

@@ -50,6 +50,15 @@ void detachInterrupt(uint32_t pin);
 void __enable_irq(void);
 void __disable_irq(void);
 
+/* CMSIS for the SAM3X8E (component/component_gpbr.h, sam3x8e.h): the eight general-purpose backup
+ * registers, kept across a reset. The fake puts them in host memory. */
+typedef volatile uint32_t RwReg;
+typedef struct {
+  RwReg SYS_GPBR[8];
+} Gpbr;
+extern Gpbr fake_gpbr;
+#define GPBR (&fake_gpbr)
+
 #ifdef __cplusplus
 }
 #endif

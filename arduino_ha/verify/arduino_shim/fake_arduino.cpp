@@ -57,6 +57,10 @@ void watchdogEnable(uint32_t timeout) { fake::state.watchdog_timeout_ms = timeou
 void watchdogDisable(void) { fake::state.watchdog_timeout_ms = 0u; }
 void watchdogReset(void) { fake::state.watchdog_kicks++; }
 
+/* Not in fake::state: reset() is a power cycle of the fake board's pins, not of the backup
+ * domain; tests clear it themselves for a power-up. */
+Gpbr fake_gpbr = {};
+
 /* Serial1 (the VN-200) delivers what fake::serial1_feed() queued; every other port carries
  * nothing in these tests (the HP link sees silence). */
 void UARTClass::begin(unsigned long baud) { (void)baud; }
