@@ -14,8 +14,8 @@ constexpr double kPitotSigmaMps = 0.5;
 constexpr double kAeroZSigmaMps2 = 0.6;  // lift model error and turbulence
 constexpr double kAeroYSigmaMps2 = 0.4;
 constexpr double kAccelSigmaMps2 = 0.5;    // accelerometer noise plus attitude error leaking g
-constexpr double kWindHorizWalkMps = 0.1;  // per sqrt(s)
-constexpr double kWindVertWalkMps = 0.05;
+constexpr double kWindHorizWalkMps = 0.5;  // per sqrt(s)
+constexpr double kWindVertWalkMps = 0.3;
 constexpr double kInitVelSigmaMps = 1.0;
 constexpr double kInitWindHorizSigmaMps = 5.0;
 constexpr double kInitWindVertSigmaMps = 3.0;
@@ -32,8 +32,8 @@ constexpr double kBranchLimitRad = 45.0 * kDegToRad;
 // direct solution at once, the estimate's wind slowly): within kConsistentGapDeg it may claim
 // convergence; beyond kReinitGapDeg it is on a wrong branch and starts over.
 constexpr double kGapTauS = 1.0;
-constexpr double kConsistentGapRad = 4.0 * kDegToRad;
-constexpr double kReinitGapRad = 10.0 * kDegToRad;
+constexpr double kConsistentGapRad = 6.0 * kDegToRad;
+constexpr double kReinitGapRad = 15.0 * kDegToRad;
 constexpr double kDirectClampRad = 30.0 * kDegToRad;
 
 Eigen::Matrix3d skew(const Eigen::Vector3d &v) {
