@@ -170,13 +170,13 @@ AirdataEstimate AirdataEkf::step(const AirdataMeasurement &m, double dt_s) {
     }
   }
   wing_borne_ = true;
-  aero_updates(r_nb, m);
+  airborne_updates(r_nb, m);
   check_branch(r_nb, m, dt_s);
   p_ = 0.5 * (p_ + p_.transpose());
   return estimate(r_nb, m.airspeed_mps);
 }
 
-void AirdataEkf::aero_updates(const Eigen::Matrix3d &r_nb, const AirdataMeasurement &m) {
+void AirdataEkf::airborne_updates(const Eigen::Matrix3d &r_nb, const AirdataMeasurement &m) {
   // Chain rule from d/d(va) to d/dx: va = v - R^T W.
   auto to_state = [&r_nb](const Eigen::Vector3d &d_dva) {
     Vec6 h;

@@ -75,7 +75,8 @@ class AirdataEkf {
   using Vec6 = Eigen::Matrix<double, 6, 1>;
   using Mat6 = Eigen::Matrix<double, 6, 6>;
   void scalar_update(const Vec6 &h, double innovation, double variance);
-  void aero_updates(const Eigen::Matrix3d &r_nb, const AirdataMeasurement &m);
+  // Airborne: the pitot, then the lift and side force.
+  void airborne_updates(const Eigen::Matrix3d &r_nb, const AirdataMeasurement &m);
   // Sets the wind so that the air comes at the measured airspeed from (alpha, beta), with the
   // given 1-sigma on the wind and no correlation left with the velocity.
   void assume_air_from(const Eigen::Matrix3d &r_nb, const AirdataMeasurement &m, double alpha_rad,
