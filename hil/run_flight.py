@@ -6,6 +6,7 @@ microhard_gs, HP crash by SIGKILL at t = 100 s, HA takeover, restart, hand-back)
                       [--controller-hz HZ] [--out DIR] [--no-bag]
                       [--fault CLASS --fault-at S --fault-duration S --fault-param KEY=VALUE ...]
                       [--folder DIR] [--quiet] [--timeout-s S]
+                      [--wind-mps M --wind-from-deg D --turbulence {none,light,moderate}]
 
 --fault names a class of hil/faults (crash by default, at --crash-at: the case study); the
 summary's "fault", "verdict" and "status" say whether it took effect and whether the Simplex
@@ -111,6 +112,11 @@ def main(argv=None):
     ap.add_argument("--fault-duration", type=float, default=-1.0, help="how long it lasts (negative: to the end)")
     ap.add_argument("--fault-param", action="append", default=[], metavar="KEY=VALUE",
                     help="a parameter of the fault class (its module's docstring lists them)")
+    ap.add_argument("--wind-mps", type=float, default=0.0, help="steady mean wind speed, m/s (calm by default)")
+    ap.add_argument("--wind-from-deg", type=float, default=0.0,
+                    help="where the mean wind blows from, deg true (meteorological: 0 = from the north)")
+    ap.add_argument("--turbulence", choices=("none", "light", "moderate"), default="none",
+                    help="Dryden turbulence on top of the mean wind (MIL-F-8785C low altitude)")
     ap.add_argument("--timeout-s", type=float, default=None, help="wall-clock limit: stop the flight past it (status timeout)")
     ap.add_argument("--rate-hz", type=float, default=100.0, help="the HA's control rate")
     ap.add_argument("--controller-hz", type=float, default=None, help="default: the HA's rate")
@@ -126,6 +132,10 @@ def main(argv=None):
         link_relay = args.fault != "none" and faults.needs_link_relay(args.fault)
     except ValueError as e:
         ap.error(str(e))
+    if not (args.wind_mps >= 0.0 and args.wind_mps < 100.0):
+        ap.error("--wind-mps must be in [0, 100)")
+    if not (abs(args.wind_from_deg) <= 360.0):
+        ap.error("--wind-from-deg must be in [-360, 360]")
     if any(" " in str(v) for v in fault_params.values()):
         ap.error("fault parameter values may not contain spaces")
 
@@ -179,6 +189,8 @@ def main(argv=None):
                   "fault_params:=" + " ".join("%s=%s" % kv for kv in sorted(fault_params.items())),
                   "servo_relay:=%s" % ("true" if relay else "false"),
                   "link_relay:=%s" % ("true" if link_relay else "false"),
+                  "wind_mps:=%g" % args.wind_mps, "wind_from_deg:=%g" % args.wind_from_deg,
+                  "turbulence:=" + args.turbulence,
                   "gs_udp_bind_port:=%d" % gs_bind, "gs_udp_remote_port:=%d" % gs_remote,
                   "gs_monitor:=%s" % ("false" if args.realtime else "true"),
                   "wait_for_recorder:=%s" % ("false" if args.no_bag else "true")]

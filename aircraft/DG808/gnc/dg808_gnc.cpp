@@ -32,6 +32,7 @@ struct Gnc {
   dg808::SurfaceLimits limits{};
   dg808::AirdataEkf ekf;
   bool ekf_started = false;
+  bool wing_borne = false;
   dg808::Guidance guidance;
   dg808::InnerLoops loops;
   DG808_GNC_Output last{};
@@ -129,7 +130,8 @@ bool params_valid(const DG808_GNC_Params &p) {
                       p.attitude_cmd_rate_deg_s,
                       p.min_airspeed_cmd_ftps,
                       p.airspeed_valid_min_ftps,
-                      p.converged_sigma_deg};
+                      p.converged_sigma_deg,
+                      p.airborne_agl_ft};
   if (!finite_all(v, sizeof(v) / sizeof(v[0]))) {
     return false;
   }
@@ -141,10 +143,29 @@ bool params_valid(const DG808_GNC_Params &p) {
          p.ki_lon_rad_per_ft_s >= 0.0 && p.max_bank_deg > 0.0 && p.max_bank_deg < 90.0 &&
          p.max_pitch_cmd_deg > 0.0 && p.max_pitch_cmd_deg < 90.0 &&
          p.attitude_cmd_rate_deg_s > 0.0 && p.min_airspeed_cmd_ftps > p.stall_speed_ftps &&
-         p.airspeed_valid_min_ftps > 0.0 && p.converged_sigma_deg > 0.0 &&
+         p.airspeed_valid_min_ftps > 0.0 && p.airspeed_valid_min_ftps < p.stall_speed_ftps &&
+         p.converged_sigma_deg > 0.0 && p.airborne_agl_ft >= 0.0 &&
          (p.guidance_selection == 0 || p.guidance_selection == 1) &&
          (p.mpf_switch == 0 || p.mpf_switch == 1) && (p.path_select == 0 || p.path_select == 1) &&
          std::fabs(p.alpha0_rad) < kPi / 2.0 && std::fabs(p.beta0_rad) < kPi / 2.0;
+}
+
+// The wing carries the aircraft, so the lift and side-force models hold and tell alpha and beta:
+// entered at or above the 1 g stall speed (below it the wing cannot carry the weight: the wheels
+// do) once above the airborne height (limits.yaml airborne_agl_ft, the HA's own alt0; without a
+// home, on the airspeed alone), so that a take-off roll past the stall speed is still on the
+// wheels. Left when low and below the stall speed again (landed, rolling out), or when the
+// airflow is too slow to have a direction. A slow moment in the air does not leave it.
+bool wing_borne(bool was, double airspeed_ftps, bool home, double height_ft,
+                const DG808_GNC_Params &p) {
+  if (airspeed_ftps < p.airspeed_valid_min_ftps) {
+    return false;
+  }
+  const bool low = home && height_ft <= p.airborne_agl_ft;
+  if (was) {
+    return !(low && airspeed_ftps < p.stall_speed_ftps);
+  }
+  return !low && airspeed_ftps >= p.stall_speed_ftps;
 }
 
 // A neutral command, flagged invalid: what the GNC says when it has nothing to fly.
@@ -214,10 +235,28 @@ extern "C" void DG808_GNC_step(const DG808_GNC_Input *in, DG808_GNC_Output *out)
   m.elevator_rad = in->piccic == 0 ? in->elevator_trim_rad : g_gnc.last.elevator_rad;
   m.rudder_rad = in->piccic == 0 ? in->rudder_trim_rad : g_gnc.last.rudder_rad;
 
+  // Flat earth around home, as the original's GPS-to-local block, by the stack's one conversion
+  // (geo_wgs84.h, gnc.cmake links it): waypoints the operator places, the HA's safety region and
+  // this guidance agree on where a latitude/longitude is relative to home. A home the module
+  // refuses (an absurd height) is no home.
+  GeoRef ref{};
+  const bool home = in->home_valid != 0 &&
+                    geo_ref_init(&ref, in->home_lat_deg, in->home_lon_deg, in->home_alt_m) != 0;
+  if (home) {
+    double neu_ft[3];
+    geo_to_neu_ft(&ref, in->lat_deg, in->lon_deg, in->alt_m, neu_ft);
+    o.north_ft = neu_ft[0];
+    o.east_ft = neu_ft[1];
+    o.height_ft = neu_ft[2];
+  }
+  g_gnc.wing_borne = wing_borne(g_gnc.wing_borne, in->airspeed_ftps, home, o.height_ft, p);
+  m.wing_borne = g_gnc.wing_borne;
+
   dg808::AirdataEstimate est;
   if (!g_gnc.ekf_started) {
     const dg808::AirdataEkf::Config cfg{p.airspeed_valid_min_ftps * kMPerFt,
-                                        p.converged_sigma_deg * kDegToRad};
+                                        p.converged_sigma_deg * kDegToRad,
+                                        p.stall_speed_ftps * kMPerFt};
     g_gnc.ekf.reset(cfg, m, p.alpha0_rad, p.beta0_rad);
     g_gnc.ekf_started = true;
     est = g_gnc.ekf.peek(m);
@@ -241,20 +280,6 @@ extern "C" void DG808_GNC_step(const DG808_GNC_Input *in, DG808_GNC_Output *out)
   o.wind_up_ftps = -est.wind_ned_mps.z() * kFtPerM;
   o.estimator_converged = est.converged ? 1 : 0;
 
-  // Flat earth around home, as the original's GPS-to-local block, by the stack's one conversion
-  // (geo_wgs84.h, gnc.cmake links it): waypoints the operator places, the HA's safety region and
-  // this guidance agree on where a latitude/longitude is relative to home. A home the module
-  // refuses (an absurd height) is no home.
-  GeoRef ref{};
-  const bool home = in->home_valid != 0 &&
-                    geo_ref_init(&ref, in->home_lat_deg, in->home_lon_deg, in->home_alt_m) != 0;
-  if (home) {
-    double neu_ft[3];
-    geo_to_neu_ft(&ref, in->lat_deg, in->lon_deg, in->alt_m, neu_ft);
-    o.north_ft = neu_ft[0];
-    o.east_ft = neu_ft[1];
-    o.height_ft = neu_ft[2];
-  }
   const bool computer_flies = in->piccic == 1;
   const bool flying = computer_flies && est.converged && home;
 

@@ -41,6 +41,9 @@ typedef struct {
   double min_airspeed_cmd_ftps;
   double airspeed_valid_min_ftps;
   double converged_sigma_deg;
+  /* limits.yaml state/airborne_agl_ft (the HA's alt0): with a home, the estimator takes the wing
+   * to carry the aircraft (lift and side force measure alpha and beta) only above this height */
+  double airborne_agl_ft;
 } DG808_GNC_Params;
 
 typedef struct {

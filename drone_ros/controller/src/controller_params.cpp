@@ -94,6 +94,7 @@ bool build_controller_params(const ParamLookup &lookup, ControllerParams *params
   g.throttle_max = r.get_limit(limits_ranges::kActuatorsThrottleMax);
   r.require(g.throttle_min < g.throttle_max, "limits: throttle_min must be below throttle_max");
   g.stall_speed_ftps = r.get_limit(limits_ranges::kStateStallSpeedFtps);
+  g.airborne_agl_ft = r.get_limit(limits_ranges::kStateAirborneAglFt);
   const double roll_limit_deg = r.get_limit(limits_ranges::kStateRollLimitDeg);
   const double pitch_limit_deg = r.get_limit(limits_ranges::kStatePitchLimitDeg);
 

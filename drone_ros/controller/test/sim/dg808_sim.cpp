@@ -38,27 +38,62 @@ void Sim::set_trimmed_flight(double airspeed_ftps, double height_ft, double psi_
   specific_force_mps2_ = Eigen::Vector3d(0.0, 0.0, -DG808_GRAVITY_M_S2);
 }
 
-void Sim::set_on_ground() {
+void Sim::set_on_ground(double psi_rad) {
   on_ground_ = true;
+  roll_accel_mps2_ = 0.0;
   pos_ned_m_.setZero();
   vel_body_mps_.setZero();
   rates_radps_.setZero();
-  euler_.setZero();
+  euler_ = Eigen::Vector3d(0.0, 0.0, psi_rad);
   specific_force_mps2_ = Eigen::Vector3d(0.0, 0.0, -DG808_GRAVITY_M_S2);
 }
 
-double Sim::airspeed_ftps() const {
-  return (vel_body_mps_ - body_to_ned(euler_).transpose() * config_.wind_ned_mps).norm() * kFtPerM;
+void Sim::start_takeoff_roll(double accel_mps2, double liftoff_ftps) {
+  roll_accel_mps2_ = accel_mps2;
+  liftoff_mps_ = liftoff_ftps / kFtPerM;
 }
 
+void Sim::roll_on_ground(double dt_s) {
+  if (roll_accel_mps2_ <= 0.0) {
+    return;  // parked
+  }
+  const Eigen::Matrix3d r_nb = body_to_ned(euler_);
+  vel_body_mps_ = Eigen::Vector3d(vel_body_mps_.x() + roll_accel_mps2_ * dt_s, 0.0, 0.0);
+  pos_ned_m_ += r_nb * vel_body_mps_ * dt_s;
+  specific_force_mps2_ = Eigen::Vector3d(roll_accel_mps2_, 0.0, -DG808_GRAVITY_M_S2);
+  const Eigen::Vector3d va_ned = r_nb * vel_body_mps_ - config_.wind_ned_mps;
+  const double vt = va_ned.norm();
+  if (vt < liftoff_mps_) {
+    return;
+  }
+  // Off the wheels: level, the nose into the relative wind (the ground track is kept), at the
+  // angle of attack whose lift carries the weight at this airspeed.
+  const double cl = 2.0 * DG808_MASS_KG * config_.mass_scale * DG808_GRAVITY_M_S2 /
+                    (DG808_AIR_DENSITY_KG_M3 * DG808_WING_AREA_M2 * vt * vt);
+  const double alpha = (cl - DG808_CL0) / DG808_CL_ALPHA_PER_RAD;
+  on_ground_ = false;
+  roll_accel_mps2_ = 0.0;
+  euler_ = Eigen::Vector3d(0.0, alpha, std::atan2(va_ned.y(), va_ned.x()));
+  vel_body_mps_ = vt * Eigen::Vector3d(std::cos(alpha), 0.0, std::sin(alpha)) +
+                  body_to_ned(euler_).transpose() * config_.wind_ned_mps;
+  specific_force_mps2_ = Eigen::Vector3d(0.0, 0.0, -DG808_GRAVITY_M_S2);
+}
+
+Eigen::Vector3d Sim::air_velocity_body() const {
+  return vel_body_mps_ - body_to_ned(euler_).transpose() * config_.wind_ned_mps;
+}
+
+double Sim::airspeed_ftps() const { return air_velocity_body().norm() * kFtPerM; }
+
 double Sim::alpha_rad() const {
-  const Eigen::Vector3d va = vel_body_mps_ - body_to_ned(euler_).transpose() * config_.wind_ned_mps;
+  const Eigen::Vector3d va = air_velocity_body();
   return std::atan2(va.z(), va.x());
 }
 
 double Sim::beta_rad() const {
-  const Eigen::Vector3d va = vel_body_mps_ - body_to_ned(euler_).transpose() * config_.wind_ned_mps;
-  return std::asin(va.y() / va.norm());
+  const Eigen::Vector3d va = air_velocity_body();
+  const double vt = va.norm();
+  return vt > 0.0 ? std::asin(va.y() / vt) : 0.0;
 }
 
 Sim::State Sim::pack() const {
@@ -134,6 +169,7 @@ Sim::State Sim::derivatives(const State &x, const DG808_GNC_Output &cmd,
 
 void Sim::advance(const DG808_GNC_Output &cmd_in, double dt_s) {
   if (on_ground_) {
+    roll_on_ground(dt_s);
     return;
   }
   DG808_GNC_Output cmd = cmd_in;
@@ -180,7 +216,8 @@ void Sim::sense(DG808_GNC_Input &in) {
   in.phi_rad = euler_.x() + noise(0.002);
   in.theta_rad = euler_.y() + noise(0.002);
   in.psi_rad = euler_.z() + noise(0.005);
-  in.airspeed_ftps = on_ground_ ? 0.0 : airspeed_ftps() + noise(0.3);
+  // The pitot reads the air going past it, on the ground too (a parked aircraft in a wind).
+  in.airspeed_ftps = std::max(0.0, airspeed_ftps() + noise(0.3));
   in.home_valid = 1;
   in.home_lat_deg = config_.home_lat_deg;
   in.home_lon_deg = config_.home_lon_deg;

@@ -29,8 +29,14 @@ class Sim {
   explicit Sim(const SimConfig &config);
   // Level trimmed flight at airspeed, height above home and heading (the design trim scaled).
   void set_trimmed_flight(double airspeed_ftps, double height_ft, double psi_rad);
-  // At rest on the ground at home, wings level, weight on the wheels.
-  void set_on_ground();
+  // At rest on the ground at home, wings level, weight on the wheels, nose to psi_rad. The
+  // pitot reads the wind blowing over it.
+  void set_on_ground(double psi_rad = 0.0);
+  // From rest on the ground: the take-off roll along the nose at accel_mps2 (the wheels keep the
+  // track on the nose, whatever the crosswind); at liftoff_ftps of airspeed the aircraft leaves
+  // the ground level, weathervaned into the relative wind, and flies as the 6-DOF model.
+  void start_takeoff_roll(double accel_mps2, double liftoff_ftps);
+  bool on_ground() const { return on_ground_; }
   // Advance by dt_s holding the command (surfaces in rad, throttle 0..1).
   void advance(const DG808_GNC_Output &cmd, double dt_s);
   // Fills the sensor part of a GNC input (trims, plan and PIC left to the caller).
@@ -44,6 +50,7 @@ class Sim {
   double beta_rad() const;
   double phi_rad() const { return euler_.x(); }
   double theta_rad() const { return euler_.y(); }
+  double psi_rad() const { return euler_.z(); }
   double p_radps() const { return rates_radps_.x(); }
 
  private:
@@ -52,6 +59,8 @@ class Sim {
                     Eigen::Vector3d *specific_force) const;
   void unpack(const State &x);
   State pack() const;
+  void roll_on_ground(double dt_s);
+  Eigen::Vector3d air_velocity_body() const;
 
   SimConfig config_;
   Eigen::Vector3d pos_ned_m_ = Eigen::Vector3d::Zero();
@@ -60,6 +69,8 @@ class Sim {
   Eigen::Vector3d euler_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d specific_force_mps2_ = Eigen::Vector3d::Zero();
   bool on_ground_ = false;
+  double roll_accel_mps2_ = 0.0;  // 0: parked
+  double liftoff_mps_ = 0.0;
   std::mt19937 rng_;
   std::normal_distribution<double> unit_{0.0, 1.0};
 };
