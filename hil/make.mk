@@ -9,7 +9,7 @@ bench-fdm: deps
 	@$(VENV)/bin/python $(HIL_DIR)/bench/bench_fdm.py
 
 #   make bench-hil   the whole HiL stack in lockstep: x real time at 100 Hz and 20 Hz, per-phase step cost,
-#                    then a seeded campaign of 100 fault flights on Dask (BENCH_HIL_FLIGHTS=N for another size)
+#                    then a seeded campaign of 150 fault flights on Dask (BENCH_HIL_FLIGHTS=N for another size)
 .PHONY: bench-hil
 BENCH_TARGETS += bench-hil
 

@@ -122,6 +122,10 @@ def main(argv=None):
     ap.add_argument("--controller-hz", type=float, default=None, help="default: the HA's rate")
     ap.add_argument("--out", default=os.path.join(HERE, "out"), help="parent of the flight folder")
     ap.add_argument("--folder", default=None, help="exact output folder (default: dated name)")
+    ap.add_argument("--field-elevation-ft", type=float, default=None,
+                    help="the field's elevation above sea level (default: the mission's home)")
+    ap.add_argument("--temperature-c", type=float, default=None,
+                    help="the day's temperature at the field (default: ISA there)")
     ap.add_argument("--no-bag", action="store_true")
     ap.add_argument("--quiet", action="store_true", help="no progress bar")
     args = ap.parse_args(argv)
@@ -194,6 +198,10 @@ def main(argv=None):
                   "gs_udp_bind_port:=%d" % gs_bind, "gs_udp_remote_port:=%d" % gs_remote,
                   "gs_monitor:=%s" % ("false" if args.realtime else "true"),
                   "wait_for_recorder:=%s" % ("false" if args.no_bag else "true")]
+        if args.field_elevation_ft is not None:
+            launch.append("field_elevation_ft:=%r" % args.field_elevation_ft)
+        if args.temperature_c is not None:
+            launch.append("temperature_c:=%r" % args.temperature_c)
         launcher = procs.start("launch", launch)
         t0 = time.monotonic()
         done = os.path.join(out, "done")

@@ -273,10 +273,33 @@ class Vn200Port:
         self.pty.close()
 
 
+def probe_airspeed_mps(truth):
+    """The airspeed the pitot probe measures: the part of the relative wind along the probe.
+
+    The probe points along body x, so it feels the air-relative velocity's body-x component
+    u = V cos(alpha) cos(beta) (wind and gusts included: JSBSim's alpha and beta are of the
+    air-relative velocity), and its differential pressure is the impact pressure of that
+    component, qc (u / V)^2 = qc cos(alpha)^2 cos(beta)^2. The impact pressure qc is JSBSim's
+    own through its calibrated airspeed (qc = rho0 vc^2 / 2 at these speeds), so the density is
+    the FDM's, where the aircraft flies: at altitude or on a hot day IAS reads below TAS.
+    Sideslip and high alpha read low (14 deg of alpha: 6 % of the pressure, 3 % of the speed);
+    flow from behind the probe (|alpha| or |beta| past 90 deg: parked tail to the wind) reads 0,
+    the sensor's negative pressure clipped. The choice is the plain component model: a real
+    pitot-static head is flat to some 15 deg and falls off faster beyond, so this reads a little
+    low at moderate angles and a little high past the stall; with alpha = beta = 0 it reads
+    exactly the calibrated airspeed, as before. Not modelled: the probe's offset from the CG
+    (rotation adds p x r, under 1 % here), position error, compressibility beyond JSBSim's qc."""
+    axial = math.cos(math.radians(truth.alpha_deg)) * math.cos(math.radians(truth.beta_deg))
+    if not axial > 0.0:
+        return 0.0
+    return truth.airspeed_cal_mps * axial
+
+
 class Ams5812:
     """The HA's differential-pressure airspeed sensor (AMS 5812-0003-D, 0..2068.43 Pa) as the
     Due's board layer reads it: counts with an offset and noise, then the datasheet's transfer
-    function and v = sqrt(2 dp / rho0) (arduino_ha/src/board_due/ams5812.c)."""
+    function and v = sqrt(2 dp / rho0) (arduino_ha/src/board_due/ams5812.c). Fed the probe's
+    airspeed (probe_airspeed_mps): sea-level dynamic pressure of it is what the probe feels."""
 
     P_MAX_PA = 2068.43
     COUNTS_MIN, COUNTS_MAX = 3277, 29491

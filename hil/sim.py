@@ -54,6 +54,11 @@ CONTROLLER_INPUTS = ["/hil/lockstep", "/ins", "/attitude", "/gps_position", "/gp
                      "/imu_PQR_acceleration", "/pwm", "/decision_status", "/way"]
 
 
+def isa_temperature_c(elevation_ft):
+    """ISA's temperature at an elevation in the troposphere: 15 C at sea level, 1.98 C per 1,000 ft."""
+    return 15.0 - 0.0019812 * elevation_ft
+
+
 class Waiter:
     """Counters fed by subscriber threads, waited on by the stepping thread."""
 
@@ -268,12 +273,28 @@ class Simulation:
         # e.g. in real time, where QGroundControl holds it).
         self.gs_monitor_port = int(p("gs_monitor_port", 0))
         self.wind = Wind(float(p("wind_from_deg", 0.0)), float(p("wind_mps", 0.0)), p("turbulence", "none"))
+        self.world_wind = self.wind  # the scenario's wind; a fault may change the FDM's in flight
+        # The atmosphere of the field: its elevation (default, empty: the mission's home, where
+        # the case study has always flown) and the day's temperature there (default, empty: ISA
+        # at that elevation, 15 C at sea level). JSBSim's ISA with a temperature deviation is the
+        # one atmosphere: the flight dynamics and the pitot (sensors.probe_airspeed_mps) both
+        # take its density, so IAS and TAS differ as they do at that density altitude.
+        fe, tc = str(p("field_elevation_ft", "")).strip(), str(p("temperature_c", "")).strip()
+        self.field_elevation_ft = float(fe) if fe else None
+        self.temperature_c = float(tc) if tc else None
         self.period_us = int(round(1e6 / self.rate_hz))
         self.controller_period_us = int(round(self.controller_dt_s * 1e6))
         with open(os.path.join(self.aircraft_dir, "limits.yaml")) as f:
             self.limits = yaml.safe_load(f)
         self.regions = verdicts.Regions(self.limits)
         self.plan = mission.read_wpl(self.mission_file)
+        if self.field_elevation_ft is None:
+            self.field_elevation_ft = self.plan.home[2] * FT_PER_M
+        else:  # the same mission (its heights are above home) flown from a field that high
+            self.plan = self.plan._replace(home=self.plan.home[:2] + (self.field_elevation_ft / FT_PER_M,))
+        isa_c = isa_temperature_c(self.field_elevation_ft)
+        if self.temperature_c is None:
+            self.temperature_c = isa_c
 
         self.master = rosgraph.Master("/hil_sim")
         self.waiter = Waiter()
@@ -321,7 +342,8 @@ class Simulation:
         self.chan = ha_channel.HaChannel(ports["ha_channel"])
         self.ams = sensors.Ams5812(self.seed)
         self.battery = sensors.Battery(self.seed)
-        self.fdm = Fdm(self.aircraft_dir, self.seed, dt_s=1.0 / 200.0, wind=self.wind)
+        self.fdm = Fdm(self.aircraft_dir, self.seed, dt_s=1.0 / 200.0, wind=self.wind,
+                       temperature_deviation_c=self.temperature_c - isa_temperature_c(self.field_elevation_ft))
         self.history = deque(maxlen=400)
         self.records = []
         self.events = []
@@ -646,9 +668,14 @@ class Simulation:
 
     def board_inputs(self, t_s, tr):
         """What the Due's board layer reads this period; a fault may change it."""
-        b = Board(RC_NEUTRAL, True, self.ams.read_ftps(tr.airspeed_cal_mps), True,
+        b = Board(RC_NEUTRAL, True, self.ams.read_ftps(sensors.probe_airspeed_mps(tr)), True,
                   self.battery.read_v(t_s, tr.servo.throttle), True)
         return b if self.fault is None else self.fault.board(t_s, b)
+
+    def set_wind(self, t_s, wind):
+        """The wind from now on (a fault's wind shift, gust front or shear; hil/faults/wind.py)."""
+        self.fdm.set_wind(wind)
+        self.wind = wind
 
     def await_restart(self, t_s):
         """Time stands until hp_supervisor has a new controller running and connected."""
@@ -698,6 +725,7 @@ class Simulation:
                                                    self.start_airspeed_ftps / FT_PER_M)
                     self.history.clear()
                     self.record_truth(k * self.period_us * 1e-6)
+                    self.start_density_kg_m3 = self.fdm.truth().air_density_kg_m3
                     self.fdm.set_surfaces(trim)
                     airborne = True
                     self.event(k * self.period_us * 1e-6, "airborne start: %.0f ft above home, %.0f ft/s, heading %.0f deg" %

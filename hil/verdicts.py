@@ -174,6 +174,48 @@ def ground_station_view(sim, window_s=3.0):
             "home_vs_truth": home}
 
 
+def stall_alphas_deg(sim):
+    """The airframe's stall angles of attack (airframe.yaml through the FDM: lift reaches cl_max,
+    or cl_min inverted), degrees."""
+    af = sim.fdm.airframe
+    return math.degrees(af.alpha_stall_rad), math.degrees(af.alpha_stall_neg_rad)
+
+
+def stalled(m, alphas):
+    """The wing is stalled in this truth sample: its true angle of attack past a stall angle."""
+    return not m.on_ground and (m.alpha_deg > alphas[0] or m.alpha_deg < alphas[1])
+
+
+def recovery_height_losses(recs, since_s, rebound_ft=2.0):
+    """Per takeover (the HP, then the HA's side on the servos, airborne) from since_s on: the height
+    lost from the takeover to the recovery, the lowest point before the aircraft climbs again by
+    rebound_ft (or the HP has the servos back, or the flight ends: then it never recovered).
+    [(takeover time, height lost in ft, recovered)]."""
+    out = []
+    i, n = 0, len(recs)
+    while i < n:
+        x = recs[i]
+        prev = recs[i - 1][2].controller if i else None
+        if x[0] * 1e-6 < since_s - 1e-9 or prev != 0 or x[2].controller not in HA_SIDE or x[1].on_ground:
+            i += 1
+            continue
+        h0 = low = x[1].height_above_home_ft
+        recovered = False
+        j = i
+        while j < n and recs[j][2].controller in HA_SIDE:
+            h = recs[j][1].height_above_home_ft
+            low = min(low, h)
+            if h >= low + rebound_ft:
+                recovered = True
+                break
+            j += 1
+        # Not sinking at the takeover, or handed back before it sank rebound_ft: recovered at once.
+        recovered = recovered or (j < n and recs[j][2].controller == 0)
+        out.append((x[0] * 1e-6, h0 - low, recovered))
+        i = max(j, i + 1)
+    return out
+
+
 def unsafe(regions, applied):
     """A servo output outside S_u, or not a number at all."""
     return not all(math.isfinite(v) for v in applied) or regions.su_max(applied) > 1.0 + EPS
@@ -237,8 +279,20 @@ def fault_verdict(sim, progress):
     crashed = any("aircraft crashed" in e["event"] for e in sim.events)
     env_s = round(outside_ha * period, 4)
     takeover_ok = due_s is None or (lat is not None and lat <= period + 1e-9)
+    # The stall judged on the truth: the wing past its stall angle of attack while the HA's side
+    # flies is the HA's own failure (it flies to keep the aircraft flying), whoever stalled it.
+    alphas = stall_alphas_deg(sim)
+    stalled_ha = sum(1 for x in recs if x[2].controller in HA_SIDE and stalled(x[1], alphas))
+    stalled_any = sum(1 for x in recs if (at is None or x[0] * 1e-6 >= at - 1e-9) and stalled(x[1], alphas))
+    losses = recovery_height_losses(recs, at if at is not None else sim.ground_s)
     return {
-        "ok": unsafe_n == 0 and outside_ha == 0 and takeover_ok and not crashed,
+        "ok": unsafe_n == 0 and outside_ha == 0 and takeover_ok and not crashed and stalled_ha == 0,
+        "stall_alpha_deg": round(alphas[0], 3),
+        "stalled_under_ha_s": round(stalled_ha * period, 4),
+        "stalled_from_fault_s": round(stalled_any * period, 4),
+        "recovery_height_loss_ft": round(max(v for _, v, _ in losses), 2) if losses else None,
+        "recoveries": [{"takeover_s": round(t, 3), "height_lost_ft": round(v, 2), "recovered": r}
+                       for t, v, r in losses],
         "unsafe_commands": unsafe_n,
         "envelope_violations_under_ha_s": env_s,
         "envelope_under_ha": {"outside_S_x_s": env_s, "inherited_from_hp_s": round(inherited * period, 4),
@@ -272,6 +326,22 @@ def worst_state(x):
             "pitch_deg": round(m.pitch_deg, 2), "p_deg_s": round(m.p_deg_s, 1), "q_deg_s": round(m.q_deg_s, 1),
             "r_deg_s": round(m.r_deg_s, 1), "height_ft": round(m.height_above_home_ft, 1),
             "calibrated_airspeed_ftps": round(x[4], 2)}
+
+
+def world(sim):
+    """The air the flight flew in: the field's elevation and temperature, the density at the
+    start (and what it makes of the pitot: IAS = TAS sqrt(rho / rho0)), the scenario's wind and,
+    when a fault changed it, the wind at the end."""
+    rho = getattr(sim, "start_density_kg_m3", None)
+    w, w_end = sim.world_wind, sim.wind
+
+    def wind(x):
+        return {"from_deg": x.mean_from_deg, "mps": x.mean_mps, "ftps": round(x.mean_mps * FT_PER_M, 2),
+                "turbulence": x.turbulence}
+    return {"field_elevation_ft": round(sim.field_elevation_ft, 1), "temperature_c": round(sim.temperature_c, 2),
+            "air_density_kg_m3": None if rho is None else round(rho, 5),
+            "ias_over_tas": None if rho is None else round(math.sqrt(rho / 1.225), 4),
+            "wind": wind(w), "wind_at_end": wind(w_end)}
 
 
 def fault_record(sim):
@@ -369,6 +439,7 @@ def summarize(sim):
                     "tracking": mission_tracking(sim.plan, sim.home, recs, r, progress),
                     "guidance_waypoint_index": sim.waypoint_log},
         "ground_station": ground_station_view(sim),
+        "world": world(sim),
         "events": sim.events,
         "fault": fault,
         "verdict": verdict,

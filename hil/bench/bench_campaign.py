@@ -1,11 +1,14 @@
 #!/usr/bin/env python3
 """The campaign part of make bench-hil: a seeded campaign of FLIGHTS lockstep flights (default
-100, BENCH_HIL_FLIGHTS overrides) of SECONDS simulated each over every fault class, on a
+150, BENCH_HIL_FLIGHTS overrides) of SECONDS simulated each over every fault class, on a
 LocalCluster of one worker per core, and the Simplex property over all of them:
 
   flights                        flights in the campaign (and how many died or timed out)
   unsafe_commands                servo commands outside S_u, summed over the flights (target 0)
   envelope_violations_under_ha   seconds outside S_x while the HA flew, summed (target 0)
+  stalled_under_ha               seconds with the wing past its stall alpha while the HA flew (target 0)
+  recovery_height_loss           height lost from a takeover to the recovery, p50 and max
+  wind                           the strongest wind flown (each flight draws its own)
   takeover_latency_p99           deadline miss to the HA's command on the servos, p99 over every
                                  takeover (target: within one HA period)
   recovery_crash_p50/p99         crash faults: the fault to the HP back in control (target < 10 s)
@@ -27,7 +30,7 @@ from hil.campaigns import plan as plan_mod  # noqa: E402
 from hil.campaigns import report as report_mod  # noqa: E402
 from hil.campaigns import runner  # noqa: E402
 
-FLIGHTS = int(os.environ.get("BENCH_HIL_FLIGHTS", "100"))
+FLIGHTS = int(os.environ.get("BENCH_HIL_FLIGHTS", "150"))
 SECONDS = float(os.environ.get("BENCH_HIL_FLIGHT_S", "40"))
 SEED = int(os.environ.get("BENCH_HIL_SEED", "1"))
 
@@ -48,6 +51,15 @@ def figures(rows, wall_s):
     out.append(("envelope_violations_under_ha", "%.2f s (target 0%s)" % (
         sum(v for v in env if not math.isnan(v)),
         "; %d flights left S_x for an unknown time" % unknown_env if unknown_env else "")))
+    stalled = [r for r in flown if (r.get("stalled_under_ha_s") or 0.0) > 0.0]
+    out.append(("stalled_under_ha", "%.2f s in %d flights (target 0: the wing past its stall alpha while the HA flew)" % (
+        sum(r["stalled_under_ha_s"] for r in stalled), len(stalled))))
+    loss = [r["recovery_height_loss_ft"] for r in flown if r.get("recovery_height_loss_ft") is not None]
+    out.append(("recovery_height_loss", "p50 %s ft, max %s ft (%d flights with a takeover after the fault)" % (
+        _f(report_mod.pct(loss, 50)), _f(max(loss) if loss else None), len(loss))))
+    winds = [r.get("wind_mps") or 0.0 for r in rows]
+    out.append(("wind", "up to %.1f m/s, %d of %d flights in wind" % (max(winds) if winds else 0.0,
+                                                                     sum(1 for w in winds if w > 0.0), len(rows))))
     p99 = report_mod.pct(lat, 99)
     out.append(("takeover_latency_p99", "%s ms (%d takeovers, max %s ms; target: one HA period, 10 ms)" % (
         _f(p99, 1000.0), len(lat), _f(max(lat) if lat else None, 1000.0))))

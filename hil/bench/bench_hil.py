@@ -16,7 +16,7 @@ One flight per rate, SECONDS of simulated time with the HP crash at a third of i
 Then one flight of REALTIME_SECONDS in real time (no crash) for the latency through the whole
 chain: a VN-200 packet written to the HP's pty, the vn200 node, controller_DG808 (its timer),
 the arduino node, the HA's link and its next period driving the servos with that command.
-Then a seeded fault campaign of 100 flights over every fault class on Dask (bench_campaign.py:
+Then a seeded fault campaign of 150 flights over every fault class on Dask (bench_campaign.py:
 the Simplex property over all of them, flights per hour, the campaign's speed).
 Wall time on a shared machine measures the neighbours too. Prints `metric: value unit` lines,
 then `machine: ...`."""

@@ -20,10 +20,11 @@ import uuid
 TOKEN_VAR = "HIL_CAMPAIGN_FLIGHT"
 # The row's columns, in order (the CSV's header).
 COLUMNS = ["flight_id", "fault_class", "seed", "fault_at_s", "fault_duration_s", "fault_params",
-           "status", "reason", "took_effect", "ok", "broke_property", "unsafe_commands",
+           "wind_mps", "wind_from_deg", "turbulence", "status", "reason", "took_effect", "ok", "broke_property", "unsafe_commands",
            "envelope_violations_under_ha_s", "sx_inherited_from_hp_s", "sx_left_under_ha_s",
            "max_sx_row_under_ha", "takeover_latency_s", "takeover_within_one_period", "aircraft_crashed",
-           "recovery_s", "latched", "min_height_agl_ft", "min_airspeed_margin_ftps",
+           "recovery_s", "latched", "stalled_under_ha_s", "stalled_from_fault_s", "recovery_height_loss_ft",
+           "min_height_agl_ft", "min_airspeed_margin_ftps",
            "mission_progress", "simulated_s", "flight_duration_s", "wall_s", "x_real_time",
            "exit_code", "leftovers_killed", "worker", "folder", "command"]
 
@@ -189,6 +190,8 @@ def run(flight, argv, folder, wall_limit_s, term_grace_s=30.0, env=None):
     row.update(flight_id=flight.flight_id, fault_class=flight.fault_class, seed=flight.seed,
                fault_at_s=flight.fault_at_s, fault_duration_s=flight.fault_duration_s,
                fault_params=json.dumps(dict(flight.params), sort_keys=True),
+               wind_mps=getattr(flight, "wind_mps", 0.0), wind_from_deg=getattr(flight, "wind_from_deg", 0.0),
+               turbulence=getattr(flight, "turbulence", "none"),
                flight_duration_s=flight.duration_s, folder=folder,
                command=" ".join(_quote(a) for a in argv), worker=socket.gethostname())
     t0 = time.monotonic()
@@ -216,7 +219,8 @@ def run(flight, argv, folder, wall_limit_s, term_grace_s=30.0, env=None):
         v, f = verdict_of(summary), fault_of(summary)
         row["took_effect"] = f.get("took_effect")
         for k in ("ok", "unsafe_commands", "envelope_violations_under_ha_s", "takeover_latency_s", "recovery_s",
-                  "latched", "min_height_agl_ft", "min_airspeed_margin_ftps", "mission_progress"):
+                  "latched", "min_height_agl_ft", "min_airspeed_margin_ftps", "mission_progress",
+                  "stalled_under_ha_s", "stalled_from_fault_s", "recovery_height_loss_ft"):
             row[k] = _num(v.get(k)) if k != "envelope_violations_under_ha_s" else v.get(k)
         env = v.get("envelope_under_ha") or {}
         row["sx_inherited_from_hp_s"] = env.get("inherited_from_hp_s")

@@ -4,7 +4,9 @@ fault starts, how long it lasts and its parameters. The same campaign seed, flig
 and flight length give the same plan, and each flight's command line reproduces that flight.
 
 The classes and their parameter spaces come from the faults package (hil/faults) when it is there,
-else from the `--fault` choices of hil/run_flight.py."""
+else from the `--fault` choices of hil/run_flight.py. Every flight, of every class, also draws its
+own wind (draw_wind: any direction, up to 1.5 x sensors.max_wind_ftps, light or moderate
+turbulence on some) when run_flight.py takes --wind-mps, --wind-from-deg and --turbulence."""
 import dataclasses
 import importlib
 import json
@@ -30,6 +32,12 @@ class Flight:
     fault_duration_s: float  # < 0: the fault never ends by itself
     params: tuple            # ((key, value), ...) as strings, sorted by key
     duration_s: float
+    # The flight's own wind (run_flight.py's --wind-mps, --wind-from-deg, --turbulence): steady
+    # from anywhere, up to 1.5 x sensors.max_wind_ftps, with turbulence; calm when this
+    # checkout's run_flight.py takes no wind (Interface.has_wind).
+    wind_mps: float = 0.0
+    wind_from_deg: float = 0.0
+    turbulence: str = "none"
 
     def params_dict(self):
         return dict(self.params)
@@ -43,6 +51,7 @@ class Interface:
     fault_at_flag: str          # --fault-at or --crash-at
     has_duration: bool
     has_params: bool
+    has_wind: bool = False      # --wind-mps, --wind-from-deg, --turbulence
 
 
 def _help_text(run_flight):
@@ -85,7 +94,8 @@ def discover(run_flight=RUN_FLIGHT):
     return Interface(classes=classes,
                      fault_at_flag="--fault-at" if "--fault-at" in text else "--crash-at",
                      has_duration="--fault-duration" in text,
-                     has_params="--fault-param" in text)
+                     has_params="--fault-param" in text,
+                     has_wind=all(f in text for f in ("--wind-mps", "--wind-from-deg", "--turbulence")))
 
 
 SURFACES = ("elevator", "aileron", "rudder", "throttle")
@@ -99,13 +109,12 @@ PARAM_SPACE = {
     "gs_request_hp": {"surface": SURFACES},
     "stale_replay": {"age_s": ("u", 0.2, 3.0)},
     "divergence": {"rate_deg_s": ("u", 5.0, 40.0)},
-    "pitot_failure": {"mode": ("dead", "zero", "stuck")},
     "pic_switch": {"switch_after_s": ("u", 0.3, 3.0), "switch_s": ("u", 1.0, 5.0)},
     "climb": {"pitch_deg": ("u", 8.0, 15.0)},
     "link_bitflip": {"target": ("payload", "crc"), "every_n": (1, 1, 3, 10)},
 }
 # Faults that steer the aircraft need time to take it anywhere; a crash has no duration.
-LONG_FAULTS = ("climb", "stall", "bank", "divergence")
+LONG_FAULTS = ("climb", "stall", "bank", "divergence", "accelerated_stall", "wind")
 NO_DURATION = ("crash", "pic_switch", "ha_reset", "cold_start")
 
 
@@ -140,6 +149,32 @@ def _duration(fault_class, rng, window):
     return round(rng.uniform(*window), 2)
 
 
+def max_wind_ftps():
+    import yaml
+    with open(os.path.join(ROOT, "aircraft", "DG808", "limits.yaml")) as f:
+        return float(yaml.safe_load(f)["sensors"]["max_wind_ftps"])
+
+
+WIND_OVER_LIMIT = 1.5   # winds drawn up to this x sensors.max_wind_ftps: and beyond what the HA allows
+TURBULENCE = (("none", 0.5), ("light", 0.35), ("moderate", 0.15))
+
+
+def draw_wind(campaign_seed, flight_id, limit_ftps):
+    """(wind_mps, wind_from_deg, turbulence) of one flight, from its own stream: calm one flight in
+    eight, else uniform in speed up to WIND_OVER_LIMIT x the HA's max_wind_ftps and in direction,
+    turbulence none, light or moderate (TURBULENCE's shares)."""
+    r = random.Random("campaign:%d:flight:%d:wind" % (campaign_seed, flight_id))
+    mps = 0.0 if r.random() < 0.125 else round(r.uniform(0.0, WIND_OVER_LIMIT * limit_ftps * 0.3048), 2)
+    from_deg = round(r.uniform(0.0, 360.0), 1)
+    u, turb = r.random(), "none"
+    for level, share in TURBULENCE:
+        if u < share:
+            turb = level
+            break
+        u -= share
+    return mps, from_deg, turb
+
+
 def _fmt(v):
     if isinstance(v, float):
         return "%.6g" % v
@@ -147,7 +182,7 @@ def _fmt(v):
 
 
 def make_plan(flights, seed, classes, duration_s=45.0, fault_window_s=(8.0, 20.0),
-              fault_duration_s=(0.5, 6.0), interface=None):
+              fault_duration_s=(0.5, 6.0), interface=None, wind=True):
     """flights: how many; seed: the campaign seed; classes: the fault classes to deal from.
     A fault starts in fault_window_s (after the HP has taken control, leaving time for the
     recovery) on the HA's 10 ms grid; a fault lasts fault_duration_s (steering faults 8-20 s; a
@@ -161,6 +196,9 @@ def make_plan(flights, seed, classes, duration_s=45.0, fault_window_s=(8.0, 20.0
     rng.shuffle(order)
     has_duration = interface is None or interface.has_duration
     has_params = interface is None or interface.has_params
+    # Wind per flight, every class, when run_flight.py can fly it (else every flight is calm).
+    windy = wind and (interface is None or interface.has_wind)
+    limit_ftps = max_wind_ftps() if windy else None
     plan = []
     for i in range(flights):
         cls = order[i % len(order)]
@@ -169,8 +207,12 @@ def make_plan(flights, seed, classes, duration_s=45.0, fault_window_s=(8.0, 20.0
         at = round(frng.uniform(*fault_window_s), 2)
         dur = _duration(cls, frng, fault_duration_s) if has_duration else -1.0
         params = _class_params(cls, frng) if has_params else ()
-        plan.append(Flight(flight_id=i, fault_class=cls, seed=frng.randrange(1, 2 ** 31 - 1),
-                           fault_at_s=at, fault_duration_s=dur, params=params, duration_s=duration_s))
+        fl = Flight(flight_id=i, fault_class=cls, seed=frng.randrange(1, 2 ** 31 - 1),
+                    fault_at_s=at, fault_duration_s=dur, params=params, duration_s=duration_s)
+        if windy:
+            w = draw_wind(seed, i, limit_ftps)
+            fl = dataclasses.replace(fl, wind_mps=w[0], wind_from_deg=w[1], turbulence=w[2])
+        plan.append(fl)
     return plan
 
 
@@ -183,6 +225,9 @@ def command(flight, folder, interface, run_flight=RUN_FLIGHT, python=None):
     if interface.has_params:
         for k, v in flight.params:
             argv += ["--fault-param", "%s=%s" % (k, v)]
+    if getattr(interface, "has_wind", False):
+        argv += ["--wind-mps", "%g" % flight.wind_mps, "--wind-from-deg", "%g" % flight.wind_from_deg,
+                 "--turbulence", flight.turbulence]
     argv += ["--duration", "%g" % flight.duration_s, "--folder", folder, "--no-bag", "--quiet"]
     return argv
 

@@ -13,7 +13,8 @@ import importlib
 
 CLASSES = ("crash", "hang", "deadline_miss", "nan", "out_of_range", "frozen", "stale_replay",
            "climb", "stall", "bank", "divergence", "hp_vn200_loss", "ha_vn200_loss", "pitot_failure",
-           "rc_loss", "pic_switch", "gs_request_hp", "link_bitflip", "low_slow", "ha_reset", "cold_start")
+           "rc_loss", "pic_switch", "gs_request_hp", "link_bitflip", "low_slow", "ha_reset", "cold_start",
+           "wind", "accelerated_stall", "pitot_stuck", "pitot_high")
 
 
 def module(name):

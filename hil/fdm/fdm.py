@@ -18,6 +18,7 @@ from .types import Surfaces, Truth, Wind
 
 M_PER_FT = 0.3048
 PA_PER_PSF = 47.88025898
+KG_M3_PER_SLUG_FT3 = 515.3788184
 # A constant earth field for the magnetometer, NED [gauss]: roughly the mid-latitude northern
 # hemisphere field (WMM: horizontal ~0.2 G, downward ~0.45 G). Not site-specific on purpose.
 DEFAULT_MAG_FIELD_NED_GAUSS = (0.2, 0.0, 0.45)
@@ -52,9 +53,13 @@ class Fdm:
     it over, so every reset with the same commands replays the same flight bit for bit."""
 
     def __init__(self, aircraft_dir, seed, dt_s=1.0 / 200.0, wind=None, work_dir=None,
-                 mag_field_ned_gauss=DEFAULT_MAG_FIELD_NED_GAUSS):
+                 mag_field_ned_gauss=DEFAULT_MAG_FIELD_NED_GAUSS, temperature_deviation_c=0.0):
         if not dt_s > 0.0:
             raise ValueError(f"dt_s must be positive, not {dt_s}")
+        _check_finite(temperature_deviation_c=temperature_deviation_c)
+        # The day's temperature against ISA at every height (JSBSim's atmosphere/delta-T): a hot
+        # day thins the air at the same pressure, so the same true airspeed reads lower on a pitot.
+        self.temperature_deviation_c = float(temperature_deviation_c)
         self.airframe = Airframe(aircraft_dir)
         self.seed = int(seed)
         self.dt_s = float(dt_s)
@@ -101,6 +106,7 @@ class Fdm:
         if not ex.load_model(self.airframe.name):
             raise RuntimeError(f"JSBSim could not load {self.model_path}")
         ex.set_dt(self.dt_s)
+        ex["atmosphere/delta-T"] = self.temperature_deviation_c * 1.8  # Rankine
         pm = ex.get_property_manager()
 
         def node(path):
@@ -120,7 +126,8 @@ class Fdm:
                  "velocities/p-rad_sec", "velocities/q-rad_sec", "velocities/r-rad_sec",
                  "forces/fbx-total-lbs", "forces/fby-total-lbs", "forces/fbz-total-lbs",
                  "velocities/vtrue-fps", "velocities/vc-fps", "aero/alpha-deg", "aero/beta-deg",
-                 "gear/wow", "atmosphere/P-psf", "atmosphere/T-R", "inertia/mass-slugs"]
+                 "gear/wow", "atmosphere/P-psf", "atmosphere/T-R", "inertia/mass-slugs",
+                 "atmosphere/rho-slugs_ft3"]
         self._n_truth = [node(n) for n in names]
         self._n_psi = node("attitude/psi-rad")
         self._n_vt = node("velocities/vtrue-fps")
@@ -179,12 +186,27 @@ class Fdm:
         self._wind_mean = self._mean_wind_ned_fps()
         self._set_wind(self._gust())
 
+    def set_wind(self, wind):
+        """A new wind from now on, in flight (a wind shift, a gust front, a shear): the mean wind
+        at once, the turbulence at the new level from its present state (the Dryden state is
+        kept in units of its intensity, so the gusts carry on, scaled). Deterministic: the same
+        calls at the same steps give the same flight."""
+        if not isinstance(wind, Wind):
+            raise TypeError("wind must be a hil.fdm.Wind")
+        self.wind = wind
+        if self._exec is None:
+            return
+        self._wind_mean = self._mean_wind_ned_fps()
+        self._turbulence.set_level(wind.turbulence)
+        self._set_wind(self._gust_now if wind.turbulence != "none" else (0.0, 0.0, 0.0))
+
     def _gust(self):
         agl_m = self._n_agl.get_double_value() * M_PER_FT
         vt_mps = self._n_vt.get_double_value() * M_PER_FT
         return self._turbulence.step(agl_m, vt_mps, self._n_psi.get_double_value())
 
     def _set_wind(self, gust_ned_mps):
+        self._gust_now = gust_ned_mps
         for n, mean, g in zip(self._n_wind, self._wind_mean, gust_ned_mps):
             n.set_double_value(mean + g * FT_PER_M)
 
@@ -364,7 +386,7 @@ class Fdm:
         if self._crash_truth is not None:
             return self._crash_truth
         (lat, lon, h_sl, h_agl, terrain, vn, ve, vd, phi, theta, psi, p, q, r, fx, fy, fz, vt, vc,
-         alpha, beta, wow, p_psf, t_r, mass) = [n.get_double_value() for n in self._n_truth]
+         alpha, beta, wow, p_psf, t_r, mass, rho_slug_ft3) = [n.get_double_value() for n in self._n_truth]
         k = M_PER_FT / mass
         sphi, cphi = math.sin(phi), math.cos(phi)
         sth, cth = math.sin(theta), math.cos(theta)
@@ -385,4 +407,5 @@ class Fdm:
             airspeed_true_mps=vt * M_PER_FT, airspeed_cal_mps=vc * M_PER_FT,
             alpha_deg=alpha, beta_deg=beta, servo=servo, on_ground=wow > 0.5,
             mag_body_gauss=(mx, my, mz), pressure_pa=p_psf * PA_PER_PSF,
-            temperature_c=(t_r - 491.67) * 5.0 / 9.0, crashed=self._crash is not None)
+            temperature_c=(t_r - 491.67) * 5.0 / 9.0, crashed=self._crash is not None,
+            air_density_kg_m3=rho_slug_ft3 * KG_M3_PER_SLUG_FT3)

@@ -32,6 +32,10 @@ class Turbulence:
         # u; v's and w's two lags, in units of their sigma (so a change of height rescales them).
         self.u = self.v1 = self.v2 = self.w1 = self.w2 = None
 
+    def set_level(self, level):
+        """Another severity from now on; the filters' state (in units of sigma) carries on."""
+        self.w20_mps = W20_KT[level] * KT_TO_MPS
+
     def _normals(self):
         if self.i >= _BLOCK:
             self.block = self.rng.standard_normal((_BLOCK, 3)).tolist()

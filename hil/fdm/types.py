@@ -60,3 +60,4 @@ class Truth:
     pressure_pa: float
     temperature_c: float
     crashed: bool = False                         # the flight ended on the ground (FdmCrash)
+    air_density_kg_m3: float = 1.225              # where the aircraft is (JSBSim's atmosphere)

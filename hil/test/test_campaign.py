@@ -4,6 +4,7 @@ dies is reported as died; rows reach the table as flights finish; a small real c
 LocalCluster of two workers gives the table and the report. The quick cases fly
 campaign_fake_flight.py (run_flight.py's command line, one way of ending per fault class)."""
 import csv
+import dataclasses
 import json
 import os
 import subprocess
@@ -114,6 +115,32 @@ def test_the_same_campaign_seed_gives_the_same_flights_and_commands():
                                has_params=False)
     argv = plan_mod.command(plan_mod.make_plan(2, 7, ("crash",), interface=first)[1], "/tmp/f", first)
     assert "--fault-duration" not in argv and float(argv[argv.index("--crash-at") + 1]) > 0
+
+
+def test_every_flight_of_every_class_flies_its_own_wind_up_to_beyond_the_has_limit():
+    """Issue 22's world: each flight draws a steady wind from any direction, up to 1.5 x
+    sensors.max_wind_ftps, and turbulence, whatever its fault class; run_flight.py gets it. A
+    run_flight.py without the wind flags flies every flight calm, and the plan says so."""
+    windy = plan_mod.Interface(classes=("crash", "stall"), fault_at_flag="--fault-at", has_duration=True,
+                               has_params=True, has_wind=True)
+    plan = plan_mod.make_plan(80, 3, windy.classes, interface=windy)
+    limit_mps = plan_mod.max_wind_ftps() * 0.3048
+    speeds = [f.wind_mps for f in plan]
+    assert all(0.0 <= v <= 1.5 * limit_mps for v in speeds)
+    assert max(speeds) > limit_mps and sum(v == 0.0 for v in speeds) >= 1   # beyond the limit; some calm
+    assert {c for c in windy.classes} == {f.fault_class for f in plan if f.wind_mps > 0.0}
+    assert max(f.wind_from_deg for f in plan) - min(f.wind_from_deg for f in plan) > 270.0
+    assert {"none", "light", "moderate"} == {f.turbulence for f in plan}
+    # The wind's own stream: the rest of each flight is the plan without wind.
+    calm = plan_mod.make_plan(80, 3, windy.classes, interface=windy, wind=False)
+    assert [dataclasses.replace(f, wind_mps=0.0, wind_from_deg=0.0, turbulence="none") for f in plan] == calm
+    f = next(f for f in plan if f.wind_mps > 0.0)
+    argv = plan_mod.command(f, "/tmp/f", windy)
+    assert float(argv[argv.index("--wind-mps") + 1]) == f.wind_mps
+    assert float(argv[argv.index("--wind-from-deg") + 1]) == f.wind_from_deg
+    assert argv[argv.index("--turbulence") + 1] == f.turbulence
+    assert all(f.wind_mps == 0.0 for f in plan_mod.make_plan(20, 3, AGREED.classes, interface=AGREED))
+    assert "--wind-mps" not in plan_mod.command(plan[0], "/tmp/f", AGREED)
 
 
 def test_the_classes_come_from_this_checkouts_run_flight():

@@ -15,8 +15,9 @@ with open(os.path.join(ROOT, "aircraft", "DG808", "limits.yaml")) as _f:
     HA_PERIOD_S = 1.0 / float(yaml.safe_load(_f)["decision"]["rate_hz"])
 
 
-def fly(fault, at_s=15.0, duration_s=-1.0, params=(), flight_s=35.0, seed=11):
-    """Flies and returns (summary, replay command)."""
+def fly(fault, at_s=15.0, duration_s=-1.0, params=(), flight_s=35.0, seed=11, extra=()):
+    """Flies and returns (summary, replay command); extra: more run_flight.py arguments (the
+    world: --field-elevation-ft, --temperature-c, ...)."""
     if "ROS_DISTRO" not in os.environ and "ROS_PACKAGE_PATH" not in os.environ:
         raise AssertionError("the workspace is not sourced (make test does it)")
     folder = os.path.join(tempfile.mkdtemp(prefix="hil_fault_%s_" % fault), "flight")
@@ -24,7 +25,7 @@ def fly(fault, at_s=15.0, duration_s=-1.0, params=(), flight_s=35.0, seed=11):
             "--fault-at", "%g" % at_s, "--fault-duration", "%g" % duration_s, "--duration", "%g" % flight_s]
     for p in params:
         argv += ["--fault-param", p]
-    argv += ["--no-bag", "--quiet", "--folder", folder]
+    argv += list(extra) + ["--no-bag", "--quiet", "--folder", folder]
     r = run_completed([sys.executable] + argv, timeout=1200)
     replay = "hil/run_flight.py " + " ".join(argv[1:-2])
     out = r.stdout.decode(errors="replace")

@@ -16,3 +16,14 @@ def test_a_pitot_reading_zero_in_cruise_is_not_flown_as_a_stall_into_the_ground(
     assert_property(s, takeover_due=None)
     assert not s["verdict"]["aircraft_crashed"] and s["verdict"]["min_height_agl_ft"] > 100.0, s["_replay"]
     assert not any("STALL" in seg["why"] for seg in s["who_flew"]), s["_replay"]
+
+
+def test_a_pitot_reading_low_below_the_stall_switch_speed_is_taken_over_at_once_and_flown_without_a_stall():
+    """Mode low (x0.6: a cruise of 58 ft/s reads 35): at or below the stall switch speed, so the
+    HA must take over in that period, for the stall or for the sensor, and then fly with the wing
+    unstalled, trading no more than some tens of ft for the speed it believes it lacks."""
+    s = fly("pitot_failure", at_s=12.0, duration_s=-1.0, params=["mode=low", "scale=0.6"], flight_s=30.0)
+    assert_property(s, takeover_due=True)
+    v = s["verdict"]
+    assert v["stalled_from_fault_s"] == 0.0, (v, s["_replay"])
+    assert v["min_height_agl_ft"] > 100.0, (v, s["_replay"])
