@@ -258,17 +258,24 @@ TEST(GroundAndHome, SetHomeInFlightIntoHeadwindIsRefused) {
 // K9: the INS first reports tracking in the air (its heading was still aligning on the ground),
 // on a level leg into a headwind at 300 ft: slow over the ground and level, "parked" to the INS.
 // Home latched there and the height read 0 ft (the ceiling and the circle moved with it). The
-// core's rule says flying (the pitot above stall; a dead pitot vouches for nothing): no home, and
-// the HA keeps its attitude and speed meanwhile.
+// core's rule says no: the pitot above stall is flying, a dead pitot vouches for nothing, and
+// even a pitot reading below stall (a part-blocked tube) is not enough before home, when the INS
+// has no height to tell: it must be still (stopped over the ground), which no flight is. The HA
+// keeps its attitude and speed meanwhile.
 TEST(GroundAndHome, FirstHomeNeverLatchesInFlight) {
   const HaInsSample leg = Level(300.0, 0.0, 30.0f);
-  for (const bool pitot_alive : {true, false}) {
+  struct Pitot {
+    bool alive;
+    float ftps;
+  };
+  for (const Pitot pitot : {Pitot{true, 60.0f}, Pitot{false, 60.0f}, Pitot{true, 30.0f}}) {
     Ha ha;
-    ha.t.board.airspeed_ok = pitot_alive;
-    ha.Run(100 * 20, leg, 60.0f);
-    EXPECT_EQ(ha.ins.home_latched, 0u) << "pitot alive " << pitot_alive;
+    ha.t.board.airspeed_ok = pitot.alive;
+    ha.Run(100 * 20, leg, pitot.ftps);
+    EXPECT_EQ(ha.ins.home_latched, 0u) << "pitot " << pitot.alive << " " << pitot.ftps;
     EXPECT_EQ(ha.t.app.inputs.home_unknown, 1u);
     EXPECT_EQ(ha.t.app.inputs.on_ground, 1u);  // the INS's own opinion
+    EXPECT_EQ(ha.t.out().on_ground, 0u);
     EXPECT_NE(ha.t.controller(), HA_CONTROLLER_HP);
     EXPECT_TRUE(ha.t.out().reasons & HA_REASON_NO_HA_STATE);
   }

@@ -66,19 +66,6 @@ void ha_state_view(const HaAircraftConfig *cfg, const HaInputs *in, const HaHpCo
       out->position_ok ? ha_clampf(in->north_ft, -HA_POSITION_SPAN_FT, HA_POSITION_SPAN_FT) : 0.0f;
   out->east_ft =
       out->position_ok ? ha_clampf(in->east_ft, -HA_POSITION_SPAN_FT, HA_POSITION_SPAN_FT) : 0.0f;
-  /* Signals for the core's airborne latch. Each alone says flying: a pitot above stall, the
-   * INS above alt0, the INS not parked (moving or climbing). A landing needs every sensor to
-   * say so: the pitot alive and below stall (a dead pitot cannot tell 55 ft/s into a headwind
-   * from parked) and a fresh INS parked at a known height (before its first home it has no
-   * height to tell: parked alone). */
-  {
-    const int fast = out->airspeed_ok && ha_greater(out->airspeed_ftps, cfg->stall_speed_ftps);
-    const int high = out->altitude_ok && ha_greater(out->x[HA_X_ALT_AGL_FT], cfg->airborne_agl_ft);
-    const int ins_low = (out->altitude_ok || in->home_unknown != 0u) && !high;
-    out->flying_evidence = (uint8_t)(fast || high || (fresh && in->on_ground == 0u));
-    out->landed_evidence =
-        (uint8_t)(out->airspeed_ok && !fast && fresh && in->on_ground != 0u && ins_low);
-  }
   out->still =
       (uint8_t)(out->attitude_ok && ha_within_span(in->roll_deg, cfg->self_test_max_tilt_deg) &&
                 ha_within_span(in->pitch_deg, cfg->self_test_max_tilt_deg) &&
@@ -86,6 +73,20 @@ void ha_state_view(const HaAircraftConfig *cfg, const HaInputs *in, const HaHpCo
                 ha_within_span(in->q_deg_s, cfg->self_test_max_rate_deg_s) &&
                 ha_within_span(in->r_deg_s, cfg->self_test_max_rate_deg_s) &&
                 ha_within_span(in->groundspeed_ftps, cfg->self_test_max_groundspeed_ftps));
+  /* Signals for the core's airborne latch. Each alone says flying: a pitot above stall, the
+   * INS above alt0, the INS not parked (moving or climbing). A landing needs every sensor to
+   * say so: the pitot alive and below stall (a dead pitot cannot tell 55 ft/s into a headwind
+   * from parked) and a fresh INS parked at a known height. Before its first home the INS has no
+   * height to tell, so it must be still (stopped over the ground, level, no rates), which no
+   * flight into a headwind is. */
+  {
+    const int fast = out->airspeed_ok && ha_greater(out->airspeed_ftps, cfg->stall_speed_ftps);
+    const int high = out->altitude_ok && ha_greater(out->x[HA_X_ALT_AGL_FT], cfg->airborne_agl_ft);
+    const int ins_low = out->altitude_ok ? !high : (in->home_unknown != 0u && out->still);
+    out->flying_evidence = (uint8_t)(fast || high || (fresh && in->on_ground == 0u));
+    out->landed_evidence =
+        (uint8_t)(out->airspeed_ok && !fast && fresh && in->on_ground != 0u && ins_low);
+  }
   out->airborne = 1u; /* until the core has decided */
   out->on_ground = 0u;
   out->parked = 0u;
