@@ -186,6 +186,16 @@ def stalled(m, alphas):
     return not m.on_ground and (m.alpha_deg > alphas[0] or m.alpha_deg < alphas[1])
 
 
+def longest_stall_s(recs, alphas, period_s):
+    """The longest unbroken stretch of periods with the wing stalled while the HA's side flew: a
+    gust that spikes alpha for a period or two against a stall flown into and held."""
+    best = run = 0
+    for x in recs:
+        run = run + 1 if x[2].controller in HA_SIDE and stalled(x[1], alphas) else 0
+        best = max(best, run)
+    return best * period_s
+
+
 def recovery_height_losses(recs, since_s, rebound_ft=2.0):
     """Per takeover (the HP, then the HA's side on the servos, airborne) from since_s on: the height
     lost from the takeover to the recovery, the lowest point before the aircraft climbs again by
@@ -289,6 +299,7 @@ def fault_verdict(sim, progress):
         "ok": unsafe_n == 0 and outside_ha == 0 and takeover_ok and not crashed and stalled_ha == 0,
         "stall_alpha_deg": round(alphas[0], 3),
         "stalled_under_ha_s": round(stalled_ha * period, 4),
+        "longest_stall_under_ha_s": round(longest_stall_s(recs, alphas, period), 4),
         "stalled_from_fault_s": round(stalled_any * period, 4),
         "recovery_height_loss_ft": round(max(v for _, v, _ in losses), 2) if losses else None,
         "recoveries": [{"takeover_s": round(t, 3), "height_lost_ft": round(v, 2), "recovered": r}

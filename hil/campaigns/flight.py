@@ -23,7 +23,8 @@ COLUMNS = ["flight_id", "fault_class", "seed", "fault_at_s", "fault_duration_s",
            "wind_mps", "wind_from_deg", "turbulence", "status", "reason", "took_effect", "ok", "broke_property", "unsafe_commands",
            "envelope_violations_under_ha_s", "sx_inherited_from_hp_s", "sx_left_under_ha_s",
            "max_sx_row_under_ha", "takeover_latency_s", "takeover_within_one_period", "aircraft_crashed",
-           "recovery_s", "latched", "stalled_under_ha_s", "stalled_from_fault_s", "recovery_height_loss_ft",
+           "recovery_s", "latched", "stalled_under_ha_s", "longest_stall_under_ha_s", "stalled_from_fault_s",
+           "recovery_height_loss_ft",
            "min_height_agl_ft", "min_airspeed_margin_ftps",
            "mission_progress", "simulated_s", "flight_duration_s", "wall_s", "x_real_time",
            "exit_code", "leftovers_killed", "worker", "folder", "command"]
@@ -220,7 +221,8 @@ def run(flight, argv, folder, wall_limit_s, term_grace_s=30.0, env=None):
         row["took_effect"] = f.get("took_effect")
         for k in ("ok", "unsafe_commands", "envelope_violations_under_ha_s", "takeover_latency_s", "recovery_s",
                   "latched", "min_height_agl_ft", "min_airspeed_margin_ftps", "mission_progress",
-                  "stalled_under_ha_s", "stalled_from_fault_s", "recovery_height_loss_ft"):
+                  "stalled_under_ha_s", "longest_stall_under_ha_s", "stalled_from_fault_s",
+                  "recovery_height_loss_ft"):
             row[k] = _num(v.get(k)) if k != "envelope_violations_under_ha_s" else v.get(k)
         env = v.get("envelope_under_ha") or {}
         row["sx_inherited_from_hp_s"] = env.get("inherited_from_hp_s")

@@ -14,7 +14,8 @@ import numpy as np
 STATUSES = ("ok", "fault_not_effective", "died", "timeout")
 NUMERIC = ("fault_at_s", "fault_duration_s", "unsafe_commands", "envelope_violations_under_ha_s",
            "max_sx_row_under_ha", "takeover_latency_s", "sx_inherited_from_hp_s", "sx_left_under_ha_s", "recovery_s", "min_height_agl_ft",
-           "min_airspeed_margin_ftps", "mission_progress", "stalled_under_ha_s", "stalled_from_fault_s",
+           "min_airspeed_margin_ftps", "mission_progress", "stalled_under_ha_s", "longest_stall_under_ha_s",
+           "stalled_from_fault_s",
            "recovery_height_loss_ft", "wind_mps", "wind_from_deg", "simulated_s", "flight_duration_s", "wall_s",
            "x_real_time", "exit_code", "leftovers_killed", "seed", "flight_id")
 BOOLS = ("took_effect", "ok", "broke_property", "latched", "takeover_within_one_period", "aircraft_crashed")
@@ -80,6 +81,8 @@ def class_stats(rows):
             # property), in how many flights, and the most height a recovery cost.
             "stalled_under_ha_s": float(sum(_vals(flown, "stalled_under_ha_s"))),
             "stalled_under_ha_flights": sum(1 for r in flown if (r.get("stalled_under_ha_s") or 0.0) > 0.0),
+            # a gust's tick (a period or two) against a stall held
+            "longest_stall_under_ha_s": max(_vals(flown, "longest_stall_under_ha_s"), default=None),
             "recovery_height_loss_max_ft": max(_vals(flown, "recovery_height_loss_ft"), default=None),
             "wind_max_mps": max(_vals(rs, "wind_mps"), default=None),
         })
@@ -102,6 +105,7 @@ COLS = [("class", "class", "%s"), ("flights", "flights", "%d"), ("ok", "ok", "%d
         ("recovery_max_s", "rec max s", "%.2f"), ("latched", "latched", "%d"),
         ("min_height_agl_ft", "min h ft", "%.0f"), ("min_airspeed_margin_ftps", "min V-Vs ft/s", "%.1f"),
         ("stalled_under_ha_s", "stalled (HA) s", "%.2f"), ("stalled_under_ha_flights", "stalled flights", "%d"),
+        ("longest_stall_under_ha_s", "longest stall (HA) s", "%.2f"),
         ("recovery_height_loss_max_ft", "rec h loss max ft", "%.0f"), ("wind_max_mps", "wind max m/s", "%.1f")]
 
 

@@ -6,9 +6,10 @@
 - stuck: iced, holds one reading (value_ftps, default the reading at the fault).
 - high, low: reads scale x the truth + offset_ftps (high: default +40 ft/s, more than any wind
   the HA allows; low: default x0.7), a miscalibrated, leaking or partly blocked probe.
-For stuck, high and low the takeover falls due when the reading becomes one no wind the HA
-allows can explain (impossible_reading below), or, reading low, at or below the HA's stall
-switch speed (the HA must take over then, for the stall or for the sensor: either way the HA).
+For stuck, high and low the takeover falls due sensors.airspeed_timeout_s after the reading
+becomes one no wind the HA allows can explain (impossible_reading below: a lying sensor, held no
+longer than a failed read), or, reading low, at once at or below the HA's stall switch speed (the
+HA must take over then, for the stall or for the sensor: either way the HA).
 Took effect when the HA stepped on the failed reading.
 
 pitot_stuck and pitot_high are this fault with the mode fixed (their own classes, so campaigns
@@ -92,8 +93,11 @@ class PitotFailure(Fault):
         lim = self.ctx.limits
         why = impossible_reading(lim, tr, r, self.margin_ftps)
         if why is not None and impossible_reading(lim, tr, healthy_ftps, 0.0) is None:
-            self.due_s = t_s
-            self.note(t_s, "takeover due: %s (a healthy pitot: %.1f ft/s)" % (why, healthy_ftps))
+            # A lying reading is a failed read: the HA may hold the last good one as long as it
+            # holds one through an I2C glitch (sensors.airspeed_timeout_s), as for dead and zero.
+            self.due_s = t_s + float(lim["sensors"]["airspeed_timeout_s"])
+            self.note(t_s, "impossible reading, takeover due at %.2f s: %s (a healthy pitot: %.1f ft/s)" % (
+                self.due_s, why, healthy_ftps))
         elif not tr.on_ground and r <= self.switch_ftps < healthy_ftps:
             self.due_s = t_s
             self.note(t_s, "takeover due: reads %.1f ft/s, at or below the stall switch speed %.1f "

@@ -43,3 +43,13 @@ def test_a_recovery_costs_the_height_from_the_takeover_to_the_lowest_point_befor
     sinking = recs([(0.5 * i, c, 200 - 10 * i, 3.0) for i, c in enumerate([0, 1, 1, 3, 3])])
     assert verdicts.recovery_height_losses(sinking, 1.0) == []
     assert verdicts.recovery_height_losses(sinking, 0.0) == [(0.5, 30.0, False)]
+
+
+def test_the_longest_stall_under_the_ha_tells_a_gust_from_a_stall_held():
+    alphas = (8.85, -5.0)
+    spikes = recs([(0.01 * i, 1, 200.0, 9.5 if i in (3, 7) else 3.0) for i in range(20)])
+    held = recs([(0.01 * i, 2, 200.0, 12.0 if 5 <= i < 15 else 3.0) for i in range(20)])
+    under_hp = recs([(0.01 * i, 0, 200.0, 12.0) for i in range(20)])
+    assert round(verdicts.longest_stall_s(spikes, alphas, 0.01), 6) == 0.01
+    assert round(verdicts.longest_stall_s(held, alphas, 0.01), 6) == 0.1
+    assert verdicts.longest_stall_s(under_hp, alphas, 0.01) == 0.0
