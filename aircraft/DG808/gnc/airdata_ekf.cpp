@@ -185,16 +185,18 @@ void AirdataEkf::airborne_updates(const Eigen::Matrix3d &r_nb, const AirdataMeas
     return h;
   };
 
-  // Pitot as VT^2: smooth everywhere, including VT = 0. var(VT^2) = 4 VT^2 s^2 + 2 s^4.
+  // Airborne, a reading below the valid minimum is a pitot that dropped out (the wing cannot fly
+  // that slowly): no air data this step; the estimate coasts on the IMU and GPS.
+  if (m.airspeed_mps < config_.airspeed_valid_min_mps) {
+    return;
+  }
+  // Pitot as VT^2: smooth everywhere, no division by VT. var(VT^2) = 4 VT^2 s^2 + 2 s^4.
   {
     const Eigen::Vector3d va = x_.head<3>() - r_nb.transpose() * x_.tail<3>();
-    const double vt_m = m.airspeed_mps > 0.0 ? m.airspeed_mps : 0.0;
+    const double vt_m = m.airspeed_mps;
     const double s2 = kPitotSigmaMps * kPitotSigmaMps;
     scalar_update(to_state(2.0 * va), vt_m * vt_m - va.squaredNorm(),
                   4.0 * vt_m * vt_m * s2 + 2.0 * s2 * s2);
-  }
-  if (m.airspeed_mps < config_.airspeed_valid_min_mps) {
-    return;
   }
   // Lift and side force, written in alpha and beta themselves (CL = CL0 + CLa alpha + ...,
   // CY = CYb beta + ...): monotonic in the angles, so one air direction explains them, where the
@@ -284,8 +286,11 @@ AirdataEstimate AirdataEkf::estimate(const Eigen::Matrix3d &r_nb,
   AirdataEstimate e;
   const Eigen::Vector3d va = x_.head<3>() - r_nb.transpose() * x_.tail<3>();
   e.vt_mps = va.norm();
-  e.alpha_rad = std::atan2(va.z(), va.x());
-  e.beta_rad = std::atan2(va.y(), std::hypot(va.x(), va.z()));
+  // Air slower than the valid minimum has no direction worth a number: the guess stands in (parked
+  // in calm air atan2 of rounding noise read anything up to 180 deg).
+  const bool directed = e.vt_mps >= config_.airspeed_valid_min_mps;
+  e.alpha_rad = directed ? std::atan2(va.z(), va.x()) : alpha0_rad_;
+  e.beta_rad = directed ? std::atan2(va.y(), std::hypot(va.x(), va.z())) : beta0_rad_;
   e.wind_ned_mps = x_.tail<3>();
   e.consistent = wing_borne_ && consistent_;
   e.restarts = restarts_;
