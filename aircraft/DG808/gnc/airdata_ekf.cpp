@@ -35,6 +35,10 @@ constexpr double kGapTauS = 1.0;
 constexpr double kConsistentGapRad = 6.0 * kDegToRad;
 constexpr double kReinitGapRad = 15.0 * kDegToRad;
 constexpr double kDirectClampRad = 30.0 * kDegToRad;
+// Airborne, a pitot dropout this short keeps the claim: the estimate coasts on the IMU and GPS and
+// its 1-sigma still has to hold (the HiL's HA sends 0 for 1 to 6 periods while it lacks its own
+// state; dropping the claim for that made it restart a healthy HP).
+constexpr double kPitotHoldS = 0.5;
 
 Eigen::Matrix3d skew(const Eigen::Vector3d &v) {
   Eigen::Matrix3d s;
@@ -170,6 +174,7 @@ AirdataEstimate AirdataEkf::step(const AirdataMeasurement &m, double dt_s) {
     }
   }
   wing_borne_ = true;
+  pitot_age_s_ += dt_s;
   airborne_updates(r_nb, m);
   check_branch(r_nb, m, dt_s);
   p_ = 0.5 * (p_ + p_.transpose());
@@ -190,6 +195,7 @@ void AirdataEkf::airborne_updates(const Eigen::Matrix3d &r_nb, const AirdataMeas
   if (m.airspeed_mps < config_.airspeed_valid_min_mps) {
     return;
   }
+  pitot_age_s_ = 0.0;
   // Pitot as VT^2: smooth everywhere, no division by VT. var(VT^2) = 4 VT^2 s^2 + 2 s^4.
   {
     const Eigen::Vector3d va = x_.head<3>() - r_nb.transpose() * x_.tail<3>();
@@ -302,8 +308,9 @@ AirdataEstimate AirdataEkf::estimate(const Eigen::Matrix3d &r_nb,
   // directions, over |va|. Only defined once there is airflow to have a direction.
   const double sa = std::sin(e.alpha_rad), ca = std::cos(e.alpha_rad);
   const double sb = std::sin(e.beta_rad), cb = std::cos(e.beta_rad);
-  const bool flowing = e.vt_mps * cb >= config_.airspeed_valid_min_mps &&
-                       measured_airspeed_mps >= config_.airspeed_valid_min_mps;
+  const bool measured = measured_airspeed_mps >= config_.airspeed_valid_min_mps ||
+                        (wing_borne_ && pitot_age_s_ <= kPitotHoldS);
+  const bool flowing = e.vt_mps * cb >= config_.airspeed_valid_min_mps && measured;
   if (flowing) {
     const Eigen::Vector3d e_alpha(-sa, 0.0, ca);
     const Eigen::Vector3d e_beta(-ca * sb, cb, -sa * sb);
