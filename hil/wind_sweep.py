@@ -123,7 +123,7 @@ def write(args, rows):
         w.writeheader()
         for r in rows:
             w.writerow(r)
-    head = ["wind", "HP from (s after start)", "crash taken over", "HP back (s)", "waypoints",
+    head = ["wind", "HP from (s after the airborne start)", "crash taken over", "HP back at (s)", "waypoints",
             "verdict", "converged", "alpha err RMS / max (deg)", "beta err RMS / max (deg)"]
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for r in rows:

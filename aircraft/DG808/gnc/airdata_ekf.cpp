@@ -35,6 +35,10 @@ constexpr double kGapTauS = 1.0;
 constexpr double kConsistentGapRad = 6.0 * kDegToRad;
 constexpr double kReinitGapRad = 15.0 * kDegToRad;
 constexpr double kDirectClampRad = 30.0 * kDegToRad;
+// Airborne, a pitot dropout this short keeps the claim: the estimate coasts on the IMU and GPS and
+// its 1-sigma still has to hold (the HiL's HA sends 0 for 1 to 6 periods while it lacks its own
+// state; dropping the claim for that made it restart a healthy HP).
+constexpr double kPitotHoldS = 0.5;
 
 Eigen::Matrix3d skew(const Eigen::Vector3d &v) {
   Eigen::Matrix3d s;
@@ -170,6 +174,7 @@ AirdataEstimate AirdataEkf::step(const AirdataMeasurement &m, double dt_s) {
     }
   }
   wing_borne_ = true;
+  pitot_age_s_ += dt_s;
   airborne_updates(r_nb, m);
   check_branch(r_nb, m, dt_s);
   p_ = 0.5 * (p_ + p_.transpose());
@@ -185,16 +190,19 @@ void AirdataEkf::airborne_updates(const Eigen::Matrix3d &r_nb, const AirdataMeas
     return h;
   };
 
-  // Pitot as VT^2: smooth everywhere, including VT = 0. var(VT^2) = 4 VT^2 s^2 + 2 s^4.
+  // Airborne, a reading below the valid minimum is a pitot that dropped out (the wing cannot fly
+  // that slowly): no air data this step; the estimate coasts on the IMU and GPS.
+  if (m.airspeed_mps < config_.airspeed_valid_min_mps) {
+    return;
+  }
+  pitot_age_s_ = 0.0;
+  // Pitot as VT^2: smooth everywhere, no division by VT. var(VT^2) = 4 VT^2 s^2 + 2 s^4.
   {
     const Eigen::Vector3d va = x_.head<3>() - r_nb.transpose() * x_.tail<3>();
-    const double vt_m = m.airspeed_mps > 0.0 ? m.airspeed_mps : 0.0;
+    const double vt_m = m.airspeed_mps;
     const double s2 = kPitotSigmaMps * kPitotSigmaMps;
     scalar_update(to_state(2.0 * va), vt_m * vt_m - va.squaredNorm(),
                   4.0 * vt_m * vt_m * s2 + 2.0 * s2 * s2);
-  }
-  if (m.airspeed_mps < config_.airspeed_valid_min_mps) {
-    return;
   }
   // Lift and side force, written in alpha and beta themselves (CL = CL0 + CLa alpha + ...,
   // CY = CYb beta + ...): monotonic in the angles, so one air direction explains them, where the
@@ -284,8 +292,11 @@ AirdataEstimate AirdataEkf::estimate(const Eigen::Matrix3d &r_nb,
   AirdataEstimate e;
   const Eigen::Vector3d va = x_.head<3>() - r_nb.transpose() * x_.tail<3>();
   e.vt_mps = va.norm();
-  e.alpha_rad = std::atan2(va.z(), va.x());
-  e.beta_rad = std::atan2(va.y(), std::hypot(va.x(), va.z()));
+  // Air slower than the valid minimum has no direction worth a number: the guess stands in (parked
+  // in calm air atan2 of rounding noise read anything up to 180 deg).
+  const bool directed = e.vt_mps >= config_.airspeed_valid_min_mps;
+  e.alpha_rad = directed ? std::atan2(va.z(), va.x()) : alpha0_rad_;
+  e.beta_rad = directed ? std::atan2(va.y(), std::hypot(va.x(), va.z())) : beta0_rad_;
   e.wind_ned_mps = x_.tail<3>();
   e.consistent = wing_borne_ && consistent_;
   e.restarts = restarts_;
@@ -297,8 +308,9 @@ AirdataEstimate AirdataEkf::estimate(const Eigen::Matrix3d &r_nb,
   // directions, over |va|. Only defined once there is airflow to have a direction.
   const double sa = std::sin(e.alpha_rad), ca = std::cos(e.alpha_rad);
   const double sb = std::sin(e.beta_rad), cb = std::cos(e.beta_rad);
-  const bool flowing = e.vt_mps * cb >= config_.airspeed_valid_min_mps &&
-                       measured_airspeed_mps >= config_.airspeed_valid_min_mps;
+  const bool measured = measured_airspeed_mps >= config_.airspeed_valid_min_mps ||
+                        (wing_borne_ && pitot_age_s_ <= kPitotHoldS);
+  const bool flowing = e.vt_mps * cb >= config_.airspeed_valid_min_mps && measured;
   if (flowing) {
     const Eigen::Vector3d e_alpha(-sa, 0.0, ca);
     const Eigen::Vector3d e_beta(-ca * sb, cb, -sa * sb);

@@ -93,7 +93,8 @@ class AirdataEkf {
   bool was_on_ground_ = false;
   bool gap_valid_ = false;  // the low-passed gaps below hold a value
   double alpha_gap_rad_ = 0.0, beta_gap_rad_ = 0.0;
-  double gap_age_s_ = 0.0;  // how long the gaps have been low-passed since the last start
+  double gap_age_s_ = 0.0;    // how long the gaps have been low-passed since the last start
+  double pitot_age_s_ = 0.0;  // airborne: since the last pitot reading above the valid minimum
   bool consistent_ = false;
   int restarts_ = 0;
 };

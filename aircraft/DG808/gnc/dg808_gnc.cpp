@@ -154,16 +154,15 @@ bool params_valid(const DG808_GNC_Params &p) {
 // entered at or above the 1 g stall speed (below it the wing cannot carry the weight: the wheels
 // do) once above the airborne height (limits.yaml airborne_agl_ft, the HA's own alt0; without a
 // home, on the airspeed alone), so that a take-off roll past the stall speed is still on the
-// wheels. Left when low and below the stall speed again (landed, rolling out), or when the
-// airflow is too slow to have a direction. A slow moment in the air does not leave it.
+// wheels. With a home it is left only low and below the stall speed again (landed, rolling out):
+// a pitot reading zero at 200 ft is a dropout (the HA sends 0 while its own state is lost), not
+// a landing. Without a home, on the airspeed alone.
 bool wing_borne(bool was, double airspeed_ftps, bool home, double height_ft,
                 const DG808_GNC_Params &p) {
-  if (airspeed_ftps < p.airspeed_valid_min_ftps) {
-    return false;
-  }
   const bool low = home && height_ft <= p.airborne_agl_ft;
   if (was) {
-    return !(low && airspeed_ftps < p.stall_speed_ftps);
+    return home ? !(low && airspeed_ftps < p.stall_speed_ftps)
+                : airspeed_ftps >= p.airspeed_valid_min_ftps;
   }
   return !low && airspeed_ftps >= p.stall_speed_ftps;
 }

@@ -272,6 +272,66 @@ TEST(AirdataInWind, StartedOnAWrongBranchInFlightRecoversWithoutClaimingIt) {
   }
 }
 
+// The HA sends airspeed 0 while its own state is lost (HiL, 9 m/s from 45 deg: 1 to 6 periods
+// at a time, right at a hand-back). Level at 200 ft in the wind, converged, the pitot reads 0:
+// alpha and beta stay within kAccurateDeg of the truth all along (the HA judges them every
+// period, converged or not: an estimate thrown to 169 deg is an ALPHA_BETA takeover); a dropout
+// of 0.3 s keeps the claim (the IMU and GPS carry the estimate; dropping it had the HA restart a
+// healthy HP), one of 2 s loses it after kPitotHoldS; the claim is back within 1 s of the pitot.
+TEST(AirdataInWind, APitotReadingZeroForAMomentInFlightKeepsAlphaAndBetaOnTheTruth) {
+  constexpr double kPitotHoldS = 0.5;
+  for (const Wind &w : winds()) {
+    for (double dropout_len_s : {0.3, 2.0}) {
+      SCOPED_TRACE(name(w) + (dropout_len_s < 1.0 ? ", 0.3 s" : ", 2 s"));
+      Flight f({}, in_wind(w));
+      f.sim().set_trimmed_flight(f.params().gnc.vt_trim_ftps, 200.0, kStartHeadingDeg / kRadToDeg);
+      f.set_plan(kFarAheadFt, 1);
+      Judge j;
+      double unused = -1.0;
+      fly_gnc(f, j, 20.0, &unused, 0.0);
+      ASSERT_TRUE(f.out().estimator_converged);
+      const double dropout_s = f.t(), back_s = dropout_s + dropout_len_s;
+      double converged_again_s = -1.0, worst_alpha_deg = 0.0, worst_beta_deg = 0.0;
+      int lost_claim = 0, claim_past_hold = 0;
+      while (f.t() < back_s + 5.0) {
+        DG808_GNC_Input &in = f.in();
+        f.sim().sense(in);
+        const bool dropped = f.t() < back_s;
+        if (dropped) {
+          in.airspeed_ftps = 0.0;
+        }
+        DG808_GNC_Output out{};
+        DG808_GNC_step(&in, &out);
+        f.set_out(out);
+        const double into_s = f.t() - dropout_s;
+        f.sim().advance(out, f.dt());
+        f.advance_clock();
+        ASSERT_TRUE(all_finite(out)) << "t=" << f.t();
+        j.observe(f);
+        lost_claim += dropped && !out.estimator_converged ? 1 : 0;
+        claim_past_hold += dropped && into_s > kPitotHoldS + 0.1 && out.estimator_converged;
+        worst_alpha_deg = std::max(worst_alpha_deg,
+                                   std::fabs(out.alpha_est_rad - f.sim().alpha_rad()) * kRadToDeg);
+        worst_beta_deg =
+            std::max(worst_beta_deg, std::fabs(out.beta_est_rad - f.sim().beta_rad()) * kRadToDeg);
+        if (!dropped && converged_again_s < 0.0 && out.estimator_converged) {
+          converged_again_s = f.t();
+        }
+      }
+      EXPECT_LE(worst_alpha_deg, kAccurateDeg);
+      EXPECT_LE(worst_beta_deg, kAccurateDeg);
+      EXPECT_EQ(j.claims_while_wrong, 0) << j.first_wrong;
+      if (dropout_len_s < kPitotHoldS) {
+        EXPECT_EQ(lost_claim, 0) << "a short dropout lost the claim";
+      } else {
+        EXPECT_EQ(claim_past_hold, 0) << "claimed with no airspeed past the hold";
+      }
+      EXPECT_GE(converged_again_s, 0.0);
+      EXPECT_LE(converged_again_s - back_s, 1.0);
+    }
+  }
+}
+
 }  // namespace
 
 int main(int argc, char **argv) {
