@@ -134,6 +134,13 @@ TEST(HaProperties, ServosAlwaysFiniteInsideSuAndOutsideCommandsNeverReachThem) {
       in.north_ft = h.Maybe(p, h.Uniform(-1000.0f, 1000.0f));
       in.east_ft = h.Maybe(p, h.Uniform(-1000.0f, 1000.0f));
       in.groundspeed_ftps = h.Maybe(p, parked ? h.Uniform(0.0f, 1.0f) : h.Uniform(50.0f, 70.0f));
+      // The INS's velocity behind it, along the heading (still air: the pitot agrees within a
+      // wind), unless either is garbage.
+      const float track_rad = std::isfinite(in.heading_deg) ? in.heading_deg / 57.29578f : 0.0f;
+      in.vel_north_ftps = h.Maybe(p, in.groundspeed_ftps * std::cos(track_rad));
+      in.vel_east_ftps = h.Maybe(p, in.groundspeed_ftps * std::sin(track_rad));
+      in.climb_ftps = h.Maybe(p, h.Uniform(-2.0f, 2.0f));
+      in.altitude_msl_ft = h.Maybe(p, h.Uniform(0.0f, 8000.0f));
       in.on_ground = h.Chance(p) ? static_cast<uint8_t>(h.U32()) : (parked ? 1u : 0u);
       in.state_valid = h.Chance(p) ? static_cast<uint8_t>(h.U32()) : 1u;
       in.state_rx_us = h.Chance(p) ? h.U32() : now;

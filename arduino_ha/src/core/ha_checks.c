@@ -3,6 +3,8 @@
 #include "ha_num.h"
 #include "ha_region.h"
 
+#define HA_RAD_PER_DEG 0.017453293f
+
 static uint32_t flag(int failed, uint32_t reason) { return failed ? reason : 0u; }
 
 static int surfaces_finite(const HaHpCommand *c) {
@@ -72,12 +74,22 @@ static uint32_t check_ha_state(const HaStateView *s) {
               HA_REASON_NO_HA_STATE);
 }
 
-/* Airborne with a known airspeed at or below the stall switch speed: the pitot lags a stall by
- * several periods, so waiting for stall speed itself hands the HA a departed aircraft. */
+/* Airborne and stalling, by either sign. Slow: at or below the stall switch speed times
+ * sqrt(load factor), n = 1 / cos(bank) in a level turn, as IAS^2 cos(bank) <= V_switch^2 (squares:
+ * no root); the speed is the pitot's, or the INS's less the wind when the pitot is not believed.
+ * The pitot lags a stall by several periods, so waiting for stall speed itself hands the HA a
+ * departed aircraft. Or past the airframe's stall angle of attack (alpha_limit_deg, which the
+ * generator holds to airframe.yaml's), whatever the speed: pitch less flight path is
+ * alpha cos(bank). */
 static uint32_t check_stall(const HaAircraftConfig *cfg, const HaStateView *s) {
-  return flag(s->airborne && s->airspeed_ok &&
-                  !ha_greater(s->airspeed_ftps, cfg->stall_switch_airspeed_ftps),
-              HA_REASON_STALL);
+  const int slow = s->speed_ok && !ha_greater(s->ias_ftps * s->ias_ftps * s->cos_bank,
+                                              cfg->stall_switch_airspeed_sq);
+  /* pitch - alpha_limit cos(bank) >= gamma = climb / TAS (small-angle), times TAS: no division */
+  const int past_alpha =
+      s->alpha_ok &&
+      !ha_greater(s->climb_ftps, (s->x[HA_X_PITCH_DEG] - cfg->alpha_limit_deg * s->cos_bank) *
+                                     HA_RAD_PER_DEG * s->tas_ftps);
+  return flag(s->airborne && (slow || past_alpha), HA_REASON_STALL);
 }
 
 /* Within the switch margin of the ceiling: the INS's height error and the climb during the

@@ -151,6 +151,27 @@ typedef struct {
   float self_test_max_tilt_deg;
   float self_test_max_rate_deg_s;
   float self_test_max_groundspeed_ftps;
+
+  /* Air data (ha_airdata.c): the HA's own airspeed picture. The stall check compares squares:
+   * IAS^2 cos(bank) against this, the stall switch speed squared (derived). */
+  float stall_switch_airspeed_sq;
+  /* Once the wind is known, the pitot's true airspeed may differ this much from the INS's
+   * velocity less the wind (gusts, sideslip, what the estimate is still off); before, by up to
+   * max_wind_ftps from the speed over the ground. */
+  float airspeed_tolerance_ftps;
+  float max_wind_sq; /* max_wind_ftps^2 (derived): the wind estimate's bound */
+  /* The wind estimate follows at 1 / wind_time_constant_s: this fraction per period (derived). */
+  float wind_per_period;
+  /* Learnt from a believed pitot this long the wind is known (derived: 3 x wind_time_constant_s,
+   * 5% of the first error left); the pitot doubted wind_forget_us (1 x), it is unknown again. */
+  uint32_t wind_known_us;
+  uint32_t wind_forget_us;
+  /* The safety controller's circle in vectors (ha_safety_ctrl.c), derived: tan(correction) =
+   * this x (d^2 - R^2) (radial_gain_deg_per_ft in rad / 2R: the same near the circle), bounded by
+   * tan(radial_correction_max_deg); R^2. */
+  float sc_radial_tan_per_ft2;
+  float sc_radial_tan_max;
+  float sc_circle_radius_sq_ft2;
 } HaAircraftConfig;
 
 #ifdef __cplusplus

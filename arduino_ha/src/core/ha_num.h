@@ -78,6 +78,15 @@ static inline float ha_clampf_final(float v, float lo, float hi) {
   return lo > 0.0f ? lo : (hi < 0.0f ? hi : 0.0f); /* NaN */
 }
 
+/* Into [lo, hi] decided on the bits (integer compares), for a value already known finite and
+ * bounded, where only the verdict matters: static analysis does not narrow v through it. */
+static inline float ha_limitf(float v, float lo, float hi) {
+  if (ha_greater(lo, v)) {
+    return lo;
+  }
+  return ha_greater(v, hi) ? hi : v;
+}
+
 /* Microseconds from then to now on the wrapping 32-bit clock. */
 static inline uint32_t ha_elapsed_us(uint32_t now_us, uint32_t then_us) { return now_us - then_us; }
 

@@ -11,8 +11,8 @@
     .aircraft = "DG808", \
     .sx_rows = 15u, \
     .sx = { \
-      {0.0333333333f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f}, \
-      {-0.0333333333f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f}, \
+      {0.113636364f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f}, \
+      {-0.113636364f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f}, \
       {0.0f, 0.0333333333f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f}, \
       {0.0f, -0.0333333333f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f}, \
       {0.0f, 0.0f, 0.0166666667f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f}, \
@@ -47,7 +47,7 @@
     .throttle_max = 1.0f, \
     .surface_rate_limit_deg_per_s = 60.0f, \
     .throttle_rate_limit_per_s = 0.5f, \
-    .alpha_limit_deg = 30.0f, \
+    .alpha_limit_deg = 8.8f, \
     .beta_limit_deg = 30.0f, \
     .stall_speed_ftps = 42.0f, \
     .ceiling_agl_ft = 400.0f, \
@@ -93,6 +93,13 @@
     .self_test_max_tilt_deg = 15.0f, \
     .self_test_max_rate_deg_s = 3.0f, \
     .self_test_max_groundspeed_ftps = 2.0f, \
+    .stall_switch_airspeed_sq = 2134.44f, \
+    .sc_radial_tan_per_ft2 = 6.54498469e-06f, \
+    .sc_radial_tan_max = 1.73205081f, \
+    .sc_circle_radius_sq_ft2 = 160000.0f, \
+    .airspeed_tolerance_ftps = 15.0f, \
+    .max_wind_sq = 900.0f, \
+    .wind_per_period = 0.0005f, \
     .landed_confirm_us = 3000000u, \
     .state_timeout_us = 100000u, \
     .airspeed_timeout_us = 50000u, \
@@ -111,6 +118,8 @@
     .pic_threshold_us = 1500u, \
     .manual_handover_us = 2000000u, \
     .self_test_step_us = 1000000u, \
+    .wind_known_us = 60000000u, \
+    .wind_forget_us = 20000000u, \
   }
 
 #endif /* HA_GENERATED_AIRCRAFT_CONFIG_H */
