@@ -18,15 +18,16 @@
 void ha_airdata_init(HaAirdata *a);
 
 /* Once per period, before the pitot's reading is used: returns 0 when the INS (fresh, its
- * velocity plausible) disagrees with the reading ias_ftps (read: the reading is inside
- * [0, max_airspeed_ftps]; ias_ftps is it clamped there), 1 otherwise. Learns the wind from a believed
- * reading above stall speed, and forgets that it knows it once the pitot has been doubted for
- * wind_known_us. */
+ * velocity plausible) disagrees with the reading (read: inside [0, max_airspeed_ftps]; ias_ftps
+ * is it clamped there), 1 otherwise. Also keeps the heading's unit vector, the INS's velocity and
+ * the density for the period; learns the wind from a believed reading above stall speed, and
+ * forgets that it knows it once the pitot has been doubted for wind_forget_us. */
 int ha_airdata_track(HaAirdata *a, const HaAircraftConfig *cfg, const HaInputs *in, int ins_fresh,
                      int read, float ias_ftps, uint32_t dt_us);
 
-/* The picture into the view, after ha_state_view: the believed pitot if there is one, else the
- * INS less the wind; the angle of attack and the bank's cosine. */
+/* The picture into the view, after ha_state_view: the speed from the believed pitot if there is
+ * one, else from the INS less the wind (once known); what the angle of attack needs (the INS's
+ * climb, alpha_ok); the bank's cosine; the heading's unit vector. */
 void ha_airdata_view(const HaAirdata *a, const HaAircraftConfig *cfg, HaStateView *v);
 
 #endif /* HA_AIRDATA_H */

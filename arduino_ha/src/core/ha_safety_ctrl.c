@@ -72,8 +72,9 @@ static float bank_command_deg(const HaAircraftConfig *cfg, const HaStateView *s)
 /* Outer longitudinal loop: the altitude band, but slow beats low. The nose may rise only as far
  * as the airspeed above stall x stall_margin pays for (speed_to_pitch_gain per ft/s); below that
  * speed the allowance is negative, so the nose goes down at every altitude, however low. The
- * altitude term can always lower the nose (above the band). Without a known airspeed the
- * altitude term alone decides (and the check reports the HA lacking state). */
+ * altitude term can always lower the nose (above the band). The speed is the pitot's, or the
+ * INS's when the pitot is doubted or dead (ha_airdata.c); with neither, the altitude term alone
+ * decides (and the check reports the HA lacking state). */
 static float pitch_command_deg(const HaAircraftConfig *cfg, const HaStateView *s) {
   const float floor_ftps = cfg->stall_speed_ftps * cfg->sc_stall_margin;
   const float mid_ft = 0.5f * (cfg->sc_alt_min_ft + cfg->sc_alt_max_ft);
