@@ -91,8 +91,8 @@ uint32_t ha_bench_timeline_next(HaBenchTimeline *t, HaInputs *in) {
     const float climb_ftps = uniform(t, -4.0f, 4.0f);
     in->vel_north_ftps = in->airspeed_ftps * cosf(heading_rad) - 7.07f;
     in->vel_east_ftps = in->airspeed_ftps * sinf(heading_rad) + 7.07f;
-    in->groundspeed_ftps = sqrtf(in->vel_north_ftps * in->vel_north_ftps +
-                                 in->vel_east_ftps * in->vel_east_ftps);
+    in->groundspeed_ftps =
+        sqrtf(in->vel_north_ftps * in->vel_north_ftps + in->vel_east_ftps * in->vel_east_ftps);
     in->climb_ftps = climb_ftps;
     in->pitch_deg = climb_ftps / in->airspeed_ftps * 57.29578f + uniform(t, 0.0f, 5.0f);
     in->altitude_msl_ft = 600.0f + in->altitude_agl_ft + uniform(t, -200.0f, 200.0f);
