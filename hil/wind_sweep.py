@@ -156,11 +156,11 @@ def main(argv=None):
     ap.add_argument("--timeout-s", type=float, default=1800.0, help="wall-clock limit per flight")
     args = ap.parse_args(argv)
     os.makedirs(os.path.join(args.out, "flights"), exist_ok=True)
-    todo = winds([float(v) for v in args.speeds.split(",") if v], [float(d) for d in args.directions.split(",") if d],
+    planned = winds([float(v) for v in args.speeds.split(",") if v], [float(d) for d in args.directions.split(",") if d],
                  args.turbulence_mps, not args.no_calm)
     rows = []
     with ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
-        for row in pool.map(lambda w: fly(args, w), todo):
+        for row in pool.map(lambda w: fly(args, w), planned):
             rows.append(row)
             print("%-40s HP after %s s, back %s s, %s of %s waypoints, %s" % (
                 row["wind"], fmt(row.get("hp_after_start_s")), fmt(row.get("hp_back_s")),
