@@ -6,14 +6,11 @@ A stall judged by airspeed alone never sees it: on 0da675b the wing stalled with
 class's takeover due: the truth's alpha past the airframe's stall while the HP flies), so the
 wing never stalls, whoever flies."""
 import pytest
-from flight import assert_property, fly
+from flight import AIRDATA_NOT_LANDED, assert_property, fly
 
 
 @pytest.mark.xfail(strict=True, reason=(
-    "issue 22 F1 open: the stall is judged by airspeed alone; the fix (the HA's "
-    "airspeed picture, ha_airdata.c) is on branch ha-airdata, not landed: its alpha "
-    "row at the airframe's 8.8 deg kept the restarted HP out in moderate turbulence "
-    "and its stall-by-load-factor changed the bank story's reason"))
+    "issue 22 F1 open: the stall is judged by airspeed alone; " + AIRDATA_NOT_LANDED))
 def test_an_hp_pulling_into_an_accelerated_stall_in_a_banked_turn_is_taken_over_before_the_wing_stalls():
     s = fly("accelerated_stall", at_s=12.0, duration_s=-1.0, flight_s=30.0)
     v = s["verdict"]

@@ -6,14 +6,11 @@ learns the wind may see it sooner, and then no due comes). On 0da675b the lying 
 one-sided: seed 11 had the due at 14.08 s, the HP kept the servos, the wing stalled and the
 aircraft hit the ground."""
 import pytest
-from flight import assert_property, fly
+from flight import AIRDATA_NOT_LANDED, assert_property, fly
 
 
 @pytest.mark.xfail(strict=True, reason=(
-    "issue 22 F3 open: the stuck pitot is never rejected and the wing stalls 9 s; the "
-    "fix (the HA's airspeed picture, ha_airdata.c) is on branch ha-airdata, not "
-    "landed: its alpha row at the airframe's 8.8 deg kept the restarted HP out in "
-    "moderate turbulence and its stall-by-load-factor changed the bank story's reason"))
+    "issue 22 F3 open: the stuck pitot is never rejected and the wing stalls 9 s; " + AIRDATA_NOT_LANDED))
 def test_a_pitot_iced_at_85_ftps_in_still_air_is_rejected_before_the_hp_slows_into_the_stall():
     s = fly("pitot_stuck", at_s=12.0, duration_s=-1.0, params=["value_ftps=85"], flight_s=35.0)
     assert_property(s, takeover_due=None)

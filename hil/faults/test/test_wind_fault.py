@@ -5,7 +5,7 @@ for the stall at its switch speed and recover without the wing stalling (the ver
 stalled_under_ha_s) and without a deep dive. (Named test_wind_fault.py: hil/test/test_wind.py
 is the whole stack's wind test.)"""
 import pytest
-from flight import assert_property, fly
+from flight import AIRDATA_NOT_LANDED, assert_property, fly
 
 
 def test_a_tailwind_gust_front_is_taken_over_for_the_stall_and_recovered_with_the_wing_flying():
@@ -21,10 +21,7 @@ def test_a_tailwind_gust_front_is_taken_over_for_the_stall_and_recovered_with_th
 
 
 @pytest.mark.xfail(strict=True, reason=(
-    "issue 22 F8 open: indicated airspeed is compared with groundspeed; the fix (the "
-    "HA's airspeed picture, ha_airdata.c) is on branch ha-airdata, not landed: its "
-    "alpha row at the airframe's 8.8 deg kept the restarted HP out in moderate "
-    "turbulence and its stall-by-load-factor changed the bank story's reason"))
+    "issue 22 F8 open: indicated airspeed is compared with groundspeed; " + AIRDATA_NOT_LANDED))
 def test_a_healthy_pitot_downwind_at_a_6500_ft_field_keeps_the_hp():
     """Issue 22 F8: at 6,500 ft the pitot reads 0.9 of the true airspeed, so with 28 ft/s from
     behind (8.5 m/s, built up over 10 s) it reads some 60 ft/s while the groundspeed is 94. A rule
