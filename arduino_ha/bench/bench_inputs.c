@@ -1,5 +1,6 @@
 #include "bench_inputs.h"
 
+#include <math.h>
 #include <string.h>
 
 /* Timeline segments, in periods. Long enough that recovery (the stable window) completes. */
@@ -82,6 +83,20 @@ uint32_t ha_bench_timeline_next(HaBenchTimeline *t, HaInputs *in) {
   in->north_ft = uniform(t, -3000.0f, 3000.0f);
   in->east_ft = uniform(t, -3000.0f, 3000.0f);
   in->groundspeed_ftps = uniform(t, cfg->stall_speed_ftps, cfg->stall_speed_ftps * 2.0f);
+  {
+    /* The INS's velocity: the airspeed along the heading plus a steady 10 ft/s wind from the
+     * north-west, a climb or sink of a few ft/s at an angle of attack of 0 to 5 deg, and a height
+     * above sea level that wanders by more than the density's recompute step. */
+    const float heading_rad = in->heading_deg * 0.017453293f;
+    const float climb_ftps = uniform(t, -4.0f, 4.0f);
+    in->vel_north_ftps = in->airspeed_ftps * cosf(heading_rad) - 7.07f;
+    in->vel_east_ftps = in->airspeed_ftps * sinf(heading_rad) + 7.07f;
+    in->groundspeed_ftps =
+        sqrtf(in->vel_north_ftps * in->vel_north_ftps + in->vel_east_ftps * in->vel_east_ftps);
+    in->climb_ftps = climb_ftps;
+    in->pitch_deg = climb_ftps / in->airspeed_ftps * 57.29578f + uniform(t, 0.0f, 5.0f);
+    in->altitude_msl_ft = 600.0f + in->altitude_agl_ft + uniform(t, -200.0f, 200.0f);
+  }
   in->on_ground = 0u;
   in->state_valid = 1u;
   in->state_rx_us = t->now_us - jitter_us;
@@ -101,7 +116,7 @@ uint32_t ha_bench_timeline_next(HaBenchTimeline *t, HaInputs *in) {
   cmd.elevator_deg = uniform(t, -cfg->elevator_limit_deg, cfg->elevator_limit_deg) * 0.9f;
   cmd.aileron_deg = uniform(t, -cfg->aileron_limit_deg, cfg->aileron_limit_deg) * 0.9f;
   cmd.rudder_deg = uniform(t, -cfg->rudder_limit_deg, cfg->rudder_limit_deg) * 0.9f;
-  cmd.alpha_est_deg = uniform(t, -5.0f, 10.0f);
+  cmd.alpha_est_deg = uniform(t, -2.0f, 6.0f); /* inside the stall alpha of limits.yaml */
   cmd.beta_est_deg = uniform(t, -5.0f, 5.0f);
   cmd.estimator_converged = 1u;
   cmd.sensor_links_healthy = 1u;

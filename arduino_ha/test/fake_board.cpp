@@ -11,7 +11,14 @@ void write_servos(void* ctx, const HaSurfaces* s) { self(ctx)->servo_writes.push
 void read_rc(void* ctx, HaRcInputs* rc) { *rc = self(ctx)->rc; }
 
 int read_airspeed(void* ctx, float* v) {
-  *v = self(ctx)->airspeed_ftps;
+  FakeBoard* b = self(ctx);
+  // A live AMS5812's noise moves its last bits every read (the HA calls a reading repeated to
+  // the bit for pitot_stuck_s a stuck sensor): a tiny deterministic dither, unless a story
+  // freezes the sensor.
+  b->airspeed_reads++;
+  *v = b->airspeed_ftps + (b->pitot_noise && b->airspeed_ftps > 0.0f
+                               ? 0.001f * static_cast<float>(b->airspeed_reads % 3u)
+                               : 0.0f);
   return self(ctx)->airspeed_ok ? 1 : 0;
 }
 

@@ -22,6 +22,8 @@ struct FakeBoard {
   HaRcInputs rc{};
   float airspeed_ftps = 0.0f;
   bool airspeed_ok = true;
+  bool pitot_noise = true;  // false: the reading repeats to the bit (a stuck sensor)
+  uint32_t airspeed_reads = 0;
   float battery_v = 12.6f;
   bool battery_ok = true;
   std::vector<HaSurfaces> servo_writes;

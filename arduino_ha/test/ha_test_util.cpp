@@ -52,6 +52,10 @@ void Timeline::Cruise(float altitude_agl_ft, float airspeed_ftps) {
   in.north_ft = cfg.sc_circle_radius_ft;
   in.east_ft = 0.0f;
   in.groundspeed_ftps = airspeed_ftps;
+  in.vel_north_ftps = 0.0f;  // heading 90: east, in still air
+  in.vel_east_ftps = airspeed_ftps;
+  in.climb_ftps = 0.0f;
+  in.altitude_msl_ft = altitude_agl_ft;  // a field at sea level
   in.on_ground = 0;
   in.state_valid = 1;
   in.state_rx_us = board.now_us;
@@ -139,7 +143,13 @@ void PointMassAircraft::WriteTo(HaInputs* in, uint32_t now_us) const {
   in->altitude_agl_ft = altitude_ft;
   in->north_ft = north_ft;
   in->east_ft = east_ft;
-  in->groundspeed_ftps = airspeed_ftps;
+  // Still air: the velocity over the ground is the airspeed along the heading and flight path.
+  const float gamma = (pitch_deg - kAlphaTrimDeg) / kDegPerRad;
+  in->groundspeed_ftps = airspeed_ftps * std::cos(gamma);
+  in->vel_north_ftps = in->groundspeed_ftps * std::cos(heading_deg / kDegPerRad);
+  in->vel_east_ftps = in->groundspeed_ftps * std::sin(heading_deg / kDegPerRad);
+  in->climb_ftps = airspeed_ftps * std::sin(gamma);
+  in->altitude_msl_ft = altitude_ft;
   in->on_ground = 0;
   in->state_valid = 1;
   in->state_rx_us = now_us;

@@ -87,11 +87,16 @@ TEST(HaBumpless, HaTakeoverStartsFromAppliedSurfaces) {
   ASSERT_EQ(t.controller(), HA_CONTROLLER_HA);
   const HaSurfaces after = t.servos();
   const float dt = t.cfg.period_us * 1e-6f;
-  // Integrators tracked the applied surfaces: the HA continues from there.
+  // Integrators tracked the applied surfaces: the HA continues from there ...
   EXPECT_LE(std::fabs(after.aileron_deg - before.aileron_deg),
             t.cfg.surface_rate_limit_deg_per_s * dt * 1.001f);
-  EXPECT_LE(std::fabs(after.elevator_deg - before.elevator_deg),
+  // ... but the HP's pull (elevator -4) is eased towards neutral at the release rate: a wing the
+  // pull may be stalling is not held at it for the bumpless slew; never past neutral.
+  EXPECT_GT(after.elevator_deg - before.elevator_deg,
             t.cfg.surface_rate_limit_deg_per_s * dt * 1.001f);
+  EXPECT_LE(after.elevator_deg - before.elevator_deg,
+            t.cfg.surface_release_rate_deg_per_s * dt * 1.001f);
+  EXPECT_LE(after.elevator_deg, 0.0f);
   EXPECT_LE(std::fabs(after.throttle - before.throttle),
             t.cfg.throttle_rate_limit_per_s * dt * 1.001f);
 }

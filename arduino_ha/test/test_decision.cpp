@@ -893,6 +893,8 @@ TEST(HaDecision, AirspeedHoveringAtStallDoesNotCycleHpAndHa) {
   for (int i = 0; i < 100 * 120; ++i) {
     // 3 s just below stall, 3 s just above it, for two minutes.
     t.board.airspeed_ftps = t.cfg.stall_speed_ftps + ((i / 300) % 2 == 0 ? -1.0f : 1.0f);
+    t.app.inputs.vel_east_ftps = t.app.inputs.groundspeed_ftps =
+        t.board.airspeed_ftps;  // still air
     t.StepWithGood();
     if (t.controller() == HA_CONTROLLER_HP && before != HA_CONTROLLER_HP) ++handbacks;
     before = t.controller();
@@ -902,6 +904,7 @@ TEST(HaDecision, AirspeedHoveringAtStallDoesNotCycleHpAndHa) {
   EXPECT_EQ(t.out().restart_count, 1u);
   // With the margin regained the HP gets control back.
   t.board.airspeed_ftps = 60.0f;
+  t.app.inputs.vel_east_ftps = t.app.inputs.groundspeed_ftps = t.board.airspeed_ftps;
   EXPECT_GT(t.ReachHp(), 0);
 }
 

@@ -88,7 +88,12 @@ bool WithinRateLimit(const HaAircraftConfig& cfg, const HaSurfaces& before, cons
   const double dt_s = dt_us * 1e-6;
   const double surface_step = cfg.surface_rate_limit_deg_per_s * dt_s + 1e-4;
   const double throttle_step = cfg.throttle_rate_limit_per_s * dt_s + 1e-6;
-  return std::fabs(double{after.elevator_deg} - before.elevator_deg) <= surface_step &&
+  // A pull (elevator negative) may be eased towards neutral at the release rate, not past it.
+  const double released =
+      std::min(0.0, before.elevator_deg + cfg.surface_release_rate_deg_per_s * dt_s + 1e-4);
+  const double elevator_up_to = std::max(double{before.elevator_deg} + surface_step, released);
+  return double{after.elevator_deg} <= elevator_up_to &&
+         double{after.elevator_deg} >= before.elevator_deg - surface_step &&
          std::fabs(double{after.aileron_deg} - before.aileron_deg) <= surface_step &&
          std::fabs(double{after.rudder_deg} - before.rudder_deg) <= surface_step &&
          std::fabs(double{after.throttle} - before.throttle) <= throttle_step;
@@ -134,6 +139,13 @@ TEST(HaProperties, ServosAlwaysFiniteInsideSuAndOutsideCommandsNeverReachThem) {
       in.north_ft = h.Maybe(p, h.Uniform(-1000.0f, 1000.0f));
       in.east_ft = h.Maybe(p, h.Uniform(-1000.0f, 1000.0f));
       in.groundspeed_ftps = h.Maybe(p, parked ? h.Uniform(0.0f, 1.0f) : h.Uniform(50.0f, 70.0f));
+      // The INS's velocity behind it, along the heading (still air: the pitot agrees within a
+      // wind), unless either is garbage.
+      const float track_rad = std::isfinite(in.heading_deg) ? in.heading_deg / 57.29578f : 0.0f;
+      in.vel_north_ftps = h.Maybe(p, in.groundspeed_ftps * std::cos(track_rad));
+      in.vel_east_ftps = h.Maybe(p, in.groundspeed_ftps * std::sin(track_rad));
+      in.climb_ftps = h.Maybe(p, h.Uniform(-2.0f, 2.0f));
+      in.altitude_msl_ft = h.Maybe(p, h.Uniform(0.0f, 8000.0f));
       in.on_ground = h.Chance(p) ? static_cast<uint8_t>(h.U32()) : (parked ? 1u : 0u);
       in.state_valid = h.Chance(p) ? static_cast<uint8_t>(h.U32()) : 1u;
       in.state_rx_us = h.Chance(p) ? h.U32() : now;

@@ -112,7 +112,58 @@ def symmetric_rows(dim, index, limit, key):
     return [up, down]
 
 
-def build(doc):
+FT_PER_M = 1.0 / 0.3048
+# What the airframe's stall speed in limits.yaml may differ from the one airframe.yaml implies:
+# the rounding of a figure quoted in ft/s, not a second opinion.
+STALL_SPEED_AGREEMENT = 0.02
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+
+
+def airframe_path(limits_path, aircraft):
+    """airframe.yaml beside limits.yaml, else the aircraft's own in aircraft/<name>/."""
+    beside = os.path.join(os.path.dirname(os.path.abspath(limits_path)), "airframe.yaml")
+    if os.path.exists(beside):
+        return beside
+    return os.path.join(ROOT, "aircraft", str(aircraft), "airframe.yaml")
+
+
+def airframe_stall(airframe):
+    """The 1 g stall speed (ft/s, at max take-off mass, the airframe's density) and the stall
+    angle of attack (deg: lift linear in alpha up to cl_max) of airframe.yaml."""
+    try:
+        aero = airframe["aero"]
+        mass = float(airframe["mass_kg"])
+        g = float(airframe["gravity_m_s2"])
+        rho = float(airframe["air_density_kg_m3"])
+        area = float(airframe["geometry"]["wing_area_m2"])
+        cl_max, cl0 = float(aero["cl_max"]), float(aero["cl0"])
+        cl_alpha = float(aero["cl_alpha_per_rad"])
+    except (KeyError, TypeError, ValueError) as err:
+        raise ConfigError("airframe.yaml: cannot read the stall from it (%s)" % err)
+    if min(mass, g, rho, area, cl_max, cl_alpha) <= 0.0 or cl_max <= cl0:
+        raise ConfigError("airframe.yaml: mass, gravity, density, wing area, cl_max and cl_alpha "
+                          "must be > 0 and cl_max above cl0")
+    stall_ftps = math.sqrt(2.0 * mass * g / (rho * area * cl_max)) * FT_PER_M
+    alpha_deg = math.degrees((cl_max - cl0) / cl_alpha)
+    return stall_ftps, alpha_deg
+
+
+def check_against_airframe(c, airframe):
+    """One source for the stall: limits.yaml's stall speed and stall alpha must be airframe.yaml's.
+    The HA judges the stall by both (ha_checks.c), so an alpha limit past the wing's stall or a
+    stall speed below the wing's would let a stalled aircraft pass."""
+    stall_ftps, alpha_deg = airframe_stall(airframe)
+    if abs(c["stall_speed_ftps"] - stall_ftps) > STALL_SPEED_AGREEMENT * stall_ftps:
+        raise ConfigError("stall_speed_ftps = %g contradicts airframe.yaml, whose mass, wing area "
+                          "and cl_max stall at %.1f ft/s (more than %g%% apart)"
+                          % (c["stall_speed_ftps"], stall_ftps, 100 * STALL_SPEED_AGREEMENT))
+    if c["stall_alpha_deg"] > alpha_deg:
+        raise ConfigError("stall_alpha_deg = %g is beyond airframe.yaml's stall angle of attack "
+                          "%.2f deg ((cl_max - cl0) / cl_alpha): a stalled wing would pass"
+                          % (c["stall_alpha_deg"], alpha_deg))
+
+
+def build(doc, airframe=None):
     act = doc["actuators"]
     st = doc["state"]
     dec = doc["decision"]
@@ -133,8 +184,15 @@ def build(doc):
         raise ConfigError("throttle_max must exceed throttle_min")
     c["surface_rate_limit_deg_per_s"] = positive(act, "surface_rate_limit_deg_per_s")
     c["throttle_rate_limit_per_s"] = positive(act, "throttle_rate_limit_per_s")
+    c["surface_release_rate_deg_per_s"] = need(act, "surface_release_rate_deg_per_s",
+                                               c["surface_rate_limit_deg_per_s"], 600.0)
 
     c["alpha_limit_deg"] = ranged(doc, "state/alpha_limit_deg")
+    c["stall_alpha_deg"] = ranged(doc, "state/stall_alpha_deg")
+    if c["stall_alpha_deg"] > c["alpha_limit_deg"]:
+        raise ConfigError("stall_alpha_deg = %g is beyond alpha_limit_deg %g: the HP's estimate "
+                          "would be refused before the wing could stall"
+                          % (c["stall_alpha_deg"], c["alpha_limit_deg"]))
     c["beta_limit_deg"] = ranged(doc, "state/beta_limit_deg")
     roll = ranged(doc, "state/roll_limit_deg")
     pitch = ranged(doc, "state/pitch_limit_deg")
@@ -159,6 +217,8 @@ def build(doc):
     c["max_wind_ftps"] = need(sen, "max_wind_ftps", 1.0, c["stall_speed_ftps"])
     c["state_timeout_us"] = us(positive(sen, "state_timeout_s"), "state_timeout_s")
     c["airspeed_timeout_us"] = us(positive(sen, "airspeed_timeout_s"), "airspeed_timeout_s")
+    if airframe is not None:
+        check_against_airframe(c, airframe)
 
     # S_x (x - x0) <= 1: symmetric boxes on the angles and rates, and the ceiling on altitude
     # (the HA needs no lower altitude bound here: the stall and airborne checks cover it).
@@ -260,6 +320,12 @@ def build(doc):
     c["sc_pitch_cmd_limit_deg"] = need(sc, "pitch_cmd_limit_deg", 1.0,
                                        pitch * c["inner_region_fraction"])
     c["sc_stall_margin"] = need(sc, "stall_margin", 1.05, 3.0)
+    c["sc_pitch_error_max_deg"] = need(sc, "pitch_error_max_deg", 1.0, 45.0)
+    # The pitch loop's lift guard (ha_safety_ctrl.c): past lift_margin of the wing's maximum lift
+    # coefficient, n > margin (IAS / V_stall)^2, the nose is pushed down lift_push_deg_per_g.
+    c["sc_lift_margin_per_ias_sq"] = (need(sc, "lift_margin", 0.3, 0.9)
+                                      / c["stall_speed_ftps"] ** 2)
+    c["sc_lift_push_deg_per_g"] = need(sc, "lift_push_deg_per_g", 0.0, 100.0)
     # The throttle loop's target must lie above the pitch loop's floor, or the aircraft could
     # never climb at it (the nose may rise only with speed above stall x stall_margin).
     c["sc_cruise_margin"] = need(sc, "cruise_margin", c["sc_stall_margin"], 3.0)
@@ -279,6 +345,13 @@ def build(doc):
         raise ConfigError("stall_switch_multiple must lie below handback_stall_multiple: the HA "
                           "would hand back at a speed it switches at")
     c["stall_switch_airspeed_ftps"] = c["stall_speed_ftps"] * stall_switch
+    # A held pitot reading must not hide the aircraft decelerating through the stall inset: at
+    # 1 g it takes (switch speed - stall speed) / g to lose it.
+    inset_s = (c["stall_switch_airspeed_ftps"] - c["stall_speed_ftps"]) / STANDARD_GRAVITY_FTPS2
+    if c["airspeed_timeout_us"] > inset_s * 1e6:
+        raise ConfigError("airspeed_timeout_s = %g s is longer than the %.3f s a 1 g deceleration "
+                          "takes from the stall switch speed to stall: a held reading would hide "
+                          "the stall" % (c["airspeed_timeout_us"] * 1e-6, inset_s))
     # Steady coordinated turn: tan(bank) = V^2 / (g R). Derived here once, not per period.
     c["sc_circle_bank_ff_deg"] = math.degrees(
         math.atan(target_ftps * target_ftps / (STANDARD_GRAVITY_FTPS2 * c["sc_circle_radius_ft"])))
@@ -302,10 +375,52 @@ def build(doc):
     c["self_test_max_rate_deg_s"] = need(selft, "max_rate_deg_s", 0.0, 30.0)
     c["self_test_max_groundspeed_ftps"] = need(selft, "max_groundspeed_ftps", 0.0,
                                                c["stall_speed_ftps"])
+    build_airdata(c, doc)
     for key, value in c.items():
         if isinstance(value, float):
             fits_f32(key, value, "derived value")
     return c
+
+
+def build_airdata(c, doc):
+    """The HA's airspeed picture (ha_airdata.c) and the bounds on the sensors' timeouts."""
+    sen = doc["sensors"]
+    c["stall_switch_airspeed_sq"] = c["stall_switch_airspeed_ftps"] ** 2
+    c["handback_airspeed_sq"] = c["handback_airspeed_ftps"] ** 2
+    # The circle's guidance in vectors, no atan2f/sqrtf per period (ha_safety_ctrl.c).
+    radius = c["sc_circle_radius_ft"]
+    if c["sc_radial_correction_max_deg"] >= 85.0:
+        raise ConfigError("radial_correction_max_deg must be below 85: the course would turn "
+                          "straight at home")
+    c["sc_radial_tan_per_ft2"] = math.radians(c["sc_radial_gain_deg_per_ft"]) / (2.0 * radius)
+    c["sc_radial_tan_max"] = math.tan(math.radians(c["sc_radial_correction_max_deg"]))
+    c["sc_circle_radius_sq_ft2"] = radius * radius
+    # Above the gusts and sideslip of ordinary flight, below the wind bound (past it the known
+    # wind would excuse more than an unknown one).
+    c["airspeed_tolerance_ftps"] = need(sen, "airspeed_tolerance_ftps", 1.0, c["max_wind_ftps"])
+    c["max_wind_sq"] = c["max_wind_ftps"] ** 2
+    tau_s = need(sen, "wind_time_constant_s", 1.0, 600.0)
+    c["wind_per_period"] = c["period_us"] * 1e-6 / tau_s
+    c["wind_known_us"] = us(3.0 * tau_s, "wind_time_constant_s")
+    c["wind_forget_us"] = us(tau_s, "wind_time_constant_s")
+    # Long enough that a live sensor's noise cannot repeat a reading (100 reads at 100 Hz), short
+    # enough that the HA has the servos before an HP flying on a stuck reading slows to the stall.
+    c["pitot_stuck_us"] = us(need(sen, "pitot_stuck_s", 10.0 * c["period_us"] * 1e-6, 5.0),
+                             "pitot_stuck_s")
+    # A sensor trusted past what the rules can wait for is a dead sensor believed: every timeout
+    # must run out before the HP could prove a stable window on the stale value, and before a
+    # landing could be confirmed on it; and within the wrapping 32-bit clock.
+    for key in ("state_timeout_us", "airspeed_timeout_us"):
+        for bound in ("stable_window_us", "landed_confirm_us"):
+            if c[key] >= c[bound]:
+                raise ConfigError("%s_s = %g s must be shorter than %s_s (%g s): a dead sensor "
+                                  "would be trusted for as long as that rule waits"
+                                  % (key[:-3], c[key] * 1e-6, bound[:-3], c[bound] * 1e-6))
+    for key in ("state_timeout_us", "airspeed_timeout_us", "landed_confirm_us", "wind_known_us",
+                "wind_forget_us", "pitot_stuck_us",
+                "hp_reset_pulse_us", "self_test_step_us"):
+        if c[key] >= 2 ** 31:
+            raise ConfigError("%s_s too long for a 32-bit microsecond clock" % key[:-3])
 
 
 def f32(value):
@@ -359,7 +474,13 @@ def main(argv):
     # Name the source by aircraft, not by absolute path, so every checkout generates the same bytes.
     source = "aircraft/%s/limits.yaml" % doc.get("aircraft", "?")
     try:
-        text = render(build(doc), source)
+        path = airframe_path(argv[1], doc.get("aircraft", "?"))
+        if not os.path.exists(path):
+            raise ConfigError("no airframe.yaml for aircraft %s (looked for %s): the stall speed "
+                              "and alpha limit cannot be checked" % (doc.get("aircraft", "?"), path))
+        with open(path) as f:
+            airframe = yaml.safe_load(f)
+        text = render(build(doc, airframe), source)
     except (ConfigError, KeyError, TypeError) as err:
         sys.stderr.write("gen_aircraft_config: %s: %s\n" % (argv[1], err))
         return 1

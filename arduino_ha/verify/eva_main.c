@@ -88,6 +88,10 @@ static void any_link_inputs(HaInputs *in) {
   in->north_ft = any_float();
   in->east_ft = any_float();
   in->groundspeed_ftps = any_float();
+  in->vel_north_ftps = any_float();
+  in->vel_east_ftps = any_float();
+  in->climb_ftps = any_float();
+  in->altitude_msl_ft = any_float();
   in->on_ground = any_u8();
   in->state_valid = any_u8();
   in->home_unknown = any_u8();

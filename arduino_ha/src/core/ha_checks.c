@@ -3,6 +3,8 @@
 #include "ha_num.h"
 #include "ha_region.h"
 
+#define HA_RAD_PER_DEG 0.017453293f
+
 static uint32_t flag(int failed, uint32_t reason) { return failed ? reason : 0u; }
 
 static int surfaces_finite(const HaHpCommand *c) {
@@ -72,12 +74,33 @@ static uint32_t check_ha_state(const HaStateView *s) {
               HA_REASON_NO_HA_STATE);
 }
 
-/* Airborne with a known airspeed at or below the stall switch speed: the pitot lags a stall by
- * several periods, so waiting for stall speed itself hands the HA a departed aircraft. */
+/* Pitch less flight path at or past stall_alpha cos(bank): climb <= k TAS with k = (pitch -
+ * stall_alpha cos(bank)) in rad (small angles), decided in squares (the INS's TAS squared: no
+ * root). */
+static int past_stall_alpha(const HaAircraftConfig *cfg, const HaStateView *s) {
+  const float k = (s->x[HA_X_PITCH_DEG] - cfg->stall_alpha_deg * s->cos_bank) * HA_RAD_PER_DEG;
+  const float climb_sq = s->climb_ftps * s->climb_ftps;
+  const float bound_sq = k * k * s->path_tas_sq;
+  if (!ha_greater(k, 0.0f)) { /* the bound is a descent: descending at least that steeply */
+    return ha_greater(0.0f, s->climb_ftps) && !ha_greater(bound_sq, climb_sq);
+  }
+  return !ha_greater(s->climb_ftps, 0.0f) || !ha_greater(climb_sq, bound_sq);
+}
+
+/* Airborne and stalling, by either sign. Slow: at or below the stall switch speed times
+ * sqrt(load factor), IAS^2 <= V_switch^2 n (squares: no root), with the load factor the gyros
+ * see (ha_airdata.c: 1 / cos(bank) in a level turn, more in a pull); the speed is the pitot's,
+ * or the INS's less the wind when the pitot is not believed. The pitot lags a stall by several
+ * periods, so waiting for stall speed itself hands the HA a departed aircraft. Or, below the
+ * hand-back speed for that load factor, past the airframe's stall angle of attack
+ * (stall_alpha_deg, which the generator holds to airframe.yaml's): pitch less flight path is
+ * alpha cos(bank), a stalled glide that the speed does not show. Only there: the INS's flight
+ * path cannot see a vertical gust, and in moderate turbulence a downdraft at cruise read as
+ * alpha 9 deg at a true 1.5 (HiL) and took a healthy HP out for good. */
 static uint32_t check_stall(const HaAircraftConfig *cfg, const HaStateView *s) {
-  return flag(s->airborne && s->airspeed_ok &&
-                  !ha_greater(s->airspeed_ftps, cfg->stall_switch_airspeed_ftps),
-              HA_REASON_STALL);
+  const int slow =
+      s->speed_ok && !ha_greater(s->ias_sq, cfg->stall_switch_airspeed_sq * s->load_factor);
+  return flag(s->airborne && (slow || (s->alpha_ok && past_stall_alpha(cfg, s))), HA_REASON_STALL);
 }
 
 /* Within the switch margin of the ceiling: the INS's height error and the climb during the

@@ -67,10 +67,12 @@ typedef struct {
   float throttle_min;
   float throttle_max;
   float surface_rate_limit_deg_per_s;
+  float surface_release_rate_deg_per_s; /* a pull eased towards neutral (ha_surfaces.c) */
   float throttle_rate_limit_per_s;
 
   /* State checks. */
-  float alpha_limit_deg;
+  float alpha_limit_deg; /* the HP's estimate past this: a diverged estimator */
+  float stall_alpha_deg; /* the wing's stall angle of attack (airframe.yaml): the HA's own sign */
   float beta_limit_deg;
   float stall_speed_ftps;
   float ceiling_agl_ft;
@@ -126,9 +128,14 @@ typedef struct {
   float sc_alt_max_ft;
   float sc_alt_to_pitch_gain_deg_per_ft;
   float sc_pitch_cmd_limit_deg;
+  float sc_pitch_error_max_deg; /* the pitch loop's error is clamped to +/- this */
   /* Slow beats low: below stall_speed_ftps * sc_stall_margin the pitch loop lowers the nose at
    * every altitude; above it the nose may rise sc_speed_to_pitch_gain per ft/s of excess. */
   float sc_stall_margin;
+  /* The pitch loop's lift guard: a load factor past lift_margin (IAS / V_stall)^2 (derived: the
+   * margin / V_stall^2) pushes the nose down sc_lift_push_deg_per_g per g. */
+  float sc_lift_margin_per_ias_sq;
+  float sc_lift_push_deg_per_g;
   float sc_speed_to_pitch_gain_deg_per_ftps;
   float sc_cruise_margin; /* the throttle loop's target airspeed = stall_speed_ftps * this */
   float sc_throttle_trim;
@@ -147,6 +154,30 @@ typedef struct {
   float self_test_max_tilt_deg;
   float self_test_max_rate_deg_s;
   float self_test_max_groundspeed_ftps;
+
+  /* Air data (ha_airdata.c): the HA's own airspeed picture. The stall check compares squares:
+   * IAS^2 cos(bank) against this, the stall switch speed squared (derived). */
+  float stall_switch_airspeed_sq;
+  float handback_airspeed_sq; /* handback_airspeed_ftps^2 (derived) */
+  /* Once the wind is known, the pitot's true airspeed may differ this much from the INS's
+   * velocity less the wind (gusts, sideslip, what the estimate is still off); before, by up to
+   * max_wind_ftps from the speed over the ground. */
+  float airspeed_tolerance_ftps;
+  float max_wind_sq; /* max_wind_ftps^2 (derived): the wind estimate's bound */
+  /* The wind estimate follows at 1 / wind_time_constant_s: this fraction per period (derived). */
+  float wind_per_period;
+  /* Learnt from a believed pitot this long the wind is known (derived: 3 x wind_time_constant_s,
+   * 5% of the first error left); the pitot doubted wind_forget_us (1 x), it is unknown again. */
+  uint32_t wind_known_us;
+  uint32_t wind_forget_us;
+  /* The same nonzero pitot reading this long is a stuck sensor (ha_airdata.c). */
+  uint32_t pitot_stuck_us;
+  /* The safety controller's circle in vectors (ha_safety_ctrl.c), derived: tan(correction) =
+   * this x (d^2 - R^2) (radial_gain_deg_per_ft in rad / 2R: the same near the circle), bounded by
+   * tan(radial_correction_max_deg); R^2. */
+  float sc_radial_tan_per_ft2;
+  float sc_radial_tan_max;
+  float sc_circle_radius_sq_ft2;
 } HaAircraftConfig;
 
 #ifdef __cplusplus

@@ -2,6 +2,7 @@
 
 #include <string.h>
 
+#include "ha_airdata.h"
 #include "ha_checks.h"
 #include "ha_num.h"
 #include "ha_policy.h"
@@ -25,6 +26,7 @@ void ha_core_init(HaCore *core, const HaAircraftConfig *cfg) {
   core->last_source = SRC_HA;
   core->own.state_age_us = UINT32_MAX;
   core->own.airspeed_age_us = UINT32_MAX;
+  ha_airdata_init(&core->airdata);
   ha_safety_ctrl_reset(&core->sc);
 }
 
@@ -82,24 +84,22 @@ static void track_command(HaCore *core, const HaInputs *in, uint32_t now_us, uin
 static void track_own_sensors(HaCore *core, const HaInputs *in, uint32_t now_us, uint32_t dt_us) {
   HaOwnSensors *own = &core->own;
   const float max_ftps = core->cfg->max_airspeed_ftps;
+  const int read = ha_in_range(in->airspeed_ftps, 0.0f, max_ftps);
+  const float ias_ftps = ha_clampf(in->airspeed_ftps, 0.0f, max_ftps);
+  int fresh, agrees;
   if (in->state_valid != 0u && in->state_rx_us != core->seen_state_rx_us) {
     core->seen_state_rx_us = in->state_rx_us;
     own->state_age_us = ha_elapsed_us(now_us, in->state_rx_us);
   } else {
     own->state_age_us = add_sat(own->state_age_us, dt_us);
   }
-  /* A pitot reading that far below the INS's groundspeed is a lying sensor (zeroed, blocked), not
-   * a stall: no wind the aircraft flies in is that strong a tailwind. Believed, it would make the
-   * slow-beats-low law dive into the ground (HiL campaign: a zero pitot at 200 ft crashed). It
-   * counts as a failed read: the last good one holds for airspeed_timeout_s, then NO_HA_STATE. */
-  const int lying = own->state_age_us <= core->cfg->state_timeout_us && in->state_valid != 0u &&
-                    ha_in_range(in->groundspeed_ftps, 0.0f, max_ftps) &&
-                    ha_in_range(in->airspeed_ftps, 0.0f, max_ftps) &&
-                    ha_greater(ha_clampf(in->groundspeed_ftps, 0.0f, max_ftps) -
-                                   ha_clampf(in->airspeed_ftps, 0.0f, max_ftps),
-                               core->cfg->max_wind_ftps);
-  if (ha_in_range(in->airspeed_ftps, 0.0f, max_ftps) && !lying) {
-    own->airspeed_ftps = ha_clampf(in->airspeed_ftps, 0.0f, max_ftps);
+  fresh = own->state_age_us <= core->cfg->state_timeout_us && in->state_valid != 0u;
+  /* A reading the INS contradicts, low or high (ha_airdata.c), is a lying sensor (zeroed,
+   * blocked, stuck), not a stall: it counts as a failed read, so the last good one holds for
+   * airspeed_timeout_s, then NO_HA_STATE; the HA flies on the INS less the wind meanwhile. */
+  agrees = ha_airdata_track(&core->airdata, core->cfg, in, fresh, read, ias_ftps, dt_us);
+  if (read && agrees) {
+    own->airspeed_ftps = ias_ftps;
     own->airspeed_age_us = 0u;
   } else {
     own->airspeed_age_us = add_sat(own->airspeed_age_us, dt_us);
@@ -261,6 +261,7 @@ void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *
   track_command(core, in, now_us, dt_us, &facts);
   track_own_sensors(core, in, now_us, dt_us);
   ha_state_view(cfg, in, facts.cmd, facts.have_cmd, &core->own, &view);
+  ha_airdata_view(&core->airdata, cfg, &view);
   decide_airborne(core, dt_us, &view);
   policy.operator_restart = (uint8_t)handle_operator(core, in, &view, now_us);
   reasons = ha_checks_evaluate(cfg, &facts, &view, &sx_max, &su_max) |

@@ -41,8 +41,16 @@ typedef struct {
   float north_ft; /* position relative to the home/rally point the HA circles */
   float east_ft;
   float groundspeed_ftps; /* horizontal speed over the ground (INS) */
-  uint8_t on_ground;      /* 1: weight on wheels / landed as reported by the INS side */
-  uint8_t state_valid;    /* 0 until the link has delivered a state at least once */
+  /* The INS's velocity and height, for the HA's airspeed picture (ha_airdata.c): the wind is what
+   * the pitot and the velocity over the ground disagree by, the flight path is the climb over
+   * the speed, the air's density follows from the height above sea level. */
+  float vel_north_ftps;
+  float vel_east_ftps;
+  float climb_ftps; /* vertical speed, up positive */
+  float
+      altitude_msl_ft; /* above sea level (the WGS84 ellipsoid: the geoid's 100 m do not matter) */
+  uint8_t on_ground;   /* 1: weight on wheels / landed as reported by the INS side */
+  uint8_t state_valid; /* 0 until the link has delivered a state at least once */
   /* 1: the state carries attitude, rates, groundspeed and on_ground but no home yet, so no
    * altitude AGL and no position (the INS adapter before its first home: ha_ins.h). */
   uint8_t home_unknown;
@@ -112,6 +120,32 @@ typedef struct {
   uint32_t airspeed_age_us; /* since that reading; UINT32_MAX before the first */
 } HaOwnSensors;
 
+/* The INS's velocity as the HA uses it: checked plausible and clamped, once per period. */
+typedef struct {
+  float north_ftps, east_ftps, climb_ftps;
+} HaVelocity;
+
+/* The HA's airspeed picture across periods (ha_airdata.c): a wind learnt from the pitot against
+ * the INS, slowly, and the air's density where it was last computed. */
+typedef struct {
+  float wind_north_ftps; /* where the air moves to, |wind| <= max_wind_ftps */
+  float wind_east_ftps;
+  uint32_t wind_learned_us;  /* learnt this long from a believed pitot (saturating) */
+  uint32_t pitot_doubted_us; /* since the pitot was last believed (saturating) */
+  float density_below_ft;    /* tas_per_ias holds between these heights: its own +/- 100 ft */
+  float density_above_ft;
+  float tas_per_ias; /* sqrt(rho0 / rho): true airspeed per indicated */
+  float ias_per_tas;
+  float heading_north; /* the heading's unit vector, computed once per period */
+  float heading_east;
+  HaVelocity velocity; /* this period's, when velocity_ok */
+  uint8_t velocity_ok;
+  /* The pitot's last reading and how long it has read exactly that: a live sensor's noise moves
+   * its last bits every read, an iced or frozen one does not (saturating). */
+  float last_reading_ftps;
+  uint32_t same_reading_us;
+} HaAirdata;
+
 typedef struct {
   uint8_t active;
   uint32_t step;
@@ -139,6 +173,7 @@ typedef struct {
   /* The HA's own sensors across periods */
   uint32_t seen_state_rx_us;
   HaOwnSensors own;
+  HaAirdata airdata;
   /* Airborne, latched once flying until a landing has been evident for landed_confirm_us. */
   uint8_t airborne;
   uint32_t landed_for_us;

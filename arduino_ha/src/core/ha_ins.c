@@ -129,6 +129,12 @@ int ha_ins_update(HaIns *ins, const HaAircraftConfig *cfg, const HaInsSample *s,
   in->groundspeed_ftps =
       sqrtf(c.vel_ned_mps[0] * c.vel_ned_mps[0] + c.vel_ned_mps[1] * c.vel_ned_mps[1]) *
       (float)HA_INS_FT_PER_M;
+  /* For the airspeed picture (ha_airdata.c): velocity over the ground, climb, height above sea
+   * level (ellipsoid: the geoid's few tens of metres change the density by under 0.5%). */
+  in->vel_north_ftps = c.vel_ned_mps[0] * (float)HA_INS_FT_PER_M;
+  in->vel_east_ftps = c.vel_ned_mps[1] * (float)HA_INS_FT_PER_M;
+  in->climb_ftps = -c.vel_ned_mps[2] * (float)HA_INS_FT_PER_M;
+  in->altitude_msl_ft = (float)c.alt_m * (float)HA_INS_FT_PER_M;
   if (ins->home_latched) {
     const float agl_ft = (float)(c.alt_m - ins->home.alt_m) * (float)HA_INS_FT_PER_M;
     in->altitude_agl_ft = agl_ft;

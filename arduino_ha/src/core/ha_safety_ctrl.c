@@ -1,14 +1,9 @@
 #include "ha_safety_ctrl.h"
 
-#include <math.h>
-
 #include "ha_num.h"
 #include "ha_surfaces.h"
 
 #define HA_DEG_PER_RAD 57.29578f
-
-/* Wraps a finite angle in [-1080, 1080] deg into [-180, 180). */
-static float wrap180(float deg) { return deg - 360.0f * floorf((deg + 180.0f) / 360.0f); }
 
 /* One PID channel with conditional-integration anti-windup and output saturation. When another
  * controller drives the surface, the integrator is back-calculated so pd + integ == applied, as
@@ -21,8 +16,10 @@ static float pid(float *integ, float pd, float integ_step, float limit, float au
   } else {
     const float candidate = *integ + integ_step;
     const float unsat = pd + candidate;
-    /* Integrate only while it does not push further into saturation (no windup). */
-    if (!((unsat > limit && integ_step > 0.0f) || (unsat < -limit && integ_step < 0.0f))) {
+    /* Integrate only while it does not push further into saturation (no windup). Compared on
+     * the bits (ha_greater): a float compare is a library call of some 35 instructions. */
+    if (!((ha_greater(unsat, limit) && ha_greater(integ_step, 0.0f)) ||
+          (ha_greater(-limit, unsat) && ha_greater(0.0f, integ_step)))) {
       *integ = ha_clampf(candidate, -integ_limit, integ_limit);
     }
   }
@@ -36,31 +33,48 @@ static float toward_zero(float v, float step) {
   return v < -step ? v + step : 0.0f;
 }
 
-/* Outer lateral loop: the bank that flies the circle around home. */
+/* Outer lateral loop: the bank that flies the circle around home, in vectors (an atan2f, a sqrtf
+ * and a floorf cost some 2,500 soft-float instructions per period on the Due). The course is the
+ * circle's tangent t = dir (-e, n) turned inwards by the correction, c = t - tan(corr) (n, e),
+ * with tan(corr) = k (d^2 - R^2): k (d - R) 2R near the circle (the radial gain), more beyond,
+ * bounded by tan(radial_correction_max). The heading error is the angle from the heading's unit
+ * vector to c, atan(cross / dot) within 45 deg (a polynomial within 0.3 deg); beyond, +/-90 deg,
+ * past which the bank saturates anyway. */
 static float bank_command_deg(const HaAircraftConfig *cfg, const HaStateView *s) {
   const float dir = cfg->sc_circle_direction;
-  const float radius_ft = cfg->sc_circle_radius_ft;
-  float distance_ft, bearing_deg, correction_deg, course_deg, bank_deg;
+  const float n = s->north_ft;
+  const float e = s->east_ft;
+  float tan_corr, course_n, course_e, cross, dot, err_deg, bank_deg;
   if (!s->position_ok) {
     return 0.0f; /* without a position: wings level */
   }
-  distance_ft = sqrtf(s->north_ft * s->north_ft + s->east_ft * s->east_ft);
-  bearing_deg = atan2f(s->east_ft, s->north_ft) * HA_DEG_PER_RAD;
-  correction_deg = ha_clampf(cfg->sc_radial_gain_deg_per_ft * (distance_ft - radius_ft),
-                             -cfg->sc_radial_correction_max_deg, cfg->sc_radial_correction_max_deg);
-  /* Tangent to the circle, turned inwards when outside and outwards when inside. */
-  course_deg = bearing_deg + dir * (90.0f + correction_deg);
+  /* Finite: north and east are clamped to +/-1e6 ft by ha_state_view. */
+  tan_corr = ha_limitf(cfg->sc_radial_tan_per_ft2 * (n * n + e * e - cfg->sc_circle_radius_sq_ft2),
+                       -cfg->sc_radial_tan_max, cfg->sc_radial_tan_max);
+  /* dir is +/-1: a sign, not a multiplication */
+  course_n = (ha_greater(dir, 0.0f) ? -e : e) - tan_corr * n;
+  course_e = (ha_greater(dir, 0.0f) ? n : -n) - tan_corr * e;
+  cross = s->heading_north * course_e - s->heading_east * course_n;
+  dot = s->heading_north * course_n + s->heading_east * course_e;
+  /* dot > 1 ft^2 as a float compare, so EVA sees the division bounded; within a foot of home
+   * any course will do. */
+  if (dot > 1.0f && !ha_greater(cross, dot) && !ha_greater(-cross, dot)) {
+    const float x = ha_clampf(cross / dot, -1.0f, 1.0f);
+    err_deg = HA_DEG_PER_RAD * x * (0.7853982f + 0.273f * (1.0f - (ha_greater(0.0f, x) ? -x : x)));
+  } else {
+    err_deg = ha_greater(0.0f, cross) ? -90.0f : 90.0f;
+  }
   /* Feed-forward: the bank of a steady turn of this radius at the target speed. */
-  bank_deg = dir * cfg->sc_circle_bank_ff_deg;
-  bank_deg += cfg->sc_heading_to_bank_gain * wrap180(course_deg - s->heading_deg);
-  return ha_clampf(bank_deg, -cfg->sc_bank_limit_deg, cfg->sc_bank_limit_deg);
+  bank_deg = dir * cfg->sc_circle_bank_ff_deg + cfg->sc_heading_to_bank_gain * err_deg;
+  return ha_limitf(bank_deg, -cfg->sc_bank_limit_deg, cfg->sc_bank_limit_deg); /* finite */
 }
 
 /* Outer longitudinal loop: the altitude band, but slow beats low. The nose may rise only as far
  * as the airspeed above stall x stall_margin pays for (speed_to_pitch_gain per ft/s); below that
  * speed the allowance is negative, so the nose goes down at every altitude, however low. The
- * altitude term can always lower the nose (above the band). Without a known airspeed the
- * altitude term alone decides (and the check reports the HA lacking state). */
+ * altitude term can always lower the nose (above the band). The speed is the pitot's, or the
+ * INS's when the pitot is doubted or dead (ha_airdata.c); with neither, the altitude term alone
+ * decides (and the check reports the HA lacking state). */
 static float pitch_command_deg(const HaAircraftConfig *cfg, const HaStateView *s) {
   const float floor_ftps = cfg->stall_speed_ftps * cfg->sc_stall_margin;
   const float mid_ft = 0.5f * (cfg->sc_alt_min_ft + cfg->sc_alt_max_ft);
@@ -68,12 +82,24 @@ static float pitch_command_deg(const HaAircraftConfig *cfg, const HaStateView *s
   if (s->altitude_ok) {
     pitch_deg = cfg->sc_alt_to_pitch_gain_deg_per_ft * (mid_ft - s->x[HA_X_ALT_AGL_FT]);
   }
-  if (s->airspeed_ok) {
-    const float allowed_deg =
-        cfg->sc_speed_to_pitch_gain_deg_per_ftps * (s->airspeed_ftps - floor_ftps);
+  if (s->speed_ok) {
+    const float allowed_deg = cfg->sc_speed_to_pitch_gain_deg_per_ftps * (s->ias_ftps - floor_ftps);
     pitch_deg = allowed_deg < pitch_deg ? allowed_deg : pitch_deg;
   }
   return ha_clampf(pitch_deg, -cfg->sc_pitch_cmd_limit_deg, cfg->sc_pitch_cmd_limit_deg);
+}
+
+/* The lift guard: how far (in g, > 0) the load factor the gyros see (ha_airdata.c) is past what
+ * the speed allows at sc_lift_margin of the wing's maximum lift, n <= margin (IAS / V_stall)^2;
+ * 0 inside it or without a speed and attitude. Judged on the load, not on an angle of attack
+ * from pitch less flight path: that one reads a sideslip in a bank (a slipping 50 deg bank at a
+ * true 4 deg read 16) and a downdraft as alpha, and pushed the HA into a 31 deg dive (HiL). */
+static float lift_excess_g(const HaAircraftConfig *cfg, const HaStateView *s) {
+  if (s->speed_ok && s->attitude_ok) {
+    const float excess = s->load_factor - cfg->sc_lift_margin_per_ias_sq * s->ias_sq;
+    return ha_greater(excess, 0.0f) ? excess : 0.0f;
+  }
+  return 0.0f;
 }
 
 void ha_safety_ctrl_step(HaSafetyCtrlState *st, const HaAircraftConfig *cfg, const HaStateView *s,
@@ -94,14 +120,27 @@ void ha_safety_ctrl_step(HaSafetyCtrlState *st, const HaAircraftConfig *cfg, con
   }
   if (s->attitude_ok) {
     const float roll_err = bank_command_deg(cfg, s) - s->x[HA_X_ROLL_DEG];
-    const float pitch_err = pitch_command_deg(cfg, s) - s->x[HA_X_PITCH_DEG];
+    /* The error is bounded: a pitch target far from the nose (a dive it inherited, the speed's
+     * source switching from a doubted pitot to the INS) is flown towards at a bounded pull, not
+     * with the elevator at its stop (HiL pitot reading low: 38 deg of error at 75 ft/s, full up
+     * elevator, 3.4 g and the wing stalled in the pull-out). Both terms are clamped: finite. */
+    const float pitch_err = ha_limitf(pitch_command_deg(cfg, s) - s->x[HA_X_PITCH_DEG],
+                                      -cfg->sc_pitch_error_max_deg, cfg->sc_pitch_error_max_deg);
     roll_pd = cfg->sc_roll_kp * roll_err - cfg->sc_roll_kd * s->x[HA_X_P_DEG_S];
     roll_step = cfg->sc_roll_ki * roll_err * dt_s;
+    /* The wing's lift beats height and speed: past the guard's load the nose is pushed down in
+     * proportion, and the integrator may not pull against the push (HiL: pitching up to hold
+     * height in the 47 deg bank it inherited, the HA stalled the wing at 61 ft/s). */
+    const float excess_g = lift_excess_g(cfg, s);
     pitch_pd = cfg->sc_pitch_kp * pitch_err - cfg->sc_pitch_kd * s->x[HA_X_Q_DEG_S];
     pitch_step = cfg->sc_pitch_ki * pitch_err * dt_s;
+    if (ha_greater(excess_g, 0.0f)) {
+      pitch_pd -= cfg->sc_lift_push_deg_per_g * excess_g;
+      pitch_step = ha_greater(pitch_step, 0.0f) ? 0.0f : pitch_step;
+    }
   }
-  if (s->airborne && s->airspeed_ok && s->attitude_ok) {
-    const float speed_err = target_ftps - s->airspeed_ftps;
+  if (s->airborne && s->speed_ok && s->attitude_ok) {
+    const float speed_err = target_ftps - s->ias_ftps;
     thr_pd += cfg->sc_throttle_kp_per_ftps * speed_err;
     thr_step = cfg->sc_throttle_ki_per_ft * speed_err * dt_s;
   }
@@ -118,8 +157,11 @@ void ha_safety_ctrl_step(HaSafetyCtrlState *st, const HaAircraftConfig *cfg, con
     out->throttle = cfg->throttle_min; /* on the ground the motor idles */
   }
   /* Yaw damper only: rudder against the yaw rate (yaw left positive). */
-  out->rudder_deg = s->attitude_ok ? cfg->sc_yaw_damper_gain * s->x[HA_X_R_DEG_S] : 0.0f;
-  ha_surfaces_saturate(cfg, out);
+  out->rudder_deg = ha_clampf(s->attitude_ok ? cfg->sc_yaw_damper_gain * s->x[HA_X_R_DEG_S] : 0.0f,
+                              -cfg->rudder_limit_deg, cfg->rudder_limit_deg);
+  /* Aileron and elevator come out of pid() inside +/-limit; the throttle's middle plus half the
+   * range may round past either end. (A full ha_surfaces_saturate here cost 12 compares.) */
+  out->throttle = ha_clampf(out->throttle, cfg->throttle_min, cfg->throttle_max);
 }
 
 void ha_safety_ctrl_reset(HaSafetyCtrlState *st) {

@@ -3,10 +3,11 @@
 #include "ha_num.h"
 
 void ha_surfaces_saturate(const HaAircraftConfig *cfg, HaSurfaces *s) {
-  s->elevator_deg = ha_clampf(s->elevator_deg, -cfg->elevator_limit_deg, cfg->elevator_limit_deg);
-  s->aileron_deg = ha_clampf(s->aileron_deg, -cfg->aileron_limit_deg, cfg->aileron_limit_deg);
-  s->rudder_deg = ha_clampf(s->rudder_deg, -cfg->rudder_limit_deg, cfg->rudder_limit_deg);
-  s->throttle = ha_clampf(s->throttle, cfg->throttle_min, cfg->throttle_max);
+  s->elevator_deg =
+      ha_clampf_final(s->elevator_deg, -cfg->elevator_limit_deg, cfg->elevator_limit_deg);
+  s->aileron_deg = ha_clampf_final(s->aileron_deg, -cfg->aileron_limit_deg, cfg->aileron_limit_deg);
+  s->rudder_deg = ha_clampf_final(s->rudder_deg, -cfg->rudder_limit_deg, cfg->rudder_limit_deg);
+  s->throttle = ha_clampf_final(s->throttle, cfg->throttle_min, cfg->throttle_max);
 }
 
 static float step_towards(float prev, float target, float max_step, int *reached) {
@@ -22,13 +23,30 @@ static float step_towards(float prev, float target, float max_step, int *reached
   return target;
 }
 
+/* A pull (trailing edge up, negative) that the new controller eases towards neutral goes at the
+ * release rate: bumpless transfer must not keep the last controller's pull on a wing it is
+ * stalling (HiL: 0.3 s of an HP's pull slewed out at 60 deg/s took the wing to 24 deg of alpha
+ * after a STALL takeover). Past neutral, and every pull, at the bumpless rate. */
+static float elevator_towards(const HaAircraftConfig *cfg, float prev, float target, float dt_s,
+                              int *reached) {
+  const float bumpless =
+      step_towards(prev, target, cfg->surface_rate_limit_deg_per_s * dt_s, reached);
+  if (ha_greater(0.0f, prev) && ha_greater(target, bumpless)) {
+    int released = 1;
+    const float released_deg = step_towards(prev, ha_greater(0.0f, target) ? target : 0.0f,
+                                            cfg->surface_release_rate_deg_per_s * dt_s, &released);
+    return ha_greater(released_deg, bumpless) ? released_deg : bumpless;
+  }
+  return bumpless;
+}
+
 int ha_surfaces_rate_limit(const HaAircraftConfig *cfg, const HaSurfaces *prev,
                            const HaSurfaces *target, float dt_s, HaSurfaces *out) {
   const float surface_step = cfg->surface_rate_limit_deg_per_s * dt_s;
   const float throttle_step = cfg->throttle_rate_limit_per_s * dt_s;
   int reached = 1;
   out->elevator_deg =
-      step_towards(prev->elevator_deg, target->elevator_deg, surface_step, &reached);
+      elevator_towards(cfg, prev->elevator_deg, target->elevator_deg, dt_s, &reached);
   out->aileron_deg = step_towards(prev->aileron_deg, target->aileron_deg, surface_step, &reached);
   out->rudder_deg = step_towards(prev->rudder_deg, target->rudder_deg, surface_step, &reached);
   out->throttle = step_towards(prev->throttle, target->throttle, throttle_step, &reached);
@@ -69,7 +87,7 @@ void ha_surfaces_from_cmd(const HaHpCommand *cmd, HaSurfaces *out) {
 static uint16_t to_pulse(const HaAircraftConfig *cfg, float value, float lo, float hi) {
   const float span_us = (float)(cfg->servo_pulse_max_us - cfg->servo_pulse_min_us);
   /* Clamp the value first: a NaN then maps to neutral (or idle), not to a full deflection. */
-  const float f = (ha_clampf(value, lo, hi) - lo) / (hi - lo);
+  const float f = (ha_clampf_final(value, lo, hi) - lo) / (hi - lo);
   /* + 0.5 rounds to nearest; f in [0, 1] keeps the result inside the configured pulse range. */
   return (uint16_t)((float)cfg->servo_pulse_min_us + f * span_us + 0.5f);
 }

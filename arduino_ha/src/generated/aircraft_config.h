@@ -47,7 +47,9 @@
     .throttle_max = 1.0f, \
     .surface_rate_limit_deg_per_s = 60.0f, \
     .throttle_rate_limit_per_s = 0.5f, \
+    .surface_release_rate_deg_per_s = 400.0f, \
     .alpha_limit_deg = 30.0f, \
+    .stall_alpha_deg = 8.8f, \
     .beta_limit_deg = 30.0f, \
     .stall_speed_ftps = 42.0f, \
     .ceiling_agl_ft = 400.0f, \
@@ -82,6 +84,9 @@
     .sc_alt_max_ft = 250.0f, \
     .sc_pitch_cmd_limit_deg = 10.0f, \
     .sc_stall_margin = 1.3f, \
+    .sc_pitch_error_max_deg = 8.0f, \
+    .sc_lift_margin_per_ias_sq = 0.000396825397f, \
+    .sc_lift_push_deg_per_g = 15.0f, \
     .sc_cruise_margin = 1.5f, \
     .handback_airspeed_ftps = 50.4f, \
     .stall_switch_airspeed_ftps = 46.2f, \
@@ -93,6 +98,14 @@
     .self_test_max_tilt_deg = 15.0f, \
     .self_test_max_rate_deg_s = 3.0f, \
     .self_test_max_groundspeed_ftps = 2.0f, \
+    .stall_switch_airspeed_sq = 2134.44f, \
+    .handback_airspeed_sq = 2540.16f, \
+    .sc_radial_tan_per_ft2 = 6.54498469e-06f, \
+    .sc_radial_tan_max = 1.73205081f, \
+    .sc_circle_radius_sq_ft2 = 160000.0f, \
+    .airspeed_tolerance_ftps = 15.0f, \
+    .max_wind_sq = 900.0f, \
+    .wind_per_period = 0.0005f, \
     .landed_confirm_us = 3000000u, \
     .state_timeout_us = 100000u, \
     .airspeed_timeout_us = 50000u, \
@@ -110,6 +123,9 @@
     .servo_pulse_max_us = 2000u, \
     .pic_threshold_us = 1500u, \
     .self_test_step_us = 1000000u, \
+    .wind_known_us = 60000000u, \
+    .wind_forget_us = 20000000u, \
+    .pitot_stuck_us = 1000000u, \
   }
 
 #endif /* HA_GENERATED_AIRCRAFT_CONFIG_H */

@@ -5,12 +5,9 @@ can only be a lying sensor, and the HA must have taken over by then (the class's
 learns the wind may see it sooner, and then no due comes). On 0da675b the lying check was
 one-sided: seed 11 had the due at 14.08 s, the HP kept the servos, the wing stalled and the
 aircraft hit the ground."""
-import pytest
-from flight import AIRDATA_NOT_LANDED, assert_property, fly
+from flight import assert_property, fly
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "issue 22 F3 open: the stuck pitot is never rejected and the wing stalls 9 s; " + AIRDATA_NOT_LANDED))
 def test_a_pitot_iced_at_85_ftps_in_still_air_is_rejected_before_the_hp_slows_into_the_stall():
     s = fly("pitot_stuck", at_s=12.0, duration_s=-1.0, params=["value_ftps=85"], flight_s=35.0)
     assert_property(s, takeover_due=None)

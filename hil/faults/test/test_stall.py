@@ -5,14 +5,9 @@ stall_speed_ftps x stall_switch_multiple (limits.yaml) and lowers the nose while
 flies; the truth's calibrated airspeed never reaches the stall speed. The HP, restarted and given
 control back, pulls up again until the restart cap latches it out. (Before the switch speed,
 seed 11 departed: 1.34 s outside S_x under the HA, roll rate -563 deg/s in a snap roll.)"""
-import pytest
 from flight import assert_property, fly
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "issue 22 open: the verdict now judges the stall on the truth, and the wing "
-    "stalls 0.2 s under the HA after its third STALL takeover at the 46.2 ft/s switch "
-    "speed (seed 11; the campaign saw 0.24 and 0.99 s with the HA of 0da675b)"))
 def test_an_hp_flying_into_a_stall_is_taken_over_before_the_stall():
     s = fly("stall", at_s=12.0, duration_s=-1.0, flight_s=40.0)
     assert_property(s, takeover_due=None)

@@ -1,0 +1,359 @@
+// The HA's own airspeed picture (ha_airdata.c), one story per finding of issue 22: a stall judged
+// by the load factor and the angle of attack, not by the 1 g stall speed alone; the pitot judged
+// against the INS from both sides through the air's density and a learnt wind; the HA flying on
+// the INS less the wind when the pitot lies or is gone; and the generator holding the stall rows
+// to the airframe and the sensor timeouts to what the rules need.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+
+#include <unistd.h>
+
+extern "C" {
+#include "ha_safety_ctrl.h"
+}
+#include "ha_test_util.h"
+
+namespace {
+
+constexpr float kDegPerRad = 57.29578f;
+
+// The INS's view of a flight along heading 90 (east): speed over the ground, flight path, pitch.
+void FlyEast(Timeline* t, float ground_ftps, float climb_ftps, float pitch_deg, float roll_deg) {
+  HaInputs& in = t->app.inputs;
+  in.heading_deg = 90.0f;
+  in.vel_north_ftps = 0.0f;
+  in.vel_east_ftps = ground_ftps;
+  in.groundspeed_ftps = ground_ftps;
+  in.climb_ftps = climb_ftps;
+  in.pitch_deg = pitch_deg;
+  in.roll_deg = roll_deg;
+}
+
+// Steps with a healthy HP until the HA takes the servos; returns the periods it took (-1: never).
+int PeriodsUntilTakeover(Timeline* t, int max_periods) {
+  for (int i = 1; i <= max_periods; ++i) {
+    if (t->StepWithGood().controller != HA_CONTROLLER_HP) return i;
+  }
+  return -1;
+}
+
+// F1. A stalled glide at 48 ft/s, above the 1 g switch speed of 46.2, at 14 deg of angle of
+// attack (pitch 2, flight path -12): the 1 g stall speed says nothing is wrong; the INS's pitch
+// less flight path says the wing is stalled.
+TEST(HaAirdataStories, StalledGlideAt14DegAlphaAbove1gSwitchSpeedIsTakenOver) {
+  Timeline t;
+  t.Cruise(150.0f, 60.0f);
+  ASSERT_GT(t.ReachHp(), 0);
+  const float v = 48.0f, gamma_deg = -12.0f;
+  ASSERT_GT(v, t.cfg.stall_switch_airspeed_ftps);
+  // First an ordinary glide at the same speed (alpha 5 deg): the HP keeps flying.
+  t.board.airspeed_ftps = v;
+  FlyEast(&t, v * std::cos(3.0f / kDegPerRad), v * std::sin(-3.0f / kDegPerRad), 2.0f, 0.0f);
+  for (int i = 0; i < 100; ++i) t.StepWithGood();
+  ASSERT_EQ(t.controller(), HA_CONTROLLER_HP) << "reasons " << t.out().reasons;
+  // Then the stalled one.
+  FlyEast(&t, v * std::cos(gamma_deg / kDegPerRad), v * std::sin(gamma_deg / kDegPerRad), 2.0f,
+          0.0f);
+  const int periods = PeriodsUntilTakeover(&t, 300);
+  ASSERT_GT(periods, 0) << "the HP kept a stalled glide for 3 s";
+  EXPECT_LE(periods, 2);
+  EXPECT_TRUE(t.out().reasons_at_switch & HA_REASON_STALL);
+  EXPECT_EQ(t.out().restart_count, 1u);  // a stall is the HP's doing
+}
+
+// A level coordinated turn at this bank and speed: the body's pitch rate that turns the velocity,
+// q = omega sin(bank) with omega = g tan(bank) / V (what the INS's gyros report in it).
+void LevelTurn(Timeline* t, float v_ftps, float roll_deg) {
+  const float phi = roll_deg / kDegPerRad;
+  FlyEast(t, v_ftps, 0.0f, 2.0f, roll_deg);
+  t->app.inputs.q_deg_s = 32.174f * std::tan(phi) * std::sin(phi) / v_ftps * kDegPerRad;
+}
+
+// F1. In a 50 deg bank the load factor is 1/cos(50) = 1.56 and the stall speed 1.25 x the 1 g
+// one: 55 ft/s is below the banked switch speed (57.6) though well above the 1 g one (46.2).
+TEST(HaAirdataStories, BankedTurnStallSpeedScalesWithLoadFactor) {
+  Timeline t;
+  t.Cruise(200.0f, 55.0f);
+  ASSERT_GT(t.ReachHp(), 0);
+  const float banked_switch_ftps =
+      t.cfg.stall_switch_airspeed_ftps / std::sqrt(std::cos(50.0f / kDegPerRad));
+  ASSERT_LT(55.0f, banked_switch_ftps);
+  LevelTurn(&t, 55.0f, 30.0f);  // 30 deg: n = 1.15, switch at 49.6: still flying
+  for (int i = 0; i < 100; ++i) t.StepWithGood();
+  ASSERT_EQ(t.controller(), HA_CONTROLLER_HP) << "reasons " << t.out().reasons;
+  LevelTurn(&t, 55.0f, 50.0f);
+  const int periods = PeriodsUntilTakeover(&t, 300);
+  ASSERT_GT(periods, 0) << "55 ft/s in a 50 deg bank was left to the HP";
+  EXPECT_EQ(t.out().reasons_at_switch, HA_REASON_STALL);
+}
+
+// F1, the HiL's accelerated_stall: wings level at 70 ft/s, far above the 1 g switch speed, the HP
+// pulls: a pitch rate of 40 deg/s turns the velocity at 1.5 g on top of gravity's 1, and the wing
+// needs (70 / 42)^2 = 2.8 g worth of lift coefficient to stall. The gyros show the load before
+// the wing reaches its stall: the HA takes the servos while the bank alone says 1 g.
+TEST(HaAirdataStories, PullUpAt70FtpsIsJudgedByTheLoadFactorTheGyrosShow) {
+  Timeline t;
+  t.Cruise(200.0f, 70.0f);
+  ASSERT_GT(t.ReachHp(), 0);
+  FlyEast(&t, 70.0f, 0.0f, 2.0f, 0.0f);
+  t.app.inputs.q_deg_s = 20.0f;  // a brisk pitch-up: 0.76 g on top, 1.76 in all, not yet 2.45
+  for (int i = 0; i < 100; ++i) t.StepWithGood();
+  ASSERT_EQ(t.controller(), HA_CONTROLLER_HP) << "reasons " << t.out().reasons;
+  t.app.inputs.q_deg_s = 40.0f;  // 2.5 g: 70 ft/s is the switch speed x sqrt(2.5)
+  const int periods = PeriodsUntilTakeover(&t, 10);
+  ASSERT_GT(periods, 0) << "a 2.5 g pull at 70 ft/s was left to the HP";
+  EXPECT_EQ(t.out().reasons_at_switch, HA_REASON_STALL);
+}
+
+// F2. The thesis's own stall signature: nose high, the pitot reading 12 ft/s (the relative wind
+// far off its axis) while the INS sees 45 over the ground and the aircraft sinking. Not a lying
+// pitot to be ignored: a stall, the HP reset, and the HA lowering the nose and opening the
+// throttle.
+TEST(HaAirdataStories, RealStallWithPitotFarBelowGroundspeedIsAStall) {
+  Timeline t;
+  t.Cruise(100.0f, 60.0f);
+  ASSERT_GT(t.ReachHp(), 0);
+  t.board.airspeed_ftps = 12.0f;
+  FlyEast(&t, 45.0f, -8.0f, 16.0f, 0.0f);
+  const int periods = PeriodsUntilTakeover(&t, 300);
+  ASSERT_GT(periods, 0);
+  EXPECT_TRUE(t.out().reasons_at_switch & HA_REASON_STALL) << t.out().reasons_at_switch;
+  EXPECT_EQ(t.out().restart_count, 1u);
+  EXPECT_GE(t.board.hp_reset_assertions, 1);
+  for (int i = 0; i < 100; ++i) t.Step();  // the HP is being reset; past the handover slew
+  EXPECT_GT(t.servos().elevator_deg, 0.0f) << "nose up in a stall";
+  EXPECT_GT(t.servos().throttle, t.cfg.sc_throttle_trim);
+}
+
+// F2 downwind: after a minute in a 28 ft/s tailwind the HA knows the wind, so a pitot reading
+// 37.6 at 68 over the ground is 40 ft/s through the air: believed, and a stall.
+TEST(HaAirdataStories, RealStallInAKnownTailwindIsAStallNotALyingPitot) {
+  Timeline t;
+  t.Cruise(150.0f, 60.0f);
+  FlyEast(&t, 88.0f, 0.0f, 2.0f, 0.0f);
+  ASSERT_GT(t.ReachHp(), 0);
+  for (int i = 0; i < 100 * 70; ++i) t.StepWithGood();
+  ASSERT_EQ(t.controller(), HA_CONTROLLER_HP);
+  t.board.airspeed_ftps = 37.6f;
+  FlyEast(&t, 68.0f, -6.0f, 12.0f, 0.0f);
+  const int periods = PeriodsUntilTakeover(&t, 300);
+  ASSERT_GT(periods, 0);
+  EXPECT_EQ(t.out().reasons_at_switch, HA_REASON_STALL);  // and not NO_HA_STATE: it is believed
+}
+
+// F3. The pitot stuck at 85 ft/s while the INS sees 35 over the ground in still air: 50 ft/s
+// more than any wind explains. The HP flies on that pitot; the HA takes over.
+TEST(HaAirdataStories, PitotStuckHighInStillAirIsRejected) {
+  Timeline t;
+  t.Cruise(150.0f, 60.0f);
+  ASSERT_GT(t.ReachHp(), 0);
+  t.board.airspeed_ftps = 85.0f;
+  FlyEast(&t, 35.0f, 0.0f, 2.0f, 0.0f);
+  const int periods = PeriodsUntilTakeover(&t, 300);
+  ASSERT_GT(periods, 0) << "the HP kept flying on a pitot stuck 50 ft/s high";
+  EXPECT_TRUE(t.out().reasons & HA_REASON_NO_HA_STATE);
+  EXPECT_TRUE(t.out().reasons & HA_REASON_STALL);  // 35 ft/s through still air is a stall
+  EXPECT_LT(t.out().airspeed_ftps, 85.0f);         // the 85 was never believed
+}
+
+// F3, the HiL's pitot_stuck story: iced at a reading 20 ft/s above the true 60, inside the 30 ft/s
+// any wind could explain before the wind is known, so the two-sided test alone believes it for
+// good and the HP, flying on the same pitot, slows towards the stall. A live sensor's noise moves
+// every read; one repeated to the bit for pitot_stuck_s is stuck: the HA takes the servos then
+// (its own airspeed lost, not an HP fault), and not one period earlier.
+TEST(HaAirdataStories, PitotFrozenInsideTheWindToleranceIsDoubtedAfterPitotStuckS) {
+  Timeline t;
+  t.Cruise(200.0f, 60.0f);
+  ASSERT_GT(t.ReachHp(), 0);
+  t.board.airspeed_ftps = 80.0f;  // iced: it no longer moves
+  t.board.pitot_noise = false;
+  const int stuck_periods = static_cast<int>(t.cfg.pitot_stuck_us / t.cfg.period_us);
+  const int periods = PeriodsUntilTakeover(&t, 3 * stuck_periods);
+  ASSERT_GT(periods, 0) << "the HP kept flying on a pitot frozen at 80 ft/s";
+  EXPECT_GE(periods, stuck_periods);
+  EXPECT_LE(periods,
+            stuck_periods + 2 + static_cast<int>(t.cfg.airspeed_timeout_us / t.cfg.period_us));
+  EXPECT_EQ(t.out().reasons_at_switch & ~HA_REASON_STALL, HA_REASON_NO_HA_STATE);
+  EXPECT_EQ(t.out().restart_count, 0u);
+  // Still frozen minutes later: the HA keeps the servos and never hands them to an HP that flies
+  // on that pitot.
+  for (int i = 0; i < 6000; ++i) t.StepWithGood();
+  EXPECT_NE(t.controller(), HA_CONTROLLER_HP);
+}
+
+// The same reading with a live sensor's noise on it is a wind, not a stuck pitot: the HP flies on.
+TEST(HaAirdataStories, PitotReadingSteadilyHighWithItsNoiseIsNotStuck) {
+  Timeline t;
+  t.Cruise(200.0f, 60.0f);
+  ASSERT_GT(t.ReachHp(), 0);
+  t.board.airspeed_ftps = 80.0f;  // a 20 ft/s headwind, the groundspeed 60
+  for (int i = 0; i < 1000; ++i) t.StepWithGood();
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HP) << "reasons " << t.out().reasons;
+}
+
+// The HA's own pitch loop may not stall the wing: taking over an aircraft the HP left in a level
+// 50 deg bank at 58 ft/s (1.56 g: 1.0 of the wing's maximum lift needs 42 x sqrt(1.56) = 52 ft/s)
+// low in the band, the altitude term asks for the nose up, which would load the wing further;
+// the lift guard (0.7 of the maximum: 1.33 g at 58 ft/s) pushes the nose down instead (HiL
+// accelerated_stall: pitching up in the HP's 47 deg bank, the HA stalled the wing at 61 ft/s).
+TEST(HaAirdataStories, HaInheritingASteepBankLowInTheBandPushesRatherThanLoadTheWing) {
+  HaAircraftConfig cfg = ha_aircraft_config;
+  HaStateView v{};
+  v.attitude_ok = v.altitude_ok = v.position_ok = v.airspeed_ok = v.speed_ok = v.alpha_ok = 1u;
+  v.airborne = 1u;
+  v.x[HA_X_ROLL_DEG] = 50.0f;
+  v.x[HA_X_PITCH_DEG] = 0.0f;
+  v.x[HA_X_ALT_AGL_FT] = cfg.sc_alt_min_ft - 50.0f;
+  v.airspeed_ftps = v.ias_ftps = v.tas_ftps = 58.0f;
+  v.path_tas_sq = v.ias_sq = 58.0f * 58.0f;
+  v.cos_bank = std::cos(50.0f / kDegPerRad);
+  v.load_factor = 1.0f / v.cos_bank;
+  v.north_ft = cfg.sc_circle_radius_ft;
+  v.heading_north = 0.0f;
+  v.heading_east = 1.0f;
+  const HaSurfaces applied{};
+  HaSurfaces guarded{}, unguarded{};
+  HaSafetyCtrlState st{};
+  ha_safety_ctrl_step(&st, &cfg, &v, &applied, 1, 0.01f, &guarded);
+  EXPECT_GT(guarded.elevator_deg, 0.0f) << "trailing edge down: nose down";
+  cfg.sc_lift_push_deg_per_g = 0.0f;  // the same law without the guard pulls
+  HaSafetyCtrlState st2{};
+  ha_safety_ctrl_step(&st2, &cfg, &v, &applied, 1, 0.01f, &unguarded);
+  EXPECT_LT(unguarded.elevator_deg, 0.0f);
+  // Wings level at 1 g, inside the guard: it does nothing.
+  v.x[HA_X_ROLL_DEG] = 0.0f;
+  v.cos_bank = v.load_factor = 1.0f;
+  HaSurfaces level_guarded{}, level_unguarded{};
+  HaSafetyCtrlState st3{}, st4{};
+  ha_safety_ctrl_step(&st3, &cfg, &v, &applied, 1, 0.01f, &level_unguarded);
+  cfg.sc_lift_push_deg_per_g = ha_aircraft_config.sc_lift_push_deg_per_g;
+  ha_safety_ctrl_step(&st4, &cfg, &v, &applied, 1, 0.01f, &level_guarded);
+  EXPECT_FLOAT_EQ(level_guarded.elevator_deg, level_unguarded.elevator_deg);
+}
+
+// F7. The pitot dead from 30 ft: the HA flies on the INS less the wind, so slow still beats low.
+// Without a speed the pitch law held altitude alone and flew down to 44.2 ft/s.
+TEST(HaAirdataStories, DeadPitotPitchLawKeepsAboveStall) {
+  const HaAircraftConfig& cfg = ha_aircraft_config;
+  HaCore core;
+  ha_core_init(&core, &cfg);
+  HaInputs in{};
+  HaOutputs out{};
+  PointMassAircraft ac;
+  ac.north_ft = cfg.sc_circle_radius_ft;
+  ac.heading_deg = 90.0f;
+  ac.altitude_ft = 30.0f;
+  ac.airspeed_ftps = 55.0f;
+  uint32_t now = 555000u;
+  const float dt = cfg.period_us * 1e-6f;
+  float min_v = ac.airspeed_ftps, min_h = ac.altitude_ft;
+  for (int i = 0; i < 100 * 120; ++i) {
+    now += cfg.period_us;
+    ac.WriteTo(&in, now);
+    in.airspeed_ftps = -1.0f;  // what ha_app hands over for a failed read
+    ha_core_step(&core, &in, now, &out);
+    ac.Step(out.surfaces, dt);
+    min_v = std::min(min_v, ac.airspeed_ftps);
+    min_h = std::min(min_h, ac.altitude_ft);
+  }
+  std::printf("dead pitot from 30 ft, HA alone 120 s: lowest %.1f ft, slowest %.1f ft/s, %.0f ft\n",
+              min_h, min_v, ac.altitude_ft);
+  EXPECT_GT(min_v, cfg.stall_switch_airspeed_ftps);
+  EXPECT_GT(min_h, 0.0f);
+  EXPECT_GT(ac.altitude_ft, 30.0f);  // and it climbs towards its band
+}
+
+// F8. A healthy pitot downwind at 6,500 ft: 60 ft/s indicated is 66.1 true there, and 94 over
+// the ground is a 28 ft/s tailwind, inside max_wind. Compared as indicated airspeed against
+// groundspeed (34 apart) it displaced a healthy HP.
+TEST(HaAirdataStories, DownwindAtDensityAltitudeKeepsHealthyHp) {
+  Timeline t;
+  t.Cruise(200.0f, 60.0f);
+  t.app.inputs.altitude_msl_ft = 6500.0f;
+  FlyEast(&t, 94.0f, 0.0f, 2.0f, 0.0f);
+  ASSERT_GT(t.ReachHp(), 0);
+  uint32_t reasons_seen = 0u;
+  for (int i = 0; i < 100 * 90; ++i) {
+    reasons_seen |= t.StepWithGood().reasons;
+    ASSERT_EQ(t.controller(), HA_CONTROLLER_HP) << "period " << i << " reasons " << t.out().reasons;
+  }
+  EXPECT_EQ(reasons_seen, 0u);
+  // The same pitot at sea level would be 34 ft/s off the INS: a lie, not a tailwind.
+  Timeline u;
+  u.Cruise(200.0f, 60.0f);
+  u.app.inputs.altitude_msl_ft = 200.0f;
+  FlyEast(&u, 94.0f, 0.0f, 2.0f, 0.0f);
+  EXPECT_LT(u.ReachHp(300), 0);
+}
+
+// ---- The generator ----
+
+std::string Slurp(const std::string& path) {
+  std::ifstream f(path);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+// limits.yaml with one key's value replaced; runs the generator on it. Returns its exit status
+// and what it wrote to stderr.
+int GenerateWith(const std::string& key, const std::string& value, std::string* err) {
+  const std::string yaml = std::regex_replace(
+      Slurp(HA_LIMITS_YAML), std::regex("\n(  " + key + ":) [^\n]*"), "\n$1 " + value);
+  char yaml_name[] = "/tmp/ha_airdata_limits_XXXXXX";
+  char err_name[] = "/tmp/ha_airdata_err_XXXXXX";
+  const int fd = mkstemp(yaml_name), fd_err = mkstemp(err_name);
+  EXPECT_GE(fd, 0);
+  EXPECT_GE(fd_err, 0);
+  close(fd);
+  close(fd_err);
+  std::ofstream(yaml_name) << yaml;
+  const std::string cmd = std::string(HA_PYTHON) + " " + HA_CONFIG_GENERATOR + " " + yaml_name +
+                          " - > /dev/null 2> " + err_name;
+  const int status = std::system(cmd.c_str());
+  *err = Slurp(err_name);
+  std::remove(yaml_name);
+  std::remove(err_name);
+  return status;
+}
+
+// G1. 4294.967295 s fits the 32-bit microsecond clock (2^32 - 1 us), and a dead INS or pitot
+// would be trusted for 71 minutes. Every sensor timeout is refused past what the rules need.
+TEST(HaAirdataStories, GeneratorRefusesUnboundedSensorTimeouts) {
+  std::string err;
+  ASSERT_EQ(GenerateWith("state_timeout_s", "0.1", &err), 0) << err;
+  for (const char* key : {"state_timeout_s", "airspeed_timeout_s"}) {
+    SCOPED_TRACE(key);
+    EXPECT_NE(GenerateWith(key, "4294.967295", &err), 0);
+    EXPECT_NE(err.find(key), std::string::npos) << err;
+    EXPECT_NE(GenerateWith(key, "2.5", &err), 0);  // past the 2 s stable window
+    EXPECT_NE(err.find(key), std::string::npos) << err;
+  }
+  // The pitot's hold may not outlast a 1 g deceleration through the stall inset (0.13 s).
+  EXPECT_NE(GenerateWith("airspeed_timeout_s", "0.5", &err), 0);
+  EXPECT_NE(err.find("airspeed_timeout_s"), std::string::npos) << err;
+}
+
+// F1. One source for the stall: limits.yaml's stall alpha and stall speed are airframe.yaml's;
+// the HP's estimate limit (divergence) may not lie inside the stall.
+TEST(HaAirdataStories, GeneratorHoldsTheStallRowsToTheAirframe) {
+  std::string err;
+  EXPECT_NE(GenerateWith("stall_alpha_deg", "12.0", &err), 0);
+  EXPECT_NE(err.find("stall_alpha_deg"), std::string::npos) << err;
+  EXPECT_NE(err.find("airframe.yaml"), std::string::npos) << err;
+  EXPECT_NE(GenerateWith("alpha_limit_deg", "5.0", &err), 0);
+  EXPECT_NE(err.find("stall_alpha_deg"), std::string::npos) << err;
+  EXPECT_NE(GenerateWith("stall_speed_ftps", "35.0", &err), 0);
+  EXPECT_NE(err.find("stall_speed_ftps"), std::string::npos) << err;
+  EXPECT_LE(ha_aircraft_config.stall_alpha_deg, 8.85f);  // (cl_max - cl0) / cl_alpha
+}
+
+}  // namespace
