@@ -2,6 +2,7 @@
 // inner-loop chain. All persistent state lives in one static instance, as in generated code.
 #include "dg808_gnc.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -40,6 +41,23 @@ struct Gnc {
   // The attitude the loops are asked for (slewed towards the guidance's), rad.
   double phi_ref_rad = 0.0, theta_ref_rad = 0.0;
 };
+
+// Stall prevention, as ArduPlane's: the HA judges the stall by the load factor (IAS^2 cos(bank)
+// against its switch speed squared, issue 22 F1), so a bank the speed cannot pay for is a
+// takeover. The bank is limited so that V^2 cos(bank) stays at min_airspeed_cmd^2 (never below
+// kMinStallPreventionBankRad: the aircraft must still steer), and the airspeed demand rises with
+// the square root of the load factor of the bank commanded. (HiL, moderate turbulence in a
+// 16 ft/s headwind: the HP slowed to 49.5 ft/s in a 32 deg bank and lost the servos for STALL
+// until latched.)
+constexpr double kMinStallPreventionBankRad = 10.0 * 3.14159265358979 / 180.0;
+void stall_prevention(const DG808_GNC_Params &p, double vt_ftps, dg808::GuidanceCommand *gc) {
+  const double floor_sq = p.min_airspeed_cmd_ftps * p.min_airspeed_cmd_ftps;
+  const double cos_min = vt_ftps > 0.0 ? std::min(1.0, floor_sq / (vt_ftps * vt_ftps)) : 1.0;
+  const double max_bank = std::max(kMinStallPreventionBankRad, std::acos(cos_min));
+  gc->phi_cmd_rad = std::clamp(gc->phi_cmd_rad, -max_bank, max_bank);
+  gc->vt_cmd_ftps =
+      std::max(gc->vt_cmd_ftps, p.min_airspeed_cmd_ftps / std::sqrt(std::cos(gc->phi_cmd_rad)));
+}
 
 double slew(double from, double to, double max_step) {
   return from + std::clamp(to - from, -max_step, max_step);
@@ -285,7 +303,10 @@ extern "C" void DG808_GNC_step(const DG808_GNC_Input *in, DG808_GNC_Output *out)
   const dg808::GuidanceState gs{
       o.north_ft, o.east_ft, o.height_ft, in->vel_north_mps * kFtPerM, in->vel_east_mps * kFtPerM,
       in->psi_rad};
-  const dg808::GuidanceCommand gc = g_gnc.guidance.step(*in, gs, flying);
+  dg808::GuidanceCommand gc = g_gnc.guidance.step(*in, gs, flying);
+  if (est.converged) {
+    stall_prevention(p, est.vt_mps * kFtPerM, &gc);
+  }
   // While this command is not flown (the HA or the pilot flies, the loops not closed) the
   // reference is the attitude the aircraft has, so that a hand-back starts from it.
   if (flying && in->ha_in_control == 0) {
