@@ -9,11 +9,6 @@ import tempfile
 import yaml
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
-# Why the stories of issue 22's F1, F3 and F8 are strict xfails: their fix is not on main.
-AIRDATA_NOT_LANDED = (
-    "the fix (the HA's airspeed picture, ha_airdata.c) is on branch ha-airdata, not landed: its "
-    "alpha row at the airframe's 8.8 deg kept the restarted HP out in moderate turbulence and its "
-    "stall-by-load-factor changed the bank story's reason")
 sys.path.insert(0, ROOT)
 from hil.campaigns.flight import run_completed  # noqa: E402  (a flight that runs out of time, killed whole)
 with open(os.path.join(ROOT, "aircraft", "DG808", "limits.yaml")) as _f:

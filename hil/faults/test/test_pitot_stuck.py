@@ -4,7 +4,10 @@ the reading is more than any wind the HA allows (sensors.max_wind_ftps) above th
 can only be a lying sensor, and the HA must have taken over by then (the class's due; an HA that
 learns the wind may see it sooner, and then no due comes). On 0da675b the lying check was
 one-sided: seed 11 had the due at 14.08 s, the HP kept the servos, the wing stalled and the
-aircraft hit the ground."""
+aircraft hit the ground. With the two-sided test alone the HA took the servos for STALL but handed
+them back to the HP, which flew on the stuck pitot into three more STALL takeovers and 1.0 s of
+stalled wing under the HA; a reading repeated to the bit for sensors.pitot_stuck_s is now a stuck
+sensor, and the HA keeps the servos."""
 from flight import assert_property, fly
 
 
