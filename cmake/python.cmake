@@ -1,7 +1,9 @@
 # Which Python the build runs, decided here and nowhere else.
 #
 # Every generator (tools/gen_*.py, arduino_ha's config and message generators) needs only the
-# standard library and PyYAML (Debian python3-yaml), and runs with catkin's PYTHON_EXECUTABLE:
+# standard library, PyYAML and jsonschema (Debian python3-yaml, python3-jsonschema: the aircraft's
+# YAML files are read through tools/check_config.py, against aircraft/schema/), and runs with
+# catkin's PYTHON_EXECUTABLE:
 # the Makefile passes -DPYTHON_EXECUTABLE=/usr/bin/python3, as a user's own workspace does with
 # `catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3` (ROS 1 on Debian 12 is Python 3).
 #
@@ -12,6 +14,21 @@
 if(NOT PYTHON_EXECUTABLE)
   message(FATAL_ERROR "PYTHON_EXECUTABLE is unset: configure through catkin (find_package(catkin) sets it)")
 endif()
+
+execute_process(COMMAND ${PYTHON_EXECUTABLE} -c "import jsonschema, yaml"
+  RESULT_VARIABLE _generator_modules_rc OUTPUT_QUIET ERROR_QUIET)
+if(NOT _generator_modules_rc EQUAL 0)
+  message(FATAL_ERROR "${PYTHON_EXECUTABLE} cannot import jsonschema and yaml: run `make deps` "
+    "(apt-get install python3-jsonschema python3-yaml)")
+endif()
+# What a generator reading an aircraft's YAML depends on besides the file: the checker and schemas.
+set(${PROJECT_NAME}_CONFIG_CHECK_DEPENDS
+  ${PROJECT_SOURCE_DIR}/tools/check_config.py
+  ${PROJECT_SOURCE_DIR}/aircraft/schema/airframe.schema.json
+  ${PROJECT_SOURCE_DIR}/aircraft/schema/controller_param.schema.json
+  ${PROJECT_SOURCE_DIR}/aircraft/schema/ground_station.schema.json
+  ${PROJECT_SOURCE_DIR}/aircraft/schema/limits.schema.json
+  ${PROJECT_SOURCE_DIR}/aircraft/schema/tunables.schema.json)
 
 set(${PROJECT_NAME}_PYMAVLINK_PYTHON "" CACHE FILEPATH
     "Python with pymavlink for mavgen (found automatically when empty)")

@@ -15,7 +15,7 @@ summary still says why ("died": the simulator stopped, "timeout": past --timeout
 
 Each flight gets its own ROS master (a free port on loopback), its own ptys and control socket
 (a temporary folder) and its own output folder hil/out/<YYYY-MM-DD_HHMMSS>-<aircraft>-<seed>/
-with flight.bag (HIL_INTERFACES.md section 3), summary.json and the logs. A progress bar goes to
+with flight.bag (hil/HIL_INTERFACES.md section 3), summary.json and the logs. A progress bar goes to
 stderr. Every process started here is stopped at the end, on Ctrl-C and on error. --realtime
 flies on the wall clock, with the ground station's telemetry on UDP 14550 for QGroundControl.
 Needs the workspace sourced (make run does it)."""

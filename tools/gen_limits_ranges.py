@@ -13,8 +13,7 @@ import math
 import os
 import sys
 
-import yaml
-
+import check_config
 from generated_file import write_if_changed
 
 DEFAULT_TABLE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "aircraft",
@@ -26,8 +25,11 @@ class RangeError(Exception):
 
 
 def ranges(path=DEFAULT_TABLE):
-    with open(path) as f:
-        doc = yaml.safe_load(f)
+    # Schema first: a range for a key limits.yaml does not have (a typo) names that key.
+    try:
+        doc = check_config.load(path, "limits_ranges")
+    except check_config.ConfigError as e:
+        raise RangeError(str(e)) from None
     out = {}
     for section, keys in (doc or {}).items():
         for key, bounds in (keys or {}).items():
@@ -77,7 +79,7 @@ def main(argv):
         return 2
     try:
         text = header(ranges(argv[1]))
-    except (RangeError, OSError, yaml.YAMLError) as e:
+    except (RangeError, OSError) as e:
         sys.stderr.write("gen_limits_ranges: %s\n" % e)
         return 1
     write_if_changed(argv[2], text)

@@ -9,7 +9,7 @@ usage: gen_tunables.py TUNABLES_YAML CONTROLLER_PARAM_YAML OUTPUT_HEADER
 import os
 import sys
 
-import yaml
+import check_config
 
 APPLY = {"live": "kLive", "gnc_restart": "kGncRestart", "fixed": "kFixed"}
 TYPES = {"real": "false", "integer": "true"}
@@ -58,10 +58,13 @@ def main(argv):
         sys.stderr.write(__doc__)
         return 2
     tunables_path, params_path, out_path = argv[1:]
-    with open(tunables_path) as f:
-        tunables = (yaml.safe_load(f) or {}).get("tunables")
-    with open(params_path) as f:
-        param_keys = set((yaml.safe_load(f) or {}).keys())
+    # Both files against their schemas (aircraft/schema/) first: unknown, missing or mistyped keys.
+    try:
+        tunables = check_config.load(tunables_path, "tunables")["tunables"]
+        param_keys = set(check_config.load(params_path, "controller_param").keys())
+    except check_config.ConfigError as e:
+        sys.stderr.write("gen_tunables: %s\n" % e)
+        return 1
     if not isinstance(tunables, list) or not tunables:
         sys.stderr.write("%s: needs a non-empty `tunables:` list\n" % tunables_path)
         return 1

@@ -55,7 +55,7 @@
 #define HA_SIL_R_STEPPED 64u /* this reply follows a period of the core */
 #define HA_SIL_R_HOME 128u   /* the HA's INS adapter has a home (latched, set or kept) */
 
-/* Layout: "<IHHQQIIHHHHHHff" (64 bytes). */
+/* Layout: "<IHHQQIIHHHHHHff" (52 bytes). */
 typedef struct {
   uint32_t magic;
   uint16_t version;

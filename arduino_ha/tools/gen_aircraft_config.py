@@ -12,10 +12,9 @@ import math
 import os
 import sys
 
-import yaml
-
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
 import gen_limits_ranges  # noqa: E402  (the one table of ranges every component checks with)
+import check_config  # noqa: E402  (aircraft/schema/limits.schema.json: no unknown, missing or mistyped key)
 
 # Order of the state and actuator vectors: must match HA_X_* and HA_U_* in src/core/ha_config.h.
 X_NAMES = ["alpha_deg", "beta_deg", "roll_deg", "pitch_deg", "p_deg_s", "q_deg_s", "r_deg_s",
@@ -164,6 +163,11 @@ def check_against_airframe(c, airframe):
 
 
 def build(doc, airframe=None):
+    # Keys first: a misspelt key would otherwise leave the one it meant missing, or ignored.
+    try:
+        check_config.validate(doc, "limits", "limits.yaml")
+    except check_config.ConfigError as err:
+        raise ConfigError(str(err)) from None
     act = doc["actuators"]
     st = doc["state"]
     dec = doc["decision"]
@@ -469,18 +473,20 @@ def main(argv):
     if len(argv) != 3:
         sys.stderr.write(__doc__)
         return 2
-    with open(argv[1]) as f:
-        doc = yaml.safe_load(f)
-    # Name the source by aircraft, not by absolute path, so every checkout generates the same bytes.
-    source = "aircraft/%s/limits.yaml" % doc.get("aircraft", "?")
     try:
-        path = airframe_path(argv[1], doc.get("aircraft", "?"))
+        doc = check_config.load(argv[1], "limits")
+        # Name the source by aircraft, not by absolute path, so every checkout generates the same
+        # bytes.
+        source = "aircraft/%s/limits.yaml" % doc["aircraft"]
+        path = airframe_path(argv[1], doc["aircraft"])
         if not os.path.exists(path):
             raise ConfigError("no airframe.yaml for aircraft %s (looked for %s): the stall speed "
-                              "and alpha limit cannot be checked" % (doc.get("aircraft", "?"), path))
-        with open(path) as f:
-            airframe = yaml.safe_load(f)
+                              "and alpha limit cannot be checked" % (doc["aircraft"], path))
+        airframe = check_config.load(path, "airframe")
         text = render(build(doc, airframe), source)
+    except check_config.ConfigError as err:  # names the file itself
+        sys.stderr.write("gen_aircraft_config: %s\n" % err)
+        return 1
     except (ConfigError, KeyError, TypeError) as err:
         sys.stderr.write("gen_aircraft_config: %s: %s\n" % (argv[1], err))
         return 1

@@ -150,9 +150,10 @@ def _duration(fault_class, rng, window):
 
 
 def max_wind_ftps():
-    import yaml
-    with open(os.path.join(ROOT, "aircraft", "DG808", "limits.yaml")) as f:
-        return float(yaml.safe_load(f)["sensors"]["max_wind_ftps"])
+    sys.path.insert(0, os.path.join(ROOT, "tools"))
+    import check_config
+    limits = check_config.load(os.path.join(ROOT, "aircraft", "DG808", "limits.yaml"))
+    return float(limits["sensors"]["max_wind_ftps"])
 
 
 WIND_OVER_LIMIT = 1.5   # winds drawn up to this x sensors.max_wind_ftps: and beyond what the HA allows

@@ -6,10 +6,13 @@ trim and the tests read one set of numbers. SI units in the attribute names.
 import bisect
 import math
 import os
+import sys
 from dataclasses import dataclass
 
 import numpy as np
-import yaml
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
+import check_config  # noqa: E402  (aircraft/schema/: no unknown, missing or mistyped key)
 
 FT_PER_M = 1.0 / 0.3048
 LBF_PER_N = 0.2248089430997105
@@ -32,8 +35,7 @@ class ServoSpec:
 
 
 def _load(path):
-    with open(path, "r", encoding="utf-8") as f:
-        return yaml.safe_load(f)
+    return check_config.load(path)  # the schema by the file's name (airframe.yaml, limits.yaml)
 
 
 class Airframe:

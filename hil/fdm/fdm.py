@@ -44,7 +44,7 @@ def _check_finite(**values):
 
 
 class Fdm:
-    """One simulated aircraft (HIL_INTERFACES.md section 1).
+    """One simulated aircraft (hil/HIL_INTERFACES.md section 1).
 
     Fdm(aircraft_dir, seed, dt_s, wind, work_dir): generates the JSBSim model from
     aircraft_dir/airframe.yaml and limits.yaml into work_dir (a temporary folder, removed on

@@ -1,4 +1,4 @@
-"""The values the flight-dynamics model takes and gives (HIL_INTERFACES.md section 1)."""
+"""The values the flight-dynamics model takes and gives (hil/HIL_INTERFACES.md section 1)."""
 from dataclasses import dataclass
 from typing import Tuple
 

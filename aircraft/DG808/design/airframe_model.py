@@ -5,16 +5,19 @@ from the same data (through the generated header), so the gains are designed on 
 are tested against.
 """
 import math
+import os
+import sys
 
 import numpy as np
-import yaml
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "tools"))
+import check_config  # noqa: E402  (aircraft/schema/: no unknown, missing or mistyped key)
 
 FT_PER_M = 1.0 / 0.3048
 
 
 def load_airframe(path):
-    with open(path, "r", encoding="utf-8") as f:
-        return yaml.safe_load(f)
+    return check_config.load(path, "airframe")
 
 
 class Airframe:

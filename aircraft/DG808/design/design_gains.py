@@ -17,13 +17,12 @@ import sys
 import numpy as np
 import scipy.linalg
 import scipy.optimize
-import yaml
 
 sys.dont_write_bytecode = True  # no __pycache__ in the source tree
 HERE = os.path.dirname(os.path.abspath(__file__))
 AIRCRAFT_DIR = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
-from airframe_model import Airframe, FT_PER_M, load_airframe  # noqa: E402
+from airframe_model import Airframe, FT_PER_M, check_config, load_airframe  # noqa: E402
 
 # Bryson's rule: the largest deviation we accept of each state and input. The LQR weight of a
 # quantity is 1/max^2; Q_weight from controller_param.yaml scales the state weights.
@@ -102,8 +101,7 @@ def main():
     airframe_path = os.path.join(AIRCRAFT_DIR, "airframe.yaml")
     params_path = os.path.join(AIRCRAFT_DIR, "controller_param.yaml")
     data = load_airframe(airframe_path)
-    with open(params_path, "r", encoding="utf-8") as f:
-        params = yaml.safe_load(f)
+    params = check_config.load(params_path, "controller_param")
     q_weight = float(params["Q_weight"])
     dt_max = float(params["dt"])
     af = Airframe(data)

@@ -91,7 +91,7 @@ def expected_switches():
 
 @pytest.fixture(scope="module")
 def hil_flight(tmp_path_factory):
-    """A HiL output folder as HIL_INTERFACES.md section 4 lays it out, the report in report/."""
+    """A HiL output folder as hil/HIL_INTERFACES.md section 4 lays it out, the report in report/."""
     folder = tmp_path_factory.mktemp("out") / "2026-11-23_101500-DG808-7"
     folder.mkdir()
     bag = folder / "flight.bag"

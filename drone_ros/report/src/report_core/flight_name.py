@@ -1,5 +1,5 @@
 """Names of flight logs: <YYYY-MM-DD_HHMMSS>-<aircraft>-<mode>.bag (the HiL output folders'
-pattern, HIL_INTERFACES.md section 4), never reusing the name of an existing log."""
+pattern, hil/HIL_INTERFACES.md section 4), never reusing the name of an existing log."""
 import errno
 import os
 import re
