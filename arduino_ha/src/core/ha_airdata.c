@@ -229,11 +229,14 @@ void ha_airdata_view(const HaAirdata *a, const HaAircraftConfig *cfg, HaStateVie
     v->load_factor =
         v->cos_bank + v->tas_ftps * v->x[HA_X_Q_DEG_S] * (HA_AD_RAD_PER_DEG / HA_AD_G_FTPS2);
   }
-  /* Near the stall: at or below the hand-back speed for this load factor. Only there is the
-   * INS's angle of attack looked at (ha_checks.c): its flight path cannot see a vertical gust. */
+  /* Near the stall: at or below the 1 g hand-back speed, where a stalled glide flies (the
+   * wing's lift past the break, post_stall_cl_fraction of its maximum, holds 1 g at some 1.15 x
+   * the stall speed). Only there is the INS's angle of attack looked at (ha_checks.c): its
+   * flight path cannot see the air move nor a sideslip in a bank, and its errors reach the
+   * stall's margin (HiL: STALL at a true 3.6 deg in a 33 deg bank at 57 ft/s, a 31 ft/s wind and
+   * light turbulence); the load factor covers the banked and the pulled stall. */
   v->ias_sq = v->ias_ftps * v->ias_ftps;
-  v->near_stall =
-      (uint8_t)(v->speed_ok && !ha_greater(v->ias_sq, cfg->handback_airspeed_sq * v->load_factor));
+  v->near_stall = (uint8_t)(v->speed_ok && !ha_greater(v->ias_sq, cfg->handback_airspeed_sq));
   /* The flight path's speed is the INS's less the wind as far as it is learnt, never the
    * pitot's: a pitot reading low but still believed made climb / TAS a dive twice as steep,
    * and the angle of attack a stall (HiL pitot_failure low). The path angle is small, so the

@@ -92,7 +92,7 @@ static int past_stall_alpha(const HaAircraftConfig *cfg, const HaStateView *s) {
  * see (ha_airdata.c: 1 / cos(bank) in a level turn, more in a pull); the speed is the pitot's,
  * or the INS's less the wind when the pitot is not believed. The pitot lags a stall by several
  * periods, so waiting for stall speed itself hands the HA a departed aircraft. Or, below the
- * hand-back speed for that load factor, past the airframe's stall angle of attack
+ * 1 g hand-back speed (near_stall, ha_airdata.c), past the airframe's stall angle of attack
  * (stall_alpha_deg, which the generator holds to airframe.yaml's): pitch less flight path is
  * alpha cos(bank), a stalled glide that the speed does not show. Only there: the INS's flight
  * path cannot see a vertical gust, and in moderate turbulence a downdraft at cruise read as

@@ -37,7 +37,7 @@ typedef struct {
   uint8_t parked;    /* set by the core: on the ground, still, at a known height: self-test */
   /* The HA's own airspeed picture (ha_airdata.c), whatever the pitot does. */
   uint8_t speed_ok;   /* ias_ftps known: the pitot believed, or else the INS less the wind */
-  uint8_t near_stall; /* at or below the hand-back speed for the load factor */
+  uint8_t near_stall; /* at or below the 1 g hand-back speed */
   uint8_t alpha_ok;   /* the angle of attack looked at: near the stall, attitude, INS velocity */
   float ias_sq;       /* ias_ftps^2, once per period */
   float ias_ftps;     /* indicated: the stall speed is an indicated one */
