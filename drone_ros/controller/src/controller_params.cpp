@@ -125,6 +125,14 @@ bool build_controller_params(const ParamLookup &lookup, ControllerParams *params
   g.min_airspeed_cmd_ftps = r.get("min_airspeed_cmd_ftps", 0.0, 300.0);
   r.require(g.min_airspeed_cmd_ftps > g.stall_speed_ftps,
             "min_airspeed_cmd_ftps must be above limits' stall_speed_ftps");
+  // The HA hands control back only above this speed: an HP commanded slower would be taken over
+  // at its slowest and never given the servos back.
+  const double handback_ftps =
+      g.stall_speed_ftps * r.get_limit(limits_ranges::kStateHandbackStallMultiple);
+  r.require(
+      g.min_airspeed_cmd_ftps > handback_ftps,
+      "min_airspeed_cmd_ftps must be above the HA's hand-back speed (limits' stall_speed_ftps "
+      "x handback_stall_multiple)");
   g.airspeed_valid_min_ftps = r.get("airspeed_valid_min_ftps", 1.0, 300.0);
   r.require(g.airspeed_valid_min_ftps < g.stall_speed_ftps,
             "airspeed_valid_min_ftps must be below the stall speed, or flight has no air data");
