@@ -186,6 +186,19 @@ def stalled(m, alphas):
     return not m.on_ground and (m.alpha_deg > alphas[0] or m.alpha_deg < alphas[1])
 
 
+def launch_stall_periods(recs, alphas):
+    """How many periods from the airborne start the wing was already stalled: the simulator
+    launches the aircraft at ground_s in whatever the turbulence field holds there, and a gust
+    there (HiL campaign: alpha 11.9 deg in the first period, moderate turbulence) is the launch's,
+    nobody's doing; it ends with the first period the wing flies."""
+    n = 0
+    for x in recs:
+        if not stalled(x[1], alphas):
+            break
+        n += 1
+    return n
+
+
 def longest_stall_s(recs, alphas, period_s):
     """The longest unbroken stretch of periods with the wing stalled while the HA's side flew: a
     gust that spikes alpha for a period or two against a stall flown into and held."""
@@ -292,14 +305,17 @@ def fault_verdict(sim, progress):
     # The stall judged on the truth: the wing past its stall angle of attack while the HA's side
     # flies is the HA's own failure (it flies to keep the aircraft flying), whoever stalled it.
     alphas = stall_alphas_deg(sim)
-    stalled_ha = sum(1 for x in recs if x[2].controller in HA_SIDE and stalled(x[1], alphas))
+    launch = launch_stall_periods(recs, alphas)
+    flown = recs[launch:]
+    stalled_ha = sum(1 for x in flown if x[2].controller in HA_SIDE and stalled(x[1], alphas))
     stalled_any = sum(1 for x in recs if (at is None or x[0] * 1e-6 >= at - 1e-9) and stalled(x[1], alphas))
     losses = recovery_height_losses(recs, at if at is not None else sim.ground_s)
     return {
         "ok": unsafe_n == 0 and outside_ha == 0 and takeover_ok and not crashed and stalled_ha == 0,
         "stall_alpha_deg": round(alphas[0], 3),
         "stalled_under_ha_s": round(stalled_ha * period, 4),
-        "longest_stall_under_ha_s": round(longest_stall_s(recs, alphas, period), 4),
+        "longest_stall_under_ha_s": round(longest_stall_s(flown, alphas, period), 4),
+        "stalled_at_launch_s": round(launch * period, 4),
         "stalled_from_fault_s": round(stalled_any * period, 4),
         "recovery_height_loss_ft": round(max(v for _, v, _ in losses), 2) if losses else None,
         "recoveries": [{"takeover_s": round(t, 3), "height_lost_ft": round(v, 2), "recovered": r}

@@ -157,15 +157,29 @@ def max_wind_ftps():
 
 
 WIND_OVER_LIMIT = 1.5   # winds drawn up to this x sensors.max_wind_ftps: and beyond what the HA allows
+# ... but below this x the stall speed: parked in a wind above its stall speed a glider is flying,
+# not parked, and no launch happens in one (HiL: 13.1 m/s, the pitot above stall on the ground,
+# home never latched and the mission upload was refused).
+LAUNCHABLE_WIND_OF_STALL = 0.9
+
+
+def wind_draw_limit_ftps():
+    """The strongest wind a campaign draws: WIND_OVER_LIMIT x max_wind_ftps, below
+    LAUNCHABLE_WIND_OF_STALL x the stall speed."""
+    sys.path.insert(0, os.path.join(ROOT, "tools"))
+    import check_config
+    limits = check_config.load(os.path.join(ROOT, "aircraft", "DG808", "limits.yaml"))
+    return min(WIND_OVER_LIMIT * float(limits["sensors"]["max_wind_ftps"]),
+               LAUNCHABLE_WIND_OF_STALL * float(limits["state"]["stall_speed_ftps"]))
 TURBULENCE = (("none", 0.5), ("light", 0.35), ("moderate", 0.15))
 
 
 def draw_wind(campaign_seed, flight_id, limit_ftps):
     """(wind_mps, wind_from_deg, turbulence) of one flight, from its own stream: calm one flight in
-    eight, else uniform in speed up to WIND_OVER_LIMIT x the HA's max_wind_ftps and in direction,
+    eight, else uniform in speed up to limit_ftps (wind_draw_limit_ftps) and in direction,
     turbulence none, light or moderate (TURBULENCE's shares)."""
     r = random.Random("campaign:%d:flight:%d:wind" % (campaign_seed, flight_id))
-    mps = 0.0 if r.random() < 0.125 else round(r.uniform(0.0, WIND_OVER_LIMIT * limit_ftps * 0.3048), 2)
+    mps = 0.0 if r.random() < 0.125 else round(r.uniform(0.0, limit_ftps * 0.3048), 2)
     from_deg = round(r.uniform(0.0, 360.0), 1)
     u, turb = r.random(), "none"
     for level, share in TURBULENCE:
@@ -199,7 +213,7 @@ def make_plan(flights, seed, classes, duration_s=45.0, fault_window_s=(8.0, 20.0
     has_params = interface is None or interface.has_params
     # Wind per flight, every class, when run_flight.py can fly it (else every flight is calm).
     windy = wind and (interface is None or interface.has_wind)
-    limit_ftps = max_wind_ftps() if windy else None
+    limit_ftps = wind_draw_limit_ftps() if windy else None
     plan = []
     for i in range(flights):
         cls = order[i % len(order)]

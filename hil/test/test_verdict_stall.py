@@ -53,3 +53,15 @@ def test_the_longest_stall_under_the_ha_tells_a_gust_from_a_stall_held():
     assert round(verdicts.longest_stall_s(spikes, alphas, 0.01), 6) == 0.01
     assert round(verdicts.longest_stall_s(held, alphas, 0.01), 6) == 0.1
     assert verdicts.longest_stall_s(under_hp, alphas, 0.01) == 0.0
+
+
+def test_a_stall_the_aircraft_was_launched_into_is_the_launchs_and_ends_with_the_first_flying_period():
+    # The airborne start in a gust: stalled for the first 8 periods, then flying; a later stall is
+    # not the launch's however it began.
+    alphas = (8.85, -5.0)
+    launched = recs([(2.0 + 0.01 * i, 1, 200.0, 11.9 if i < 8 or 30 <= i < 33 else 3.0) for i in range(40)])
+    assert verdicts.launch_stall_periods(launched, alphas) == 8
+    assert verdicts.launch_stall_periods(launched[1:], alphas) == 7
+    assert verdicts.launch_stall_periods(launched[8:], alphas) == 0
+    flying = recs([(2.0 + 0.01 * i, 1, 200.0, 3.0) for i in range(5)])
+    assert verdicts.launch_stall_periods(flying, alphas) == 0
