@@ -149,11 +149,15 @@ def _duration(fault_class, rng, window):
     return round(rng.uniform(*window), 2)
 
 
-def max_wind_ftps():
+def _limits():
+    """aircraft/DG808/limits.yaml, checked against its schema."""
     sys.path.insert(0, os.path.join(ROOT, "tools"))
     import check_config
-    limits = check_config.load(os.path.join(ROOT, "aircraft", "DG808", "limits.yaml"))
-    return float(limits["sensors"]["max_wind_ftps"])
+    return check_config.load(os.path.join(ROOT, "aircraft", "DG808", "limits.yaml"))
+
+
+def max_wind_ftps():
+    return float(_limits()["sensors"]["max_wind_ftps"])
 
 
 WIND_OVER_LIMIT = 1.5   # winds drawn up to this x sensors.max_wind_ftps: and beyond what the HA allows
@@ -166,9 +170,7 @@ LAUNCHABLE_WIND_OF_STALL = 0.9
 def wind_draw_limit_ftps():
     """The strongest wind a campaign draws: WIND_OVER_LIMIT x max_wind_ftps, below
     LAUNCHABLE_WIND_OF_STALL x the stall speed."""
-    sys.path.insert(0, os.path.join(ROOT, "tools"))
-    import check_config
-    limits = check_config.load(os.path.join(ROOT, "aircraft", "DG808", "limits.yaml"))
+    limits = _limits()
     return min(WIND_OVER_LIMIT * float(limits["sensors"]["max_wind_ftps"]),
                LAUNCHABLE_WIND_OF_STALL * float(limits["state"]["stall_speed_ftps"]))
 TURBULENCE = (("none", 0.5), ("light", 0.35), ("moderate", 0.15))

@@ -49,7 +49,7 @@ struct Gnc {
 // the square root of the load factor of the bank commanded. (HiL, moderate turbulence in a
 // 16 ft/s headwind: the HP slowed to 49.5 ft/s in a 32 deg bank and lost the servos for STALL
 // until latched.)
-constexpr double kMinStallPreventionBankRad = 10.0 * 3.14159265358979 / 180.0;
+constexpr double kMinStallPreventionBankRad = 10.0 * kDegToRad;
 void stall_prevention(const DG808_GNC_Params &p, double vt_ftps, dg808::GuidanceCommand *gc) {
   const double floor_sq = p.min_airspeed_cmd_ftps * p.min_airspeed_cmd_ftps;
   const double cos_min = vt_ftps > 0.0 ? std::min(1.0, floor_sq / (vt_ftps * vt_ftps)) : 1.0;
