@@ -1,5 +1,6 @@
 #include "ha_test_util.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "hp_command.h"
@@ -107,7 +108,18 @@ void Timeline::Operator(uint8_t command) {
 namespace {
 constexpr float kDegPerRad = 57.29578f;
 constexpr float kG = 32.174f;
-constexpr float kAlphaTrimDeg = 3.0f;  // pitch minus flight-path angle in this model
+// Pitch minus flight path (the angle of attack) in level flight at kAlphaTrimFtps: the lift
+// holds the weight times the load factor, so it goes as (kAlphaTrimFtps / V)^2 / cos(bank), and
+// at a fixed pitch more thrust climbs rather than only speeding up.
+constexpr float kAlphaTrimDeg =
+    2.0f;  // the DG808 JSBSim model: 1.7 deg at 66 ft/s in a 20 deg bank
+constexpr float kAlphaTrimFtps = 60.0f;
+
+float AlphaDeg(float airspeed_ftps, float roll_deg) {
+  const float r = kAlphaTrimFtps / airspeed_ftps;
+  const float c = std::max(std::cos(roll_deg / kDegPerRad), 0.2f);
+  return kAlphaTrimDeg * r * r / c;
+}
 }  // namespace
 
 void PointMassAircraft::Step(const HaSurfaces& u, float dt) {
@@ -117,7 +129,7 @@ void PointMassAircraft::Step(const HaSurfaces& u, float dt) {
   q_deg_s += dt * (2.0f * (-u.elevator_deg - 2.0f) - q_deg_s) / 0.3f;
   roll_deg += dt * p_deg_s;
   pitch_deg += dt * q_deg_s;
-  const float gamma = (pitch_deg - kAlphaTrimDeg) / kDegPerRad;
+  const float gamma = (pitch_deg - AlphaDeg(airspeed_ftps, roll_deg)) / kDegPerRad;
   // Speed: electric motor thrust falling with speed, quadratic drag (L/D about 25), gravity.
   const float thrust = 9.5f * u.throttle * (1.0f - airspeed_ftps / 115.0f);
   const float drag = 0.00052f * airspeed_ftps * airspeed_ftps;
@@ -128,8 +140,10 @@ void PointMassAircraft::Step(const HaSurfaces& u, float dt) {
   r_deg_s = turn_rate * kDegPerRad * std::cos(roll_deg / kDegPerRad);
   heading_deg += dt * turn_rate * kDegPerRad;
   heading_deg = std::fmod(heading_deg + 360.0f, 360.0f);
-  north_ft += dt * airspeed_ftps * std::cos(gamma) * std::cos(heading_deg / kDegPerRad);
-  east_ft += dt * airspeed_ftps * std::cos(gamma) * std::sin(heading_deg / kDegPerRad);
+  north_ft +=
+      dt * (airspeed_ftps * std::cos(gamma) * std::cos(heading_deg / kDegPerRad) + wind_north_ftps);
+  east_ft +=
+      dt * (airspeed_ftps * std::cos(gamma) * std::sin(heading_deg / kDegPerRad) + wind_east_ftps);
 }
 
 void PointMassAircraft::WriteTo(HaInputs* in, uint32_t now_us) const {
@@ -143,11 +157,12 @@ void PointMassAircraft::WriteTo(HaInputs* in, uint32_t now_us) const {
   in->altitude_agl_ft = altitude_ft;
   in->north_ft = north_ft;
   in->east_ft = east_ft;
-  // Still air: the velocity over the ground is the airspeed along the heading and flight path.
-  const float gamma = (pitch_deg - kAlphaTrimDeg) / kDegPerRad;
-  in->groundspeed_ftps = airspeed_ftps * std::cos(gamma);
-  in->vel_north_ftps = in->groundspeed_ftps * std::cos(heading_deg / kDegPerRad);
-  in->vel_east_ftps = in->groundspeed_ftps * std::sin(heading_deg / kDegPerRad);
+  // The velocity over the ground is the airspeed along the heading and flight path plus the wind.
+  const float gamma = (pitch_deg - AlphaDeg(airspeed_ftps, roll_deg)) / kDegPerRad;
+  const float air_ftps = airspeed_ftps * std::cos(gamma);
+  in->vel_north_ftps = air_ftps * std::cos(heading_deg / kDegPerRad) + wind_north_ftps;
+  in->vel_east_ftps = air_ftps * std::sin(heading_deg / kDegPerRad) + wind_east_ftps;
+  in->groundspeed_ftps = std::hypot(in->vel_north_ftps, in->vel_east_ftps);
   in->climb_ftps = airspeed_ftps * std::sin(gamma);
   in->altitude_msl_ft = altitude_ft;
   in->on_ground = 0;

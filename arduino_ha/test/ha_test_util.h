@@ -60,6 +60,7 @@ struct PointMassAircraft {
   float north_ft = 0, east_ft = 0, heading_deg = 0;
   float roll_deg = 0, pitch_deg = 0, p_deg_s = 0, q_deg_s = 0, r_deg_s = 0;
   float airspeed_ftps = 60, altitude_ft = 200;
+  float wind_north_ftps = 0, wind_east_ftps = 0;  // the air's velocity over the ground
   void Step(const HaSurfaces& u, float dt_s);
   void WriteTo(HaInputs* in, uint32_t now_us) const;
   float DistanceFt() const;

@@ -208,6 +208,7 @@ TEST(HaAirdataStories, HaInheritingASteepBankLowInTheBandPushesRatherThanLoadThe
   HaAircraftConfig cfg = ha_aircraft_config;
   HaStateView v{};
   v.attitude_ok = v.altitude_ok = v.position_ok = v.airspeed_ok = v.speed_ok = v.alpha_ok = 1u;
+  v.speed_known = 1u;
   v.airborne = 1u;
   v.x[HA_X_ROLL_DEG] = 50.0f;
   v.x[HA_X_PITCH_DEG] = 0.0f;
@@ -239,8 +240,9 @@ TEST(HaAirdataStories, HaInheritingASteepBankLowInTheBandPushesRatherThanLoadThe
   EXPECT_FLOAT_EQ(level_guarded.elevator_deg, level_unguarded.elevator_deg);
 }
 
-// F7. The pitot dead from 30 ft: the HA flies on the INS less the wind, so slow still beats low.
-// Without a speed the pitch law held altitude alone and flew down to 44.2 ft/s.
+// F7. The pitot dead from 30 ft, no wind ever learnt: the HA flies pitch and power, the nose no
+// higher than the attitude that holds the speed and the throttle full below its band, so slow
+// still beats low. Without a speed the pitch law held altitude alone and flew down to 44.2 ft/s.
 TEST(HaAirdataStories, DeadPitotPitchLawKeepsAboveStall) {
   const HaAircraftConfig& cfg = ha_aircraft_config;
   HaCore core;
@@ -269,6 +271,45 @@ TEST(HaAirdataStories, DeadPitotPitchLawKeepsAboveStall) {
   EXPECT_GT(min_v, cfg.stall_switch_airspeed_ftps);
   EXPECT_GT(min_h, 0.0f);
   EXPECT_GT(ac.altitude_ft, 30.0f);  // and it climbs towards its band
+}
+
+// Campaign flight 63 (seed 22): the pitot zeroed 9 s after the launch in a 15 ft/s wind, long
+// before the wind is known. The HA flew the INS's speed over the ground, a believed 62 ft/s in
+// the tailwind at a true 48, its throttle cut to 0.05 for the "excess" speed, and the wing
+// stalled 2.7 s. With neither the pitot nor a known wind the HA knows no airspeed: it flies pitch
+// and power, whose speed the wind does not change, round its circle through head- and tailwind.
+TEST(HaAirdataStories, PitotZeroedBeforeTheWindIsKnownFliesPitchAndPowerNotGroundspeed) {
+  const HaAircraftConfig& cfg = ha_aircraft_config;
+  HaCore core;
+  ha_core_init(&core, &cfg);
+  HaInputs in{};
+  HaOutputs out{};
+  PointMassAircraft ac;
+  ac.north_ft = cfg.sc_circle_radius_ft;
+  ac.heading_deg = 90.0f;
+  ac.altitude_ft = 0.5f * (cfg.sc_alt_min_ft + cfg.sc_alt_max_ft);
+  ac.airspeed_ftps = 62.0f;
+  ac.wind_east_ftps = 15.0f;  // blowing east: a tailwind along the first heading
+  uint32_t now = 555000u;
+  const float dt = cfg.period_us * 1e-6f;
+  float min_v = ac.airspeed_ftps, min_throttle = 1.0f;
+  for (int i = 0; i < 100 * 120; ++i) {  // three laps of the HA's circle
+    now += cfg.period_us;
+    ac.WriteTo(&in, now);
+    in.airspeed_ftps = 0.0f;  // zeroed: reads, but nothing
+    ha_core_step(&core, &in, now, &out);
+    ASSERT_NE(out.controller, HA_CONTROLLER_HP);
+    ac.Step(out.surfaces, dt);
+    if (i > 100 * 5) {  // after the takeover's first seconds
+      min_v = std::min(min_v, ac.airspeed_ftps);
+      min_throttle = std::min(min_throttle, out.surfaces.throttle);
+    }
+  }
+  std::printf(
+      "pitot zeroed in a 15 ft/s wind, HA alone 120 s: slowest %.1f ft/s, throttle >= %.2f\n",
+      min_v, min_throttle);
+  EXPECT_GT(min_v, cfg.stall_speed_ftps * cfg.sc_stall_margin);
+  EXPECT_GE(min_throttle, cfg.sc_throttle_trim - 0.01f) << "a tailwind's speed cut the power";
 }
 
 // F8. A healthy pitot downwind at 6,500 ft: 60 ft/s indicated is 66.1 true there, and 94 over
@@ -354,6 +395,16 @@ TEST(HaAirdataStories, GeneratorHoldsTheStallRowsToTheAirframe) {
   EXPECT_NE(GenerateWith("stall_speed_ftps", "35.0", &err), 0);
   EXPECT_NE(err.find("stall_speed_ftps"), std::string::npos) << err;
   EXPECT_LE(ha_aircraft_config.stall_alpha_deg, 8.85f);  // (cl_max - cl0) / cl_alpha
+}
+
+// Pitch and power's attitude must be one the pitch loop may command, and its throttle needs a
+// band with a middle above its floor.
+TEST(HaAirdataStories, GeneratorHoldsPitchAndPowerInsideThePitchLoopAndTheBand) {
+  std::string err;
+  EXPECT_NE(GenerateWith("power_pitch_deg", "15.0", &err), 0);  // past pitch_cmd_limit_deg
+  EXPECT_NE(err.find("power_pitch_deg"), std::string::npos) << err;
+  EXPECT_NE(GenerateWith("alt_max_ft", "150.0", &err), 0);  // the band's floor itself
+  EXPECT_NE(err.find("alt_max_ft"), std::string::npos) << err;
 }
 
 }  // namespace

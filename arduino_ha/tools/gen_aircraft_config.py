@@ -319,12 +319,18 @@ def build(doc, airframe=None):
         c["sc_" + key] = need(sc, key, 0.0)
     c["sc_alt_min_ft"] = need(sc, "alt_min_ft", c["airborne_agl_ft"], c["ceiling_agl_ft"])
     c["sc_alt_max_ft"] = need(sc, "alt_max_ft", c["sc_alt_min_ft"], c["ceiling_agl_ft"])
+    if c["sc_alt_max_ft"] <= c["sc_alt_min_ft"]:
+        raise ConfigError("alt_max_ft must lie above alt_min_ft: pitch and power's throttle "
+                          "is full at the band's floor and the trim at its middle")
     if c["sc_alt_max_ft"] >= c["ceiling_agl_ft"] * c["inner_region_fraction"]:
         raise ConfigError("safety controller band must lie inside the inner region")
     c["sc_pitch_cmd_limit_deg"] = need(sc, "pitch_cmd_limit_deg", 1.0,
                                        pitch * c["inner_region_fraction"])
     c["sc_stall_margin"] = need(sc, "stall_margin", 1.05, 3.0)
     c["sc_pitch_error_max_deg"] = need(sc, "pitch_error_max_deg", 1.0, 45.0)
+    # Pitch and power (ha_safety_ctrl.c): without a speed the nose goes no higher than this.
+    c["sc_power_pitch_deg"] = need(sc, "power_pitch_deg", -c["sc_pitch_cmd_limit_deg"],
+                                   c["sc_pitch_cmd_limit_deg"])
     # The pitch loop's lift guard (ha_safety_ctrl.c): past lift_margin of the wing's maximum lift
     # coefficient, n > margin (IAS / V_stall)^2, the nose is pushed down lift_push_deg_per_g.
     c["sc_lift_margin_per_ias_sq"] = (need(sc, "lift_margin", 0.3, 0.9)
@@ -362,6 +368,9 @@ def build(doc, airframe=None):
     if c["sc_circle_bank_ff_deg"] >= c["sc_bank_limit_deg"]:
         raise ConfigError("circle_radius_ft too small: its turn needs more bank than bank_limit_deg")
     c["sc_throttle_trim"] = need(sc, "throttle_trim", c["throttle_min"], c["throttle_max"])
+    # Pitch and power's throttle: the trim at the band's middle, full at its floor.
+    c["sc_power_throttle_per_ft"] = ((c["throttle_max"] - c["sc_throttle_trim"])
+                                     / (0.5 * (c["sc_alt_max_ft"] - c["sc_alt_min_ft"])))
     c["sc_integrator_authority"] = need(sc, "integrator_authority", 0.0, 1.0)
     c["sc_blind_fade_per_s"] = 1.0 / positive(sc, "blind_fade_s")
 

@@ -201,6 +201,12 @@ void ha_airdata_view(const HaAirdata *a, const HaAircraftConfig *cfg, HaStateVie
   v->heading_north = a->heading_north;
   v->heading_east = a->heading_east;
   v->speed_ok = (uint8_t)(v->airspeed_ok || ins);
+  /* ... but the INS's velocity is the airspeed only less a known wind. Before it is known (or
+   * once forgotten) the speed over the ground is the airspeed plus a tailwind: flown by, a
+   * believed 62 ft/s was a true 48 and the wing stalled 2.7 s (HiL: the pitot zeroed in 4.7 m/s
+   * and turbulence). The safety controller then flies pitch and power; the checks may still
+   * judge by it (a stall signature, or a takeover the pitot's doubt makes anyway). */
+  v->speed_known = (uint8_t)(v->airspeed_ok || (ins && wind_known(a, cfg)));
   v->ias_ftps = 0.0f;
   v->tas_ftps = 0.0f;
   v->path_tas_sq = 0.0f;

@@ -36,16 +36,17 @@ typedef struct {
   uint8_t on_ground; /* set by the core: the one rule (HaOutputs.on_ground) */
   uint8_t parked;    /* set by the core: on the ground, still, at a known height: self-test */
   /* The HA's own airspeed picture (ha_airdata.c), whatever the pitot does. */
-  uint8_t speed_ok;   /* ias_ftps known: the pitot believed, or else the INS less the wind */
-  uint8_t near_stall; /* at or below the 1 g hand-back speed */
-  uint8_t alpha_ok;   /* the angle of attack looked at: near the stall, attitude, INS velocity */
-  float ias_sq;       /* ias_ftps^2, once per period */
-  float ias_ftps;     /* indicated: the stall speed is an indicated one */
-  float tas_ftps;     /* true: what the INS sees over the ground, less the wind */
-  float climb_ftps;   /* the INS's: with path_tas_sq the flight path, sin(gamma) = climb / TAS */
-  float path_tas_sq;  /* the INS's velocity less the wind learnt so far, squared: not the pitot's */
-  float cos_bank;     /* 1 / load factor of a level turn; 0 at 90 deg of bank and beyond */
-  float load_factor;  /* lift / weight, from the gyros (ha_airdata.c); 1 without attitude */
+  uint8_t speed_ok;    /* ias_ftps set: the pitot believed, else the INS (the checks judge by it) */
+  uint8_t speed_known; /* ... and an airspeed: the pitot's, or the INS's less a known wind */
+  uint8_t near_stall;  /* at or below the 1 g hand-back speed */
+  uint8_t alpha_ok;    /* the angle of attack looked at: near the stall, attitude, INS velocity */
+  float ias_sq;        /* ias_ftps^2, once per period */
+  float ias_ftps;      /* indicated: the stall speed is an indicated one */
+  float tas_ftps;      /* true: what the INS sees over the ground, less the wind */
+  float climb_ftps;    /* the INS's: with path_tas_sq the flight path, sin(gamma) = climb / TAS */
+  float path_tas_sq; /* the INS's velocity less the wind learnt so far, squared: not the pitot's */
+  float cos_bank;    /* 1 / load factor of a level turn; 0 at 90 deg of bank and beyond */
+  float load_factor; /* lift / weight, from the gyros (ha_airdata.c); 1 without attitude */
   float heading_north; /* the heading's unit vector (position_ok), for the circle's guidance */
   float heading_east;
   float x[HA_X_DIM];

@@ -129,6 +129,10 @@ typedef struct {
   float sc_alt_to_pitch_gain_deg_per_ft;
   float sc_pitch_cmd_limit_deg;
   float sc_pitch_error_max_deg; /* the pitch loop's error is clamped to +/- this */
+  /* Pitch and power without a speed: the nose no higher than this, the throttle trim plus this
+   * per ft below the band's middle (derived: full at the band's floor). */
+  float sc_power_pitch_deg;
+  float sc_power_throttle_per_ft;
   /* Slow beats low: below stall_speed_ftps * sc_stall_margin the pitch loop lowers the nose at
    * every altitude; above it the nose may rise sc_speed_to_pitch_gain per ft/s of excess. */
   float sc_stall_margin;

@@ -73,8 +73,9 @@ static float bank_command_deg(const HaAircraftConfig *cfg, const HaStateView *s)
  * as the airspeed above stall x stall_margin pays for (speed_to_pitch_gain per ft/s); below that
  * speed the allowance is negative, so the nose goes down at every altitude, however low. The
  * altitude term can always lower the nose (above the band). The speed is the pitot's, or the
- * INS's when the pitot is doubted or dead (ha_airdata.c); with neither, the altitude term alone
- * decides (and the check reports the HA lacking state). */
+ * INS's less a known wind (ha_airdata.c). With neither, pitch and power, as a pilot flies with
+ * unreliable airspeed: the nose no higher than the attitude that, at throttle_trim, flies the
+ * cruise speed whatever the wind (and the check reports the HA lacking state). */
 static float pitch_command_deg(const HaAircraftConfig *cfg, const HaStateView *s) {
   const float floor_ftps = cfg->stall_speed_ftps * cfg->sc_stall_margin;
   const float mid_ft = 0.5f * (cfg->sc_alt_min_ft + cfg->sc_alt_max_ft);
@@ -82,10 +83,10 @@ static float pitch_command_deg(const HaAircraftConfig *cfg, const HaStateView *s
   if (s->altitude_ok) {
     pitch_deg = cfg->sc_alt_to_pitch_gain_deg_per_ft * (mid_ft - s->x[HA_X_ALT_AGL_FT]);
   }
-  if (s->speed_ok) {
-    const float allowed_deg = cfg->sc_speed_to_pitch_gain_deg_per_ftps * (s->ias_ftps - floor_ftps);
-    pitch_deg = allowed_deg < pitch_deg ? allowed_deg : pitch_deg;
-  }
+  const float allowed_deg =
+      s->speed_known ? cfg->sc_speed_to_pitch_gain_deg_per_ftps * (s->ias_ftps - floor_ftps)
+                     : cfg->sc_power_pitch_deg;
+  pitch_deg = allowed_deg < pitch_deg ? allowed_deg : pitch_deg;
   return ha_clampf(pitch_deg, -cfg->sc_pitch_cmd_limit_deg, cfg->sc_pitch_cmd_limit_deg);
 }
 
@@ -95,7 +96,7 @@ static float pitch_command_deg(const HaAircraftConfig *cfg, const HaStateView *s
  * from pitch less flight path: that one reads a sideslip in a bank (a slipping 50 deg bank at a
  * true 4 deg read 16) and a downdraft as alpha, and pushed the HA into a 31 deg dive (HiL). */
 static float lift_excess_g(const HaAircraftConfig *cfg, const HaStateView *s) {
-  if (s->speed_ok && s->attitude_ok) {
+  if (s->speed_known && s->attitude_ok) {
     const float excess = s->load_factor - cfg->sc_lift_margin_per_ias_sq * s->ias_sq;
     return ha_greater(excess, 0.0f) ? excess : 0.0f;
   }
@@ -139,10 +140,24 @@ void ha_safety_ctrl_step(HaSafetyCtrlState *st, const HaAircraftConfig *cfg, con
       pitch_step = ha_greater(pitch_step, 0.0f) ? 0.0f : pitch_step;
     }
   }
-  if (s->airborne && s->speed_ok && s->attitude_ok) {
+  if (s->airborne && s->speed_known && s->attitude_ok) {
     const float speed_err = target_ftps - s->ias_ftps;
     thr_pd += cfg->sc_throttle_kp_per_ftps * speed_err;
     thr_step = cfg->sc_throttle_ki_per_ft * speed_err * dt_s;
+  } else if (in_control && s->attitude_ok) {
+    /* Pitch and power: the nose at the attitude that holds the speed, the power for the height:
+     * throttle_trim from the band's middle up, full at its floor. Whatever the HP or a speed
+     * loop fed a lying sensor left in the integrator fades (HiL: the throttle cut to 0.05 on a
+     * tailwind's speed over the ground); less power than the trim would slow the aircraft at
+     * that attitude, so the band's ceiling is the pitch term's. */
+    st->throttle_integ =
+        toward_zero(st->throttle_integ, cfg->sc_blind_fade_per_s * auth * dt_s * throttle_half);
+    if (s->altitude_ok) {
+      const float below_ft =
+          0.5f * (cfg->sc_alt_min_ft + cfg->sc_alt_max_ft) - s->x[HA_X_ALT_AGL_FT];
+      thr_pd += ha_clampf(cfg->sc_power_throttle_per_ft * below_ft, 0.0f,
+                          cfg->throttle_max - cfg->sc_throttle_trim);
+    }
   }
   out->aileron_deg = pid(&st->roll_integ_deg, roll_pd, roll_step, cfg->aileron_limit_deg, auth,
                          in_control, applied->aileron_deg);

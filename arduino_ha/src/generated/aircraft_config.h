@@ -85,6 +85,7 @@
     .sc_pitch_cmd_limit_deg = 10.0f, \
     .sc_stall_margin = 1.3f, \
     .sc_pitch_error_max_deg = 8.0f, \
+    .sc_power_pitch_deg = 2.0f, \
     .sc_lift_margin_per_ias_sq = 0.000396825397f, \
     .sc_lift_push_deg_per_g = 15.0f, \
     .sc_cruise_margin = 1.5f, \
@@ -92,6 +93,7 @@
     .stall_switch_airspeed_ftps = 46.2f, \
     .sc_circle_bank_ff_deg = 17.139825f, \
     .sc_throttle_trim = 0.4f, \
+    .sc_power_throttle_per_ft = 0.012f, \
     .sc_integrator_authority = 0.25f, \
     .sc_blind_fade_per_s = 0.5f, \
     .self_test_throttle_max = 0.3f, \

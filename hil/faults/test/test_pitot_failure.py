@@ -1,4 +1,5 @@
-"""A dead pitot on the HA: once the held reading runs out the HA lacks state and takes over."""
+"""A dead, zeroed or low pitot on the HA: once the held reading runs out the HA lacks state and
+takes over, and flies without the stall it could not see."""
 from flight import assert_property, fly
 
 
@@ -27,3 +28,17 @@ def test_a_pitot_reading_low_below_the_stall_switch_speed_is_taken_over_at_once_
     v = s["verdict"]
     assert v["stalled_from_fault_s"] == 0.0, (v, s["_replay"])
     assert v["min_height_agl_ft"] > 100.0, (v, s["_replay"])
+
+
+def test_a_pitot_zeroed_before_the_wind_is_known_is_flown_on_pitch_and_power_not_on_the_tailwind():
+    """The campaign's flight 63 (seed 22), at seed 6: the pitot zeroed 9 s after the launch in a
+    4.7 m/s wind and moderate turbulence, a minute before the HA could know the wind. Flying the
+    INS's speed over the ground, the HA believed the tailwind's excess, cut the throttle and the
+    wing stalled 0.44 s (2.7 s at seed 1467205736). Without a speed it flies pitch and power:
+    the attitude that holds the cruise speed whatever the wind, and the power for height."""
+    s = fly("pitot_failure", at_s=9.45, duration_s=-1.0, params=["mode=zero"], flight_s=45.0, seed=6,
+            extra=["--wind-mps", "4.67", "--wind-from-deg", "70.6", "--turbulence", "moderate"])
+    assert_property(s, takeover_due=None)
+    v = s["verdict"]
+    assert v["stalled_from_fault_s"] == 0.0, (v, s["_replay"])
+    assert v["min_height_agl_ft"] > 120.0, (v, s["_replay"])
