@@ -35,8 +35,9 @@ GPS_EPOCH_OFFSET_NS = 2390 * NS_PER_WEEK  # a GPS week of 2025; only its consist
 SENSOR_STARTUP_S = 5.0  # the VN-200 was powered this long before simulation time 0
 
 # Binary Output 1, the HA's (arduino_ha/README.md): mode 1 (port 1), divisor 8 (100 Hz),
-# groups Common | GPS, Common YPR | angular rate | position | velocity | INS status, GPS fix.
-HA_OUTPUT_1 = (1, 8, 0x09, [0x0008 | 0x0020 | 0x0040 | 0x0080 | 0x1000, 0, 0, 0x0010, 0, 0])
+# groups Common | GPS, Common YPR | angular rate | position | velocity | acceleration | INS status,
+# GPS fix.
+HA_OUTPUT_1 = (1, 8, 0x09, [0x0008 | 0x0020 | 0x0040 | 0x0080 | 0x0100 | 0x1000, 0, 0, 0x0010, 0, 0])
 HA_VN200_BAUD = 115200  # DUE_VN200_BAUD
 HP_VN200_BAUD = 921600  # the flight launch's vn200_baud
 

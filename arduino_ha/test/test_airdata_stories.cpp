@@ -216,7 +216,7 @@ TEST(HaAirdataStories, HaInheritingASteepBankLowInTheBandPushesRatherThanLoadThe
   v.airspeed_ftps = v.ias_ftps = v.tas_ftps = 58.0f;
   v.path_tas_sq = v.ias_sq = 58.0f * 58.0f;
   v.cos_bank = std::cos(50.0f / kDegPerRad);
-  v.load_factor = 1.0f / v.cos_bank;
+  v.load_factor = v.lift_load_factor = 1.0f / v.cos_bank;
   v.north_ft = cfg.sc_circle_radius_ft;
   v.heading_north = 0.0f;
   v.heading_east = 1.0f;
@@ -231,13 +231,58 @@ TEST(HaAirdataStories, HaInheritingASteepBankLowInTheBandPushesRatherThanLoadThe
   EXPECT_LT(unguarded.elevator_deg, 0.0f);
   // Wings level at 1 g, inside the guard: it does nothing.
   v.x[HA_X_ROLL_DEG] = 0.0f;
-  v.cos_bank = v.load_factor = 1.0f;
+  v.cos_bank = v.load_factor = v.lift_load_factor = 1.0f;
   HaSurfaces level_guarded{}, level_unguarded{};
   HaSafetyCtrlState st3{}, st4{};
   ha_safety_ctrl_step(&st3, &cfg, &v, &applied, 1, 0.01f, &level_unguarded);
   cfg.sc_lift_push_deg_per_g = ha_aircraft_config.sc_lift_push_deg_per_g;
   ha_safety_ctrl_step(&st4, &cfg, &v, &applied, 1, 0.01f, &level_guarded);
   EXPECT_FLOAT_EQ(level_guarded.elevator_deg, level_unguarded.elevator_deg);
+}
+
+// HiL campaigns, moderate turbulence: an updraft raises the angle of attack and the wing's load
+// with no pitch rate. At 53 ft/s, wings level, the gyros say 1.0 g and the pitch loop, low in its
+// band, pulls; the accelerometer says 1.6 g, past the 1.1 g the lift guard allows at that speed,
+// and the HA pushes instead (HiL: the wing past its stall angle for up to 0.2 s, now 0.03).
+TEST(HaAirdataStories, AGustsLoadTheGyrosCannotSeeIsPushedAgainst) {
+  const HaAircraftConfig& cfg = ha_aircraft_config;
+  HaStateView v{};
+  v.attitude_ok = v.altitude_ok = v.position_ok = v.airspeed_ok = v.speed_ok = 1u;
+  v.speed_known = 1u;
+  v.airborne = 1u;
+  v.x[HA_X_ALT_AGL_FT] = cfg.sc_alt_min_ft - 50.0f;
+  v.x[HA_X_PITCH_DEG] = -3.0f;
+  v.airspeed_ftps = v.ias_ftps = v.tas_ftps = 56.0f;
+  v.ias_sq = 56.0f * 56.0f;
+  v.cos_bank = v.load_factor = v.lift_load_factor = 1.0f;
+  v.north_ft = cfg.sc_circle_radius_ft;
+  v.heading_north = 0.0f;
+  v.heading_east = 1.0f;
+  const HaSurfaces applied{};
+  HaSurfaces calm{}, gust{};
+  HaSafetyCtrlState st{}, st2{};
+  v.lift_load_factor = 1.0f;  // what the gyros alone say
+  ha_safety_ctrl_step(&st, &cfg, &v, &applied, 1, 0.01f, &calm);
+  EXPECT_LT(calm.elevator_deg, 0.0f) << "low in the band and above the floor: nose up";
+  v.accel_load_factor = v.lift_load_factor = 1.6f;
+  ha_safety_ctrl_step(&st2, &cfg, &v, &applied, 1, 0.01f, &gust);
+  EXPECT_GT(gust.elevator_deg, 0.0f) << "trailing edge down: nose down against the gust";
+}
+
+// ... and the accelerometer's load reaches the guard, never the stall check: a gust is the air's
+// doing, not the HP's. 2 g at 60 ft/s with the HP flying straight and level (the gyros' 1 g)
+// keeps the HP in control; the same 2 g pulled (the gyros' pitch rate) is a stall.
+TEST(HaAirdataStories, AGustsLoadIsNotTheHpsStall) {
+  Timeline t;
+  t.Cruise(200.0f, 60.0f);
+  ASSERT_GT(t.ReachHp(), 0);
+  t.app.inputs.accel_ok = 1u;
+  t.app.inputs.accel_load_factor = 2.0f;
+  for (int i = 0; i < 20; ++i) t.StepWithGood();
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HP) << "reasons " << t.out().reasons;
+  t.app.inputs.q_deg_s = 32.174f / 60.0f * kDegPerRad;  // the same 2 g pulled by the HP
+  EXPECT_GT(PeriodsUntilTakeover(&t, 10), 0);
+  EXPECT_EQ(t.out().reasons_at_switch, HA_REASON_STALL);
 }
 
 // F7. The pitot dead from 30 ft, no wind ever learnt: the HA flies pitch and power, the nose no

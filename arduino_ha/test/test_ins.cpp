@@ -57,6 +57,28 @@ class InsAdapter : public ::testing::Test {
   uint8_t ha_on_ground = 1u;
 };
 
+// The accelerometer's z axis is the wing's load: -9.81 m/s^2 is 1 g of lift. It is optional (a
+// Binary Output 1 saved before it was asked for leaves the load factor to the gyros) and a
+// reading past the sensor's 16 g is no reading, while the rest of the solution stays good.
+TEST_F(InsAdapter, AccelerometerZBecomesTheLoadFactorWhenThePacketCarriesIt) {
+  ASSERT_EQ(Update(Parked(), 1000u), 1);
+  HaInsSample s = Flying(50.0, 0.001, 0.0);
+  ASSERT_EQ(Update(s, 2000u), 1);
+  EXPECT_EQ(in.accel_ok, 0u);  // not in the packet
+  s.has |= HA_INS_HAS_ACCEL;
+  s.accel_mps2[2] = -1.5f * 9.80665f;  // a gust's 1.5 g
+  ASSERT_EQ(Update(s, 3000u), 1);
+  EXPECT_EQ(in.accel_ok, 1u);
+  EXPECT_NEAR(in.accel_load_factor, 1.5f, 1e-4f);
+  s.accel_mps2[2] = -200.0f;  // past the sensor's range
+  ASSERT_EQ(Update(s, 4000u), 1);
+  EXPECT_EQ(in.accel_ok, 0u);
+  EXPECT_EQ(in.state_valid, 1u);
+  s.accel_mps2[2] = std::numeric_limits<float>::quiet_NaN();
+  ASSERT_EQ(Update(s, 5000u), 1);
+  EXPECT_EQ(in.accel_ok, 0u);
+}
+
 TEST_F(InsAdapter, InsSolutionBecomesHaStateInHaUnits) {
   ASSERT_EQ(Update(Parked(), 1000u), 1);
   HaInsSample s = Flying(50.0, 0.001, 0.002);

@@ -206,6 +206,7 @@ static void any_ins_sample(HaInsSample *s) {
     s->ypr_deg[i] = any_float();
     s->angular_rate_radps[i] = any_float();
     s->vel_ned_mps[i] = any_float();
+    s->accel_mps2[i] = any_float();
   }
   s->lat_deg = any_double();
   s->lon_deg = any_double();

@@ -235,6 +235,13 @@ void ha_airdata_view(const HaAirdata *a, const HaAircraftConfig *cfg, HaStateVie
     v->load_factor =
         v->cos_bank + v->tas_ftps * v->x[HA_X_Q_DEG_S] * (HA_AD_RAD_PER_DEG / HA_AD_G_FTPS2);
   }
+  /* The wing's load for the lift guard: the accelerometer's as well, where the INS sends it. A
+   * vertical gust raises the angle of attack and the load with no pitch rate; the gyros miss it
+   * (HiL, moderate turbulence: 1.5 to 1.8 g at 53 to 58 ft/s with the gyros' 1.0, the HA
+   * pulling for height and the wing past its stall angle for up to 0.2 s). The stall check
+   * keeps the gyros' alone: a gust's load is not the HP's doing. */
+  v->lift_load_factor =
+      ha_greater(v->accel_load_factor, v->load_factor) ? v->accel_load_factor : v->load_factor;
   /* Near the stall: at or below the 1 g hand-back speed, where a stalled glide flies (the
    * wing's lift past the break, post_stall_cl_fraction of its maximum, holds 1 g at some 1.15 x
    * the stall speed). Only there is the INS's angle of attack looked at (ha_checks.c): its

@@ -47,7 +47,9 @@ typedef struct {
   float path_tas_sq; /* the INS's velocity less the wind learnt so far, squared: not the pitot's */
   float cos_bank;    /* 1 / load factor of a level turn; 0 at 90 deg of bank and beyond */
   float load_factor; /* lift / weight, from the gyros (ha_airdata.c); 1 without attitude */
-  float heading_north; /* the heading's unit vector (position_ok), for the circle's guidance */
+  float accel_load_factor; /* the INS's accelerometer's, when fresh; else 0 */
+  float lift_load_factor;  /* the larger of the two: the load the wing carries (lift guard) */
+  float heading_north;     /* the heading's unit vector (position_ok), for the circle's guidance */
   float heading_east;
   float x[HA_X_DIM];
   float airspeed_ftps;

@@ -47,6 +47,11 @@ typedef struct {
   float vel_north_ftps;
   float vel_east_ftps;
   float climb_ftps; /* vertical speed, up positive */
+  /* The INS's accelerometer along the body's z axis, as a load factor (lift / weight: 1 in level
+   * flight), when its packet carries one (accel_ok); a gust's load shows here and not in the
+   * gyros. */
+  float accel_load_factor;
+  uint8_t accel_ok;
   float
       altitude_msl_ft; /* above sea level (the WGS84 ellipsoid: the geoid's 100 m do not matter) */
   uint8_t on_ground;   /* 1: weight on wheels / landed as reported by the INS side */

@@ -18,6 +18,8 @@
 /* Parked: vertical speed within the INS's noise on the ground. A sensor property, not the
  * aircraft's. */
 #define HA_INS_PARKED_VDOWN_MPS 1.0f
+#define HA_INS_MAX_ACCEL_MPS2 160.0f  /* accelerometer range +/-16 g */
+#define HA_INS_G_PER_MPS2 0.10197162f /* 1 / standard gravity */
 
 /* INS status error flags, bits 3-6. */
 #define HA_INS_STATUS_ERRORS 0x0078u
@@ -135,6 +137,15 @@ int ha_ins_update(HaIns *ins, const HaAircraftConfig *cfg, const HaInsSample *s,
   in->vel_east_ftps = c.vel_ned_mps[1] * (float)HA_INS_FT_PER_M;
   in->climb_ftps = -c.vel_ned_mps[2] * (float)HA_INS_FT_PER_M;
   in->altitude_msl_ft = (float)c.alt_m * (float)HA_INS_FT_PER_M;
+  /* Lift pulls the body up (-z), so the specific force on z is -n g. A packet without it, or
+   * past the sensor's range, leaves the load factor to the gyros. */
+  in->accel_ok =
+      (uint8_t)((s->has & HA_INS_HAS_ACCEL) != 0u &&
+                ha_in_range(s->accel_mps2[2], -HA_INS_MAX_ACCEL_MPS2, HA_INS_MAX_ACCEL_MPS2));
+  in->accel_load_factor =
+      in->accel_ok ? -ha_clampf(s->accel_mps2[2], -HA_INS_MAX_ACCEL_MPS2, HA_INS_MAX_ACCEL_MPS2) *
+                         HA_INS_G_PER_MPS2
+                   : 1.0f;
   if (ins->home_latched) {
     const float agl_ft = (float)(c.alt_m - ins->home.alt_m) * (float)HA_INS_FT_PER_M;
     in->altitude_agl_ft = agl_ft;

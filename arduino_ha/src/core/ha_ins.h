@@ -36,6 +36,7 @@ extern "C" {
 #define HA_INS_HAS_VEL_NED 0x08u
 #define HA_INS_HAS_STATUS 0x10u
 #define HA_INS_HAS_GPS_FIX 0x20u
+#define HA_INS_HAS_ACCEL 0x40u /* optional: without it the load factor is the gyros' alone */
 #define HA_INS_HAS_REQUIRED \
   (HA_INS_HAS_YPR | HA_INS_HAS_RATE | HA_INS_HAS_POSITION | HA_INS_HAS_VEL_NED | HA_INS_HAS_STATUS)
 
@@ -51,6 +52,7 @@ typedef struct {
   float angular_rate_radps[3];    /* body x, y, z */
   double lat_deg, lon_deg, alt_m; /* WGS84, ellipsoid height */
   float vel_ned_mps[3];
+  float accel_mps2[3]; /* body x, y, z (z down): the specific force, -g on z in level flight */
   uint16_t ins_status;
   uint8_t gps_fix; /* 0 none, 1 time only, 2 2D, 3 3D */
 } HaInsSample;

@@ -90,14 +90,15 @@ static float pitch_command_deg(const HaAircraftConfig *cfg, const HaStateView *s
   return ha_clampf(pitch_deg, -cfg->sc_pitch_cmd_limit_deg, cfg->sc_pitch_cmd_limit_deg);
 }
 
-/* The lift guard: how far (in g, > 0) the load factor the gyros see (ha_airdata.c) is past what
- * the speed allows at sc_lift_margin of the wing's maximum lift, n <= margin (IAS / V_stall)^2;
- * 0 inside it or without a speed and attitude. Judged on the load, not on an angle of attack
- * from pitch less flight path: that one reads a sideslip in a bank (a slipping 50 deg bank at a
- * true 4 deg read 16) and a downdraft as alpha, and pushed the HA into a 31 deg dive (HiL). */
+/* The lift guard: how far (in g, > 0) the wing's load (the gyros' or the accelerometer's,
+ * ha_airdata.c) is past what the speed allows at sc_lift_margin of the wing's maximum lift, n <=
+ * margin (IAS / V_stall)^2; 0 inside it or without a speed and attitude. Judged on the load, not on
+ * an angle of attack from pitch less flight path: that one reads a sideslip in a bank (a slipping
+ * 50 deg bank at a true 4 deg read 16) and a downdraft as alpha, and pushed the HA into a 31 deg
+ * dive (HiL). */
 static float lift_excess_g(const HaAircraftConfig *cfg, const HaStateView *s) {
   if (s->speed_known && s->attitude_ok) {
-    const float excess = s->load_factor - cfg->sc_lift_margin_per_ias_sq * s->ias_sq;
+    const float excess = s->lift_load_factor - cfg->sc_lift_margin_per_ias_sq * s->ias_sq;
     return ha_greater(excess, 0.0f) ? excess : 0.0f;
   }
   return 0.0f;

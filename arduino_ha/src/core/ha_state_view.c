@@ -8,6 +8,7 @@
 #define HA_RATE_SPAN_DEG_S 2000.0f
 #define HA_ALT_SPAN_FT 100000.0f
 #define HA_POSITION_SPAN_FT 1.0e6f
+#define HA_LOAD_SPAN_G 16.0f
 
 static int attitude_plausible(const HaInputs *in) {
   return ha_within_span(in->roll_deg, HA_ROLL_SPAN_DEG) &&
@@ -47,6 +48,8 @@ void ha_state_view(const HaAircraftConfig *cfg, const HaInputs *in, const HaHpCo
     out->x[HA_X_Q_DEG_S] = ha_clampf(in->q_deg_s, -HA_RATE_SPAN_DEG_S, HA_RATE_SPAN_DEG_S);
     out->x[HA_X_R_DEG_S] = ha_clampf(in->r_deg_s, -HA_RATE_SPAN_DEG_S, HA_RATE_SPAN_DEG_S);
   }
+  out->accel_load_factor =
+      (fresh && in->accel_ok != 0u) ? ha_clampf(in->accel_load_factor, 0.0f, HA_LOAD_SPAN_G) : 0.0f;
   if (out->altitude_ok) {
     out->x[HA_X_ALT_AGL_FT] = ha_clampf(in->altitude_agl_ft, -HA_ALT_SPAN_FT, HA_ALT_SPAN_FT);
   }

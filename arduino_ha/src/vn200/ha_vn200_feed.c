@@ -12,10 +12,12 @@ void ha_vn200_sample_from_vn(const VnBinaryData *vn, HaInsSample *s) {
   if ((has & VN_HAS_VEL_NED) != 0u) s->has |= HA_INS_HAS_VEL_NED;
   if ((has & VN_HAS_INS_STATUS) != 0u) s->has |= HA_INS_HAS_STATUS;
   if ((has & VN_HAS_GPS_FIX) != 0u) s->has |= HA_INS_HAS_GPS_FIX;
+  if ((has & VN_HAS_ACCEL) != 0u) s->has |= HA_INS_HAS_ACCEL;
   for (i = 0u; i < 3u; ++i) {
     s->ypr_deg[i] = vn->ypr_deg[i];
     s->angular_rate_radps[i] = vn->angular_rate_radps[i];
     s->vel_ned_mps[i] = vn->vel_ned_mps[i];
+    s->accel_mps2[i] = vn->accel_mps2[i];
   }
   s->lat_deg = vn->lat_deg;
   s->lon_deg = vn->lon_deg;
