@@ -170,4 +170,27 @@ void PointMassAircraft::WriteTo(HaInputs* in, uint32_t now_us) const {
   in->state_rx_us = now_us;
 }
 
+HaAloneFlight::HaAloneFlight(uint32_t start_us, const HaAircraftConfig& config)
+    : cfg(config), now_us(start_us) {
+  ha_core_init(&core, &cfg);
+}
+
+void HaAloneFlight::StartOnTheCircle(float altitude_ft, float airspeed_ftps) {
+  ac.north_ft = cfg.sc_circle_radius_ft;
+  ac.heading_deg = 90.0f;
+  ac.altitude_ft = altitude_ft;
+  ac.airspeed_ftps = airspeed_ftps;
+}
+
+const HaOutputs& HaAloneFlight::Step() { return StepWithPitot(ac.airspeed_ftps); }
+
+const HaOutputs& HaAloneFlight::StepWithPitot(float airspeed_ftps) {
+  now_us += cfg.period_us;
+  ac.WriteTo(&in, now_us);
+  in.airspeed_ftps = airspeed_ftps;
+  ha_core_step(&core, &in, now_us, &out);
+  ac.Step(out.surfaces, PeriodS());
+  return out;
+}
+
 float PointMassAircraft::DistanceFt() const { return std::hypot(north_ft, east_ft); }

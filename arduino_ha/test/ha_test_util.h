@@ -66,4 +66,25 @@ struct PointMassAircraft {
   float DistanceFt() const;
 };
 
+// The HA's core alone flying the point mass, period by period, on a simulated clock: the
+// aircraft's state into the inputs, the core's surfaces back into the aircraft.
+struct HaAloneFlight {
+  explicit HaAloneFlight(uint32_t start_us = 555000u,
+                         const HaAircraftConfig& config = ha_aircraft_config);
+  // One period with the pitot reading the aircraft's airspeed ...
+  const HaOutputs& Step();
+  // ... or this (what ha_app hands over: -1 for a failed read).
+  const HaOutputs& StepWithPitot(float airspeed_ftps);
+  float PeriodS() const { return cfg.period_us * 1e-6f; }
+  // On the HA's circle, heading east (its tangent at the north point), level.
+  void StartOnTheCircle(float altitude_ft, float airspeed_ftps);
+
+  const HaAircraftConfig& cfg;
+  HaCore core;
+  HaInputs in{};
+  HaOutputs out{};
+  PointMassAircraft ac;
+  uint32_t now_us;
+};
+
 #endif  // ARDUINO_HA_TEST_HA_TEST_UTIL_H

@@ -289,25 +289,13 @@ TEST(HaAirdataStories, AGustsLoadIsNotTheHpsStall) {
 // higher than the attitude that holds the speed and the throttle full below its band, so slow
 // still beats low. Without a speed the pitch law held altitude alone and flew down to 44.2 ft/s.
 TEST(HaAirdataStories, DeadPitotPitchLawKeepsAboveStall) {
-  const HaAircraftConfig& cfg = ha_aircraft_config;
-  HaCore core;
-  ha_core_init(&core, &cfg);
-  HaInputs in{};
-  HaOutputs out{};
-  PointMassAircraft ac;
-  ac.north_ft = cfg.sc_circle_radius_ft;
-  ac.heading_deg = 90.0f;
-  ac.altitude_ft = 30.0f;
-  ac.airspeed_ftps = 55.0f;
-  uint32_t now = 555000u;
-  const float dt = cfg.period_us * 1e-6f;
+  HaAloneFlight f;
+  const HaAircraftConfig& cfg = f.cfg;
+  PointMassAircraft& ac = f.ac;
+  f.StartOnTheCircle(30.0f, 55.0f);
   float min_v = ac.airspeed_ftps, min_h = ac.altitude_ft;
   for (int i = 0; i < 100 * 120; ++i) {
-    now += cfg.period_us;
-    ac.WriteTo(&in, now);
-    in.airspeed_ftps = -1.0f;  // what ha_app hands over for a failed read
-    ha_core_step(&core, &in, now, &out);
-    ac.Step(out.surfaces, dt);
+    f.StepWithPitot(-1.0f);  // a failed read
     min_v = std::min(min_v, ac.airspeed_ftps);
     min_h = std::min(min_h, ac.altitude_ft);
   }
@@ -324,27 +312,15 @@ TEST(HaAirdataStories, DeadPitotPitchLawKeepsAboveStall) {
 // stalled 2.7 s. With neither the pitot nor a known wind the HA knows no airspeed: it flies pitch
 // and power, whose speed the wind does not change, round its circle through head- and tailwind.
 TEST(HaAirdataStories, PitotZeroedBeforeTheWindIsKnownFliesPitchAndPowerNotGroundspeed) {
-  const HaAircraftConfig& cfg = ha_aircraft_config;
-  HaCore core;
-  ha_core_init(&core, &cfg);
-  HaInputs in{};
-  HaOutputs out{};
-  PointMassAircraft ac;
-  ac.north_ft = cfg.sc_circle_radius_ft;
-  ac.heading_deg = 90.0f;
-  ac.altitude_ft = 0.5f * (cfg.sc_alt_min_ft + cfg.sc_alt_max_ft);
-  ac.airspeed_ftps = 62.0f;
+  HaAloneFlight f;
+  const HaAircraftConfig& cfg = f.cfg;
+  PointMassAircraft& ac = f.ac;
+  f.StartOnTheCircle(0.5f * (cfg.sc_alt_min_ft + cfg.sc_alt_max_ft), 62.0f);
   ac.wind_east_ftps = 15.0f;  // blowing east: a tailwind along the first heading
-  uint32_t now = 555000u;
-  const float dt = cfg.period_us * 1e-6f;
   float min_v = ac.airspeed_ftps, min_throttle = 1.0f;
-  for (int i = 0; i < 100 * 120; ++i) {  // three laps of the HA's circle
-    now += cfg.period_us;
-    ac.WriteTo(&in, now);
-    in.airspeed_ftps = 0.0f;  // zeroed: reads, but nothing
-    ha_core_step(&core, &in, now, &out);
+  for (int i = 0; i < 100 * 120; ++i) {            // three laps of the HA's circle
+    const HaOutputs& out = f.StepWithPitot(0.0f);  // zeroed: reads, but nothing
     ASSERT_NE(out.controller, HA_CONTROLLER_HP);
-    ac.Step(out.surfaces, dt);
     if (i > 100 * 5) {  // after the takeover's first seconds
       min_v = std::min(min_v, ac.airspeed_ftps);
       min_throttle = std::min(min_throttle, out.surfaces.throttle);

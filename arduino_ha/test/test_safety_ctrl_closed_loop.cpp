@@ -26,12 +26,9 @@ struct Envelope {
 
 // Flies `seconds` on the HA alone; records the envelope after `settle_s`.
 Envelope Fly(const Start& s, float seconds, float settle_s, Envelope* whole) {
-  const HaAircraftConfig& cfg = ha_aircraft_config;
-  HaCore core;
-  ha_core_init(&core, &cfg);
-  HaInputs in{};
-  HaOutputs out{};
-  PointMassAircraft ac;
+  HaAloneFlight f(123456u);
+  const HaAircraftConfig& cfg = f.cfg;
+  PointMassAircraft& ac = f.ac;
   ac.north_ft = s.north_ft;
   ac.east_ft = s.east_ft;
   ac.heading_deg = s.heading_deg;
@@ -40,15 +37,10 @@ Envelope Fly(const Start& s, float seconds, float settle_s, Envelope* whole) {
   ac.airspeed_ftps = s.airspeed_ftps;
   ac.altitude_ft = s.altitude_ft;
   Envelope settled;
-  uint32_t now = 123456u;
-  const float dt = cfg.period_us * 1e-6f;
+  const float dt = f.PeriodS();
   const int steps = static_cast<int>(seconds / dt);
   for (int i = 0; i < steps; ++i) {
-    now += cfg.period_us;
-    ac.WriteTo(&in, now);
-    ha_core_step(&core, &in, now, &out);
-    EXPECT_NE(out.controller, HA_CONTROLLER_HP);
-    ac.Step(out.surfaces, dt);
+    EXPECT_NE(f.Step().controller, HA_CONTROLLER_HP);
     float x[HA_X_DIM] = {0,          0,          ac.roll_deg, ac.pitch_deg,
                          ac.p_deg_s, ac.q_deg_s, ac.r_deg_s,  ac.altitude_ft};
     for (Envelope* e : {whole, i * dt >= settle_s ? &settled : nullptr}) {
