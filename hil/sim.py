@@ -305,10 +305,10 @@ class Simulation:
         self.lockstep_pub = rospy.Publisher("/hil/lockstep", LockstepStep, queue_size=None, tcp_nodelay=True)
         self.truth_pub = rospy.Publisher("/hil/truth", HilTruth, queue_size=None)
         self.latency = LatencyProbe() if self.realtime else None
-        # Real time: every period the HA ran on its own clock, (time.monotonic() of its tick,
-        # commands its link had delivered, controller, reasons at switch), from its replies; pace0_mono is the
-        # monotonic time of simulated 0 (verdicts.ha_periods puts the periods on that axis). In
-        # lockstep the records are the HA's periods.
+        # Real time: every period the HA ran on its own clock, from its replies: (time.monotonic()
+        # of its tick, commands its link had delivered, controller, reasons at switch).
+        # pace0_mono is the monotonic time of simulated 0 (verdicts.ha_periods puts the periods on
+        # that axis). In lockstep the records are the HA's periods.
         self.ha_periods = [] if self.realtime else None
         self.pace0_mono = None
         rospy.Subscriber("/vn200/temperature", Temperature, self.on_vn_delivered, queue_size=1000, tcp_nodelay=True)
