@@ -305,6 +305,12 @@ class Simulation:
         self.lockstep_pub = rospy.Publisher("/hil/lockstep", LockstepStep, queue_size=None, tcp_nodelay=True)
         self.truth_pub = rospy.Publisher("/hil/truth", HilTruth, queue_size=None)
         self.latency = LatencyProbe() if self.realtime else None
+        # Real time: every period the HA ran on its own clock, from its replies: (time.monotonic()
+        # of its tick, commands its link had delivered, controller, reasons at switch).
+        # pace0_mono is the monotonic time of simulated 0 (verdicts.ha_periods puts the periods on
+        # that axis). In lockstep the records are the HA's periods.
+        self.ha_periods = [] if self.realtime else None
+        self.pace0_mono = None
         rospy.Subscriber("/vn200/temperature", Temperature, self.on_vn_delivered, queue_size=1000, tcp_nodelay=True)
         rospy.Subscriber("/decision_status", DecisionStatus, lambda m: self.waiter.hit("status", m), queue_size=1000, tcp_nodelay=True)
         # The HA's own reports only: the arduino node's link-down /pwm (usbstatus 0) runs on the wall clock.
@@ -432,8 +438,9 @@ class Simulation:
     def service_while_waiting(self):
         self.hp_vn.service_commands()
         if self.realtime:
-            reply = self.chan.latest_reply()
-            self.last_reply = reply or self.last_reply
+            replies = self.chan.pending_replies()
+            self.note_ha_periods(replies, time.monotonic())
+            self.last_reply = replies[-1] if replies else self.last_reply
             return self.last_reply or ha_channel.Reply(*([0, 0, (0.0,) * 4, (0.0,) * 4] + [0] * 15))
         return self.chan.poll()
 
@@ -608,6 +615,7 @@ class Simulation:
                               airspeed_ok=board.airspeed_ok, battery_ok=board.battery_ok)
         replies = self.chan.pending_replies()
         now = time.monotonic()
+        self.note_ha_periods(replies, now)
         for r in replies:
             self.latency.on_reply(r, now)
         reply = replies[-1] if replies else None
@@ -625,6 +633,18 @@ class Simulation:
         self.publish_truth(t_us, tr, self.last_reply, None)
         tm.lap("truth")
         return self.last_reply
+
+    def note_ha_periods(self, replies, now_mono):
+        """Real time: each reply is one period of the HA, stamped with its tick on its own clock:
+        the SIL's micros() is CLOCK_MONOTONIC in microseconds (32 bits, wrapping), the clock of
+        time.monotonic(), so the tick is dated exactly, not when this loop got round to it."""
+        now_us = int(now_mono * 1e6)
+        for r in replies:
+            age_us = (now_us - r.t_us) & 0xFFFFFFFF
+            if age_us >= 1 << 31:  # stamped a hair after now_mono was read
+                age_us -= 1 << 32
+            self.ha_periods.append((now_mono - age_us * 1e-6, r.commands_received, r.controller,
+                                    r.reasons_at_switch))
 
     def publish_truth(self, t_us, tr, reply, cmd_seq):
         m = HilTruth()
@@ -734,6 +754,7 @@ class Simulation:
                 if self.realtime:
                     if k == 0 or k == ground_steps:
                         pace0 = time.monotonic() - k * self.period_us * 1e-6
+                        self.pace0_mono = pace0
                     delay = pace0 + k * self.period_us * 1e-6 - time.monotonic()
                     if delay > 0.0:
                         time.sleep(delay)

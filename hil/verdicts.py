@@ -239,6 +239,65 @@ def recovery_height_losses(recs, since_s, rebound_ft=2.0):
     return out
 
 
+def ha_periods(sim):
+    """Every period the HA ran, as (t_s, commands its link had delivered, controller, reasons at
+    its last switch) on the simulator's time axis. Lockstep: the records, one per step. Real
+    time: the HA's own ticks from its replies (sim.ha_periods on time.monotonic(), less
+    sim.pace0_mono, the monotonic time of simulated 0), not the simulator's steps, which see a
+    tick up to a step later."""
+    rt = getattr(sim, "ha_periods", None)
+    if rt is None:
+        return [(x[0] * 1e-6, x[2].commands_received, x[2].controller, x[2].reasons_at_switch)
+                for x in sim.records]
+    if sim.pace0_mono is None:  # stopped before its first step
+        return []
+    return [(t - sim.pace0_mono,) + tuple(rest) for t, *rest in rt]
+
+
+def command_deadline(periods, silent_from_s, late_periods_tolerated):
+    """The deadline miss of an HP silent from silent_from_s on, by the HA's rule: a period is late
+    when no new command arrived in it (its link's count did not move); the command is missed at
+    the end of the (late_periods_tolerated + 1)-th late period in a row, and the takeover is due
+    then. The first such period at or after silent_from_s; (first late period's end, deadline
+    miss) in the periods' time, or None if the flight ended before. In lockstep a crash at step
+    K gives (K, K + tolerated periods); in real time the HP's timer, the kill and the HA's ticks
+    are at any phase to each other, so it lies up to two periods later (hil/README.md)."""
+    late = 0
+    prev = None
+    for i, (t, n, *_) in enumerate(periods):
+        late = late + 1 if prev is not None and n == prev else 0
+        prev = n
+        if late > late_periods_tolerated and t >= silent_from_s - 1e-9:
+            return periods[i - late_periods_tolerated][0], t
+    return None
+
+
+def first_takeover_s(periods, from_s):
+    """The first period at or after from_s in which the HP did not have the servos."""
+    return next((p for p in periods if p[0] >= from_s - 1e-9 and p[2] != 0), (None,))[0]
+
+
+def crash_takeover(periods, crash_s, regions):
+    """The takeover after an HP crash at crash_s, judged on the HA's periods: the deadline miss
+    by the HA's rule (command_deadline), the first period the HP no longer had the servos, and
+    whether that was within one HA period of the deadline miss."""
+    period_s, tolerated = regions.period_s, regions.late_periods_tolerated
+    miss = command_deadline(periods, crash_s, tolerated)
+    # The flight ended before the deadline: lockstep's rule (the crash's period is the first late).
+    first_miss_s, deadline_miss_s = miss or (crash_s, crash_s + tolerated * period_s)
+    t_ha = first_takeover_s(periods, crash_s)
+    return {
+        "crash_injected_s": round(crash_s, 3),
+        "first_missed_period_s": round(first_miss_s, 3),
+        "deadline_miss_s": round(deadline_miss_s, 3),
+        "takeover_s": None if t_ha is None else round(t_ha, 3),
+        "latency_after_crash_s": None if t_ha is None else round(t_ha - crash_s, 3) + 0.0,
+        "latency_after_deadline_miss_s": None if t_ha is None else round(t_ha - deadline_miss_s, 3) + 0.0,
+        "within_one_period_of_deadline_miss": t_ha is not None and t_ha - deadline_miss_s <= period_s + 1e-9,
+        "reasons_at_switch": next((p[3] for p in periods if p[0] == t_ha), None),
+    }
+
+
 def unsafe(regions, applied):
     """A servo output outside S_u, or not a number at all."""
     return not all(math.isfinite(v) for v in applied) or regions.su_max(applied) > 1.0 + EPS
@@ -291,7 +350,7 @@ def fault_verdict(sim, progress):
     due_s = min(dues) if dues else None
     took = lat = None
     if due_s is not None:
-        took = next((x[0] * 1e-6 for x in recs if x[0] * 1e-6 >= due_s - 1e-9 and x[2].controller != 0), None)
+        took = first_takeover_s(ha_periods(sim), due_s)
         lat = None if took is None else round(took - due_s, 4) + 0.0
     off = back = None
     if at is not None:
@@ -394,25 +453,11 @@ def summarize(sim):
     crash = getattr(sim, "crashed_at", None)
     takeover = None
     if crash is not None:
-        after = [x for x in recs if x[0] * 1e-6 >= crash - 1e-9]
-        first_miss_s = crash  # the first period with no fresh command
-        deadline_miss_s = first_miss_s + r.late_periods_tolerated * r.period_s
-        t_ha = next((x[0] * 1e-6 for x in after if x[2].controller != 0), None)
-        t_back = None
-        if t_ha is not None:
-            t_back = next((x[0] * 1e-6 for x in after if x[0] * 1e-6 > t_ha and x[2].controller == 0), None)
-        sw = next((s for s in segs if t_ha is not None and abs(s["from_s"] - round(t_ha, 3)) < 1e-6), None)
-        takeover = {
-            "crash_injected_s": round(crash, 3),
-            "first_missed_period_s": round(first_miss_s, 3),
-            "deadline_miss_s": round(deadline_miss_s, 3),
-            "takeover_s": None if t_ha is None else round(t_ha, 3),
-            "latency_after_crash_s": None if t_ha is None else round(t_ha - crash, 3) + 0.0,
-            "latency_after_deadline_miss_s": None if t_ha is None else round(t_ha - deadline_miss_s, 3) + 0.0,
-            "within_one_period_of_deadline_miss": t_ha is not None and t_ha - deadline_miss_s <= r.period_s + 1e-9,
-            "reasons_at_switch": None if sw is None else sw["reasons_at_switch"],
-            "hand_back_s": None if t_back is None else round(t_back, 3),
-        }
+        takeover = crash_takeover(ha_periods(sim), crash, r)
+        t_ha = takeover["takeover_s"]
+        t_back = None if t_ha is None else next(
+            (x[0] * 1e-6 for x in recs if x[0] * 1e-6 > t_ha and x[2].controller == 0), None)
+        takeover["hand_back_s"] = None if t_back is None else round(t_back, 3)
     handbacks = []
     prev = None
     for t_us, m, reply, _, cal_ftps in recs:

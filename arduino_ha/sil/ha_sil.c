@@ -122,8 +122,10 @@ static int board_read_airspeed(void *ctx, float *v) {
     *v = sil->board_in.airspeed_ftps;
     return (sil->board_in.flags & HA_SIL_AIRSPEED_OK) != 0u;
   }
+  /* In a simulator's loop the board reads nothing until the simulator's first record (real time:
+   * the SIL's periods start before it): a made-up 60 ft/s would latch airborne on the ground. */
   *v = 60.0f;
-  return 1;
+  return sil->channel_fd < 0;
 }
 static int board_read_battery(void *ctx, float *v) {
   const Sil *sil = (const Sil *)ctx;
@@ -132,7 +134,7 @@ static int board_read_battery(void *ctx, float *v) {
     return (sil->board_in.flags & HA_SIL_BATTERY_OK) != 0u;
   }
   *v = 12.1f;
-  return 1;
+  return sil->channel_fd < 0;
 }
 static void board_set_hp_reset(void *ctx, int asserted) {
   Sil *sil = (Sil *)ctx;

@@ -18,7 +18,9 @@
  * services the link and the VN-200 port at the current clock (before the first step, while the
  * host negotiates topics) and answers a reply without stepping.
  * Real time (--rate-hz clock, --lockstep PATH --realtime): STEP records only set the board inputs
- * (t_us ignored); the SIL answers a reply after each of its own periods.
+ * (t_us ignored); the SIL answers a reply after each of its own periods, stamped with its tick
+ * (the simulator dates the HA's periods by it). Until the first STEP record the board reads no
+ * pitot and no battery.
  * HA_SIL_RESET (same layout, every other field ignored) resets the HA as a watchdog or brown-out
  * reset resets the Due: the core, the INS adapter and the link device start afresh (the link
  * silent until the host asks for topics again), the board's retained words (ha_board.h) are kept,
@@ -75,7 +77,8 @@ typedef struct {
   uint32_t magic;
   uint16_t version;
   uint16_t flags;
-  uint64_t t_us;
+  uint64_t t_us;       /* the period's clock: the step's (lockstep); the SIL's micros(), i.e.
+                          CLOCK_MONOTONIC in us, 32 bits, wrapping (real time) */
   float applied[4];    /* at the servos: elevator, aileron, rudder (deg), throttle */
   float ha_command[4]; /* the safety controller's own, same order */
   uint8_t controller;  /* DecisionStatus.CONTROLLER_* */

@@ -54,12 +54,19 @@ class Crash(Fault):
         return True, "; ".join(self.notes)
 
     def takeover_due_s(self):
-        """The first period without a command is the crash's; the HA tolerates
-        late_periods_tolerated of them, so the deadline is that many periods later."""
-        if not self.confirmed:
-            return None
-        r = self.ctx.regions
-        return self.ctx.crashed_at + r.late_periods_tolerated * r.period_s
+        return silent_hp_due_s(self.ctx) if self.confirmed else None
+
+
+def silent_hp_due_s(ctx):
+    """The HA's deadline miss after the HP fell silent at ctx.crashed_at: the end of the
+    (late_periods_tolerated + 1)-th HA period in a row without a new command
+    (verdicts.command_deadline). In lockstep the crash's own period is the first late one, so it
+    is late_periods_tolerated periods after the crash; in real time the HA's ticks say, at
+    whatever phase they run to the HP's timer. A flight that ended first: lockstep's rule."""
+    from hil import verdicts
+    r = ctx.regions
+    miss = verdicts.command_deadline(verdicts.ha_periods(ctx), ctx.crashed_at, r.late_periods_tolerated)
+    return miss[1] if miss is not None else ctx.crashed_at + r.late_periods_tolerated * r.period_s
 
 
 def inject(ctx, at_s, duration_s, params):

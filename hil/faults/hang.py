@@ -7,7 +7,7 @@ import signal
 import time
 
 from hil.faults.base import Fault
-from hil.faults.crash import proc_state
+from hil.faults.crash import proc_state, silent_hp_due_s
 
 
 class Hang(Fault):
@@ -48,10 +48,7 @@ class Hang(Fault):
         return self.confirmed, "; ".join(self.notes) or "the flight ended before %.2f s" % self.at_s
 
     def takeover_due_s(self):
-        if not self.confirmed:
-            return None
-        r = self.ctx.regions
-        return self.ctx.crashed_at + r.late_periods_tolerated * r.period_s
+        return silent_hp_due_s(self.ctx) if self.confirmed else None
 
 
 def inject(ctx, at_s, duration_s, params):
