@@ -18,6 +18,9 @@ import subprocess
 import threading
 import time
 
+import rosgraph
+import rosparam
+
 os.environ.setdefault("MAVLINK20", "1")
 from pymavlink import mavutil  # noqa: E402  (MAVLINK20 must be set first)
 
@@ -27,6 +30,7 @@ CONTROLLER_NS = "/controller_DG808"
 HOME = (40.1100, -88.2200, 220.0)  # where the probe says the aircraft is: becomes home
 ROS_PYTHON = "/usr/bin/python3"
 FT_PER_M = 1.0 / 0.3048
+DIAGNOSTIC_PERIOD_S = 0.1
 
 mavlink = mavutil.mavlink
 
@@ -100,17 +104,27 @@ class GsSystem:
                 self.relay = LossyRelay(self.node_port, self.gcs_port, relay_loss)
                 remote_port = self.relay.port
             self._start(["rosmaster", "--core", "-p", str(self.master_port)])
+            self.master = rosgraph.Master("/gs_harness", master_uri=self.env["ROS_MASTER_URI"])
             self._wait_for_master()
-            subprocess.run(["rosparam", "load", os.path.join(AIRCRAFT_DIR, "controller_param.yaml"),
-                            CONTROLLER_NS], env=self.env, check=True, timeout=30)
-            subprocess.run(["rosparam", "load", os.path.join(AIRCRAFT_DIR, "limits.yaml"),
-                            CONTROLLER_NS + "/limits"], env=self.env, check=True, timeout=30)
+            # As `rosparam load FILE NS` does it (rosparam's own reader, then one set per key),
+            # in this process rather than two more interpreters.
+            self._load_params(os.path.join(AIRCRAFT_DIR, "controller_param.yaml"), CONTROLLER_NS)
+            self._load_params(os.path.join(AIRCRAFT_DIR, "limits.yaml"), CONTROLLER_NS + "/limits")
             if controller:
                 self._start([os.path.join(ws, "devel", "lib", "drone_ros", "controller_DG808"),
                              "__name:=controller_DG808"])
                 self._wait_for_service(CONTROLLER_NS + "/set_tunable")
+            if udp_client:
+                # Bound before the node starts, as a ground station already listening: the node's
+                # first HEARTBEAT waits in the socket instead of going to a closed port.
+                self.conn = mavutil.mavlink_connection("udpin:127.0.0.1:%d" % self.gcs_port,
+                                                       source_system=255, source_component=190,
+                                                       dialect="development")
             args = {"udp_bind_address": "127.0.0.1", "udp_bind_port": self.node_port,
-                    "udp_remote_address": "127.0.0.1", "udp_remote_port": remote_port}
+                    "udp_remote_address": "127.0.0.1", "udp_remote_port": remote_port,
+                    # Diagnostics at 10 Hz instead of the node's 1 Hz: a test waiting for a
+                    # counter sees it within 0.1 s of the change, and reads the same values.
+                    "diagnostic_period_s": DIAGNOSTIC_PERIOD_S}
             args.update(launch_args or {})
             self.launch = self._start(["roslaunch", "drone_ros", "microhard_gs.launch"] +
                                       ["%s:=%s" % kv for kv in args.items()])
@@ -123,8 +137,6 @@ class GsSystem:
                 raise RuntimeError("microhard_gs and the probe never connected on ROS")
             if not udp_client:  # the test talks over another link (the serial transport)
                 return
-            self.conn = mavutil.mavlink_connection("udpin:127.0.0.1:%d" % self.gcs_port,
-                                                   source_system=255, source_component=190, dialect="development")
             hb = self.conn.wait_heartbeat(timeout=30)
             if hb is None:
                 raise RuntimeError("no HEARTBEAT from microhard_gs")
@@ -145,19 +157,31 @@ class GsSystem:
         deadline = time.time() + 20
         while time.time() < deadline:
             try:
-                with socket.create_connection(("127.0.0.1", self.master_port), timeout=0.5):
-                    return
+                self.master.getPid()
+                return
             except OSError:
-                time.sleep(0.1)
+                time.sleep(0.05)
         raise RuntimeError("rosmaster did not start")
+
+    def _load_params(self, path, namespace):
+        for params, ns in rosparam.load_file(path, default_namespace=namespace):
+            self._set_param(ns, params)
+
+    def _set_param(self, name, value):
+        if isinstance(value, dict):  # rosparam's update, key by key
+            for key, item in value.items():
+                self._set_param(rosgraph.names.ns_join(name, key), item)
+        else:
+            self.master.setParam(name, value)
 
     def _wait_for_service(self, name, timeout=30.0):
         deadline = time.time() + timeout
         while time.time() < deadline:
-            out = subprocess.run(["rosservice", "list"], env=self.env, capture_output=True, text=True, timeout=30)
-            if name in out.stdout.split():
+            try:
+                self.master.lookupService(name)
                 return
-            time.sleep(0.2)
+            except rosgraph.MasterError:  # not registered yet
+                time.sleep(0.05)
         raise RuntimeError("%s never appeared" % name)
 
     def rosparam(self, name):
@@ -201,6 +225,17 @@ class GsSystem:
         """Waits for a fresh diagnostics message and returns one of its values."""
         event = self.wait_event(lambda e: e["topic"] == "diagnostics", timeout)
         return None if event is None else event["values"].get(key)
+
+    def wait_diagnostic(self, key, predicate, timeout=30.0):
+        """Fresh diagnostics until the value of key meets predicate; returns the last value seen
+        (None if none came), so the caller's assertion shows what it was."""
+        deadline = time.time() + timeout
+        value = None
+        while time.time() < deadline:
+            value = self.diagnostic(key, timeout=max(0.1, deadline - time.time()))
+            if value is not None and predicate(value):
+                return value
+        return value
 
     def stop(self):
         if self.conn is not None:

@@ -86,16 +86,6 @@ def read_messages(fd, parser, seconds, wanted=None):
     return out
 
 
-def wait_diagnostic(system, key, predicate, timeout=30.0):
-    deadline = time.time() + timeout
-    value = None
-    while time.time() < deadline:
-        value = system.diagnostic(key, timeout=max(0.1, deadline - time.time()))
-        if value is not None and predicate(value):
-            return value
-    return value
-
-
 def heartbeats(fd, seconds=30):
     gcs = mavlink.MAVLink(Sink(), srcSystem=255, srcComponent=190)
     return [m for m in read_messages(fd, gcs, seconds, wanted="HEARTBEAT") if m.get_type() == "HEARTBEAT"]
@@ -103,9 +93,10 @@ def heartbeats(fd, seconds=30):
 
 def test_modem_missing_at_start_is_reported_and_the_node_keeps_running(modem):
     system, _ = modem
-    assert wait_diagnostic(system, "link_up", lambda v: v == "false") == "false"
-    assert int(system.diagnostic("link_open_failures")) >= 1
-    assert int(system.diagnostic("frames_not_sent_link_down")) > 0  # telemetry dropped and counted
+    assert system.wait_diagnostic("link_up", lambda v: v == "false") == "false"
+    assert int(system.wait_diagnostic("link_open_failures", lambda v: int(v) >= 1)) >= 1
+    # telemetry dropped and counted
+    assert int(system.wait_diagnostic("frames_not_sent_link_down", lambda v: int(v) > 0)) > 0
     assert system.launch.poll() is None
 
 
@@ -118,20 +109,20 @@ def test_modem_appearing_later_gets_the_heartbeat_and_the_parameters(modem):
     os.write(device.master, gcs.param_request_read_encode(1, 1, b"VTtrim", -1).pack(gcs))
     values = [m for m in read_messages(device.master, gcs, 5, wanted="PARAM_VALUE") if m.get_type() == "PARAM_VALUE"]
     assert values and values[0].param_id == "VTtrim" and values[0].param_value == pytest.approx(60.0)
-    assert wait_diagnostic(system, "link_up", lambda v: v == "true") == "true"
+    assert system.wait_diagnostic("link_up", lambda v: v == "true") == "true"
 
 
 def test_unplugged_modem_is_an_outage_and_the_replugged_one_resumes_in_the_same_process(modem):
     system, device = modem
     device.plug()
     assert heartbeats(device.master), "no HEARTBEAT from the first modem"
-    assert wait_diagnostic(system, "link_opens", lambda v: int(v) == 1) == "1"
+    assert system.wait_diagnostic("link_opens", lambda v: int(v) == 1) == "1"
     device.unplug()
-    assert wait_diagnostic(system, "link_outages", lambda v: int(v) == 1) == "1"
-    assert wait_diagnostic(system, "link_up", lambda v: v == "false") == "false"
+    assert system.wait_diagnostic("link_outages", lambda v: int(v) == 1) == "1"
+    assert system.wait_diagnostic("link_up", lambda v: v == "false") == "false"
     device.plug()
     assert heartbeats(device.master), "no HEARTBEAT after the modem came back"
     # Counters carried across the outage: the same process reopened, nothing respawned it.
-    assert wait_diagnostic(system, "link_opens", lambda v: int(v) == 2) == "2"
+    assert system.wait_diagnostic("link_opens", lambda v: int(v) == 2) == "2"
     assert int(system.diagnostic("link_outages")) == 1
     assert system.launch.poll() is None

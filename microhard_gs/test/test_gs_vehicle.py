@@ -285,7 +285,7 @@ def test_corrupt_frames_are_counted_and_dropped_and_the_link_keeps_working(gs):
     frame[-1] ^= 0xFF  # break the CRC
     for _ in range(5):
         gs.conn.write(bytes(frame))
-    time.sleep(1.5)
-    assert int(gs.diagnostic("frames_bad_crc")) >= before + 5
+    # Counted once the node has read them: the diagnostics are waited for, not a fixed time.
+    assert int(gs.wait_diagnostic("frames_bad_crc", lambda v: int(v) >= before + 5)) >= before + 5
     count, got = download_parameters(gs.conn)
     assert count == len(aircraft_tunables()) and len(got) == count
