@@ -74,6 +74,22 @@ class LossyRelay:
             target = self.gcs_addr if addr == self.node_addr else self.node_addr
             self.sock.sendto(payload, target)
 
+    @staticmethod
+    def _stop_procs(procs):
+        procs = list(procs)
+        for p in procs:
+            if p.poll() is None:
+                try:
+                    os.killpg(p.pid, signal.SIGINT)
+                except ProcessLookupError:
+                    pass
+        for p in procs:
+            try:
+                p.wait(timeout=10)
+            except subprocess.TimeoutExpired:
+                os.killpg(p.pid, signal.SIGKILL)
+                p.wait(timeout=5)
+
     def stop(self):
         self._stop = True
         self._thread.join(timeout=2)
@@ -81,8 +97,10 @@ class LossyRelay:
 
 
 class GsSystem:
-    def __init__(self, launch_args=None, relay_loss=None, probe_rate_hz=20.0, udp_client=True, controller=False):
+    def __init__(self, launch_args=None, relay_loss=None, probe_rate_hz=20.0, udp_client=True, controller=False,
+                 node=True):
         self.procs = []
+        self.launch = None
         self.events = queue.Queue()
         self.diagnostics = {}
         self.relay = None
@@ -120,21 +138,15 @@ class GsSystem:
                 self.conn = mavutil.mavlink_connection("udpin:127.0.0.1:%d" % self.gcs_port,
                                                        source_system=255, source_component=190,
                                                        dialect="development")
-            args = {"udp_bind_address": "127.0.0.1", "udp_bind_port": self.node_port,
-                    "udp_remote_address": "127.0.0.1", "udp_remote_port": remote_port,
-                    # Diagnostics at 10 Hz instead of the node's 1 Hz: a test waiting for a
-                    # counter sees it within 0.1 s of the change, and reads the same values.
-                    "diagnostic_period_s": DIAGNOSTIC_PERIOD_S}
-            args.update(launch_args or {})
-            self.launch = self._start(["roslaunch", "drone_ros", "microhard_gs.launch"] +
-                                      ["%s:=%s" % kv for kv in args.items()])
+            self.remote_port = remote_port
             self.probe = self._start([ROS_PYTHON, os.path.join(HERE, "gs_ros_probe.py"),
                                       "--lat", str(HOME[0]), "--lon", str(HOME[1]), "--alt", str(HOME[2]),
                                       "--rate", str(probe_rate_hz)],
                                      stdin=subprocess.PIPE, stdout=subprocess.PIPE)
             threading.Thread(target=self._read_probe, daemon=True).start()
-            if self.wait_event(lambda e: e["topic"] == "connected", 60) is None:
-                raise RuntimeError("microhard_gs and the probe never connected on ROS")
+            if not node:  # the test starts and stops microhard_gs itself (start_node, stop_node)
+                return
+            self.start_node(launch_args)
             if not udp_client:  # the test talks over another link (the serial transport)
                 return
             hb = self.conn.wait_heartbeat(timeout=30)
@@ -143,6 +155,28 @@ class GsSystem:
         except Exception:
             self.stop()
             raise
+
+    def start_node(self, launch_args=None):
+        """microhard_gs through its launch file; returns once it and the probe are connected."""
+        args = {"udp_bind_address": "127.0.0.1", "udp_bind_port": self.node_port,
+                "udp_remote_address": "127.0.0.1", "udp_remote_port": self.remote_port,
+                # Diagnostics at 10 Hz instead of the node's 1 Hz: a test waiting for a
+                # counter sees it within 0.1 s of the change, and reads the same values.
+                "diagnostic_period_s": DIAGNOSTIC_PERIOD_S}
+        args.update(launch_args or {})
+        self.launch = self._start(["roslaunch", "drone_ros", "microhard_gs.launch"] +
+                                  ["%s:=%s" % kv for kv in args.items()])
+        if self.wait_event(lambda e: e["topic"] == "connected", 60) is None:
+            raise RuntimeError("microhard_gs and the probe never connected on ROS")
+
+    def stop_node(self):
+        """Stops the launch start_node made, and waits until the probe has lost it: every event
+        of that node is then behind the test, none is read as the next node's."""
+        launch, self.launch = self.launch, None
+        self._stop_procs([launch])
+        self.procs.remove(launch)
+        if self.wait_event(lambda e: e["topic"] == "disconnected", 30) is None:
+            raise RuntimeError("the probe never saw microhard_gs go")
 
     def _start(self, cmd, **kw):
         os.makedirs(self.env["ROS_LOG_DIR"], exist_ok=True)
@@ -221,6 +255,16 @@ class GsSystem:
         self.probe.stdin.write(("decision %d %d %f\n" % (controller, reasons, altitude_agl_ft)).encode())
         self.probe.stdin.flush()
 
+    def decision_reached_node(self, controller, altitude_agl_ft=0.0, timeout=30.0):
+        """Waits until microhard_gs's diagnostics show this decision status as the last it heard.
+        Diagnostics arrive in the order they went out, so once a status has shown, no later wait
+        can be fooled by an older one; callers wait for each status they send before the next."""
+        def heard(values):
+            return (values.get("decision_controller") == str(controller) and
+                    values.get("decision_altitude_agl_ft") not in (None, "none") and
+                    float(values["decision_altitude_agl_ft"]) == float(altitude_agl_ft))
+        return self.wait_event(lambda e: e["topic"] == "diagnostics" and heard(e["values"]), timeout) is not None
+
     def diagnostic(self, key, timeout=5.0):
         """Waits for a fresh diagnostics message and returns one of its values."""
         event = self.wait_event(lambda e: e["topic"] == "diagnostics", timeout)
@@ -237,22 +281,27 @@ class GsSystem:
                 return value
         return value
 
-    def stop(self):
-        if self.conn is not None:
-            self.conn.close()
-            self.conn = None
-        for p in reversed(self.procs):
+    @staticmethod
+    def _stop_procs(procs):
+        procs = list(procs)
+        for p in procs:
             if p.poll() is None:
                 try:
                     os.killpg(p.pid, signal.SIGINT)
                 except ProcessLookupError:
                     pass
-        for p in reversed(self.procs):
+        for p in procs:
             try:
                 p.wait(timeout=10)
             except subprocess.TimeoutExpired:
                 os.killpg(p.pid, signal.SIGKILL)
                 p.wait(timeout=5)
+
+    def stop(self):
+        if self.conn is not None:
+            self.conn.close()
+            self.conn = None
+        self._stop_procs(reversed(self.procs))
         self.procs = []
         if self.relay is not None:
             self.relay.stop()

@@ -49,20 +49,30 @@ class Modem:
         self.unplug()
 
 
+@pytest.fixture(scope="module")
+def bench():
+    """The ROS master, the aircraft's parameters and the probe, shared by the module's tests."""
+    system = gh.GsSystem(udp_client=False, node=False)
+    try:
+        yield system
+    finally:
+        system.stop()
+
+
 @pytest.fixture
-def modem():
+def modem(bench):
     """A node of its own for each test (started before its modem exists), so no test depends on
     what an earlier one plugged or counted."""
     tmpdir = tempfile.mkdtemp(prefix="gs_modem_")
     device = Modem(os.path.join(tmpdir, "microhard"))
-    # The node starts before the modem exists, as when the radio enumerates late.
-    system = gh.GsSystem(launch_args={"transport": "serial", "serial_port": device.link, "serial_baud": 57600,
-                                      "reopen_period_s": 0.2},
-                         udp_client=False)
     try:
-        yield system, device
+        # The node starts before the modem exists, as when the radio enumerates late.
+        bench.start_node({"transport": "serial", "serial_port": device.link, "serial_baud": 57600,
+                          "reopen_period_s": 0.2})
+        yield bench, device
     finally:
-        system.stop()
+        if bench.launch is not None:
+            bench.stop_node()
         device.close()
         os.rmdir(tmpdir)
 
