@@ -89,7 +89,7 @@ def wait_for(cond, timeout_s=120.0):
         value = cond()
         if value:
             return value
-        time.sleep(0.5)
+        time.sleep(0.1)
     return cond()
 
 
@@ -111,12 +111,38 @@ def test_every_interface_topic_has_its_publisher(stack):
     assert wait_for(lambda: not absent()), "no publisher: %s" % absent()
 
 
-@pytest.mark.parametrize("topic", FLOWING)
-def test_the_topic_carries_messages(stack, topic):
+@pytest.fixture(scope="module")
+def echoes(stack):
+    """One `rostopic echo -n 1` per flowing topic, all started at once: each waits for its topic
+    beside the others instead of after them. Each test reads its own; any still running at the
+    end is stopped."""
     _, env, _ = stack
-    r = subprocess.run(["rostopic", "echo", "-n", "1", "--noarr", topic], env=env, capture_output=True,
-                       text=True, timeout=180)
-    assert r.returncode == 0 and r.stdout.strip(), "%s: nothing within the time: %s" % (topic, r.stderr[-500:])
+    procs = {}
+    try:
+        for topic in FLOWING:
+            procs[topic] = subprocess.Popen(["rostopic", "echo", "-n", "1", "--noarr", topic], env=env,
+                                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                                            start_new_session=True)
+        yield procs
+    finally:
+        for p in procs.values():
+            if p.poll() is None:
+                os.killpg(p.pid, signal.SIGINT)
+        for p in procs.values():
+            try:
+                p.wait(timeout=20)
+            except subprocess.TimeoutExpired:
+                os.killpg(p.pid, signal.SIGKILL)
+                p.wait()
+            p.stdout.close()
+            p.stderr.close()
+
+
+@pytest.mark.parametrize("topic", FLOWING)
+def test_the_topic_carries_messages(echoes, topic):
+    p = echoes[topic]
+    out, err = p.communicate(timeout=180)
+    assert p.returncode == 0 and out.strip(), "%s: nothing within the time: %s" % (topic, err[-500:])
 
 
 def test_the_recorder_writes_a_dated_log_of_aircraft_and_mode(stack):

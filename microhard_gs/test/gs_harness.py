@@ -18,6 +18,9 @@ import subprocess
 import threading
 import time
 
+import rosgraph
+import rosparam
+
 os.environ.setdefault("MAVLINK20", "1")
 from pymavlink import mavutil  # noqa: E402  (MAVLINK20 must be set first)
 
@@ -27,6 +30,7 @@ CONTROLLER_NS = "/controller_DG808"
 HOME = (40.1100, -88.2200, 220.0)  # where the probe says the aircraft is: becomes home
 ROS_PYTHON = "/usr/bin/python3"
 FT_PER_M = 1.0 / 0.3048
+DIAGNOSTIC_PERIOD_S = 0.1
 
 mavlink = mavutil.mavlink
 
@@ -70,6 +74,22 @@ class LossyRelay:
             target = self.gcs_addr if addr == self.node_addr else self.node_addr
             self.sock.sendto(payload, target)
 
+    @staticmethod
+    def _stop_procs(procs):
+        procs = list(procs)
+        for p in procs:
+            if p.poll() is None:
+                try:
+                    os.killpg(p.pid, signal.SIGINT)
+                except ProcessLookupError:
+                    pass
+        for p in procs:
+            try:
+                p.wait(timeout=10)
+            except subprocess.TimeoutExpired:
+                os.killpg(p.pid, signal.SIGKILL)
+                p.wait(timeout=5)
+
     def stop(self):
         self._stop = True
         self._thread.join(timeout=2)
@@ -77,8 +97,10 @@ class LossyRelay:
 
 
 class GsSystem:
-    def __init__(self, launch_args=None, relay_loss=None, probe_rate_hz=20.0, udp_client=True, controller=False):
+    def __init__(self, launch_args=None, relay_loss=None, probe_rate_hz=20.0, udp_client=True, controller=False,
+                 node=True):
         self.procs = []
+        self.launch = None
         self.events = queue.Queue()
         self.diagnostics = {}
         self.relay = None
@@ -100,37 +122,61 @@ class GsSystem:
                 self.relay = LossyRelay(self.node_port, self.gcs_port, relay_loss)
                 remote_port = self.relay.port
             self._start(["rosmaster", "--core", "-p", str(self.master_port)])
+            self.master = rosgraph.Master("/gs_harness", master_uri=self.env["ROS_MASTER_URI"])
             self._wait_for_master()
-            subprocess.run(["rosparam", "load", os.path.join(AIRCRAFT_DIR, "controller_param.yaml"),
-                            CONTROLLER_NS], env=self.env, check=True, timeout=30)
-            subprocess.run(["rosparam", "load", os.path.join(AIRCRAFT_DIR, "limits.yaml"),
-                            CONTROLLER_NS + "/limits"], env=self.env, check=True, timeout=30)
+            # As `rosparam load FILE NS` does it (rosparam's own reader, then one set per key),
+            # in this process rather than two more interpreters.
+            self._load_params(os.path.join(AIRCRAFT_DIR, "controller_param.yaml"), CONTROLLER_NS)
+            self._load_params(os.path.join(AIRCRAFT_DIR, "limits.yaml"), CONTROLLER_NS + "/limits")
             if controller:
                 self._start([os.path.join(ws, "devel", "lib", "drone_ros", "controller_DG808"),
                              "__name:=controller_DG808"])
                 self._wait_for_service(CONTROLLER_NS + "/set_tunable")
-            args = {"udp_bind_address": "127.0.0.1", "udp_bind_port": self.node_port,
-                    "udp_remote_address": "127.0.0.1", "udp_remote_port": remote_port}
-            args.update(launch_args or {})
-            self.launch = self._start(["roslaunch", "drone_ros", "microhard_gs.launch"] +
-                                      ["%s:=%s" % kv for kv in args.items()])
+            if udp_client:
+                # Bound before the node starts, as a ground station already listening: the node's
+                # first HEARTBEAT waits in the socket instead of going to a closed port.
+                self.conn = mavutil.mavlink_connection("udpin:127.0.0.1:%d" % self.gcs_port,
+                                                       source_system=255, source_component=190,
+                                                       dialect="development")
+            self.remote_port = remote_port
             self.probe = self._start([ROS_PYTHON, os.path.join(HERE, "gs_ros_probe.py"),
                                       "--lat", str(HOME[0]), "--lon", str(HOME[1]), "--alt", str(HOME[2]),
                                       "--rate", str(probe_rate_hz)],
                                      stdin=subprocess.PIPE, stdout=subprocess.PIPE)
             threading.Thread(target=self._read_probe, daemon=True).start()
-            if self.wait_event(lambda e: e["topic"] == "connected", 60) is None:
-                raise RuntimeError("microhard_gs and the probe never connected on ROS")
+            if not node:  # the test starts and stops microhard_gs itself (start_node, stop_node)
+                return
+            self.start_node(launch_args)
             if not udp_client:  # the test talks over another link (the serial transport)
                 return
-            self.conn = mavutil.mavlink_connection("udpin:127.0.0.1:%d" % self.gcs_port,
-                                                   source_system=255, source_component=190, dialect="development")
             hb = self.conn.wait_heartbeat(timeout=30)
             if hb is None:
                 raise RuntimeError("no HEARTBEAT from microhard_gs")
         except Exception:
             self.stop()
             raise
+
+    def start_node(self, launch_args=None):
+        """microhard_gs through its launch file; returns once it and the probe are connected."""
+        args = {"udp_bind_address": "127.0.0.1", "udp_bind_port": self.node_port,
+                "udp_remote_address": "127.0.0.1", "udp_remote_port": self.remote_port,
+                # Diagnostics at 10 Hz instead of the node's 1 Hz: a test waiting for a
+                # counter sees it within 0.1 s of the change, and reads the same values.
+                "diagnostic_period_s": DIAGNOSTIC_PERIOD_S}
+        args.update(launch_args or {})
+        self.launch = self._start(["roslaunch", "drone_ros", "microhard_gs.launch"] +
+                                  ["%s:=%s" % kv for kv in args.items()])
+        if self.wait_event(lambda e: e["topic"] == "connected", 60) is None:
+            raise RuntimeError("microhard_gs and the probe never connected on ROS")
+
+    def stop_node(self):
+        """Stops the launch start_node made, and waits until the probe has lost it: every event
+        of that node is then behind the test, none is read as the next node's."""
+        launch, self.launch = self.launch, None
+        self._stop_procs([launch])
+        self.procs.remove(launch)
+        if self.wait_event(lambda e: e["topic"] == "disconnected", 30) is None:
+            raise RuntimeError("the probe never saw microhard_gs go")
 
     def _start(self, cmd, **kw):
         os.makedirs(self.env["ROS_LOG_DIR"], exist_ok=True)
@@ -145,19 +191,31 @@ class GsSystem:
         deadline = time.time() + 20
         while time.time() < deadline:
             try:
-                with socket.create_connection(("127.0.0.1", self.master_port), timeout=0.5):
-                    return
+                self.master.getPid()
+                return
             except OSError:
-                time.sleep(0.1)
+                time.sleep(0.05)
         raise RuntimeError("rosmaster did not start")
+
+    def _load_params(self, path, namespace):
+        for params, ns in rosparam.load_file(path, default_namespace=namespace):
+            self._set_param(ns, params)
+
+    def _set_param(self, name, value):
+        if isinstance(value, dict):  # rosparam's update, key by key
+            for key, item in value.items():
+                self._set_param(rosgraph.names.ns_join(name, key), item)
+        else:
+            self.master.setParam(name, value)
 
     def _wait_for_service(self, name, timeout=30.0):
         deadline = time.time() + timeout
         while time.time() < deadline:
-            out = subprocess.run(["rosservice", "list"], env=self.env, capture_output=True, text=True, timeout=30)
-            if name in out.stdout.split():
+            try:
+                self.master.lookupService(name)
                 return
-            time.sleep(0.2)
+            except rosgraph.MasterError:  # not registered yet
+                time.sleep(0.05)
         raise RuntimeError("%s never appeared" % name)
 
     def rosparam(self, name):
@@ -197,27 +255,53 @@ class GsSystem:
         self.probe.stdin.write(("decision %d %d %f\n" % (controller, reasons, altitude_agl_ft)).encode())
         self.probe.stdin.flush()
 
+    def decision_reached_node(self, controller, altitude_agl_ft=0.0, timeout=30.0):
+        """Waits until microhard_gs's diagnostics show this decision status as the last it heard.
+        Diagnostics arrive in the order they went out, so once a status has shown, no later wait
+        can be fooled by an older one; callers wait for each status they send before the next."""
+        def heard(values):
+            return (values.get("decision_controller") == str(controller) and
+                    values.get("decision_altitude_agl_ft") not in (None, "none") and
+                    float(values["decision_altitude_agl_ft"]) == float(altitude_agl_ft))
+        return self.wait_event(lambda e: e["topic"] == "diagnostics" and heard(e["values"]), timeout) is not None
+
     def diagnostic(self, key, timeout=5.0):
         """Waits for a fresh diagnostics message and returns one of its values."""
         event = self.wait_event(lambda e: e["topic"] == "diagnostics", timeout)
         return None if event is None else event["values"].get(key)
 
-    def stop(self):
-        if self.conn is not None:
-            self.conn.close()
-            self.conn = None
-        for p in reversed(self.procs):
+    def wait_diagnostic(self, key, predicate, timeout=30.0):
+        """Fresh diagnostics until the value of key meets predicate; returns the last value seen
+        (None if none came), so the caller's assertion shows what it was."""
+        deadline = time.time() + timeout
+        value = None
+        while time.time() < deadline:
+            value = self.diagnostic(key, timeout=max(0.1, deadline - time.time()))
+            if value is not None and predicate(value):
+                return value
+        return value
+
+    @staticmethod
+    def _stop_procs(procs):
+        procs = list(procs)
+        for p in procs:
             if p.poll() is None:
                 try:
                     os.killpg(p.pid, signal.SIGINT)
                 except ProcessLookupError:
                     pass
-        for p in reversed(self.procs):
+        for p in procs:
             try:
                 p.wait(timeout=10)
             except subprocess.TimeoutExpired:
                 os.killpg(p.pid, signal.SIGKILL)
                 p.wait(timeout=5)
+
+    def stop(self):
+        if self.conn is not None:
+            self.conn.close()
+            self.conn = None
+        self._stop_procs(reversed(self.procs))
         self.procs = []
         if self.relay is not None:
             self.relay.stop()

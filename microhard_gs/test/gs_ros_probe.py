@@ -89,11 +89,16 @@ def main():
     msg.a_usbstatus = 1
     msg.v_usbstatus = 1
     while not rospy.is_shutdown():
-        # Tell the test once microhard_gs's publishers reach us: earlier messages would be lost.
+        # Tell the test once microhard_gs's publishers reach us (earlier messages would be lost),
+        # and once it is gone: /way and /operator_command are its alone (a test that restarts
+        # the node waits for both).
         if not connected and all(sub.get_num_connections() > 0 for sub in subscribers) and \
                 data_pub.get_num_connections() > 0 and decision_pub.get_num_connections() > 0:
             connected = True
             emit({"topic": "connected"})
+        elif connected and all(sub.get_num_connections() == 0 for sub in subscribers[:2]):
+            connected = False
+            emit({"topic": "disconnected"})
         msg.header.stamp = rospy.Time.now()
         data_pub.publish(msg)
         try:

@@ -59,8 +59,7 @@ def test_home_position_is_the_home_the_ha_published(gs, how):
 
 def test_set_home_on_the_ground_reaches_the_ha_with_its_exact_position(gs):
     gs.send_decision(0, 0, altitude_agl_ft=0.0)
-    gs.wait_event(lambda e: e["topic"] == "decision_sent", 5)
-    time.sleep(0.3)
+    assert gs.decision_reached_node(0, 0.0)
     gs.drain_events()
     lat, lon = 40.1123457, -88.2198765
     gs.conn.mav.command_int_send(1, 1, mavlink.MAV_FRAME_GLOBAL, mavlink.MAV_CMD_DO_SET_HOME, 0, 0,
@@ -84,8 +83,7 @@ def test_set_home_on_the_ground_reaches_the_ha_with_its_exact_position(gs):
 
 def test_set_home_in_flight_is_refused_with_the_reason(gs):
     gs.send_decision(0, 0, altitude_agl_ft=150.0)
-    gs.wait_event(lambda e: e["topic"] == "decision_sent", 5)
-    time.sleep(0.3)
+    assert gs.decision_reached_node(0, 150.0)
     gs.drain_events()
     gh.command_long(gs.conn, mavlink.MAV_CMD_DO_SET_HOME, 1)
     ack, texts, _ = collect_answer(gs.conn, mavlink.MAV_CMD_DO_SET_HOME)
@@ -93,3 +91,4 @@ def test_set_home_in_flight_is_refused_with_the_reason(gs):
     assert "Set home refused: in flight" in texts
     assert gs.wait_event(lambda e: e["topic"] == "operator_command", 1.0) is None
     gs.send_decision(0, 0, altitude_agl_ft=0.0)
+    assert gs.decision_reached_node(0, 0.0)  # back on the ground for whatever runs next

@@ -49,20 +49,30 @@ class Modem:
         self.unplug()
 
 
+@pytest.fixture(scope="module")
+def bench():
+    """The ROS master, the aircraft's parameters and the probe, shared by the module's tests."""
+    system = gh.GsSystem(udp_client=False, node=False)
+    try:
+        yield system
+    finally:
+        system.stop()
+
+
 @pytest.fixture
-def modem():
+def modem(bench):
     """A node of its own for each test (started before its modem exists), so no test depends on
     what an earlier one plugged or counted."""
     tmpdir = tempfile.mkdtemp(prefix="gs_modem_")
     device = Modem(os.path.join(tmpdir, "microhard"))
-    # The node starts before the modem exists, as when the radio enumerates late.
-    system = gh.GsSystem(launch_args={"transport": "serial", "serial_port": device.link, "serial_baud": 57600,
-                                      "reopen_period_s": 0.2},
-                         udp_client=False)
     try:
-        yield system, device
+        # The node starts before the modem exists, as when the radio enumerates late.
+        bench.start_node({"transport": "serial", "serial_port": device.link, "serial_baud": 57600,
+                          "reopen_period_s": 0.2})
+        yield bench, device
     finally:
-        system.stop()
+        if bench.launch is not None:
+            bench.stop_node()
         device.close()
         os.rmdir(tmpdir)
 
@@ -86,16 +96,6 @@ def read_messages(fd, parser, seconds, wanted=None):
     return out
 
 
-def wait_diagnostic(system, key, predicate, timeout=30.0):
-    deadline = time.time() + timeout
-    value = None
-    while time.time() < deadline:
-        value = system.diagnostic(key, timeout=max(0.1, deadline - time.time()))
-        if value is not None and predicate(value):
-            return value
-    return value
-
-
 def heartbeats(fd, seconds=30):
     gcs = mavlink.MAVLink(Sink(), srcSystem=255, srcComponent=190)
     return [m for m in read_messages(fd, gcs, seconds, wanted="HEARTBEAT") if m.get_type() == "HEARTBEAT"]
@@ -103,9 +103,10 @@ def heartbeats(fd, seconds=30):
 
 def test_modem_missing_at_start_is_reported_and_the_node_keeps_running(modem):
     system, _ = modem
-    assert wait_diagnostic(system, "link_up", lambda v: v == "false") == "false"
-    assert int(system.diagnostic("link_open_failures")) >= 1
-    assert int(system.diagnostic("frames_not_sent_link_down")) > 0  # telemetry dropped and counted
+    assert system.wait_diagnostic("link_up", lambda v: v == "false") == "false"
+    assert int(system.wait_diagnostic("link_open_failures", lambda v: int(v) >= 1)) >= 1
+    # telemetry dropped and counted
+    assert int(system.wait_diagnostic("frames_not_sent_link_down", lambda v: int(v) > 0)) > 0
     assert system.launch.poll() is None
 
 
@@ -118,20 +119,20 @@ def test_modem_appearing_later_gets_the_heartbeat_and_the_parameters(modem):
     os.write(device.master, gcs.param_request_read_encode(1, 1, b"VTtrim", -1).pack(gcs))
     values = [m for m in read_messages(device.master, gcs, 5, wanted="PARAM_VALUE") if m.get_type() == "PARAM_VALUE"]
     assert values and values[0].param_id == "VTtrim" and values[0].param_value == pytest.approx(60.0)
-    assert wait_diagnostic(system, "link_up", lambda v: v == "true") == "true"
+    assert system.wait_diagnostic("link_up", lambda v: v == "true") == "true"
 
 
 def test_unplugged_modem_is_an_outage_and_the_replugged_one_resumes_in_the_same_process(modem):
     system, device = modem
     device.plug()
     assert heartbeats(device.master), "no HEARTBEAT from the first modem"
-    assert wait_diagnostic(system, "link_opens", lambda v: int(v) == 1) == "1"
+    assert system.wait_diagnostic("link_opens", lambda v: int(v) == 1) == "1"
     device.unplug()
-    assert wait_diagnostic(system, "link_outages", lambda v: int(v) == 1) == "1"
-    assert wait_diagnostic(system, "link_up", lambda v: v == "false") == "false"
+    assert system.wait_diagnostic("link_outages", lambda v: int(v) == 1) == "1"
+    assert system.wait_diagnostic("link_up", lambda v: v == "false") == "false"
     device.plug()
     assert heartbeats(device.master), "no HEARTBEAT after the modem came back"
     # Counters carried across the outage: the same process reopened, nothing respawned it.
-    assert wait_diagnostic(system, "link_opens", lambda v: int(v) == 2) == "2"
+    assert system.wait_diagnostic("link_opens", lambda v: int(v) == 2) == "2"
     assert int(system.diagnostic("link_outages")) == 1
     assert system.launch.poll() is None

@@ -256,8 +256,7 @@ def test_rebooting_the_ha_from_the_ground_is_denied(gs):
 
 def test_decision_switch_to_ha_reaches_the_operator_naming_the_reasons(gs):
     gs.send_decision(0, 0)
-    gs.wait_event(lambda e: e["topic"] == "decision_sent", 5)
-    time.sleep(0.3)
+    assert gs.decision_reached_node(0, 0.0)
     gs.send_decision(1, 1 | 64)  # NO_COMMAND and STALL
     st = gh.wait_statustext(gs.conn, "HP->HA")
     assert st is not None
@@ -269,14 +268,14 @@ def test_decision_switch_to_ha_reaches_the_operator_naming_the_reasons(gs):
 
 def test_self_test_in_the_air_is_refused(gs):
     gs.send_decision(0, 0, altitude_agl_ft=150.0)
-    gs.wait_event(lambda e: e["topic"] == "decision_sent", 5)
-    time.sleep(0.3)
+    assert gs.decision_reached_node(0, 150.0)
     gs.drain_events()
     gh.command_long(gs.conn, mavlink.MAV_CMD_ACTUATOR_TEST)
     ack = gh.wait_command_ack(gs.conn, mavlink.MAV_CMD_ACTUATOR_TEST)
     assert ack is not None and ack.result == mavlink.MAV_RESULT_TEMPORARILY_REJECTED
     assert gs.wait_event(lambda e: e["topic"] == "operator_command", 1.0) is None
     gs.send_decision(0, 0, altitude_agl_ft=0.0)
+    assert gs.decision_reached_node(0, 0.0)  # back on the ground for whatever runs next
 
 
 def test_corrupt_frames_are_counted_and_dropped_and_the_link_keeps_working(gs):
@@ -285,7 +284,7 @@ def test_corrupt_frames_are_counted_and_dropped_and_the_link_keeps_working(gs):
     frame[-1] ^= 0xFF  # break the CRC
     for _ in range(5):
         gs.conn.write(bytes(frame))
-    time.sleep(1.5)
-    assert int(gs.diagnostic("frames_bad_crc")) >= before + 5
+    # Counted once the node has read them: the diagnostics are waited for, not a fixed time.
+    assert int(gs.wait_diagnostic("frames_bad_crc", lambda v: int(v) >= before + 5)) >= before + 5
     count, got = download_parameters(gs.conn)
     assert count == len(aircraft_tunables()) and len(got) == count

@@ -10,6 +10,7 @@ import time
 
 import pytest
 import rosbag
+import rosgraph
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
@@ -52,7 +53,7 @@ def _wait(predicate, timeout_s, what):
     while time.time() < deadline:
         if predicate():
             return
-        time.sleep(0.2)
+        time.sleep(0.05)
     raise AssertionError("timed out waiting for " + what)
 
 
@@ -78,10 +79,15 @@ def test_record_launch_logs_a_flight_the_report_reads(tmp_path):
         launch = start(["roslaunch", "drone_ros", "record.launch", "aircraft:=DG808", "mode:=hil",
                         "out_dir:=%s" % out_dir])
 
+        master = rosgraph.Master("/test_record_flight", master_uri=env["ROS_MASTER_URI"])
+
         def recorder_subscribed():
-            out = subprocess.run(["rostopic", "info", "/decision_status"], env=env, capture_output=True,
-                                 text=True, timeout=30)
-            return "/recorder" in out.stdout
+            # What `rostopic info /decision_status` lists, asked of the master in this process.
+            try:
+                subscribers = dict(master.getSystemState()[1])
+            except OSError:  # the master is not up yet
+                return False
+            return "/recorder" in subscribers.get("/decision_status", [])
         _wait(recorder_subscribed, 60, "the recorder to subscribe")
         # Every message queued, none dropped when a loaded machine lets the recorder fall behind.
         played = subprocess.run(["rosbag", "play", "-q", "-r", "4", "--queue", "100000",

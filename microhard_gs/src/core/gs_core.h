@@ -147,6 +147,9 @@ class GsCore {
   int mission_count() const { return mission_count_; }
   bool upload_in_progress() const { return upload_.active; }
   const ParamTable& params() const { return params_; }
+  // The last decision status (nullptr before the first): who flies and the height the HEARTBEAT's
+  // armed bit, SET_HOME and the self-test go by.
+  const DecisionInfo* decision() const { return have_decision_ ? &decision_ : nullptr; }
 
  private:
   struct Upload {

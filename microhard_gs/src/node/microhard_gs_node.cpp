@@ -294,6 +294,11 @@ class Node {
     s.add("link_last_error", h.last_error);
     s.add("frames_not_sent_link_down", frames_not_sent_link_down_);
     s.add("signing", config_.core.signing ? "on" : "off");
+    // What the node last heard on /decision_status ("none" before the first status).
+    const DecisionInfo* decision = core_.decision();
+    s.add("decision_controller", decision ? std::to_string(decision->controller) : "none");
+    s.add("decision_altitude_agl_ft",
+          decision ? std::to_string(decision->altitude_agl_ft) : std::string("none"));
     s.add("frames_ok", c.frames_ok);
     s.add("frames_bad_crc", c.frames_bad_crc);
     s.add("refused_unsigned", c.refused_unsigned);

@@ -1,0 +1,15 @@
+"""pytest set-up shared by every Python test of the package (a helper, not a test).
+
+The tests stop what they start the way a person does, with Ctrl-C: SIGINT to the process group
+(rosmaster, rospy nodes and the microhard_gs probe close on it). A shell that runs a command in
+the background without job control (`make test > log &` in a script, CI runners, nohup) starts it
+with SIGINT ignored, and an ignored signal stays ignored across fork and exec: every process a
+test started would ignore the stop, sit out the test's wait and be killed (20 s per microhard_gs
+test module, 30 s for test_record_flight's master). Catching SIGINT here, as an interactive
+Python does, hands each child the default action again (exec resets a caught signal)."""
+import signal
+
+
+def pytest_configure(config):
+    if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
+        signal.signal(signal.SIGINT, signal.default_int_handler)
