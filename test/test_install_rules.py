@@ -55,6 +55,8 @@ class Rule:
 
     def __init__(self, cmake_file, kind, sources, destination, excluded):
         self.cmake_file, self.kind, self.excluded = cmake_file, kind, excluded
+        # A folder named with a trailing slash installs its contents, not itself.
+        self.contents_only = {_relative_source(cmake_file.parent, s) for s in sources if s.endswith("/")}
         self.sources = [_relative_source(cmake_file.parent, s) for s in sources]
         self.destination = PurePosixPath(destination[len(SHARE):].lstrip("/"))
 
@@ -67,7 +69,8 @@ class Rule:
                 rest = source.relative_to(src).parts
                 if any(part in self.excluded for part in rest):
                     return None
-                return self.destination.joinpath(src.name, *rest)
+                top = () if src in self.contents_only else (src.name,)
+                return self.destination.joinpath(*top, *rest)
             if source == src:
                 return self.destination / src.name
         return None
@@ -127,3 +130,5 @@ def test_a_launch_folder_left_out_of_the_install_is_reported():
     assert placed == {PurePosixPath("launch/DG808_flight.launch")}
     assert {r.installed_as(launch_dir / "test" / "test_launch_files.py") for r in rules} == {None}
     assert {r.installed_as((ROOT / "msg").resolve()) for r in rules} == {None}
+    sim = {r.installed_as((ROOT / "hil" / "sim.py").resolve()) for r in rules} - {None}
+    assert sim == {PurePosixPath("hil/sim.py")}  # hil/CMakeLists.txt installs its folder's contents

@@ -38,6 +38,7 @@ build_s=$(( $(date +%s) - start ))
 mkdir "$ws/aside"
 mv "$ws/src" "$ws/build" "$ws/devel" "$ws/aside/"
 share=$ws/install/share/drone_ros
+mavgen_python=${mavgen_python/#$ws\/src/$ws/aside/src}  # the clone's .venv, if make deps made it, moved too
 in_install() {  # "${login_env[@]}" with only install/setup.bash sourced; logs go to the workspace
   "${login_env[@]}" ROS_HOME="$ws/ros_home" bash -c "source '$ws/install/setup.bash' && $1"
 }
@@ -50,7 +51,7 @@ pkg=$(in_install "rospack find drone_ros")
 "$share/tools/check_config.py" "$share/aircraft/DG808" > "$ws/check_config.out" \
   || fail "the installed check_config.py refuses the installed DG808 ($(cat "$ws/check_config.out"))"
 
-for launch in DG808_flight.launch check_config.launch; do
+for launch in DG808_flight.launch check_config.launch DG808_hil.launch; do
   args=()
   [ "$launch" = check_config.launch ] && args=(aircraft:=DG808)
   if ! files=$(in_install "roslaunch --files drone_ros $launch ${args[*]}" 2> "$ws/roslaunch.err"); then
@@ -77,5 +78,12 @@ for launch in DG808_flight.launch check_config.launch; do
   done
   echo "check-install: $launch resolves from the install: $n files, $k nodes ($(echo $nodes | tr '\n' ' '))"
 done
+# The simulator DG808_hil.launch starts imports its package from the install (hil_sim.py finds it
+# through the package path), with the ROS messages of the install; under the venv (jsbsim).
+in_install "DRONE_ROS_VENV='${mavgen_python%/bin/python}' '$mavgen_python' -c \"import rospkg, sys; \
+sys.path.insert(0, rospkg.RosPack().get_path('drone_ros')); import hil.sim, drone_ros.msg; \
+assert hil.sim.__file__.startswith('$share/'), hil.sim.__file__; \
+assert drone_ros.msg.__file__.startswith('$ws/install/'), drone_ros.msg.__file__\"" \
+  || fail "hil_sim.py's package (hil.sim) does not import from the install space"
 [ $failed -eq 0 ] || exit 1
 echo "check-install: $(cat "$ws/check_config.out"); catkin_make install ${build_s} s"
