@@ -85,7 +85,7 @@ def share_rules():
             if not words or words[0] not in ("FILES", "PROGRAMS", "DIRECTORY") or "DESTINATION" not in words:
                 continue
             at = words.index("DESTINATION")
-            destination = words[at + 1]
+            destination = words[at + 1].replace("${PROJECT_NAME}", "drone_ros")
             if not destination.startswith(SHARE):
                 continue
             excluded = set()
