@@ -40,7 +40,7 @@ mv "$ws/src" "$ws/build" "$ws/devel" "$ws/aside/"
 share=$ws/install/share/drone_ros
 mavgen_python=${mavgen_python/#$ws\/src/$ws/aside/src}  # the clone's .venv, if make deps made it, moved too
 in_install() {  # "${login_env[@]}" with only install/setup.bash sourced; logs go to the workspace
-  "${login_env[@]}" ROS_HOME="$ws/ros_home" bash -c "source '$ws/install/setup.bash' && $1"
+  (cd "$ws" && "${login_env[@]}" ROS_HOME="$ws/ros_home" bash -c "source '$ws/install/setup.bash' && $1")
 }
 failed=0
 fail() { echo "check-install: $*"; failed=1; }
