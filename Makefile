@@ -24,7 +24,7 @@ FUZZ_SMOKE_TARGETS :=
 # fuzz-smoke-<c> (before the aggregate targets below, which list them).
 include $(ROOT)/tools/kit.mk
 
-.PHONY: help deps build test test-each run lint verify bench fuzz fuzz-smoke check-user-ws clean
+.PHONY: help deps build test test-each run lint verify bench fuzz fuzz-smoke check-user-ws check-install clean
 help:
 	@echo "make run    set up and fly the main job"
 	@echo "make test   set up, build and run every test"
@@ -70,6 +70,10 @@ fuzz-smoke: $(FUZZ_SMOKE_TARGETS)
 # plain catkin_make in a new workspace (tools/check_user_workspace.sh). CI runs it.
 check-user-ws:
 	@$(ROOT)/tools/check_user_workspace.sh
+
+# The install space alone (a fresh clone's `catkin_make install`) resolves the flight launch.
+check-install:
+	@JOBS=$(JOBS) $(ROOT)/tools/check_install_space.sh
 
 clean:
 	rm -rf $(ROOT)/.build

@@ -1,0 +1,89 @@
+#!/usr/bin/env bash
+# `make check-install`: the install space flies without the source tree (README "Install space").
+# As `make check-user-ws` does, a fresh clone of this repository's HEAD goes into a new
+# workspace's src/ and plain catkin_make builds it from a clean login environment; here it is
+# `catkin_make install` into the workspace's install/. Then the source tree, build/ and devel/ are
+# moved aside, install/setup.bash alone is sourced, and the flight launch must resolve from the
+# install: `roslaunch --files` (which also runs check_config.launch's checker) lists only files
+# under install/, every node of `roslaunch --nodes` starts an executable under install/, and the
+# installed check_config.py accepts the installed aircraft. Leaves nothing behind unless KEEP=1.
+# usage: check_install_space.sh [WORKSPACE_DIR]   (default: a new folder under /tmp)
+# JOBS (default 2) is catkin_make's -j. mavgen (a build step, not needed at run time) runs with
+# this checkout's .venv Python when it has one, else `make deps` makes the clone's.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+ws=${1:-$(mktemp -d /tmp/drone_ros_install_ws.XXXXXX)}
+if [ -z "${KEEP:-}" ]; then trap 'rm -rf "$ws"' EXIT; fi
+mkdir -p "$ws/src"
+git clone -q "$root" "$ws/src/drone_ros"
+echo "check-install: clone of $(git -C "$ws/src/drone_ros" rev-parse --short HEAD) in $ws/src/drone_ros"
+
+login_env=(env -i HOME="$HOME" LANG=C.UTF-8 PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin)
+mavgen_python=${DRONE_ROS_PYMAVLINK_PYTHON:-$root/.venv/bin/python}
+if [ ! -x "$mavgen_python" ]; then
+  (cd "$ws/src/drone_ros" && "${login_env[@]}" make deps)
+  mavgen_python=$ws/src/drone_ros/.venv/bin/python
+fi
+start=$(date +%s)
+if ! (cd "$ws" && "${login_env[@]}" catkin_make -j"${JOBS:-2}" -DPYTHON_EXECUTABLE=/usr/bin/python3 \
+      -Ddrone_ros_PYMAVLINK_PYTHON="$mavgen_python" -DCATKIN_ENABLE_TESTING=OFF \
+      -DCMAKE_INSTALL_PREFIX="$ws/install" install > "$ws/catkin_make.log" 2>&1); then
+  tail -n 60 "$ws/catkin_make.log"
+  echo "check-install: catkin_make install failed in $ws (KEEP=1 keeps the workspace)"
+  exit 1
+fi
+build_s=$(( $(date +%s) - start ))
+
+# Nothing but the install space from here on: the sources, build and devel spaces are moved away.
+mkdir "$ws/aside"
+mv "$ws/src" "$ws/build" "$ws/devel" "$ws/aside/"
+share=$ws/install/share/drone_ros
+mavgen_python=${mavgen_python/#$ws\/src/$ws/aside/src}  # the clone's .venv, if make deps made it, moved too
+in_install() {  # "${login_env[@]}" with only install/setup.bash sourced; logs go to the workspace
+  (cd "$ws" && "${login_env[@]}" ROS_HOME="$ws/ros_home" bash -c "source '$ws/install/setup.bash' && $1")
+}
+failed=0
+fail() { echo "check-install: $*"; failed=1; }
+
+pkg=$(in_install "rospack find drone_ros")
+[ "$pkg" = "$share" ] || fail "rospack finds drone_ros at $pkg, not in the install space ($share)"
+
+"$share/tools/check_config.py" "$share/aircraft/DG808" > "$ws/check_config.out" \
+  || fail "the installed check_config.py refuses the installed DG808 ($(cat "$ws/check_config.out"))"
+
+for launch in DG808_flight.launch check_config.launch DG808_hil.launch; do
+  args=()
+  [ "$launch" = check_config.launch ] && args=(aircraft:=DG808)
+  if ! files=$(in_install "roslaunch --files drone_ros $launch ${args[*]}" 2> "$ws/roslaunch.err"); then
+    fail "roslaunch --files drone_ros $launch fails from the install: $(cat "$ws/roslaunch.err")"
+    continue
+  fi
+  n=0
+  for f in $files; do
+    n=$((n + 1))
+    case "$f" in "$ws/install/"*) ;; *) fail "$launch reads $f, outside the install space" ;; esac
+    [ -f "$f" ] || fail "$launch reads $f, which is not there"
+  done
+  nodes=$(in_install "roslaunch --nodes drone_ros $launch ${args[*]}")
+  k=0
+  for node in $nodes; do
+    k=$((k + 1))
+    cmd=$(in_install "roslaunch --args $node drone_ros $launch ${args[*]}")
+    exe=${cmd%% *}
+    case "$exe" in
+      "$ws/install/"*) [ -x "$exe" ] || fail "$launch: $node's $exe is not an executable" ;;
+      /usr/*) ;;  # a node of a Debian ROS package (rosbag record)
+      *) fail "$launch: $node starts $exe, outside the install space" ;;
+    esac
+  done
+  echo "check-install: $launch resolves from the install: $n files, $k nodes ($(echo $nodes | tr '\n' ' '))"
+done
+# The simulator DG808_hil.launch starts imports its package from the install (hil_sim.py finds it
+# through the package path), with the ROS messages of the install; under the venv (jsbsim).
+in_install "DRONE_ROS_VENV='${mavgen_python%/bin/python}' '$mavgen_python' -c \"import rospkg, sys; \
+sys.path.insert(0, rospkg.RosPack().get_path('drone_ros')); import hil.sim, drone_ros.msg; \
+assert hil.sim.__file__.startswith('$share/'), hil.sim.__file__; \
+assert drone_ros.msg.__file__.startswith('$ws/install/'), drone_ros.msg.__file__\"" \
+  || fail "hil_sim.py's package (hil.sim) does not import from the install space"
+[ $failed -eq 0 ] || exit 1
+echo "check-install: $(cat "$ws/check_config.out"); catkin_make install ${build_s} s"
