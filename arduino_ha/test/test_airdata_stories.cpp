@@ -269,42 +269,6 @@ TEST(HaAirdataStories, AGustsLoadTheGyrosCannotSeeIsPushedAgainst) {
   EXPECT_GT(gust.elevator_deg, 0.0f) << "trailing edge down: nose down against the gust";
 }
 
-// HiL campaign (seed 24, wind class): a 30 ft/s tailwind shear in an 11 m/s wind took the
-// airspeed to 37 ft/s; the pitot, doubted before the wind was known, left the HA on pitch and
-// power, whose 2 deg target pulled a wing whose nose was dropping on its own: 12.6 deg of alpha
-// for 3.4 s. The INS's speed over the ground (30 ft/s) shows the stall; the HA never pulls then.
-TEST(HaAirdataStories, AWingShowingTheStallIsNeverPulledWhateverAttitudeIsAsked) {
-  const HaAircraftConfig& cfg = ha_aircraft_config;
-  HaStateView v{};
-  v.attitude_ok = v.altitude_ok = v.position_ok = v.speed_ok = 1u;
-  v.speed_known = 0u;  // pitch and power
-  v.airborne = 1u;
-  v.x[HA_X_ALT_AGL_FT] = cfg.sc_alt_min_ft;
-  v.x[HA_X_PITCH_DEG] = -10.0f;
-  v.x[HA_X_Q_DEG_S] = -15.0f;  // the nose dropping
-  v.ias_ftps = v.tas_ftps = 30.0f;
-  v.ias_sq = 30.0f * 30.0f;
-  v.cos_bank = v.load_factor = v.lift_load_factor = 1.0f;
-  v.north_ft = cfg.sc_circle_radius_ft;
-  v.heading_east = 1.0f;
-  ASSERT_TRUE(ha_stall_sign(&cfg, &v));
-  const HaSurfaces applied{};
-  HaSurfaces out{};
-  HaSafetyCtrlState st{};
-  st.pitch_integ_deg = 3.0f;  // the trim it had learnt: nose up
-  for (int i = 0; i < 50; ++i) {
-    ha_safety_ctrl_step(&st, &cfg, &v, &applied, 1, 0.01f, &out);
-    ASSERT_GE(out.elevator_deg, 0.0f) << "period " << i << ": trailing edge up pulls the stall";
-  }
-  // Flying again (the pitot believed at 60 ft/s, the same attitude): the nose comes up.
-  v.speed_known = v.airspeed_ok = 1u;
-  v.ias_ftps = v.airspeed_ftps = 60.0f;
-  v.ias_sq = 60.0f * 60.0f;
-  ASSERT_FALSE(ha_stall_sign(&cfg, &v));
-  ha_safety_ctrl_step(&st, &cfg, &v, &applied, 1, 0.01f, &out);
-  EXPECT_LT(out.elevator_deg, 0.0f);
-}
-
 // ... and the accelerometer's load reaches the guard, never the stall check: a gust is the air's
 // doing, not the HP's. 2 g at 60 ft/s with the HP flying straight and level (the gyros' 1 g)
 // keeps the HP in control; the same 2 g pulled (the gyros' pitch rate) is a stall.

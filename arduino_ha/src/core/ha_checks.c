@@ -97,14 +97,10 @@ static int past_stall_alpha(const HaAircraftConfig *cfg, const HaStateView *s) {
  * alpha cos(bank), a stalled glide that the speed does not show. Only there: the INS's flight
  * path cannot see a vertical gust, and in moderate turbulence a downdraft at cruise read as
  * alpha 9 deg at a true 1.5 (HiL) and took a healthy HP out for good. */
-int ha_stall_sign(const HaAircraftConfig *cfg, const HaStateView *s) {
+static uint32_t check_stall(const HaAircraftConfig *cfg, const HaStateView *s) {
   const int slow =
       s->speed_ok && !ha_greater(s->ias_sq, cfg->stall_switch_airspeed_sq * s->load_factor);
-  return s->airborne && (slow || (s->alpha_ok && past_stall_alpha(cfg, s)));
-}
-
-static uint32_t check_stall(const HaAircraftConfig *cfg, const HaStateView *s) {
-  return flag(ha_stall_sign(cfg, s), HA_REASON_STALL);
+  return flag(s->airborne && (slow || (s->alpha_ok && past_stall_alpha(cfg, s))), HA_REASON_STALL);
 }
 
 /* Within the switch margin of the ceiling: the INS's height error and the climb during the

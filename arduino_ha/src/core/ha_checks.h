@@ -73,10 +73,6 @@ typedef struct {
 void ha_state_view(const HaAircraftConfig *cfg, const HaInputs *in, const HaHpCommand *cmd,
                    int have_cmd, const HaOwnSensors *own, HaStateView *out);
 
-/* The STALL check's sign (ha_checks.c), for the safety controller too: it never pulls a wing
- * that shows it. */
-int ha_stall_sign(const HaAircraftConfig *cfg, const HaStateView *s);
-
 /* Runs every check; returns the HA_REASON_* bits and the two region values. */
 uint32_t ha_checks_evaluate(const HaAircraftConfig *cfg, const HaCmdFacts *facts,
                             const HaStateView *state, float *state_region_max,

@@ -1,6 +1,5 @@
 #include "ha_safety_ctrl.h"
 
-#include "ha_checks.h"
 #include "ha_num.h"
 #include "ha_surfaces.h"
 
@@ -114,7 +113,6 @@ void ha_safety_ctrl_step(HaSafetyCtrlState *st, const HaAircraftConfig *cfg, con
   float thr_pd = cfg->sc_throttle_trim - throttle_mid, thr_step = 0.0f;
   float nose_up_deg;
   const float auth = cfg->sc_integrator_authority;
-  const int stalled = ha_stall_sign(cfg, s);
   if (!s->attitude_ok && in_control) {
     /* Blind: nothing to close a loop on. What the integrators hold fades to the trims. */
     const float fade = cfg->sc_blind_fade_per_s * auth * dt_s;
@@ -138,7 +136,7 @@ void ha_safety_ctrl_step(HaSafetyCtrlState *st, const HaAircraftConfig *cfg, con
     const float excess_g = lift_excess_g(cfg, s);
     pitch_pd = cfg->sc_pitch_kp * pitch_err - cfg->sc_pitch_kd * s->x[HA_X_Q_DEG_S];
     pitch_step = cfg->sc_pitch_ki * pitch_err * dt_s;
-    if (ha_greater(excess_g, 0.0f) || stalled) {
+    if (ha_greater(excess_g, 0.0f)) {
       pitch_pd -= cfg->sc_lift_push_deg_per_g * excess_g;
       pitch_step = ha_greater(pitch_step, 0.0f) ? 0.0f : pitch_step;
     }
@@ -167,14 +165,6 @@ void ha_safety_ctrl_step(HaSafetyCtrlState *st, const HaAircraftConfig *cfg, con
   /* Elevator trailing edge down is positive (nose down): the loop works in nose-up degrees. */
   nose_up_deg = pid(&st->pitch_integ_deg, pitch_pd, pitch_step, cfg->elevator_limit_deg, auth,
                     in_control, -applied->elevator_deg);
-  /* A wing showing the stall is never pulled, whatever attitude the speed, the height or pitch
-   * and power ask for: its nose drops by itself, and an attitude held against that holds the
-   * angle of attack (HiL campaign: a 30 ft/s tailwind shear at 11 m/s, the pitot doubted, pitch
-   * and power's 2 deg pulled the wing to 12.6 deg for 3.4 s; a slow-beats-low target of -3.8 deg
-   * pulled it to 11.9). The load guard cannot see it: a stalled wing's load falls. */
-  if (stalled && ha_greater(nose_up_deg, 0.0f)) {
-    nose_up_deg = 0.0f;
-  }
   out->elevator_deg = -nose_up_deg;
   /* Throttle is handled about the middle of its range so the same symmetric PID applies. */
   out->throttle = throttle_mid + pid(&st->throttle_integ, thr_pd, thr_step, throttle_half, auth,
