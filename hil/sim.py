@@ -722,7 +722,7 @@ class Simulation:
         home_lat, home_lon, ground_msl = self.plan.home
         wp1 = self.plan.items[0]
         heading = mission.bearing_deg(home_lat, home_lon, wp1.lat_deg, wp1.lon_deg)
-        self.fdm.reset_on_ground(home_lat, home_lon, ground_msl, heading)
+        self.fdm.reset_on_ground(home_lat, home_lon, ground_msl, heading, held=True)
         self.record_truth(0.0)
         parked = self.fdm.truth()
         self.home = (home_lat, home_lon, parked.alt_msl_m)

@@ -23,6 +23,11 @@ KG_M3_PER_SLUG_FT3 = 515.3788184
 # hemisphere field (WMM: horizontal ~0.2 G, downward ~0.45 G). Not site-specific on purpose.
 DEFAULT_MAG_FIELD_NED_GAUSS = (0.2, 0.0, 0.45)
 _SETTLE_S = 3.0          # parked start: time on the springs before the state is frozen as the IC
+# Parked, the glider is held as a crew holds it in a wind (a hand on the wing tip, one on the
+# tail): tipped this far from where it settled, it is put back at rest there. Unheld, a tailwind
+# past the aircraft's limit (HiL campaign: 9.8 to 10.9 m/s) lifted the tail and crashed it in
+# 0.6 s, before any launch.
+_HOLD_DEG = 3.0
 
 jsbsim.FGJSBBase().debug_lvl = 0   # no banner or model echo on stdout
 
@@ -81,6 +86,7 @@ class Fdm:
         self._servos.append(Servo(af.throttle_min, af.throttle_max, af.throttle_rate_per_s,
                                   delay_steps, self.dt_s))
         self._exec = None
+        self._held = None  # parked: (put it back, roll, pitch where it settled), else None
         self._steps = 0
         self._turbulence = None
         self._crash = None
@@ -241,6 +247,7 @@ class Fdm:
             raise
 
     def _reset_airborne(self, lat_deg, lon_deg, ground_msl_m, height_agl_m, heading_deg, airspeed_mps):
+        self._held = None  # launched: nobody holds it any more
         af = self.airframe
         clearance_m = max(c.z_m for c in af.contacts)
         if not height_agl_m > clearance_m:
@@ -299,8 +306,11 @@ class Fdm:
         self._start([trim.elevator_deg, 0.0, 0.0, trim.throttle])
         return trim
 
-    def reset_on_ground(self, lat_deg, lon_deg, ground_msl_m, heading_deg):
-        """Parked on its gear, at rest, throttle zero, surfaces neutral."""
+    def reset_on_ground(self, lat_deg, lon_deg, ground_msl_m, heading_deg, held=False):
+        """Parked on its gear, at rest, throttle zero, surfaces neutral. held: a crew holds it until
+        the next reset (tipped _HOLD_DEG from where it settled, it is put back at rest there), as
+        the HiL's parked glider waiting for its airborne start; unheld, it rolls, steers and takes
+        off."""
         _check_finite(lat_deg=lat_deg, lon_deg=lon_deg, ground_msl_m=ground_msl_m, heading_deg=heading_deg)
         af = self.airframe
         wheel_z = max(c.z_m for c in af.contacts if c.kind == "BOGEY")
@@ -319,6 +329,9 @@ class Fdm:
         settled = (ex["position/h-agl-ft"] * M_PER_FT, ex["attitude/theta-rad"], ex["attitude/phi-rad"])
         ground_ic(*settled)
         self._start([0.0, 0.0, 0.0, 0.0])
+        self._held = None
+        if held:
+            self._held = (lambda: ground_ic(*settled), math.degrees(settled[2]), math.degrees(settled[1]))
 
     # --- running --------------------------------------------------------------------------
     def set_surfaces(self, surfaces):
@@ -348,10 +361,18 @@ class Fdm:
                 self._set_wind(self._gust())
             if not ex.run():
                 raise RuntimeError("JSBSim stopped")
+            if self._held is not None:
+                self._hold()
             self._steps += 1
             # Anything touching the ground (or a NaN, which compares unequal too): check it.
             if self._n_gear_fz.get_double_value() != 0.0:
                 self._check_crash()
+
+    def _hold(self):
+        put_back, roll0_deg, pitch0_deg = self._held
+        _, roll, pitch, _ = (n.get_double_value() for n in self._n_crash)
+        if abs(roll - roll0_deg) > _HOLD_DEG or abs(pitch - pitch0_deg) > _HOLD_DEG:
+            put_back()
 
     def _check_crash(self):
         af = self.airframe
