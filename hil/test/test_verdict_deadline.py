@@ -130,12 +130,12 @@ def test_the_has_ticks_are_dated_on_its_own_wrapping_32_bit_microsecond_clock():
     from hil.sim import Simulation
     R = namedtuple("R", "t_us commands_received controller reasons_at_switch")
 
-    class Stub:
+    class Sim:  # what note_ha_periods touches of a Simulation: its list of dated HA periods
         ha_periods = []
     now = 5000.25  # s: past 2^32 us, so the HA's micros() has wrapped
     now_us = int(now * 1e6)
-    Simulation.note_ha_periods(Stub, [R((now_us - 2500) & 0xFFFFFFFF, 7, 0, 0),
+    Simulation.note_ha_periods(Sim, [R((now_us - 2500) & 0xFFFFFFFF, 7, 0, 0),
                                       R((now_us + 3) & 0xFFFFFFFF, 8, 1, DEADLINE_MISS)], now)
-    (t_a, n_a, c_a, _), (t_b, n_b, c_b, why) = Stub.ha_periods
+    (t_a, n_a, c_a, _), (t_b, n_b, c_b, why) = Sim.ha_periods
     assert round(now - t_a, 6) == 0.0025 and (n_a, c_a) == (7, 0)
     assert round(t_b - now, 6) == 0.000003 and (n_b, c_b, why) == (8, 1, DEADLINE_MISS)

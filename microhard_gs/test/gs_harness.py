@@ -41,6 +41,23 @@ def free_port(kind=socket.SOCK_DGRAM):
         return s.getsockname()[1]
 
 
+def stop_process_groups(procs):
+    """Ctrl-C to each process group still running, then wait; SIGKILL what outlives 10 s."""
+    procs = list(procs)
+    for p in procs:
+        if p.poll() is None:
+            try:
+                os.killpg(p.pid, signal.SIGINT)
+            except ProcessLookupError:
+                pass
+    for p in procs:
+        try:
+            p.wait(timeout=10)
+        except subprocess.TimeoutExpired:
+            os.killpg(p.pid, signal.SIGKILL)
+            p.wait(timeout=5)
+
+
 class LossyRelay:
     """Forwards datagrams between the GCS and the node, dropping a fraction each way."""
 
@@ -73,22 +90,6 @@ class LossyRelay:
             self.forwarded += 1
             target = self.gcs_addr if addr == self.node_addr else self.node_addr
             self.sock.sendto(payload, target)
-
-    @staticmethod
-    def _stop_procs(procs):
-        procs = list(procs)
-        for p in procs:
-            if p.poll() is None:
-                try:
-                    os.killpg(p.pid, signal.SIGINT)
-                except ProcessLookupError:
-                    pass
-        for p in procs:
-            try:
-                p.wait(timeout=10)
-            except subprocess.TimeoutExpired:
-                os.killpg(p.pid, signal.SIGKILL)
-                p.wait(timeout=5)
 
     def stop(self):
         self._stop = True
@@ -173,7 +174,7 @@ class GsSystem:
         """Stops the launch start_node made, and waits until the probe has lost it: every event
         of that node is then behind the test, none is read as the next node's."""
         launch, self.launch = self.launch, None
-        self._stop_procs([launch])
+        stop_process_groups([launch])
         self.procs.remove(launch)
         if self.wait_event(lambda e: e["topic"] == "disconnected", 30) is None:
             raise RuntimeError("the probe never saw microhard_gs go")
@@ -281,27 +282,11 @@ class GsSystem:
                 return value
         return value
 
-    @staticmethod
-    def _stop_procs(procs):
-        procs = list(procs)
-        for p in procs:
-            if p.poll() is None:
-                try:
-                    os.killpg(p.pid, signal.SIGINT)
-                except ProcessLookupError:
-                    pass
-        for p in procs:
-            try:
-                p.wait(timeout=10)
-            except subprocess.TimeoutExpired:
-                os.killpg(p.pid, signal.SIGKILL)
-                p.wait(timeout=5)
-
     def stop(self):
         if self.conn is not None:
             self.conn.close()
             self.conn = None
-        self._stop_procs(reversed(self.procs))
+        stop_process_groups(reversed(self.procs))
         self.procs = []
         if self.relay is not None:
             self.relay.stop()
