@@ -1,9 +1,12 @@
 # arduino_ha targets (included by the root Makefile).
 #   make verify-ha   Frama-C EVA over the HA core (no alarms allowed), Cortex-M3 cross-compile
-#                    with flash/RAM/stack figures, and the Due sketch compiled against an Arduino
+#                    with flash/RAM/stack figures, and the Due sketch built against an Arduino
 #                    API shim (-Werror) and run on the host with a fake Arduino. Deterministic;
 #                    fails on any alarm, unproven assertion, warning or failed check.
 #   make sketch-ha   assemble the sketch arduino-cli compiles into .build/sketch/arduino_ha
+#   make due-image   build that sketch into the Due's .elf and .bin (.build/due_image) the way
+#                    arduino-cli does, against the real SAM core 1.6.12, Wire and Servo; prints
+#                    flash, RAM and the largest stack frame. Part of `make verify`.
 #   make bench-ha    instructions per control step on a Cortex-M3 under QEMU, ns per step on
 #                    the host.
 # Tools come from arduino_ha/apt-packages.txt through `make deps`.
@@ -46,3 +49,12 @@ HA_SKETCH_OUT := $(ROOT)/.build/sketch
 .PHONY: sketch-ha
 sketch-ha:
 	@echo "sketch-ha: assembled $$(bash $(HA_DIR)/tools/assemble_sketch.sh $(HA_SKETCH_OUT))"
+
+# The genuine Due image: platform.txt's recipes against the SAM core where arduino-cli installs it,
+# else shared/vendor beside the repository (tools/build_due_image.sh). test/test_due_image.py
+# checks the image it makes; README.md, "The Due image without arduino-cli". DUE_EXTRA_FLAGS=...
+# as arduino-cli's --build-property compiler.cpp.extra_flags=... (e.g. -DDUE_HP_LINK_PORT=2).
+VERIFY_TARGETS += due-image
+.PHONY: due-image
+due-image: deps
+	@JOBS=$(JOBS) DUE_EXTRA_FLAGS='$(DUE_EXTRA_FLAGS)' bash $(HA_DIR)/tools/build_due_image.sh $(ROOT)/.build/due_image

@@ -1,8 +1,9 @@
 """The Due sketch arduino-cli compiles is assembled under .build/ (`make sketch-ha`,
 arduino_ha/tools/assemble_sketch.sh): arduino_ha's sources plus the VN-200 protocol core from
-vn200_driver/core, which arduino-cli could not reach outside the sketch folder. The SAM core is
-not installable here, so these tests check what arduino-cli needs of the folder: every file the
-sketch includes is inside it, found the way arduino-cli's compiler finds it (relative to the
+vn200_driver/core, which arduino-cli could not reach outside the sketch folder. arduino-cli is not
+installed here (test_due_image.py builds the folder against the real SAM core the way it does),
+so these tests check what arduino-cli itself needs of the folder: every file the sketch includes
+is inside it, found the way arduino-cli's compiler finds it (relative to the
 including file; the sketch gets no include path of its own), and the VN-200 decoder in it is the
 one the host tests test."""
 import pathlib
