@@ -17,9 +17,9 @@ FLASH = (0x00080000, 0x00100000)  # SAM3X8E: 512 KiB of flash
 RAM = (0x20070000, 0x20088000)  # 96 KiB of SRAM as one block (flash.ld's `ram`)
 FLASH_BYTES = FLASH[1] - FLASH[0]
 RAM_BYTES = RAM[1] - RAM[0]
-# What the sketch must hold: the Arduino entry points arduino_ha.ino defines, the period the board
-# layer runs and the core's step it calls.
-SKETCH_SYMBOLS = ("setup", "loop", "ha_app_period", "ha_core_step")
+# What the sketch must hold: the Arduino entry points arduino_ha.ino defines and the core's step,
+# which the board layer's period calls (through ha_app_period today).
+SKETCH_SYMBOLS = ("setup", "loop", "ha_core_step")
 # One symbol each from the SAM core, libsam, Wire and Servo: the image is linked with the real
 # ones, not the host shim (verify/arduino_shim).
 PLATFORM_SYMBOLS = ("main", "Reset_Handler", "pmc_enable_periph_clk", "_ZN7TwoWire5beginEv",
