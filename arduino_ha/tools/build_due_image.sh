@@ -54,7 +54,7 @@ first_dir_with() {  # <file that must exist inside> <candidate dir>...
 }
 candidates=()
 [ -n "${DUE_SAM_CORE:-}" ] && candidates+=("$DUE_SAM_CORE")
-candidates+=("$HOME/.arduino15/packages/arduino/hardware/sam/1.6.12")
+candidates+=("${HOME:-}/.arduino15/packages/arduino/hardware/sam/1.6.12")
 for v in "${vendor_dirs[@]}"; do candidates+=("$v/ArduinoCore-sam"); done
 if ! sam=$(first_dir_with platform.txt "${candidates[@]}"); then
   echo "build_due_image: no Arduino SAM core 1.6.12 (arduino-cli core install arduino:sam@1.6.12," >&2
@@ -67,7 +67,7 @@ if ! grep -qx 'version=1.6.12' "$sam/platform.txt"; then
 fi
 candidates=()
 [ -n "${DUE_SERVO_LIB:-}" ] && candidates+=("$DUE_SERVO_LIB")
-candidates+=("$HOME/Arduino/libraries/Servo")
+candidates+=("${HOME:-}/Arduino/libraries/Servo")
 for v in "${vendor_dirs[@]}"; do candidates+=("$v/Servo"); done
 if ! servo=$(first_dir_with src/Servo.h "${candidates[@]}"); then
   echo "build_due_image: no Servo library (arduino-cli lib install Servo, or shared/vendor/Servo" >&2
