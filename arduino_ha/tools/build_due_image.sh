@@ -14,8 +14,9 @@
 #    (arduino-cli's default warning level): their warnings are not ours;
 #  - every file is also compiled with -fstack-usage (an extra output, no change to the code) for
 #    the stack figures.
-# The SAM core and Servo are taken where arduino-cli installs them, else from shared/vendor beside
-# the repository (read-only: nothing is written there), else from DUE_SAM_CORE / DUE_SERVO_LIB.
+# The SAM core and Servo are taken from DUE_SAM_CORE / DUE_SERVO_LIB if set, else where arduino-cli
+# installs them, else from shared/vendor beside the repository (read-only: nothing is written
+# there; every output goes to <out_dir>).
 # usage: [JOBS=n] [DUE_EXTRA_FLAGS=...] build_due_image.sh [out_dir]    (default .build/due_image)
 #   JOBS: compiles run at once (2); DUE_EXTRA_FLAGS: added to every C and C++ compile, as
 #   arduino-cli's --build-property compiler.cpp.extra_flags=... (e.g. -DDUE_HP_LINK_PORT=2)
