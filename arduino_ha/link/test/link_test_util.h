@@ -78,7 +78,8 @@ struct Capture {
     std::vector<std::pair<uint16_t, Bytes>> out;
     for (uint8_t b : bytes) {
       HaLinkFrame f;
-      if (ha_link_decoder_feed(&dec, b, 0u, &f)) {
+      ha_link_decoder_push(&dec, b, 0u);
+      while (ha_link_decoder_next(&dec, &f)) {
         out.emplace_back(f.topic_id, Bytes(f.payload, f.payload + f.payload_len));
       }
     }

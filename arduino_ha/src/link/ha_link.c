@@ -195,7 +195,9 @@ void ha_link_receive(HaLink *link, const uint8_t *bytes, size_t len, uint32_t no
     frame.topic_id = 0u;
     frame.payload = link->decoder.payload;
     frame.payload_len = 0u;
-    if (ha_link_decoder_feed(&link->decoder, bytes[i], now_us, &frame)) {
+    ha_link_decoder_push(&link->decoder, bytes[i], now_us);
+    /* One byte can complete several frames: those a failed frame had taken in. */
+    while (ha_link_decoder_next(&link->decoder, &frame)) {
       dispatch(link, &frame, now_us);
     }
   }
