@@ -45,12 +45,22 @@ drone_ros::ServoCommand servo_msg(const HaHpCommand& c) {
   return m;
 }
 
+// Sealed as microhard_gs seals it: crc32 over the serialization of every field before it.
+drone_ros::OperatorCommand sealed(drone_ros::OperatorCommand m) {
+  m.crc32 = 0;
+  Bytes raw(ros::serialization::serializationLength(m));
+  ros::serialization::OStream out(raw.data(), static_cast<uint32_t>(raw.size()));
+  ros::serialization::serialize(out, m);
+  m.crc32 = ha_crc32(raw.data(), HA_OPERATOR_COMMAND_FIELDS_LEN);
+  return m;
+}
+
 drone_ros::OperatorCommand operator_msg(uint8_t command, uint32_t request_id) {
   drone_ros::OperatorCommand m;
   m.stamp = ros::Time(1700000000, 0);
   m.command = command;
   m.request_id = request_id;
-  return m;
+  return sealed(m);
 }
 
 // The HA as the Due runs it: the link hands commands and operator requests to app.inputs
@@ -176,4 +186,51 @@ TEST(HaLinkStories, RestartRequestDeliveredThreeTimesRestartsTheHpOnceAndIsAckno
   ha.Period(operator_frame(HA_OP_RESTART_HP, 0u));
   EXPECT_EQ(ha.t.out().operator_ack_id, 0u);
   EXPECT_EQ(ha.t.out().restart_count, 2u);
+}
+
+// K3: rosserial's 8-bit sum cannot see a byte that went up by one while another went down by
+// one. Such a pair turned SELECT_HA into SELECT_HP, and moved a SET_HOME by hundreds of metres.
+// The request's own CRC-32 sees it: the request is counted and dropped, never acted on, and the
+// requests after it are.
+TEST(HaLinkStories, OperatorRequestChangedByABytePairTheFrameSumCannotSeeIsNeverActedOn) {
+  LinkedHa ha;
+  ASSERT_TRUE(ha.ReachHp());
+  ha.PeriodWithCommand(operator_frame(HA_OP_SELECT_HA, 50u));
+  ASSERT_EQ(ha.t.controller(), HA_CONTROLLER_HA);
+  // An intact SELECT_HA (51) on the way: its command byte one down (SELECT_HP), its
+  // request_id's low byte one up.
+  Bytes pair = operator_frame(HA_OP_SELECT_HA, 51u);
+  const size_t command_at = 7u + 8u;  // frame header, then the stamp
+  ASSERT_EQ(pair[command_at], HA_OP_SELECT_HA);
+  pair[command_at] -= 1;      // SELECT_HP
+  pair[command_at + 1] += 1;  // request_id 52: the frame's checksum still matches
+  for (int i = 0; i < 50; ++i) ha.PeriodWithCommand(i == 0 ? pair : Bytes{});
+  EXPECT_EQ(ha.link.decoder.counters.bad_checksum, 0u);  // the frame passed rosserial's check
+  EXPECT_EQ(ha.link.counters.operator_bad_crc, 1u);
+  EXPECT_EQ(ha.operator_handed_over, 1u);  // only SELECT_HA (50)
+  EXPECT_EQ(ha.t.controller(), HA_CONTROLLER_HA);
+  EXPECT_EQ(ha.t.out().operator_ack_id, 50u);
+
+  // A SET_HOME whose latitude's bytes took a +1/-1 pair (40.4237054 -> 40.4315179 deg: 867 m
+  // north) likewise.
+  drone_ros::OperatorCommand home;
+  home.stamp = ros::Time(1700000000, 0);
+  home.command = HA_OP_SET_HOME;
+  home.request_id = 53u;
+  home.latitude = 40.4237054;
+  home.longitude = -86.9211946;
+  home.altitude = 185.25;
+  Bytes moved = node_frame(HA_LINK_TOPIC_OPERATOR_COMMAND, sealed(home));
+  const size_t latitude_at = 7u + 8u + 1u + 4u + 1u;
+  moved[latitude_at + 5] += 1;  // 0x36 -> 0x37
+  moved[latitude_at] -= 1;      // 0xbe -> 0xbd
+  ha.PeriodWithCommand(moved);
+  EXPECT_EQ(ha.link.counters.operator_bad_crc, 2u);
+  EXPECT_EQ(ha.operator_handed_over, 1u);
+
+  // Intact requests still go through.
+  ha.PeriodWithCommand(operator_frame(HA_OP_SELECT_HP, 54u));
+  EXPECT_EQ(ha.operator_handed_over, 2u);
+  EXPECT_EQ(ha.t.out().operator_ack_id, 54u);
+  EXPECT_EQ(ha.t.out().operator_ack_accepted, 1u);
 }

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "ha_link_frame.h"
+#include "hp_command.h"
 
 namespace link_test {
 
@@ -63,6 +64,12 @@ inline Bytes servo_command_payload(const Cmd &c) {
   b.push_back(c.healthy);
   put_u32(b, c.crc);
   return b;
+}
+
+// msg/OperatorCommand.msg's crc32 appended: CRC-32 over the fields' serialization before it.
+inline Bytes sealed_operator_payload(Bytes fields) {
+  put_u32(fields, ha_crc32(fields.data(), fields.size()));
+  return fields;
 }
 
 // Splits what the device wrote back into frames with the device decoder.
