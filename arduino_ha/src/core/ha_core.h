@@ -240,8 +240,8 @@ void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *
 /* Helpers for the link and the board layer. */
 /* Records a received HP command (increments hp_cmd_count). */
 void ha_inputs_put_hp_command(HaInputs *in, const HaHpCommand *cmd, uint32_t now_us);
-/* Queues an operator request (increments operator_count); the core executes it in a later
- * period, after those queued before it. */
+/* Queues an operator request (increments operator_count); the core takes it in its next step,
+ * or later if requests queued before it are still waiting (one a step). */
 void ha_inputs_put_operator(HaInputs *in, uint8_t command, uint32_t request_id);
 /* Servo pulse width for a surface value already inside S_u (cfg servo calibration). */
 void ha_surfaces_to_pulses_us(const HaAircraftConfig *cfg, const HaSurfaces *s,
