@@ -191,7 +191,7 @@ TEST(Messages, DecisionStatusRoundTripKeepsReasonsAndCheckedValues) {
 }
 
 // The Due decodes this from the wire by position (its generated code), so the layout is part of
-// the contract: stamp, command, request id, then SET_HOME's position, 38 bytes.
+// the contract: stamp, command, request id, then SET_HOME's position, 38 bytes, then the CRC.
 TEST(Messages, OperatorCommandRoundTripKeepsTheRequestAndItsId) {
   drone_ros::OperatorCommand cmd;
   cmd.stamp = ros::Time(1700000000, 5);
@@ -201,7 +201,8 @@ TEST(Messages, OperatorCommandRoundTripKeepsTheRequestAndItsId) {
   cmd.latitude = 40.4237054;
   cmd.longitude = -86.9211946;
   cmd.altitude = 185.25;
-  EXPECT_EQ(38u, serialize(cmd).size());
+  cmd.crc32 = 0xCAFEF00Du;
+  EXPECT_EQ(HA_OPERATOR_COMMAND_FIELDS_LEN + 4u, serialize(cmd).size());
   const auto back = roundTrip(cmd);
   EXPECT_EQ(ros::Time(1700000000, 5), back.stamp);
   EXPECT_EQ(drone_ros::OperatorCommand::SELF_TEST, back.command);
@@ -210,6 +211,27 @@ TEST(Messages, OperatorCommandRoundTripKeepsTheRequestAndItsId) {
   EXPECT_EQ(40.4237054, back.latitude);
   EXPECT_EQ(-86.9211946, back.longitude);
   EXPECT_EQ(185.25, back.altitude);
+  EXPECT_EQ(0xCAFEF00Du, back.crc32);
+}
+
+// The HA's link checks crc32 over the serialization before it (HA_OPERATOR_COMMAND_FIELDS_LEN
+// bytes), and it must see any change there, however rosserial's 8-bit sum saw it.
+TEST(OperatorCommandCrc, CoversEveryFieldByteBeforeItAndCatchesEveryFlippedBit) {
+  drone_ros::OperatorCommand cmd;
+  cmd.stamp = ros::Time(1700000000, 5);
+  cmd.command = drone_ros::OperatorCommand::SET_HOME;
+  cmd.request_id = 9;
+  cmd.latitude = 40.4237054;
+  cmd.longitude = -86.9211946;
+  cmd.altitude = 185.25;
+  auto bytes = serialize(cmd);
+  ASSERT_EQ(HA_OPERATOR_COMMAND_FIELDS_LEN + 4u, bytes.size());
+  const uint32_t good = ha_crc32(bytes.data(), HA_OPERATOR_COMMAND_FIELDS_LEN);
+  for (unsigned bit = 0; bit < 8 * HA_OPERATOR_COMMAND_FIELDS_LEN; ++bit) {
+    bytes[bit / 8] ^= static_cast<uint8_t>(1u << (bit % 8));
+    EXPECT_NE(good, ha_crc32(bytes.data(), HA_OPERATOR_COMMAND_FIELDS_LEN)) << "bit " << bit;
+    bytes[bit / 8] ^= static_cast<uint8_t>(1u << (bit % 8));
+  }
 }
 
 // The Due sends home in doubles: a float would put it a metre off.

@@ -67,8 +67,10 @@ def test_operator_command_round_trip_keeps_the_request_and_its_id():
     cmd = drone_msgs.OperatorCommand(command=drone_msgs.OperatorCommand.RESTART_HP,
                                      request_id=4000000001)
     cmd.stamp.secs, cmd.stamp.nsecs = 1700000000, 5
+    cmd.crc32 = 0xCAFEF00D
     raw, back = round_trip(cmd)
-    assert len(raw) == 38  # the Due decodes it by position
+    assert len(raw) == 42  # the Due decodes it by position: 38 bytes of fields, then crc32
+    assert back.crc32 == 0xCAFEF00D
     assert back.command == drone_msgs.OperatorCommand.RESTART_HP
     assert back.request_id == 4000000001
     assert (back.stamp.secs, back.stamp.nsecs) == (1700000000, 5)
@@ -114,6 +116,18 @@ def test_md5sum_is_pinned(name):
     cls = getattr(drone_msgs, name)
     assert pinned_md5sums()[cls._type] == cls._md5sum, (
         f"{cls._type} changed; the Due firmware depends on it: regenerate and re-pin deliberately")
+
+
+def test_operator_command_crc_is_zlib_crc32_over_the_first_38_bytes():
+    """What a sender (microhard_gs, a Python tool) must do to make a request the HA acts on."""
+    cmd = drone_msgs.OperatorCommand(command=drone_msgs.OperatorCommand.SET_HOME, request_id=9,
+                                     latitude=40.4237054, longitude=-86.9211946, altitude=185.25)
+    raw, _ = round_trip(cmd)
+    cmd.crc32 = zlib.crc32(raw[:38])
+    raw2, back = round_trip(cmd)
+    assert raw2[:38] == raw[:38]
+    assert raw2[38:] == cmd.crc32.to_bytes(4, "little")
+    assert back.crc32 == zlib.crc32(raw2[:38])
 
 
 def test_servo_command_crc_is_zlib_crc32_over_the_first_38_bytes():

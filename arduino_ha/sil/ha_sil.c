@@ -219,7 +219,8 @@ static void link_on_param(void *ctx, const rosserial_msgs_RequestParamResponse *
 static uint32_t link_errors(const HaLink *link) {
   const HaLinkFrameCounters *f = &link->decoder.counters;
   return f->bytes_skipped + f->bad_protocol + f->bad_length_checksum + f->oversized +
-         f->bad_checksum + f->timeouts + link->counters.unknown_topic + link->counters.bad_payload;
+         f->bad_checksum + f->timeouts + link->counters.unknown_topic + link->counters.bad_payload +
+         link->counters.operator_bad_crc;
 }
 
 /* Whenever the device has dropped something new, it says what, at most every 200 ms: the host
@@ -235,10 +236,11 @@ static void report_link_errors(Sil *sil, uint32_t now_us) {
   }
   snprintf(text, sizeof text,
            "link errors: bytes_skipped %u bad_protocol %u bad_length_checksum %u oversized %u "
-           "bad_checksum %u timeouts %u unknown_topic %u bad_payload %u",
+           "bad_checksum %u timeouts %u unknown_topic %u bad_payload %u operator_bad_crc %u",
            (unsigned)f->bytes_skipped, (unsigned)f->bad_protocol, (unsigned)f->bad_length_checksum,
            (unsigned)f->oversized, (unsigned)f->bad_checksum, (unsigned)f->timeouts,
-           (unsigned)sil->link.counters.unknown_topic, (unsigned)sil->link.counters.bad_payload);
+           (unsigned)sil->link.counters.unknown_topic, (unsigned)sil->link.counters.bad_payload,
+           (unsigned)sil->link.counters.operator_bad_crc);
   if (ha_link_log(&sil->link, ROSSERIAL_MSGS_LOG_WARN, text)) {
     sil->errors_logged = errors;
     sil->errors_logged_us = now_us;

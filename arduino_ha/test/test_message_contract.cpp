@@ -4,6 +4,9 @@
 
 #include <drone_ros/DecisionStatus.h>
 #include <drone_ros/OperatorCommand.h>
+#include <ros/serialization.h>
+
+#include <vector>
 
 #include "ha_core.h"
 
@@ -40,6 +43,19 @@ TEST(HaMessageContract, OperatorCommandNumbersMatch) {
   EXPECT_EQ(HA_OP_RESTART_HP, OperatorCommand::RESTART_HP);
   EXPECT_EQ(HA_OP_SELF_TEST, OperatorCommand::SELF_TEST);
   EXPECT_EQ(HA_OP_SET_HOME, OperatorCommand::SET_HOME);
+}
+
+// The link checks an operator request's crc32 over the HA_OPERATOR_COMMAND_FIELDS_LEN bytes
+// before it: every field of the message but the CRC, which comes last.
+TEST(HaMessageContract, OperatorCommandCrcCoversEveryFieldBeforeIt) {
+  OperatorCommand cmd;
+  EXPECT_EQ(ros::serialization::serializationLength(cmd), HA_OPERATOR_COMMAND_FIELDS_LEN + 4u);
+  cmd.crc32 = 0x01020304u;
+  std::vector<uint8_t> raw(ros::serialization::serializationLength(cmd));
+  ros::serialization::OStream out(raw.data(), static_cast<uint32_t>(raw.size()));
+  ros::serialization::serialize(out, cmd);
+  EXPECT_EQ(raw[HA_OPERATOR_COMMAND_FIELDS_LEN], 0x04);  // crc32 last, little endian
+  EXPECT_EQ(raw[HA_OPERATOR_COMMAND_FIELDS_LEN + 3u], 0x01);
 }
 
 }  // namespace

@@ -108,8 +108,11 @@ static void any_link_inputs(HaInputs *in) {
   if (Frama_C_nondet(0, 1)) {
     ha_inputs_put_operator(in, any_u8(), any_u32());
   } else {
-    in->operator_command = any_u8();
-    in->operator_request_id = any_u32();
+    uint32_t k;
+    for (k = 0u; k < HA_OPERATOR_QUEUE_LEN; ++k) {
+      in->operator_queue[k].command = any_u8();
+      in->operator_queue[k].request_id = any_u32();
+    }
     in->operator_count = any_u32();
   }
 }

@@ -26,6 +26,14 @@ RC_NEUTRAL = (1100, 1500, 1500, 1500, 1000)  # throttle low, sticks centred, PIC
 SURFACES = ("elevator", "aileron", "rudder", "throttle")
 
 
+def operator_crc32(m):
+    """msg/OperatorCommand.msg's crc32: zlib crc32 over the little-endian serialization of every
+    field before it (38 bytes), which the HA checks before it acts on the request."""
+    raw = struct.pack("<IIBI?ddd", m.stamp.secs, m.stamp.nsecs, m.command, m.request_id & 0xFFFFFFFF,
+                      bool(m.use_current), m.latitude, m.longitude, m.altitude)
+    return zlib.crc32(raw) & 0xFFFFFFFF
+
+
 def servo_crc32(m):
     """msg/ServoCommand.msg's crc32: zlib crc32 over the little-endian serialization of every field
     before it (38 bytes)."""

@@ -2,13 +2,15 @@
 (params surface, default aileron) for the window, and from request_after_s (default 0.5) after
 at_s, every request_every_s (default 2.0), a MAVLink COMMAND_LONG DO_SET_MODE (custom mode 0,
 the HP) goes to microhard_gs over UDP loopback, as QGroundControl sends it. Time stands until the
-COMMAND_ACK is back and /operator_command has carried the request on. The HA must keep the
+COMMAND_ACK is back and /operator_command has carried the request on, sealed with the CRC-32 the
+HA checks (one without it the HA drops, and the fault would test nothing). The HA must keep the
 failing HP off the servos. Took effect when the NaN commands reached the HA and at least one
-request was accepted (forwarded) and seen on /operator_command."""
+request was accepted (forwarded) and seen sealed on /operator_command."""
 import time
 
 from pymavlink import mavutil
 
+from hil.faults.base import operator_crc32
 from hil.faults.nan import Nan
 
 
@@ -24,7 +26,7 @@ class GsRequestHp(Nan):
         self.link = None
 
     def on_operator(self, msg):
-        if msg.command == 1:  # SELECT_HP
+        if msg.command == 1 and msg.crc32 == operator_crc32(msg):  # SELECT_HP, as the HA takes it
             self.forwarded += 1
 
     def on_step(self, t_s):

@@ -8,9 +8,11 @@ test runs the real one) as JSON lines on stdout, so the
 test process itself never has to be a ROS node.
 """
 import argparse
+import io
 import json
 import sys
 import threading
+import zlib
 
 import rospy
 from diagnostic_msgs.msg import DiagnosticArray
@@ -43,9 +45,14 @@ def main():
               "height": list(msg.height[:n]), "velocity": list(msg.velocity[:n])})
 
     def on_command(msg):
+        # msg/OperatorCommand.msg's crc32, as the HA checks it: zlib crc32 over the
+        # serialization of every field before it.
+        raw = io.BytesIO()
+        msg.serialize(raw)
+        crc_ok = msg.crc32 == zlib.crc32(raw.getvalue()[:-4]) & 0xFFFFFFFF
         emit({"topic": "operator_command", "command": msg.command, "request_id": msg.request_id,
               "use_current": msg.use_current, "latitude": msg.latitude, "longitude": msg.longitude,
-              "altitude": msg.altitude})
+              "altitude": msg.altitude, "crc_ok": crc_ok})
 
     def on_diagnostics(msg):
         for status in msg.status:

@@ -68,6 +68,7 @@ def test_set_home_on_the_ground_reaches_the_ha_with_its_exact_position(gs):
     assert ack is not None and ack.result == mavlink.MAV_RESULT_ACCEPTED
     event = gs.wait_event(lambda e: e["topic"] == "operator_command", 5)
     assert event is not None and event["command"] == 5  # OperatorCommand.SET_HOME
+    assert event["crc_ok"]  # sealed: the HA acts on no home that changed on the way
     assert not event["use_current"]
     assert event["latitude"] == pytest.approx(lat, abs=1e-9)
     assert event["longitude"] == pytest.approx(lon, abs=1e-9)

@@ -246,6 +246,22 @@ def test_operator_command_is_acknowledged_and_forwarded_to_the_ha(gs, command, p
     assert event is not None and event["command"] == expected
 
 
+def test_operator_requests_go_out_sealed_with_the_crc_the_ha_checks_each_with_its_own_id(gs):
+    # The HA drops a request whose CRC-32 does not match (rosserial's 8-bit sum misses a +1/-1
+    # byte pair) and ignores a repeat of the request it executed last: each request goes out
+    # sealed, with an id of its own.
+    gs.drain_events()
+    ids = []
+    for _ in range(2):
+        gh.command_long(gs.conn, mavlink.MAV_CMD_DO_SET_MODE, mavlink.MAV_MODE_FLAG_CUSTOM_MODE_ENABLED, 1)
+        ack = gh.wait_command_ack(gs.conn, mavlink.MAV_CMD_DO_SET_MODE)
+        assert ack is not None and ack.result == mavlink.MAV_RESULT_ACCEPTED
+        event = gs.wait_event(lambda e: e["topic"] == "operator_command", 5)
+        assert event is not None and event["command"] == 2 and event["crc_ok"]
+        ids.append(event["request_id"])
+    assert ids[1] == (ids[0] + 1) & 0xFFFFFFFF
+
+
 def test_rebooting_the_ha_from_the_ground_is_denied(gs):
     gs.drain_events()
     gh.command_long(gs.conn, mavlink.MAV_CMD_PREFLIGHT_REBOOT_SHUTDOWN, 1, 0)

@@ -25,6 +25,18 @@ static void on_command(void *ctx, const HaHpCommand *cmd, uint32_t at_us) {
   (void)ha_hp_command_compute_crc(cmd);
 }
 
+/* The link hands over only operator requests whose CRC-32 matches their fields. */
+static void on_operator(void *ctx, const drone_ros_OperatorCommand *op, uint32_t at_us) {
+  uint8_t raw[HA_OPERATOR_COMMAND_FIELDS_LEN + 4u];
+  size_t n = 0u;
+  (void)ctx;
+  (void)at_us;
+  if (!drone_ros_OperatorCommand_serialize(op, raw, sizeof raw, &n) || n != sizeof raw ||
+      ha_crc32(raw, HA_OPERATOR_COMMAND_FIELDS_LEN) != op->crc32) {
+    abort();
+  }
+}
+
 /* Deserialize, and if that succeeds the re-serialization must reproduce the consumed bytes. */
 #define ROUND_TRIP(type)                                              \
   do {                                                                \
@@ -50,6 +62,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   memset(&cb, 0, sizeof cb);
   cb.write = sink;
   cb.on_command = on_command;
+  cb.on_operator = on_operator;
   ha_link_init(&link, &cb);
   /* Chunks of varying size with time advancing between them: exercises splits and timeouts. */
   while (pos < size) {

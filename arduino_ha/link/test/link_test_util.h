@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "ha_link_frame.h"
+#include "hp_command.h"
 
 namespace link_test {
 
@@ -65,6 +66,12 @@ inline Bytes servo_command_payload(const Cmd &c) {
   return b;
 }
 
+// msg/OperatorCommand.msg's crc32 appended: CRC-32 over the fields' serialization before it.
+inline Bytes sealed_operator_payload(Bytes fields) {
+  put_u32(fields, ha_crc32(fields.data(), fields.size()));
+  return fields;
+}
+
 // Splits what the device wrote back into frames with the device decoder.
 struct Capture {
   Bytes bytes;
@@ -78,7 +85,8 @@ struct Capture {
     std::vector<std::pair<uint16_t, Bytes>> out;
     for (uint8_t b : bytes) {
       HaLinkFrame f;
-      if (ha_link_decoder_feed(&dec, b, 0u, &f)) {
+      ha_link_decoder_push(&dec, b, 0u);
+      while (ha_link_decoder_next(&dec, &f)) {
         out.emplace_back(f.topic_id, Bytes(f.payload, f.payload + f.payload_len));
       }
     }

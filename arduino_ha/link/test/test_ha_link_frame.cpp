@@ -2,6 +2,8 @@
 // kind of bad input is counted and dropped without losing the frames that follow.
 #include <gtest/gtest.h>
 
+#include <numeric>
+
 #include "ha_link_frame.h"
 #include "link_test_util.h"
 
@@ -17,7 +19,8 @@ struct Rx {
   void feed(const Bytes &bytes, uint32_t now_us = 0u) {
     for (uint8_t b : bytes) {
       HaLinkFrame f;
-      if (ha_link_decoder_feed(&dec, b, now_us, &f)) {
+      ha_link_decoder_push(&dec, b, now_us);
+      while (ha_link_decoder_next(&dec, &f)) {
         frames.emplace_back(f.topic_id, Bytes(f.payload, f.payload + f.payload_len));
       }
     }
@@ -149,4 +152,38 @@ TEST(HaLinkFrame, EncoderRefusesPayloadsAboveTheAnnouncedBuffer) {
   static uint8_t out[HA_LINK_MAX_PAYLOAD + 16];
   EXPECT_EQ(ha_link_encode_frame(100, payload, sizeof payload, out, sizeof out), 0u);
   EXPECT_EQ(ha_link_encode_frame(100, payload, 10, out, 12), 0u);
+}
+
+TEST(HaLinkFrame, FramesSwallowedByAFrameWhoseLengthWasCorruptedAreFoundWhenItFails) {
+  Rx rx;
+  // A header whose length (60) passes its own checksum but is wrong: the two frames behind it
+  // are taken as its payload, until its checksum fails; then both are found inside it.
+  Bytes stream{0xFF, 0xFE, 60, 0x00, static_cast<uint8_t>(255 - 60), 0x64, 0x00};
+  const Bytes a = frame(100, kPayload);
+  const Bytes b = frame(101, kPayload);
+  stream.insert(stream.end(), a.begin(), a.end());
+  stream.insert(stream.end(), b.begin(), b.end());
+  while (stream.size() < 7u + 60u + 1u) stream.push_back(0x00);
+  if ((std::accumulate(stream.begin() + 5, stream.end() - 1, 0u) + stream.back()) % 256u == 255u) {
+    stream.back() = 0x01;  // the corrupt frame's checksum must fail, as it nearly always does
+  }
+  rx.feed(stream);
+  ASSERT_EQ(rx.frames.size(), 2u);
+  EXPECT_EQ(rx.frames[0].first, 100u);
+  EXPECT_EQ(rx.frames[1].first, 101u);
+  EXPECT_EQ(rx.frames[1].second, kPayload);
+  EXPECT_EQ(rx.dec.counters.bad_checksum, 1u);
+}
+
+TEST(HaLinkFrame, AFrameMissingOneByteDoesNotTakeTheNextFrameWithIt) {
+  const Bytes good = frame(100, link_test::servo_command_payload(link_test::Cmd{}));
+  for (size_t lost = 0; lost < good.size(); ++lost) {
+    Rx rx;
+    Bytes damaged = good;
+    damaged.erase(damaged.begin() + static_cast<long>(lost));
+    rx.feed(damaged, 0u);
+    rx.feed(good, 10000u);  // the next period's frame, 10 ms later
+    ASSERT_EQ(rx.frames.size(), 1u) << "byte " << lost << " lost";
+    EXPECT_EQ(rx.frames[0].second, link_test::servo_command_payload(link_test::Cmd{}));
+  }
 }

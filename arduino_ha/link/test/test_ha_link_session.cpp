@@ -295,7 +295,28 @@ TEST(HaLinkSession, OperatorRequestIsHandedOver) {
   link_test::put_u32(p, 77);
   p.push_back(0);  // use_current, then SET_HOME's latitude, longitude, altitude (unused)
   for (int i = 0; i < 24; ++i) p.push_back(0);
-  d.rx(frame(101, p), 0u);
+  d.rx(frame(101, link_test::sealed_operator_payload(p)), 0u);
+  EXPECT_EQ(d.operator_requests, std::vector<uint8_t>{2});
+  EXPECT_EQ(d.link.counters.operator_commands, 1u);
+}
+
+TEST(HaLinkSession, OperatorRequestWhoseBytesChangedUnderItsCrcIsCountedAndNeverHandedOver) {
+  Device d;
+  Bytes p;
+  link_test::put_u32(p, 5);
+  link_test::put_u32(p, 6);
+  p.push_back(2);  // SELECT_HA
+  link_test::put_u32(p, 77);
+  p.push_back(0);
+  for (int i = 0; i < 24; ++i) p.push_back(0);
+  Bytes sealed = link_test::sealed_operator_payload(p);
+  sealed[8] -= 1;  // SELECT_HA becomes SELECT_HP ...
+  sealed[9] += 1;  // ... and the request id moves by one: rosserial's 8-bit sum still matches
+  d.rx(frame(101, sealed), 0u);
+  EXPECT_TRUE(d.operator_requests.empty());
+  EXPECT_EQ(d.link.counters.operator_bad_crc, 1u);
+  EXPECT_EQ(d.link.decoder.counters.frames_ok, 1u);  // the frame itself passed its checksum
+  d.rx(frame(101, link_test::sealed_operator_payload(p)), 10u);  // and the link carries on
   EXPECT_EQ(d.operator_requests, std::vector<uint8_t>{2});
 }
 
@@ -312,7 +333,7 @@ TEST(HaLinkSession, SetHomeArrivesWithItsPositionInFullPrecision) {
     std::memcpy(raw, &v, 8);  // little-endian IEEE 754, as rosserial and the Due lay it out
     p.insert(p.end(), raw, raw + 8);
   }
-  d.rx(frame(101, p), 0u);
+  d.rx(frame(101, link_test::sealed_operator_payload(p)), 0u);
   ASSERT_EQ(d.operator_requests, std::vector<uint8_t>{5});
   EXPECT_EQ(d.last_operator.request_id, 78u);
   EXPECT_EQ(d.last_operator.use_current, 0);

@@ -167,32 +167,54 @@ static int boot_overdue(const HaCore *core, uint32_t now_us) {
          ha_elapsed_us(now_us, core->reset_released_us) >= core->cfg->hp_boot_timeout_us;
 }
 
-/* Operator requests never bypass a check: they only move the HA's own intent. Returns 1 for an
- * accepted RESTART_HP, which the policy then decides together with every other reason. */
+/* Operator requests never bypass a check: they only move the HA's own intent. One request a
+ * period, oldest first, so each sees what the one before it did (SELECT_HA, then RESTART_HP of
+ * the HP it took over from). Returns 1 for an accepted RESTART_HP, which the policy then decides
+ * together with every other reason. */
 static int handle_operator(HaCore *core, const HaInputs *in, const HaStateView *view,
                            uint32_t now_us) {
+  const uint32_t waiting = in->operator_count - core->seen_operator_count;
+  const HaOperatorRequest *req;
   int accepted = 0, restart = 0;
-  if (in->operator_count == core->seen_operator_count) {
+  if (waiting == 0u) {
     return 0;
   }
-  core->seen_operator_count = in->operator_count;
-  if (in->operator_command == HA_OP_SELECT_HP && !core->latched) {
+  if (waiting > HA_OPERATOR_QUEUE_LEN) { /* overwritten before their turn: never run nor acked */
+    core->operator_lost += waiting - HA_OPERATOR_QUEUE_LEN;
+    core->seen_operator_count = in->operator_count - HA_OPERATOR_QUEUE_LEN;
+  }
+  req = &in->operator_queue[core->seen_operator_count & (HA_OPERATOR_QUEUE_LEN - 1u)];
+  core->seen_operator_count++;
+  core->operator_ack_count++;
+  core->operator_ack_id = req->request_id;
+  /* A repeat of the request executed last (a sender that heard no answer, a link that delivered
+   * it twice) is answered again, so the sender stops, and not executed again: three deliveries
+   * of one RESTART_HP would fill the restart cap. */
+  if (core->operator_executed && req->request_id == core->last_operator_id &&
+      req->command == core->last_operator_command) {
+    core->operator_ack_accepted = core->last_operator_accepted;
+    return 0;
+  }
+  if (req->command == HA_OP_SELECT_HP && !core->latched) {
     core->ground_command = 0u;
     accepted = 1;
-  } else if (in->operator_command == HA_OP_SELECT_HA) {
+  } else if (req->command == HA_OP_SELECT_HA) {
     core->ground_command = 1u;
     accepted = 1;
-  } else if (in->operator_command == HA_OP_RESTART_HP && !core->latched &&
+  } else if (req->command == HA_OP_RESTART_HP && !core->latched &&
              core->controller != HA_CONTROLLER_HP) {
     restart = 1;
     accepted = 1;
-  } else if (in->operator_command == HA_OP_SELF_TEST && view->parked &&
+  } else if (req->command == HA_OP_SELF_TEST && view->parked &&
              core->controller != HA_CONTROLLER_HP && core->controller != HA_CONTROLLER_MANUAL) {
     ha_self_test_start(&core->self_test, now_us);
     accepted = 1;
   }
-  core->operator_ack_id = in->operator_request_id;
   core->operator_ack_accepted = (uint8_t)accepted;
+  core->operator_executed = 1u;
+  core->last_operator_command = req->command;
+  core->last_operator_id = req->request_id;
+  core->last_operator_accepted = (uint8_t)accepted;
   return restart;
 }
 
@@ -242,7 +264,8 @@ static void fill_outputs(const HaCore *core, const HaStateView *view, const HaIn
                         (reasons != 0u ? HA_LED_FAULT : 0u));
   out->operator_ack_id = core->operator_ack_id;
   out->operator_ack_accepted = core->operator_ack_accepted;
-  out->operator_ack_count = core->seen_operator_count;
+  out->operator_ack_count = core->operator_ack_count;
+  out->operator_lost = core->operator_lost;
 }
 
 void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *out) {
@@ -364,7 +387,8 @@ void ha_inputs_put_hp_command(HaInputs *in, const HaHpCommand *cmd, uint32_t now
 }
 
 void ha_inputs_put_operator(HaInputs *in, uint8_t command, uint32_t request_id) {
-  in->operator_command = command;
-  in->operator_request_id = request_id;
+  HaOperatorRequest *slot = &in->operator_queue[in->operator_count & (HA_OPERATOR_QUEUE_LEN - 1u)];
+  slot->command = command;
+  slot->request_id = request_id;
   in->operator_count++;
 }

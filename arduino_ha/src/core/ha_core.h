@@ -26,6 +26,15 @@ enum {
   HA_OP_SET_HOME = 5 /* not the decision logic's: the INS adapter's (ha_ins_set_home) */
 };
 
+/* Requests waiting for their turn, at most (a power of two: the index is a mask). The ground
+ * station sends queued requests back to back; the core takes one a period. */
+#define HA_OPERATOR_QUEUE_LEN 4u
+
+typedef struct {
+  uint8_t command; /* HA_OP_* */
+  uint32_t request_id;
+} HaOperatorRequest;
+
 typedef struct {
   /* Aircraft state. Airspeed is the HA's own pitot; attitude, rates, altitude and position come
    * from the INS through the link and carry their arrival time. Anything NaN/inf/out of range or
@@ -70,9 +79,11 @@ typedef struct {
   uint32_t hp_cmd_count;
   uint32_t hp_cmd_rx_us;
 
-  /* The latest operator request; operator_count increments on each new one. */
-  uint8_t operator_command; /* HA_OP_* */
-  uint32_t operator_request_id;
+  /* Operator requests as they arrive (ha_inputs_put_operator): the k-th since boot (from 0) is
+   * in operator_queue[k % HA_OPERATOR_QUEUE_LEN], and operator_count is how many arrived. The
+   * core executes them in order, one per period; one overwritten before its turn is counted
+   * lost and never executed nor acknowledged. */
+  HaOperatorRequest operator_queue[HA_OPERATOR_QUEUE_LEN];
   uint32_t operator_count;
 } HaInputs;
 
@@ -102,11 +113,14 @@ typedef struct {
   uint8_t on_ground;
   uint8_t self_test_active;
   uint8_t leds; /* HA_LED_* */
-  /* Acknowledgement of the latest operator request: operator_ack_count equals the input's
-   * operator_count once handled. */
+  /* Acknowledgement of the operator request answered last: operator_ack_count counts every
+   * request answered, one a period at most (a repeat of the request executed last is answered
+   * again with its answer, not executed again); operator_ack_count + operator_lost equals the
+   * input's operator_count once every request had its turn. */
   uint32_t operator_ack_id;
   uint8_t operator_ack_accepted;
   uint32_t operator_ack_count;
+  uint32_t operator_lost; /* requests overwritten in the queue before their turn */
 } HaOutputs;
 
 /* Cascaded-PID safety controller memory. */
@@ -192,9 +206,17 @@ typedef struct {
   uint8_t awaiting_boot; /* reset, and no valid command since */
   uint8_t hp_up;         /* a wholly valid command since power-up or the last reset */
   /* operator */
-  uint32_t seen_operator_count;
+  uint32_t seen_operator_count; /* requests answered or lost */
   uint32_t operator_ack_id;
   uint8_t operator_ack_accepted;
+  uint32_t operator_ack_count;
+  uint32_t operator_lost;
+  /* The request executed last, to know a repeat of it (operator_executed: one since boot, as
+   * request_id 0 is an id like any other). */
+  uint8_t operator_executed;
+  uint8_t last_operator_command;
+  uint32_t last_operator_id;
+  uint8_t last_operator_accepted;
   /* bumpless transfer */
   HaSurfaces applied; /* what went to the servos last period */
   uint8_t transition_active;
@@ -218,7 +240,8 @@ void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *
 /* Helpers for the link and the board layer. */
 /* Records a received HP command (increments hp_cmd_count). */
 void ha_inputs_put_hp_command(HaInputs *in, const HaHpCommand *cmd, uint32_t now_us);
-/* Records an operator request (increments operator_count). */
+/* Queues an operator request (increments operator_count); the core takes it in its next step,
+ * or later if requests queued before it are still waiting (one a step). */
 void ha_inputs_put_operator(HaInputs *in, uint8_t command, uint32_t request_id);
 /* Servo pulse width for a surface value already inside S_u (cfg servo calibration). */
 void ha_surfaces_to_pulses_us(const HaAircraftConfig *cfg, const HaSurfaces *s,

@@ -30,6 +30,11 @@ typedef struct {
   uint32_t crc32;
 } HaHpCommand;
 
+/* msg/OperatorCommand.msg carries the same CRC-32 over the little-endian ROS serialization of
+ * every field before its crc32 (stamp, command, request_id, use_current, latitude, longitude,
+ * altitude), which the sender (microhard_gs) computes and the HA's link checks. */
+#define HA_OPERATOR_COMMAND_FIELDS_LEN 38u
+
 /* CRC-32/ISO-HDLC (zlib's crc32): reflected polynomial 0xEDB88320, init and xorout 0xFFFFFFFF.
  * Detects all burst errors up to 32 bits, which rosserial's 8-bit sum does not. */
 uint32_t ha_crc32(const uint8_t *data, size_t len);

@@ -170,14 +170,19 @@ static void dispatch(HaLink *link, const HaLinkFrame *frame, uint32_t now_us) {
     case HA_LINK_TOPIC_OPERATOR_COMMAND: {
       drone_ros_OperatorCommand msg;
       memset(&msg, 0, sizeof msg);
-      if (drone_ros_OperatorCommand_deserialize(&msg, frame->payload, frame->payload_len, &used) &&
-          (used == frame->payload_len)) {
+      if (!drone_ros_OperatorCommand_deserialize(&msg, frame->payload, frame->payload_len, &used) ||
+          (used != frame->payload_len) ||
+          (frame->payload_len != HA_OPERATOR_COMMAND_FIELDS_LEN + 4u)) {
+        link->counters.bad_payload++;
+      } else if (ha_crc32(frame->payload, HA_OPERATOR_COMMAND_FIELDS_LEN) != msg.crc32) {
+        /* rosserial's 8-bit sum misses a +1/-1 byte pair: SELECT_HA read as SELECT_HP, a home
+         * moved by hundreds of metres. A request is acted on only whole, as its sender made it. */
+        link->counters.operator_bad_crc++;
+      } else {
         link->counters.operator_commands++;
         if (link->cb.on_operator != NULL) {
           link->cb.on_operator(link->cb.ctx, &msg, now_us);
         }
-      } else {
-        link->counters.bad_payload++;
       }
       break;
     }
@@ -195,7 +200,9 @@ void ha_link_receive(HaLink *link, const uint8_t *bytes, size_t len, uint32_t no
     frame.topic_id = 0u;
     frame.payload = link->decoder.payload;
     frame.payload_len = 0u;
-    if (ha_link_decoder_feed(&link->decoder, bytes[i], now_us, &frame)) {
+    ha_link_decoder_push(&link->decoder, bytes[i], now_us);
+    /* One byte can complete several frames: those a failed frame had taken in. */
+    while (ha_link_decoder_next(&link->decoder, &frame)) {
       dispatch(link, &frame, now_us);
     }
   }

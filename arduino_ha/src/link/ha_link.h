@@ -1,7 +1,9 @@
 /* The Due's end of the HA-HP rosserial link: topic negotiation, time sync, logs, parameter
  * requests, publishing the HA's sensors and decisions, and decoding the HP's commands into the
- * core's plain structs. The link judges nothing about a command: the HA core checks its CRC,
- * freshness and order; the link only hands it over with its arrival time.
+ * core's plain structs. The link judges nothing about an HP command: the HA core checks its CRC,
+ * freshness and order; the link only hands it over with its arrival time. An operator request
+ * is checked here, before any board sees it: one whose CRC-32 does not match is counted and
+ * dropped, never handed over (SET_HOME goes to the INS adapter, not the core).
  * C99, no heap, no recursion, bounded buffers, time passed in (the core's free-running
  * microsecond clock, wrapping). */
 #ifndef HA_LINK_H
@@ -48,10 +50,11 @@ typedef struct {
 } HaLinkTopic;
 
 typedef struct {
-  uint32_t topic_requests; /* host's topic requests answered */
-  uint32_t time_syncs;     /* time replies applied */
-  uint32_t commands;       /* ServoCommand payloads decoded and handed to the core */
-  uint32_t operator_commands;
+  uint32_t topic_requests;    /* host's topic requests answered */
+  uint32_t time_syncs;        /* time replies applied */
+  uint32_t commands;          /* ServoCommand payloads decoded and handed to the core */
+  uint32_t operator_commands; /* operator requests with a matching CRC, handed over */
+  uint32_t operator_bad_crc;  /* operator requests dropped: their CRC-32 does not match */
   uint32_t param_replies;
   uint32_t unknown_topic; /* valid frame on a topic id the device does not know */
   uint32_t bad_payload;   /* valid frame whose payload does not decode as its type */

@@ -4,6 +4,9 @@
 
 static uint8_t checksum_of(uint32_t sum) { return (uint8_t)(255u - (sum % 256u)); }
 
+/* What one byte did to the frame being parsed. */
+typedef enum { STEP_MORE = 0, STEP_FAILED, STEP_FRAME } HaLinkStep;
+
 void ha_link_decoder_init(HaLinkDecoder *dec, uint32_t timeout_us) {
   memset(dec, 0, sizeof *dec);
   dec->state = HA_LINK_RX_SYNC;
@@ -11,37 +14,60 @@ void ha_link_decoder_init(HaLinkDecoder *dec, uint32_t timeout_us) {
 }
 
 void ha_link_decoder_poll(HaLinkDecoder *dec, uint32_t now_us) {
-  /* Unsigned subtraction stays right across the 71-minute wrap of the microsecond clock. */
+  /* Unsigned subtraction stays right across the 71-minute wrap of the microsecond clock. A frame
+   * that stopped arriving is stale, and so is anything inside it: all it holds is dropped. */
   if ((dec->state != HA_LINK_RX_SYNC) &&
       ((uint32_t)(now_us - dec->frame_start_us) > dec->timeout_us)) {
     dec->counters.timeouts++;
     dec->state = HA_LINK_RX_SYNC;
+    dec->start = 0u;
+    dec->next = 0u;
+    dec->end = 0u;
   }
 }
 
-bool ha_link_decoder_feed(HaLinkDecoder *dec, uint8_t byte, uint32_t now_us, HaLinkFrame *frame) {
-  bool complete = false;
+void ha_link_decoder_push(HaLinkDecoder *dec, uint8_t byte, uint32_t now_us) {
   ha_link_decoder_poll(dec, now_us);
+  dec->last_byte_us = now_us;
+  if (dec->start >= dec->end) { /* nothing held: start over at the front, no copy */
+    dec->start = 0u;
+    dec->next = 0u;
+    dec->end = 0u;
+  }
+  if ((dec->end >= HA_LINK_RX_HELD_MAX) && (dec->start > 0u) && (dec->start <= dec->end) &&
+      (dec->next >= dec->start) && (dec->next <= dec->end)) {
+    /* Full: what lies before the frame being parsed has been dropped; move the frame forward
+     * (an indexed copy, each index checked: the bounds stay local for EVA and readers). */
+    size_t to = 0u;
+    size_t from = dec->start;
+    while ((from < dec->end) && (from < HA_LINK_RX_HELD_MAX) && (to < HA_LINK_RX_HELD_MAX)) {
+      dec->held[to] = dec->held[from];
+      ++to;
+      ++from;
+    }
+    dec->next = (uint16_t)(dec->next - dec->start);
+    dec->end = (uint16_t)to;
+    dec->start = 0u;
+  }
+  if (dec->end < HA_LINK_RX_HELD_MAX) {
+    dec->held[dec->end] = byte;
+    dec->end++;
+  } else {
+    /* Only a caller that pushes without draining ha_link_decoder_next gets here: a frame and its
+     * checksum never take more than HA_LINK_RX_HELD_MAX bytes. */
+    dec->counters.bytes_skipped++;
+  }
+}
+
+/* One byte of the frame after its sync byte. Counts a failure; the caller searches again. */
+static HaLinkStep step(HaLinkDecoder *dec, uint8_t byte) {
   switch (dec->state) {
-    case HA_LINK_RX_SYNC:
-      if (byte == HA_LINK_SYNC_BYTE) {
-        dec->state = HA_LINK_RX_PROTOCOL;
-        dec->frame_start_us = now_us;
-      } else {
-        dec->counters.bytes_skipped++;
-      }
-      break;
     case HA_LINK_RX_PROTOCOL:
-      if (byte == HA_LINK_PROTOCOL_V2) {
-        dec->state = HA_LINK_RX_LEN_LO;
-      } else if (byte == HA_LINK_SYNC_BYTE) {
-        /* A run of 0xFF (or v1's 0xFF 0xFF): the last one may still start a frame. */
-        dec->counters.bad_protocol++;
-        dec->frame_start_us = now_us;
-      } else {
-        dec->counters.bad_protocol++;
-        dec->state = HA_LINK_RX_SYNC;
+      if (byte != HA_LINK_PROTOCOL_V2) {
+        dec->counters.bad_protocol++; /* v1, or a run of 0xFF: the next may still start one */
+        return STEP_FAILED;
       }
+      dec->state = HA_LINK_RX_LEN_LO;
       break;
     case HA_LINK_RX_LEN_LO:
       dec->length = byte;
@@ -56,13 +82,13 @@ bool ha_link_decoder_feed(HaLinkDecoder *dec, uint8_t byte, uint32_t now_us, HaL
           (uint32_t)(dec->length & 0xFFu) + (uint32_t)(dec->length >> 8) + byte;
       if ((len_sum % 256u) != 255u) {
         dec->counters.bad_length_checksum++;
-        dec->state = HA_LINK_RX_SYNC;
-      } else if (dec->length > HA_LINK_MAX_PAYLOAD) {
-        dec->counters.oversized++;
-        dec->state = HA_LINK_RX_SYNC;
-      } else {
-        dec->state = HA_LINK_RX_TOPIC_LO;
+        return STEP_FAILED;
       }
+      if (dec->length > HA_LINK_MAX_PAYLOAD) {
+        dec->counters.oversized++;
+        return STEP_FAILED;
+      }
+      dec->state = HA_LINK_RX_TOPIC_LO;
       break;
     }
     case HA_LINK_RX_TOPIC_LO:
@@ -88,20 +114,49 @@ bool ha_link_decoder_feed(HaLinkDecoder *dec, uint8_t byte, uint32_t now_us, HaL
       }
       break;
     case HA_LINK_RX_CHECKSUM:
+    case HA_LINK_RX_SYNC:
     default:
-      if (((dec->sum + byte) % 256u) == 255u) {
-        dec->counters.frames_ok++;
+      if (((dec->sum + byte) % 256u) != 255u) {
+        dec->counters.bad_checksum++;
+        return STEP_FAILED;
+      }
+      dec->counters.frames_ok++;
+      return STEP_FRAME;
+  }
+  return STEP_MORE;
+}
+
+bool ha_link_decoder_next(HaLinkDecoder *dec, HaLinkFrame *frame) {
+  while ((dec->next < dec->end) && (dec->next < HA_LINK_RX_HELD_MAX)) {
+    const uint8_t byte = dec->held[dec->next];
+    dec->next++;
+    if (dec->state == HA_LINK_RX_SYNC) {
+      if (byte == HA_LINK_SYNC_BYTE) {
+        dec->state = HA_LINK_RX_PROTOCOL;
+        dec->frame_start_us = dec->last_byte_us; /* held bytes: as late as the latest one */
+      } else {
+        dec->counters.bytes_skipped++;
+        dec->start = dec->next;
+      }
+    } else {
+      const HaLinkStep result = step(dec, byte);
+      if (result == STEP_FRAME) {
         frame->topic_id = dec->topic_id;
         frame->payload = dec->payload;
         frame->payload_len = dec->length;
-        complete = true;
-      } else {
-        dec->counters.bad_checksum++;
+        dec->state = HA_LINK_RX_SYNC;
+        dec->start = dec->next;
+        return true;
       }
-      dec->state = HA_LINK_RX_SYNC;
-      break;
+      if (result == STEP_FAILED) {
+        /* Search again from the byte after the failed frame's sync byte. */
+        dec->state = HA_LINK_RX_SYNC;
+        dec->start++;
+        dec->next = dec->start;
+      }
+    }
   }
-  return complete;
+  return false;
 }
 
 size_t ha_link_encode_frame(uint16_t topic_id, const uint8_t *payload, size_t payload_len,

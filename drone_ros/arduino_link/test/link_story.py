@@ -254,6 +254,23 @@ class LinkStories(unittest.TestCase):
         wait_for(lambda: self.status().last_seq == self.seq, 3.0, "commands still reach the HA")
         self.assertTrue(self.link_up())
 
+    def test_06c_operator_request_changed_under_the_frame_checksum_is_dropped_by_the_ha(self):
+        # A sealed SELECT_HP whose command byte went one up (SELECT_HA) and whose request id's
+        # low byte went one down: rosserial's 8-bit sum still matches, the request's CRC-32 not.
+        wait_for(self.link_up, 10.0, "link up")
+        device_before = self.watch.device_errors()
+        fields = struct.pack("<IIBI?ddd", 1700000000, 0, 1, 4242, False, 0.0, 0.0, 0.0)
+        sealed = bytearray(fields + struct.pack("<I", zlib.crc32(fields) & 0xFFFFFFFF))
+        sealed[8] += 1   # SELECT_HP -> SELECT_HA
+        sealed[9] -= 1   # request id 4242 -> 4241
+        self.tap.inject_to_device(frame(101, bytes(sealed)))  # the HA's operator_command topic
+        wait_for(lambda: self.watch.device_errors()["operator_bad_crc"] == device_before["operator_bad_crc"] + 1,
+                 5.0, "the HA to count the request's bad CRC")
+        self.send_commands(20)
+        wait_for(lambda: self.status().last_seq == self.seq, 3.0, "commands still reach the HA")
+        self.assertEqual(self.status().reasons & DecisionStatus.REASON_GROUND_COMMAND, 0,
+                         "the altered request must not have been executed")
+
     def test_07_unplug_and_replug_is_survived_with_the_gap_reported(self):
         wait_for(self.link_up, 10.0, "link up")
         opens_before = self.watch.counter("port_opens")

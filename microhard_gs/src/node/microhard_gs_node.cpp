@@ -8,7 +8,9 @@
 #include <drone_ros/data.h>
 #include <drone_ros/way.h>
 #include <ros/ros.h>
+#include <ros/serialization.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
@@ -20,6 +22,7 @@
 #include <vector>
 
 #include "gs_core.h"
+#include "hp_command.h"
 #include "node_config.h"
 #include "serial_transport.h"
 #include "udp_transport.h"
@@ -42,6 +45,19 @@ Clock now_clock() {
   c.unix_us = static_cast<uint64_t>(
       duration_cast<microseconds>(system_clock::now().time_since_epoch()).count());
   return c;
+}
+
+// msg/OperatorCommand.msg's crc32: CRC-32 over the message's own ROS serialization before it
+// (the HA's link checks it and drops a request that changed on the way, which rosserial's 8-bit
+// sum can miss). Computed from the serialization, not from a second copy of the field list.
+void seal(drone_ros::OperatorCommand* c) {
+  static_assert(ros::message_traits::IsFixedSize<drone_ros::OperatorCommand>::value,
+                "OperatorCommand is fixed size: its serialization is the CRC'd fields and the CRC");
+  std::array<uint8_t, HA_OPERATOR_COMMAND_FIELDS_LEN + sizeof c->crc32> bytes{};
+  c->crc32 = 0;
+  ros::serialization::OStream out(bytes.data(), static_cast<uint32_t>(bytes.size()));
+  ros::serialization::serialize(out, *c);
+  c->crc32 = ha_crc32(bytes.data(), HA_OPERATOR_COMMAND_FIELDS_LEN);
 }
 
 Telemetry to_telemetry(const drone_ros::data& d) {
@@ -256,6 +272,7 @@ class Node {
       c.stamp = ros::Time::now();
       c.command = static_cast<uint8_t>(r);
       c.request_id = ++request_id_;
+      seal(&c);
       command_pub_.publish(c);
     }
     for (const HomeRequest& r : core_.take_home_requests()) {
@@ -267,6 +284,7 @@ class Node {
       c.latitude = r.position.lat_deg;
       c.longitude = r.position.lon_deg;
       c.altitude = r.position.alt_m;
+      seal(&c);
       command_pub_.publish(c);
     }
   }
@@ -332,7 +350,10 @@ class Node {
   ros::Subscriber decision_sub_;
   ros::Subscriber home_sub_;
   diagnostic_updater::Updater updater_;
-  uint32_t request_id_ = 0;
+  // The HA ignores a repeat of the request it executed last (same id and command): a restarted
+  // node starts from the clock (ms), not from 0, so its first request is not taken for its
+  // predecessor's last.
+  uint32_t request_id_ = static_cast<uint32_t>(now_clock().unix_us / 1000u);
   uint64_t send_failures_ = 0;
   uint64_t link_errors_ = 0;
   uint64_t frames_not_sent_link_down_ = 0;
