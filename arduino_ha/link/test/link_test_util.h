@@ -66,6 +66,18 @@ inline Bytes servo_command_payload(const Cmd &c) {
   return b;
 }
 
+// msg/OperatorCommand.msg's fields up to use_current (stamp 5 s 6 ns): what every request
+// carries before SET_HOME's position.
+inline Bytes operator_fields(uint8_t command, uint32_t request_id) {
+  Bytes b;
+  put_u32(b, 5);
+  put_u32(b, 6);
+  b.push_back(command);
+  put_u32(b, request_id);
+  b.push_back(0);  // use_current
+  return b;
+}
+
 // msg/OperatorCommand.msg's crc32 appended: CRC-32 over the fields' serialization before it.
 inline Bytes sealed_operator_payload(Bytes fields) {
   put_u32(fields, ha_crc32(fields.data(), fields.size()));

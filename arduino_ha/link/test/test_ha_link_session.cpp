@@ -288,13 +288,8 @@ TEST(HaLinkSession, ParameterRequestAndReplyFollowRequestParam) {
 
 TEST(HaLinkSession, OperatorRequestIsHandedOver) {
   Device d;
-  Bytes p;
-  link_test::put_u32(p, 5);
-  link_test::put_u32(p, 6);
-  p.push_back(2);  // SELECT_HA
-  link_test::put_u32(p, 77);
-  p.push_back(0);  // use_current, then SET_HOME's latitude, longitude, altitude (unused)
-  for (int i = 0; i < 24; ++i) p.push_back(0);
+  Bytes p = link_test::operator_fields(2, 77);  // SELECT_HA
+  p.resize(p.size() + 24, 0);                   // SET_HOME's latitude, longitude, altitude (unused)
   d.rx(frame(101, link_test::sealed_operator_payload(p)), 0u);
   EXPECT_EQ(d.operator_requests, std::vector<uint8_t>{2});
   EXPECT_EQ(d.link.counters.operator_commands, 1u);
@@ -302,13 +297,8 @@ TEST(HaLinkSession, OperatorRequestIsHandedOver) {
 
 TEST(HaLinkSession, OperatorRequestWhoseBytesChangedUnderItsCrcIsCountedAndNeverHandedOver) {
   Device d;
-  Bytes p;
-  link_test::put_u32(p, 5);
-  link_test::put_u32(p, 6);
-  p.push_back(2);  // SELECT_HA
-  link_test::put_u32(p, 77);
-  p.push_back(0);
-  for (int i = 0; i < 24; ++i) p.push_back(0);
+  Bytes p = link_test::operator_fields(2, 77);  // SELECT_HA
+  p.resize(p.size() + 24, 0);                   // SET_HOME's latitude, longitude, altitude (unused)
   Bytes sealed = link_test::sealed_operator_payload(p);
   sealed[8] -= 1;  // SELECT_HA becomes SELECT_HP ...
   sealed[9] += 1;  // ... and the request id moves by one: rosserial's 8-bit sum still matches
@@ -322,12 +312,7 @@ TEST(HaLinkSession, OperatorRequestWhoseBytesChangedUnderItsCrcIsCountedAndNever
 
 TEST(HaLinkSession, SetHomeArrivesWithItsPositionInFullPrecision) {
   Device d;
-  Bytes p;
-  link_test::put_u32(p, 5);
-  link_test::put_u32(p, 6);
-  p.push_back(5);  // SET_HOME
-  link_test::put_u32(p, 78);
-  p.push_back(0);
+  Bytes p = link_test::operator_fields(5, 78);  // SET_HOME
   for (double v : {40.4237054, -86.9211946, 185.25}) {
     uint8_t raw[8];
     std::memcpy(raw, &v, 8);  // little-endian IEEE 754, as rosserial and the Due lay it out
