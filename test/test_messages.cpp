@@ -257,7 +257,7 @@ TEST(Messages, ReasonBitsAreDistinctSingleBits) {
       S::REASON_ACTUATOR_REGION, S::REASON_ALPHA_BETA,    S::REASON_SENSOR_LINK,
       S::REASON_STALL,           S::REASON_CEILING,       S::REASON_STATE_REGION,
       S::REASON_FROZEN,          S::REASON_INTEGRITY,     S::REASON_ESTIMATOR,
-      S::REASON_GROUND_COMMAND,  S::REASON_NO_HA_STATE};
+      S::REASON_GROUND_COMMAND,  S::REASON_NO_HA_STATE,   S::REASON_PULL};
   uint32_t seen = 0;
   for (uint32_t b : bits) {
     EXPECT_EQ(0u, b & (b - 1)) << b << " is not a single bit";

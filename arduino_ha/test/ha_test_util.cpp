@@ -124,9 +124,13 @@ float AlphaDeg(float airspeed_ftps, float roll_deg) {
 
 void PointMassAircraft::Step(const HaSurfaces& u, float dt) {
   // Roll: first-order rate response to aileron. Pitch: rate response to elevator (trailing
-  // edge down pitches down) with a 2 deg nose-down trim offset the integrator must learn.
+  // edge down pitches down) about a trim the integrator must learn: 0.6 deg trailing edge down,
+  // where airframe.yaml's pitching moment trims the DG808 at cruise (cm0 0.045 against cm_alpha
+  // at its 2 deg alpha), so the HA's elevator stop leaves it the pull the airframe has. The rate
+  // a deflection buys grows with speed (the same alpha is more lift, q = g dn / V with dn ~ V^2).
   p_deg_s += dt * (4.0f * u.aileron_deg - p_deg_s) / 0.25f;
-  q_deg_s += dt * (2.0f * (-u.elevator_deg - 2.0f) - q_deg_s) / 0.3f;
+  const float q_per_deg = 2.0f * std::max(airspeed_ftps, 20.0f) / 60.0f;
+  q_deg_s += dt * (q_per_deg * (0.6f - u.elevator_deg) - q_deg_s) / 0.3f;
   roll_deg += dt * p_deg_s;
   pitch_deg += dt * q_deg_s;
   const float gamma = (pitch_deg - AlphaDeg(airspeed_ftps, roll_deg)) / kDegPerRad;

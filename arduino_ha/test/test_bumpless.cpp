@@ -38,16 +38,17 @@ void ExpectWithinRate(const Timeline& t, size_t from) {
 
 TEST(HaBumpless, NoSurfaceStepsFasterThanLimitAtSwitch) {
   Timeline t;
-  // HA -> HP: the HP wants full deflections the moment it is handed control.
+  // HA -> HP: the HP wants full deflections the moment it is handed control (the elevator full
+  // down: a full pull is refused in flight, REASON_PULL).
   for (int i = 0; i < 1000; ++i) {
-    t.StepWithGood(t.cfg.aileron_limit_deg, -t.cfg.elevator_limit_deg, t.cfg.rudder_limit_deg,
+    t.StepWithGood(t.cfg.aileron_limit_deg, t.cfg.elevator_limit_deg, t.cfg.rudder_limit_deg,
                    t.cfg.throttle_max);
     if (t.controller() == HA_CONTROLLER_HP) break;
   }
   ASSERT_EQ(t.controller(), HA_CONTROLLER_HP);
   size_t from = t.board.servo_writes.size() - 2;
   for (int i = 0; i < 300; ++i) {
-    t.StepWithGood(t.cfg.aileron_limit_deg, -t.cfg.elevator_limit_deg, t.cfg.rudder_limit_deg,
+    t.StepWithGood(t.cfg.aileron_limit_deg, t.cfg.elevator_limit_deg, t.cfg.rudder_limit_deg,
                    t.cfg.throttle_max);
   }
   ExpectWithinRate(t, from);

@@ -109,6 +109,46 @@ TEST(HaDecision, CommandOutsideActuatorRegionSwitches) {
   EXPECT_LE(std::fabs(t.servos().elevator_deg), t.cfg.elevator_limit_deg);
 }
 
+// The low_slow HiL flight: the HP pulls the elevator full up at 84 ft/s. The stall check sees it
+// only once the wing is loaded (4 g, stalled 0.16 s after the command); the command itself says
+// it: full up trims the wing far past its stall. The HA refuses it the period it arrives, so
+// the servo never moves towards it.
+TEST(HaDecision, HpPullingFullUpAtCruiseIsRefusedBeforeTheElevatorMoves) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  const float before_deg = t.servos().elevator_deg;
+  t.StepWithGood(0.0f, -t.cfg.elevator_limit_deg);
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HA);
+  EXPECT_TRUE(t.out().reasons & HA_REASON_PULL) << t.out().reasons;
+  EXPECT_GE(t.servos().elevator_deg, before_deg - 0.01f) << "the pull reached the servo";
+  // The HA's own elevator stays inside its stop while it flies.
+  for (int i = 0; i < 300; ++i) {
+    t.StepWithGood(0.0f, -t.cfg.elevator_limit_deg);
+    ASSERT_GE(t.servos().elevator_deg, -t.cfg.sc_elevator_pull_max_deg - 1e-4f) << i;
+  }
+}
+
+// The HP's own pulls in gusts (HiL: 4.9 deg at most in moderate turbulence) are no fault.
+TEST(HaDecision, HpPullInsideThePullLimitKeepsControl) {
+  Timeline t;
+  ASSERT_GT(t.ReachHp(), 0);
+  for (int i = 0; i < 100; ++i) {
+    t.StepWithGood(0.0f, -0.95f * t.cfg.elevator_pull_limit_deg);
+  }
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HP) << t.out().reasons;
+  EXPECT_FLOAT_EQ(t.servos().elevator_deg, -0.95f * t.cfg.elevator_pull_limit_deg);
+}
+
+// On the ground a full pull holds the tail down on the take-off run: not a fault.
+TEST(HaDecision, FullPullParkedOnTheGroundIsNoFault) {
+  Timeline t;
+  t.Parked();
+  for (int i = 0; i < 50; ++i) {
+    t.StepWithGood(0.0f, -t.cfg.elevator_limit_deg);
+    ASSERT_EQ(t.out().reasons & HA_REASON_PULL, 0u) << i;
+  }
+}
+
 // An HP climbing through the ceiling, seen by an INS that reads 5 ft low: the HA switches
 // within its margin of the ceiling, and the true height never reaches it.
 TEST(HaDecision, ClimbTowardsTheCeilingIsTakenOverBeforeItWithAnInsReadingLow) {
@@ -129,7 +169,7 @@ TEST(HaDecision, ClimbTowardsTheCeilingIsTakenOverBeforeItWithAnInsReadingLow) {
     t.board.airspeed_ftps = ac.airspeed_ftps;
     t.refresh_state = false;
     if (i < 100 * 30) {
-      t.StepWithGood(0.0f, -3.0f, 0.0f, 0.8f);  // a healthy HP that keeps climbing...
+      t.StepWithGood(0.0f, -0.4f, 0.0f, 0.8f);  // a healthy HP that keeps climbing...
     } else {
       t.Step();  // ...until it is gone, and the HA alone flies
     }

@@ -35,6 +35,7 @@ TEST(HaMessageContract, ControllerAndReasonNumbersMatchDecisionStatus) {
   EXPECT_EQ(HA_REASON_ESTIMATOR, DecisionStatus::REASON_ESTIMATOR);
   EXPECT_EQ(HA_REASON_GROUND_COMMAND, DecisionStatus::REASON_GROUND_COMMAND);
   EXPECT_EQ(HA_REASON_NO_HA_STATE, DecisionStatus::REASON_NO_HA_STATE);
+  EXPECT_EQ(HA_REASON_PULL, DecisionStatus::REASON_PULL);
 }
 
 TEST(HaMessageContract, OperatorCommandNumbersMatch) {

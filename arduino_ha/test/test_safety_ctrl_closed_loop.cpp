@@ -136,6 +136,29 @@ TEST(HaSafetyCtrl, SlowBeatsLowAtEveryAltitude) {
   }
 }
 
+// Campaign seed 24, out_of_range: the HA took over a steep dive low in its band and pulled the
+// wing past its stall in the pull-out (0.56 s stalled). Its own elevator now stops where the
+// airframe trims below the stall: the dive is flown out at that pull, and the aircraft climbs
+// back into the band.
+TEST(HaSafetyCtrl, DiveTakenOverLowIsPulledOutAtTheElevatorStopNeverBeyond) {
+  HaAloneFlight f(777000u);
+  f.StartOnTheCircle(150.0f, 80.0f);
+  f.ac.pitch_deg = -30.0f;
+  float most_nose_up_deg = 0.0f, lowest_ft = f.ac.altitude_ft;
+  for (int i = 0; i < 100 * 60; ++i) {
+    f.Step();
+    most_nose_up_deg = std::max(most_nose_up_deg, -f.out.surfaces.elevator_deg);
+    f.ac.Step(f.out.surfaces, f.PeriodS());
+    lowest_ft = std::min(lowest_ft, f.ac.altitude_ft);
+  }
+  std::printf(
+      "dive from 150 ft at -30 deg: most nose-up %.2f deg, lowest %.1f ft, %.1f ft after 60 s\n",
+      most_nose_up_deg, lowest_ft, f.ac.altitude_ft);
+  EXPECT_LE(most_nose_up_deg, f.cfg.sc_elevator_pull_max_deg + 1e-4f);
+  EXPECT_GT(lowest_ft, 0.0f);
+  EXPECT_GE(f.ac.altitude_ft, f.cfg.sc_alt_min_ft - 10.0f);
+}
+
 // The reviewer's case in closed loop: the HP flies slow and low and the HA takes over for STALL.
 TEST(HaSafetyCtrl, StallAtSixtyFeetLowersTheNose) {
   Timeline t;

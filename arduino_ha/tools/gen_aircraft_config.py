@@ -147,6 +147,22 @@ def airframe_stall(airframe):
     return stall_ftps, alpha_deg
 
 
+def trim_alpha_deg(airframe, nose_up_deg):
+    """The angle of attack airframe.yaml's pitching moment trims at with this much nose-up
+    elevator (trailing edge up; msg/pwm.msg's elevator is its negative), pitch rate zero:
+    cm0 + cm_alpha alpha + cm_elevator (-nose_up) = 0."""
+    try:
+        aero = airframe["aero"]
+        cm0, cm_alpha = float(aero["cm0"]), float(aero["cm_alpha_per_rad"])
+        cm_de = float(aero["cm_elevator_per_rad"])
+    except (KeyError, TypeError, ValueError) as err:
+        raise ConfigError("airframe.yaml: cannot read the pitching moment from it (%s)" % err)
+    if cm_alpha >= 0.0 or cm_de >= 0.0:
+        raise ConfigError("airframe.yaml: cm_alpha_per_rad and cm_elevator_per_rad must be < 0 "
+                          "(a statically stable airframe, trailing edge down pitching down)")
+    return math.degrees(-(cm0 - cm_de * math.radians(nose_up_deg)) / cm_alpha)
+
+
 def check_against_airframe(c, airframe):
     """One source for the stall: limits.yaml's stall speed and stall alpha must be airframe.yaml's.
     The HA judges the stall by both (ha_checks.c), so an alpha limit past the wing's stall or a
@@ -160,6 +176,17 @@ def check_against_airframe(c, airframe):
         raise ConfigError("stall_alpha_deg = %g is beyond airframe.yaml's stall angle of attack "
                           "%.2f deg ((cl_max - cl0) / cl_alpha): a stalled wing would pass"
                           % (c["stall_alpha_deg"], alpha_deg))
+    # The elevator stops (ha_checks.c: the HP's pull; ha_safety_ctrl.c: the HA's own).
+    own = trim_alpha_deg(airframe, c["sc_elevator_pull_max_deg"])
+    if own >= c["stall_alpha_deg"]:
+        raise ConfigError("elevator_pull_max_deg = %g trims the wing at %.2f deg, at or past "
+                          "stall_alpha_deg %g: the HA's own elevator would hold a stall"
+                          % (c["sc_elevator_pull_max_deg"], own, c["stall_alpha_deg"]))
+    hp = trim_alpha_deg(airframe, c["elevator_pull_limit_deg"])
+    if hp < alpha_deg:
+        raise ConfigError("elevator_pull_limit_deg = %g trims the wing at %.2f deg, below its "
+                          "%.2f deg stall: a healthy HP flying near the stall would be taken out"
+                          % (c["elevator_pull_limit_deg"], hp, alpha_deg))
 
 
 def build(doc, airframe=None):
@@ -191,6 +218,10 @@ def build(doc, airframe=None):
     c["surface_release_rate_deg_per_s"] = need(act, "surface_release_rate_deg_per_s",
                                                c["surface_rate_limit_deg_per_s"], 600.0)
 
+    c["elevator_pull_limit_deg"] = need(act, "elevator_pull_limit_deg", 0.0,
+                                        c["elevator_limit_deg"])
+    c["sc_elevator_pull_max_deg"] = need(sc, "elevator_pull_max_deg", 0.0,
+                                         c["elevator_pull_limit_deg"])
     c["alpha_limit_deg"] = ranged(doc, "state/alpha_limit_deg")
     c["stall_alpha_deg"] = ranged(doc, "state/stall_alpha_deg")
     if c["stall_alpha_deg"] > c["alpha_limit_deg"]:

@@ -197,7 +197,7 @@ static void eva_write_retained(void *ctx, const uint32_t words[HA_RETAINED_WORDS
 /* The decision reported to the HP side is always one of the defined values. */
 static void check_decision(const HaOutputs *out) {
   /*@ assert controller_defined: out->controller <= HA_CONTROLLER_MANUAL; */
-  /*@ assert reasons_defined: (out->reasons & ~(uint32_t)0x3FFFu) == 0; */
+  /*@ assert reasons_defined: (out->reasons & ~(uint32_t)0x7FFFu) == 0; */
   /*@ assert leds_defined: (out->leds & ~(uint8_t)0x0Fu) == 0; */
 }
 

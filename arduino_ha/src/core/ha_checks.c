@@ -46,6 +46,16 @@ static uint32_t check_actuator_region(const HaAircraftConfig *cfg, const HaHpCom
   return flag(ha_greater(*region_max, 1.0f) || !in_box, HA_REASON_ACTUATOR_REGION);
 }
 
+/* Airborne, a pull the wing cannot take: more nose-up elevator than elevator_pull_limit_deg
+ * trims it far past its stall whatever the speed, and at cruise speed it is an accelerated stall
+ * within a few periods, before the stall check can see it (HiL low_slow: full up at 84 ft/s, 4 g
+ * and the wing stalled 0.16 s after the command). Judged on the command, before it is applied. */
+static uint32_t check_pull(const HaAircraftConfig *cfg, const HaHpCommand *c,
+                           const HaStateView *s) {
+  return flag(s->airborne && ha_greater(-c->elevator_deg, cfg->elevator_pull_limit_deg),
+              HA_REASON_PULL);
+}
+
 /* Estimator divergence: the HP's own alpha/beta beyond their limits. */
 static uint32_t check_alpha_beta(const HaAircraftConfig *cfg, const HaHpCommand *c) {
   return flag(!ha_in_range(c->alpha_est_deg, -cfg->alpha_limit_deg, cfg->alpha_limit_deg) ||
@@ -126,7 +136,8 @@ uint32_t ha_checks_evaluate(const HaAircraftConfig *cfg, const HaCmdFacts *facts
   if (facts->have_cmd) {
     const HaHpCommand *c = facts->cmd;
     reasons |= check_finite(c) | check_alpha_beta(cfg, c) | check_sensor_link(c) |
-               check_estimator(c) | check_frozen(facts) | check_integrity(facts);
+               check_estimator(c) | check_frozen(facts) | check_integrity(facts) |
+               check_pull(cfg, c, state);
     /* A non-finite surface cannot be shown inside S_u: it fails the region too. */
     reasons |= surfaces_finite(c) ? check_actuator_region(cfg, c, actuator_region_max)
                                   : HA_REASON_ACTUATOR_REGION;

@@ -11,7 +11,7 @@
 #define HA_REASONS_COMMAND                                                                       \
   (HA_REASON_NO_COMMAND | HA_REASON_DEADLINE_MISS | HA_REASON_NOT_FINITE |                       \
    HA_REASON_ACTUATOR_REGION | HA_REASON_ALPHA_BETA | HA_REASON_SENSOR_LINK | HA_REASON_FROZEN | \
-   HA_REASON_INTEGRITY | HA_REASON_ESTIMATOR)
+   HA_REASON_INTEGRITY | HA_REASON_ESTIMATOR | HA_REASON_PULL)
 
 /* Reasons that are no fault of the HP: the HA's own sensors, the operator's choice. A switch for
  * these alone neither resets the HP nor counts towards the restart cap. */

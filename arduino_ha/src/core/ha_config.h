@@ -68,6 +68,9 @@ typedef struct {
   float throttle_max;
   float surface_rate_limit_deg_per_s;
   float surface_release_rate_deg_per_s; /* a pull eased towards neutral (ha_surfaces.c) */
+  /* Airborne, an HP elevator more nose-up than this (trailing edge up, elevator_deg below its
+   * negative) trims the wing far past its stall: unsafe output (ha_checks.c). */
+  float elevator_pull_limit_deg;
   float throttle_rate_limit_per_s;
 
   /* State checks. */
@@ -129,6 +132,8 @@ typedef struct {
   float sc_alt_to_pitch_gain_deg_per_ft;
   float sc_pitch_cmd_limit_deg;
   float sc_pitch_error_max_deg; /* the pitch loop's error is clamped to +/- this */
+  /* The HA's own elevator stop, nose-up degrees: it trims the wing below its stall (generator). */
+  float sc_elevator_pull_max_deg;
   /* Pitch and power without a speed: the nose no higher than this, the throttle trim plus this
    * per ft below the band's middle (derived: full at the band's floor). */
   float sc_power_pitch_deg;

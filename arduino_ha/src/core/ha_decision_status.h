@@ -27,5 +27,6 @@ enum {
 #define HA_REASON_ESTIMATOR       2048u
 #define HA_REASON_GROUND_COMMAND  4096u
 #define HA_REASON_NO_HA_STATE     8192u
+#define HA_REASON_PULL            16384u
 
 #endif

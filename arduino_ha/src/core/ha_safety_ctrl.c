@@ -165,6 +165,18 @@ void ha_safety_ctrl_step(HaSafetyCtrlState *st, const HaAircraftConfig *cfg, con
   /* Elevator trailing edge down is positive (nose down): the loop works in nose-up degrees. */
   nose_up_deg = pid(&st->pitch_integ_deg, pitch_pd, pitch_step, cfg->elevator_limit_deg, auth,
                     in_control, -applied->elevator_deg);
+  /* The elevator stop: the HA's own pull never trims the wing at its stall (the generator holds
+   * sc_elevator_pull_max_deg to airframe.yaml). Flying, the integrator is wound back to the stop
+   * so that it does not hold a pull beyond it; tracking another controller, the surfaces it
+   * inherits are the rate limiter's to ease. */
+  if (ha_greater(nose_up_deg, cfg->sc_elevator_pull_max_deg)) {
+    if (in_control) {
+      st->pitch_integ_deg =
+          ha_clampf(st->pitch_integ_deg - (nose_up_deg - cfg->sc_elevator_pull_max_deg),
+                    -auth * cfg->elevator_limit_deg, auth * cfg->elevator_limit_deg);
+    }
+    nose_up_deg = cfg->sc_elevator_pull_max_deg;
+  }
   out->elevator_deg = -nose_up_deg;
   /* Throttle is handled about the middle of its range so the same symmetric PID applies. */
   out->throttle = throttle_mid + pid(&st->throttle_integ, thr_pd, thr_step, throttle_half, auth,

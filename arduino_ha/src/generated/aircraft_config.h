@@ -48,6 +48,8 @@
     .surface_rate_limit_deg_per_s = 60.0f, \
     .throttle_rate_limit_per_s = 0.5f, \
     .surface_release_rate_deg_per_s = 400.0f, \
+    .elevator_pull_limit_deg = 7.0f, \
+    .sc_elevator_pull_max_deg = 2.5f, \
     .alpha_limit_deg = 30.0f, \
     .stall_alpha_deg = 8.8f, \
     .beta_limit_deg = 30.0f, \
