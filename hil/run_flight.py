@@ -325,6 +325,9 @@ def report(s, out, bag=True):
           "recovery %s s%s), status %s" % ("ok" if v["ok"] else "PROPERTY BROKEN", v["unsafe_commands"],
                                             v["envelope_violations_under_ha_s"], v["takeover_latency_s"],
                                             v["recovery_s"], ", latched" if v["latched"] else "", s["status"]))
+    beyond = (s.get("world") or {}).get("beyond_design_wind")
+    if beyond:
+        print("  beyond the design wind (a campaign judges it on survival): %s" % "; ".join(beyond))
     print("output: %s (%ssummary.json)" % (out, "flight.bag, report/, " if bag else ""))
 
 

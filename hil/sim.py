@@ -45,6 +45,7 @@ sys.path.insert(0, os.path.join(ROOT, "drone_ros", "supervisor", "scripts"))
 import node_query  # noqa: E402  (the supervisor's node queries: the same PID lookup)
 from hil import faults, gs_monitor, ha_channel, link_relay, mission, sensors, verdicts  # noqa: E402
 from hil.faults.base import RC_NEUTRAL, Board  # noqa: E402
+from hil.design_wind import DesignWind  # noqa: E402
 from hil.fdm import Fdm, FdmCrash, Surfaces, Wind  # noqa: E402
 
 FT_PER_M = sensors.FT_PER_M
@@ -287,6 +288,8 @@ class Simulation:
         with open(os.path.join(self.aircraft_dir, "limits.yaml")) as f:
             self.limits = yaml.safe_load(f)
         self.regions = verdicts.Regions(self.limits)
+        with open(os.path.join(self.aircraft_dir, "airframe.yaml")) as f:
+            self.design_wind = DesignWind.load(self.limits, yaml.safe_load(f))
         self.plan = mission.read_wpl(self.mission_file)
         if self.field_elevation_ft is None:
             self.field_elevation_ft = self.plan.home[2] * FT_PER_M

@@ -427,7 +427,20 @@ def world(sim):
     return {"field_elevation_ft": round(sim.field_elevation_ft, 1), "temperature_c": round(sim.temperature_c, 2),
             "air_density_kg_m3": None if rho is None else round(rho, 5),
             "ias_over_tas": None if rho is None else round(math.sqrt(rho / 1.225), 4),
-            "wind": wind(w), "wind_at_end": wind(w_end)}
+            "wind": wind(w), "wind_at_end": wind(w_end), "beyond_design_wind": beyond_design_wind(sim)}
+
+
+def beyond_design_wind(sim):
+    """Why the flight's air went beyond the aircraft's design wind (hil/design_wind.py): its
+    steady wind and turbulence, and a fault's change of the wind ([]: within; the property is
+    claimed there, and beyond it the flight is judged on survival)."""
+    design = getattr(sim, "design_wind", None)
+    if design is None:
+        return []
+    w = sim.world_wind
+    why = design.steady(w.mean_mps, w.turbulence)
+    change = getattr(sim.fault, "beyond_design_wind", None)
+    return why + [x for x in (change() if callable(change) else []) if x not in why]
 
 
 def fault_record(sim):

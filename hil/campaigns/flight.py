@@ -20,7 +20,7 @@ import uuid
 TOKEN_VAR = "HIL_CAMPAIGN_FLIGHT"
 # The row's columns, in order (the CSV's header).
 COLUMNS = ["flight_id", "fault_class", "seed", "fault_at_s", "fault_duration_s", "fault_params",
-           "wind_mps", "wind_from_deg", "turbulence", "status", "reason", "took_effect", "ok", "broke_property", "unsafe_commands",
+           "wind_mps", "wind_from_deg", "turbulence", "beyond_design_wind", "status", "reason", "took_effect", "ok", "broke_property", "unsafe_commands",
            "envelope_violations_under_ha_s", "sx_inherited_from_hp_s", "sx_left_under_ha_s",
            "max_sx_row_under_ha", "takeover_latency_s", "takeover_within_one_period", "aircraft_crashed",
            "recovery_s", "latched", "stalled_under_ha_s", "longest_stall_under_ha_s", "stalled_from_fault_s",
@@ -135,9 +135,13 @@ def fault_of(summary):
 
 def broke_property(row):
     """The Simplex property: no servo command outside S_u, the aircraft inside S_x while the HA
-    flies (and the flight's own verdict, when it gives one)."""
+    flies (and the flight's own verdict, when it gives one). Beyond the aircraft's design wind
+    (hil/design_wind.py) it is claimed no more: such a flight is judged on survival, no unsafe
+    command and no crash."""
     if row["status"] not in ("ok", "fault_not_effective"):
         return False  # not known: such flights are listed as died / timed out
+    if row.get("beyond_design_wind"):
+        return bool((row["unsafe_commands"] or 0) > 0 or row.get("aircraft_crashed"))
     env = row["envelope_violations_under_ha_s"]
     return bool((row["unsafe_commands"] or 0) > 0 or env is None or (isinstance(env, float) and math.isnan(env))
                 or env > 0 or row["ok"] is False)
@@ -230,6 +234,7 @@ def run(flight, argv, folder, wall_limit_s, term_grace_s=30.0, env=None):
         row["max_sx_row_under_ha"] = env.get("max_S_x_row", (summary.get("state_while_ha_flies") or {}).get("max_S_x_row"))
         row["takeover_within_one_period"] = v.get("takeover_within_one_period")
         row["aircraft_crashed"] = v.get("aircraft_crashed")
+        row["beyond_design_wind"] = "; ".join((summary.get("world") or {}).get("beyond_design_wind") or [])
         row["simulated_s"] = summary.get("simulated_s")
         row["x_real_time"] = summary.get("x_real_time")
         if row["status"] == "ok" and row["took_effect"] is False:

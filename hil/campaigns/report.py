@@ -228,12 +228,20 @@ def write(rows, out_dir, title="HiL fault campaign", notes=None):
         notes = campaign_notes(out_dir)
     rdir = os.path.join(out_dir, "report")
     os.makedirs(rdir, exist_ok=True)
-    stats = class_stats(rows)
-    text = table_text(stats)
+    # The property is claimed inside the aircraft's design wind; beyond it, survival alone.
+    within = [r for r in rows if not r.get("beyond_design_wind")]
+    beyond = [r for r in rows if r.get("beyond_design_wind")]
+    stats = class_stats(within)
+    beyond_stats = class_stats(beyond) if beyond else []
+    text = table_text(stats) + (
+        "\n\nbeyond the design wind (%d flights; judged on survival: no crash, no unsafe command):\n%s"
+        % (len(beyond), table_text(beyond_stats)) if beyond else "")
     broke, other = attention(rows)
     files = plots(rows, rdir)
     with open(os.path.join(rdir, "table.md"), "w") as f:
         f.write(table_markdown(stats) + "\n")
+        if beyond:
+            f.write("\nBeyond the design wind (judged on survival):\n\n" + table_markdown(beyond_stats) + "\n")
     esc = html.escape
     parts = ["<!doctype html><html><head><meta charset='utf-8'><title>%s</title>" % esc(title),
              "<style>body{font-family:sans-serif;margin:2em}table{border-collapse:collapse;font-size:13px}"
@@ -242,12 +250,17 @@ def write(rows, out_dir, title="HiL fault campaign", notes=None):
              "</head><body>", "<h1>%s</h1>" % esc(title)]
     for n in notes:
         parts.append("<p>%s</p>" % esc(n))
-    parts.append("<h2>Per fault class</h2><table><tr>%s</tr>" % "".join("<th>%s</th>" % esc(c[1]) for c in COLS))
-    for s in stats:
-        parts.append("<tr>%s</tr>" % "".join(
-            "<td%s>%s</td>" % (" class='bad'" if k in ("broke_property", "unsafe_commands", "died", "timeout")
-                               and s[k] else "", esc(_cell(s[k], fmt))) for k, _, fmt in COLS))
-    parts.append("</table><p>takeover: from the deadline miss to the HA's command on the servos; recovery: "
+    for heading, table in (("Per fault class, within the design wind", stats),
+                           ("Beyond the design wind (judged on survival: no crash, no unsafe command)", beyond_stats)):
+        if not table:
+            continue
+        parts.append("<h2>%s</h2><table><tr>%s</tr>" % (esc(heading), "".join("<th>%s</th>" % esc(c[1]) for c in COLS)))
+        for s in table:
+            parts.append("<tr>%s</tr>" % "".join(
+                "<td%s>%s</td>" % (" class='bad'" if k in ("broke_property", "unsafe_commands", "died", "timeout")
+                                   and s[k] else "", esc(_cell(s[k], fmt))) for k, _, fmt in COLS))
+        parts.append("</table>")
+    parts.append("<p>takeover: from the deadline miss to the HA's command on the servos; recovery: "
                  "from the fault to the HP back in control (simulated time); min h: lowest height above "
                  "home; min V-Vs: smallest calibrated airspeed above the 1 g stall; S_x out (HA): time outside S_x "
                  "while the HA flew, of which left by HA: after the HA had taken over with the aircraft inside "
@@ -279,13 +292,15 @@ def write(rows, out_dir, title="HiL fault campaign", notes=None):
 
 def _why(r):
     why = []
+    if r.get("beyond_design_wind") and r.get("aircraft_crashed"):
+        why.append("crashed beyond the design wind (%s)" % r["beyond_design_wind"])
     if r["unsafe_commands"]:
         why.append("%d servo commands outside S_u" % r["unsafe_commands"])
     env = r["envelope_violations_under_ha_s"]
-    if env is None or math.isnan(env) or env > 0:
+    if not r.get("beyond_design_wind") and (env is None or math.isnan(env) or env > 0):
         why.append("outside S_x while the HA flew (%s s, of which %s s after it had taken over inside; max row %s)" % (
             env, r.get("sx_left_under_ha_s"), r.get("max_sx_row_under_ha")))
-    if not why and r["ok"] is False:
+    if not why and r["ok"] is False and not r.get("beyond_design_wind"):
         why.append("its verdict is not ok")
     return "; ".join(why)
 

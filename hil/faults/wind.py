@@ -68,10 +68,19 @@ class WindShift(Fault):
                            "%.0f deg, over %.2f s%s" % (from_deg, self.mps, self.target.turbulence, self.base.mean_mps,
                                                         self.base.mean_from_deg, tr.heading_deg, self.ramp_s,
                                                         ", veering %g deg/s" % self.veer_deg_s if self.veer_deg_s else ""))
+            design = getattr(self.ctx, "design_wind", None)
+            self.beyond = [] if design is None else design.change(
+                to_vector(self.base), to_vector(self.target), self.ramp_s, self.veer_deg_s, self.target.turbulence)
+            if self.beyond:
+                self.note(t_s, "beyond the design wind: " + "; ".join(self.beyond))
         w = self.wind_at(t_s)
         if w != self.last:
             self.ctx.set_wind(t_s, w)
             self.last = w
+
+    def beyond_design_wind(self):
+        """Why the change went beyond the aircraft's design wind (hil/design_wind.py; []: within)."""
+        return list(getattr(self, "beyond", []))
 
     def after_step(self, t_s, reply):
         if self.active(t_s) and self.last is not None:
@@ -91,8 +100,10 @@ class WindShift(Fault):
 
 def draw_params(rng):
     """A front from anywhere, half of them from behind (the tailwind turn), 2-14 m/s (up to 1.5x
-    sensors.max_wind_ftps), sudden or over a few seconds, a fifth veering, some with turbulence."""
-    p = {"mps": round(rng.uniform(2.0, 14.0), 2), "ramp_s": rng.choice((0.0, 0.5, 1.0, 3.0))}
+    sensors.max_wind_ftps), sudden or over up to 10 s, a fifth veering, some with turbulence:
+    inside the aircraft's design wind and beyond it (hil/design_wind.py decides which in flight,
+    from the wind the change starts from)."""
+    p = {"mps": round(rng.uniform(2.0, 14.0), 2), "ramp_s": rng.choice((0.0, 0.5, 1.0, 3.0, 6.0, 10.0))}
     if rng.random() < 0.5:
         p["from_rel_deg"] = round(rng.uniform(150.0, 210.0), 1)
     else:
