@@ -16,8 +16,8 @@ Then, once at the end:
                           (None: the class itself makes no takeover due; the verdict adds the
                           truth's own: the aircraft leaving S_x, the ceiling or the stall)
 """
+import io
 import math
-import struct
 import zlib
 from collections import namedtuple
 
@@ -26,21 +26,15 @@ RC_NEUTRAL = (1100, 1500, 1500, 1500, 1000)  # throttle low, sticks centred, PIC
 SURFACES = ("elevator", "aileron", "rudder", "throttle")
 
 
-def operator_crc32(m):
-    """msg/OperatorCommand.msg's crc32: zlib crc32 over the little-endian serialization of every
-    field before it (38 bytes), which the HA checks before it acts on the request."""
-    raw = struct.pack("<IIBI?ddd", m.stamp.secs, m.stamp.nsecs, m.command, m.request_id & 0xFFFFFFFF,
-                      bool(m.use_current), m.latitude, m.longitude, m.altitude)
-    return zlib.crc32(raw) & 0xFFFFFFFF
-
-
-def servo_crc32(m):
-    """msg/ServoCommand.msg's crc32: zlib crc32 over the little-endian serialization of every field
-    before it (38 bytes)."""
-    raw = struct.pack("<IIIffffff??", m.seq & 0xFFFFFFFF, m.stamp.secs, m.stamp.nsecs, m.throttle,
-                      m.elevator_deg, m.aileron_deg, m.rudder_deg, m.alpha_est_deg, m.beta_est_deg,
-                      bool(m.estimator_converged), bool(m.sensor_links_healthy))
-    return zlib.crc32(raw) & 0xFFFFFFFF
+def fields_crc32(msg):
+    """The crc32 a message ending in one must carry (msg/ServoCommand.msg, msg/OperatorCommand.msg):
+    zlib crc32 over its ROS serialization less that trailing uint32, so the layout is the .msg's
+    own, as the HA (ha_crc32 over the same bytes) checks it."""
+    if list(msg.__slots__[-1:]) != ["crc32"] or msg._slot_types[-1] != "uint32":
+        raise ValueError("%s does not end in a uint32 crc32" % msg._type)
+    raw = io.BytesIO()
+    msg.serialize(raw)
+    return zlib.crc32(raw.getvalue()[:-4]) & 0xFFFFFFFF
 
 
 def copy_command(m):
@@ -140,7 +134,7 @@ class CommandFault(Fault):
         if out is None:
             return [msg]
         if self.RESIGN:
-            out.crc32 = servo_crc32(out)
+            out.crc32 = fields_crc32(out)
         if not self.sent:
             self.note(t_s, self.describe(out))
         self.sent.append((t_s, out.seq))

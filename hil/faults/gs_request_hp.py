@@ -10,7 +10,7 @@ import time
 
 from pymavlink import mavutil
 
-from hil.faults.base import operator_crc32
+from hil.faults.base import fields_crc32
 from hil.faults.nan import Nan
 
 
@@ -26,7 +26,7 @@ class GsRequestHp(Nan):
         self.link = None
 
     def on_operator(self, msg):
-        if msg.command == 1 and msg.crc32 == operator_crc32(msg):  # SELECT_HP, as the HA takes it
+        if msg.command == 1 and msg.crc32 == fields_crc32(msg):  # SELECT_HP, as the HA takes it
             self.forwarded += 1
 
     def on_step(self, t_s):

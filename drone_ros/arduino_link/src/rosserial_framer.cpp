@@ -14,44 +14,76 @@ uint8_t checksum(unsigned sum) { return static_cast<uint8_t>(255u - (sum % 256u)
 RosserialFramer::RosserialFramer(std::size_t max_payload, double frame_timeout_s)
     : max_payload_(max_payload), frame_timeout_s_(frame_timeout_s) {
   payload_.reserve(max_payload_);
+  held_.reserve(max_payload_ + 8);
 }
 
-void RosserialFramer::reset() { state_ = State::kSync; }
+void RosserialFramer::drop_held() {
+  state_ = State::kSync;
+  held_.clear();
+  start_ = 0;
+  next_ = 0;
+}
+
+void RosserialFramer::reset() { drop_held(); }
 
 void RosserialFramer::poll(double now_s) {
   if (state_ != State::kSync && now_s - started_s_ > frame_timeout_s_) {
     ++counters_.timeouts;
-    state_ = State::kSync;
+    drop_held();
   }
 }
 
 void RosserialFramer::feed(const uint8_t *data, std::size_t len, double now_s,
                            std::vector<Frame> *out) {
   poll(now_s);
-  for (std::size_t i = 0; i < len; ++i) {
-    step(data[i], now_s, out);
+  held_.insert(held_.end(), data, data + len);
+  while (next_ < held_.size()) {
+    switch (step(held_[next_++], now_s)) {
+      case Step::kMore:
+        break;
+      case Step::kSkipped:
+        start_ = next_;
+        break;
+      case Step::kFrame: {
+        Frame f;
+        f.topic_id = topic_;
+        f.payload = payload_;
+        out->push_back(std::move(f));
+        state_ = State::kSync;
+        start_ = next_;
+        break;
+      }
+      case Step::kFailed:
+        // The bytes after the failed sync byte may hold the next frame's start: search them
+        // again. Each failure moves start_ on by one, so this ends within the bytes held.
+        state_ = State::kSync;
+        ++start_;
+        next_ = start_;
+        break;
+    }
   }
+  // Only the partial frame (at most max_payload + 7 bytes) is kept across calls.
+  held_.erase(held_.begin(), held_.begin() + static_cast<std::ptrdiff_t>(start_));
+  next_ -= start_;
+  start_ = 0;
 }
 
-void RosserialFramer::step(uint8_t byte, double now_s, std::vector<Frame> *out) {
+RosserialFramer::Step RosserialFramer::step(uint8_t byte, double now_s) {
   switch (state_) {
     case State::kSync:
-      if (byte == kSync) {
-        state_ = State::kProtocol;
-        started_s_ = now_s;
-      } else {
+      if (byte != kSync) {
         ++counters_.bytes_skipped;
+        return Step::kSkipped;
       }
+      state_ = State::kProtocol;
+      started_s_ = now_s;  // bytes found again are as late as the latest call
       break;
     case State::kProtocol:
-      if (byte == kProtocolV2) {
-        state_ = State::kLenLo;
-      } else {
-        ++counters_.bad_protocol;
-        // 0xFF may itself be the sync of the next frame.
-        state_ = (byte == kSync) ? State::kProtocol : State::kSync;
-        started_s_ = now_s;
+      if (byte != kProtocolV2) {
+        ++counters_.bad_protocol;  // v1, or a run of 0xFF: the search may start a frame at this one
+        return Step::kFailed;
       }
+      state_ = State::kLenLo;
       break;
     case State::kLenLo:
       length_ = byte;
@@ -64,13 +96,13 @@ void RosserialFramer::step(uint8_t byte, double now_s, std::vector<Frame> *out) 
     case State::kLenChecksum:
       if (((length_ & 0xFFu) + (length_ >> 8) + byte) % 256u != 255u) {
         ++counters_.bad_length_checksum;
-        state_ = State::kSync;
-      } else if (length_ > max_payload_) {
-        ++counters_.oversized;
-        state_ = State::kSync;
-      } else {
-        state_ = State::kTopicLo;
+        return Step::kFailed;
       }
+      if (length_ > max_payload_) {
+        ++counters_.oversized;
+        return Step::kFailed;
+      }
+      state_ = State::kTopicLo;
       break;
     case State::kTopicLo:
       topic_ = byte;
@@ -91,18 +123,14 @@ void RosserialFramer::step(uint8_t byte, double now_s, std::vector<Frame> *out) 
       }
       break;
     case State::kChecksum:
-      if ((sum_ + byte) % 256u == 255u) {
-        ++counters_.frames_ok;
-        Frame f;
-        f.topic_id = topic_;
-        f.payload = payload_;
-        out->push_back(std::move(f));
-      } else {
+      if ((sum_ + byte) % 256u != 255u) {
         ++counters_.bad_checksum;
+        return Step::kFailed;
       }
-      state_ = State::kSync;
-      break;
+      ++counters_.frames_ok;
+      return Step::kFrame;
   }
+  return Step::kMore;
 }
 
 std::vector<uint8_t> encode_frame(uint16_t topic_id, const uint8_t *payload, std::size_t len) {

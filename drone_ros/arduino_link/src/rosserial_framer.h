@@ -1,7 +1,12 @@
 // Host side of rosserial protocol version 2 framing, free of ROS so it can be fuzzed and tested
 // alone: bytes in (with the time they arrived), complete frames out, every kind of bad input
-// counted and dropped. Mirrors the device decoder (arduino_ha/src/link/ha_link_frame.c) but is
-// written independently, so the two check each other in the pty tests.
+// counted and dropped. When a frame fails (protocol, length checksum, length, checksum), the
+// search for a sync byte resumes one byte after the failed frame's sync byte, among the bytes it
+// had taken (at most max_payload + 7), not at the next unread byte as rosserial_python does: a
+// frame that lost a byte takes the next frame's sync byte as its checksum, and that next frame
+// still arrives. Mirrors
+// the device decoder (arduino_ha/src/link/ha_link_frame.c) but is written independently, so the
+// two check each other in the pty tests.
 #ifndef ARDUINO_LINK_ROSSERIAL_FRAMER_H
 #define ARDUINO_LINK_ROSSERIAL_FRAMER_H
 
@@ -18,8 +23,10 @@ struct Frame {
 
 struct FramerCounters {
   uint64_t frames_ok = 0;
-  uint64_t bytes_skipped = 0;  // garbage where a sync byte was due
-  uint64_t bad_protocol = 0;   // another protocol version (rosserial v1 sends 0xFF)
+  // Garbage where a sync byte was due, and the bytes of a failed frame passed over in the search
+  // for the next sync byte (a failed frame's own sync byte is in its failure's count instead).
+  uint64_t bytes_skipped = 0;
+  uint64_t bad_protocol = 0;  // another protocol version (rosserial v1 sends 0xFF)
   uint64_t bad_length_checksum = 0;
   uint64_t oversized = 0;     // announced length above the limit
   uint64_t bad_checksum = 0;  // bit flips in topic or payload
@@ -35,14 +42,20 @@ class RosserialFramer {
   // frame may take before it is dropped.
   RosserialFramer(std::size_t max_payload, double frame_timeout_s);
 
-  // Appends every frame completed by these bytes to *out.
+  // Appends every frame completed by these bytes to *out, in order. The frames may include some
+  // whose bytes came in earlier calls (found inside a frame that failed only now), so a call can
+  // complete several frames even with one byte.
   void feed(const uint8_t *data, std::size_t len, double now_s, std::vector<Frame> *out);
-  // Drops a partial frame older than the timeout.
+  // Drops a partial frame older than the timeout, with every byte it holds: they are stale.
   void poll(double now_s);
   // Forgets a partial frame (the port was reopened); counters are kept.
   void reset();
 
   const FramerCounters &counters() const { return counters_; }
+  // Bytes of the partial frame, from its sync byte on, kept for parsing (and searching again).
+  // Until a timeout, every byte fed is in a delivered frame (payload + 8), skipped, the sync byte
+  // of one counted failure, or held.
+  std::size_t bytes_held() const { return held_.size() - start_; }
 
  private:
   enum class State {
@@ -56,7 +69,9 @@ class RosserialFramer {
     kPayload,
     kChecksum
   };
-  void step(uint8_t byte, double now_s, std::vector<Frame> *out);
+  enum class Step { kMore, kSkipped, kFailed, kFrame };
+  Step step(uint8_t byte, double now_s);
+  void drop_held();
 
   std::size_t max_payload_;
   double frame_timeout_s_;
@@ -66,6 +81,11 @@ class RosserialFramer {
   unsigned sum_ = 0;
   double started_s_ = 0.0;
   std::vector<uint8_t> payload_;
+  // held_[start_] is the sync byte of the frame being parsed (or, in kSync, the next byte to
+  // look at); held_[start_, next_) have been parsed. Bytes before start_ are done with.
+  std::vector<uint8_t> held_;
+  std::size_t start_ = 0;
+  std::size_t next_ = 0;
   FramerCounters counters_;
 };
 

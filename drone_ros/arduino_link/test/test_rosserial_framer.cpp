@@ -2,7 +2,9 @@
 // both ways against the Due's side, and every kind of bad input counted and dropped.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
+#include <initializer_list>
 #include <vector>
 
 #include "ha_link.h"
@@ -32,8 +34,86 @@ Bytes spec_frame(uint16_t topic, const Bytes &payload) {
 struct Host {
   RosserialFramer framer{1024, 0.05};
   std::vector<Frame> frames;
-  void feed(const Bytes &b, double t = 0.0) { framer.feed(b.data(), b.size(), t, &frames); }
+  std::size_t bytes_fed = 0;
+  void feed(const Bytes &b, double t = 0.0) {
+    framer.feed(b.data(), b.size(), t, &frames);
+    bytes_fed += b.size();
+  }
+  // With no timeout, every byte fed is in a delivered frame, skipped, the sync byte of exactly one
+  // counted failure, or still held: nothing is lost uncounted and nothing is counted twice.
+  void expect_every_byte_accounted_for() const {
+    const auto &c = framer.counters();
+    ASSERT_EQ(c.timeouts, 0u);
+    std::size_t in_frames = 0;
+    for (const Frame &f : frames) in_frames += f.payload.size() + 8u;
+    EXPECT_EQ(c.frames_ok, frames.size());
+    EXPECT_EQ(in_frames + c.bytes_skipped + c.dropped() + framer.bytes_held(), bytes_fed);
+  }
 };
+
+Bytes cat(std::initializer_list<Bytes> parts) {
+  Bytes all;
+  for (const Bytes &p : parts) all.insert(all.end(), p.begin(), p.end());
+  return all;
+}
+
+Bytes without_byte(Bytes b, std::size_t i) {
+  b.erase(b.begin() + static_cast<long>(i));
+  return b;
+}
+
+// The Due as it runs (arduino_ha/src/link): asked for its topics by the host, it publishes a
+// pwm and a decision_status every period; what it writes is the wire to the HP.
+struct Due {
+  Bytes wire;
+  HaLink link{};
+  Due() {
+    HaLinkCallbacks cb{};
+    cb.write = [](void *ctx, const uint8_t *d, size_t n) {
+      auto *w = static_cast<Bytes *>(ctx);
+      w->insert(w->end(), d, d + n);
+    };
+    cb.ctx = &wire;
+    ha_link_init(&link, &cb);
+    const Bytes request = arduino_link::topic_request_frame();
+    ha_link_receive(&link, request.data(), request.size(), 0u);
+  }
+  Due(const Due &) = delete;
+  Due &operator=(const Due &) = delete;
+  Bytes take() {
+    Bytes out;
+    out.swap(wire);
+    return out;
+  }
+  struct Period {
+    Bytes pwm;
+    Bytes status;
+  };
+  Period period(uint32_t n) {
+    take();
+    drone_ros_pwm pwm{};
+    pwm.header.seq = n;
+    pwm.PICCIC = 1;
+    pwm.Throttle = 0.45;
+    pwm.Elevator = -0.02;
+    pwm.velocity = 88.5;
+    pwm.tach = 5200.0;
+    drone_ros_DecisionStatus status{};
+    status.stamp.sec = 1700000000u + n;
+    status.controller = DRONE_ROS_DECISIONSTATUS_CONTROLLER_HP;
+    status.last_seq = n;
+    status.airspeed_ftps = 88.5f;
+    status.elevator_deg = -1.0f;
+    Period p;
+    EXPECT_TRUE(ha_link_publish_pwm(&link, &pwm));
+    p.pwm = take();
+    EXPECT_TRUE(ha_link_publish_decision_status(&link, &status));
+    p.status = take();
+    return p;
+  }
+};
+
+Bytes payload_of(const Bytes &frame) { return Bytes(frame.begin() + 7, frame.end() - 1); }
 
 const Bytes kPayload{0x10, 0xFF, 0xFE, 0x00, 0x7F};  // sync-like bytes inside the payload
 
@@ -160,6 +240,114 @@ TEST(HostFramer, EverySingleBitFlipIsDroppedAndTheNextFrameArrives) {
       host.feed(good, 1.0);
       EXPECT_EQ(host.frames.size(), 1u) << i << ":" << bit;
     }
+  }
+}
+
+// K5 on the HP side: a decision_status frame from the Due that lost one byte on the wire takes
+// the next frame's sync byte (the next period's pwm) as its checksum and fails. The framer
+// searches again from one byte after the failed frame's sync byte, among the bytes it already
+// took, so that pwm arrives: one status is missing, not a status and the pwm behind it.
+TEST(HostFramerStories, OneByteLostFromADecisionStatusLosesOnlyThatFrameNotTheNext) {
+  Due due;
+  Host host;
+  const Due::Period first = due.period(1);
+  const Due::Period second = due.period(2);
+  const Due::Period third = due.period(3);
+  host.feed(cat({first.pwm, first.status}), 0.00);
+  const Bytes damaged = without_byte(second.status, 7 + 8);  // its controller byte lost
+  host.feed(cat({second.pwm, damaged}), 0.01);
+  host.feed(cat({third.pwm, third.status}), 0.02);
+  ASSERT_EQ(host.frames.size(), 5u);
+  const std::vector<uint16_t> topics{HA_LINK_TOPIC_PWM, HA_LINK_TOPIC_DECISION_STATUS,
+                                     HA_LINK_TOPIC_PWM, HA_LINK_TOPIC_PWM,
+                                     HA_LINK_TOPIC_DECISION_STATUS};
+  for (std::size_t i = 0; i < topics.size(); ++i) EXPECT_EQ(host.frames[i].topic_id, topics[i]);
+  EXPECT_EQ(host.frames[3].payload, payload_of(third.pwm));  // the frame behind the damaged one
+  EXPECT_EQ(host.frames[4].payload, payload_of(third.status));
+  const auto &c = host.framer.counters();
+  EXPECT_EQ(c.bad_checksum, 1u);  // the damaged status, once
+  EXPECT_EQ(c.dropped(), 1u);
+  EXPECT_EQ(c.bytes_skipped, damaged.size() - 1u);  // passed over in the search, its sync counted
+  host.expect_every_byte_accounted_for();
+}
+
+// Every byte of either frame the Due sends each period, lost in turn: only the damaged frame is
+// missing, every later one arrives whole, and every byte is accounted for.
+TEST(HostFramer, EveryLostByteOfAFrameFromTheDueLosesOnlyThatFrame) {
+  Due due;
+  const Due::Period damaged_period = due.period(7);
+  const Due::Period next = due.period(8);
+  for (const bool status : {false, true}) {
+    const Bytes &victim = status ? damaged_period.status : damaged_period.pwm;
+    const Bytes &other = status ? damaged_period.pwm : damaged_period.status;
+    // A lost 0xFF is the one loss the 8-bit sum cannot see (below): these frames hold none.
+    ASSERT_EQ(std::count(victim.begin() + 1, victim.end(), 0xFF), 0);
+    for (std::size_t lost = 0; lost < victim.size(); ++lost) {
+      Host host;
+      const Bytes damaged = without_byte(victim, lost);
+      host.feed(status ? cat({other, damaged}) : cat({damaged, other}), 0.0);
+      host.feed(cat({next.pwm, next.status}), 0.01);
+      ASSERT_EQ(host.frames.size(), 3u) << (status ? "status" : "pwm") << " byte " << lost;
+      EXPECT_EQ(host.frames[0].payload, payload_of(other));
+      EXPECT_EQ(host.frames[1].payload, payload_of(next.pwm));
+      EXPECT_EQ(host.frames[2].payload, payload_of(next.status));
+      // Without its sync byte the rest is garbage, skipped; any other loss fails the frame.
+      if (lost > 0) {
+        EXPECT_GE(host.framer.counters().dropped(), 1u);
+      }
+      host.expect_every_byte_accounted_for();
+    }
+  }
+}
+
+// A payload full of false starts (0xFF 0xFE, a run of 0xFF, a header whose length checksum holds):
+// whichever byte of the frame is lost, the search inside it rejects each false start, counts it,
+// and finds the intact frame that follows; nothing false is delivered.
+TEST(HostFramer, FalseSyncBytesInsideAFrameThatLostAByteAreRejectedAndTheNextFrameArrives) {
+  const Bytes tricky{0x01, 0xFF, 0xFE, 0x02, 0xFF, 0xFF, 0xFF, 0xFE, 0x03, 0x00, 0xFC,
+                     0x7D, 0x00, 0x20, 0xFF, 0xFE, 0xFF, 0xFE, 0x10, 0x00, 0xEF, 0x42};
+  const Bytes frame = spec_frame(126, tricky);
+  const Bytes whole = spec_frame(125, kPayload);
+  const Bytes after = spec_frame(127, Bytes(20, 0x33));
+  for (std::size_t lost = 0; lost < frame.size(); ++lost) {
+    // A lost 0xFF after the sync byte is the one loss the 8-bit sum cannot see when the next
+    // frame's 0xFF follows (the sum moves by -0xFF + the old checksum): the frame is taken,
+    // shifted, and no search begins. A protocol limit, not the framer's (README).
+    if (lost > 0 && frame[lost] == 0xFF) continue;
+    Host host;
+    host.feed(without_byte(frame, lost), 0.0);
+    // The last false start announces 16 bytes with a right length checksum: it takes the whole
+    // frame and fails only once the next frame's bytes arrive; both are then found inside it.
+    host.feed(whole, 0.01);
+    host.feed(after, 0.02);
+    ASSERT_EQ(host.frames.size(), 2u) << "byte " << lost << " lost";
+    EXPECT_EQ(host.frames[0].topic_id, 125u);
+    EXPECT_EQ(host.frames[0].payload, kPayload);
+    EXPECT_EQ(host.frames[1].topic_id, 127u);
+    EXPECT_GE(host.framer.counters().dropped(), 1u);
+    host.expect_every_byte_accounted_for();
+  }
+  Host intact;  // and the frame itself, whole, is read as it is
+  intact.feed(frame);
+  ASSERT_EQ(intact.frames.size(), 1u);
+  EXPECT_EQ(intact.frames[0].payload, tricky);
+}
+
+// A frame cut short at every length (the Due reset mid-frame), followed within the frame timeout
+// by a whole one: the whole frame is found inside the failed one and arrives, once.
+TEST(HostFramer, ATruncatedFrameFollowedByAWholeOneLosesOnlyTheTruncatedOne) {
+  Due due;
+  const Due::Period p = due.period(3);
+  for (std::size_t kept = 1; kept < p.status.size(); ++kept) {
+    Host host;
+    host.feed(Bytes(p.status.begin(), p.status.begin() + static_cast<long>(kept)), 0.0);
+    host.feed(p.pwm, 0.01);
+    host.feed(p.status, 0.02);
+    ASSERT_EQ(host.frames.size(), 2u) << kept << " bytes kept";
+    EXPECT_EQ(host.frames[0].payload, payload_of(p.pwm));
+    EXPECT_EQ(host.frames[1].payload, payload_of(p.status));
+    EXPECT_GE(host.framer.counters().dropped(), 1u);
+    host.expect_every_byte_accounted_for();
   }
 }
 
