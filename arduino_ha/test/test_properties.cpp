@@ -161,9 +161,11 @@ TEST(HaProperties, ServosAlwaysFiniteInsideSuAndOutsideCommandsNeverReachThem) {
       }
       // The HP command: mostly valid and fresh; sometimes late, stale, corrupt or hostile.
       if (!h.Chance(p)) {
-        HaHpCommand c =
-            MakeCommand(h.Chance(p) ? seq : ++seq, h.Uniform(0.0f, 1.0f), h.Uniform(-10.0f, 10.0f),
-                        h.Uniform(-10.0f, 10.0f), h.Uniform(-10.0f, 10.0f));
+        // The elevator no more nose-up than the pull limit: a pull past it is refused airborne
+        // (REASON_PULL), which would keep the HP out of control for most of the run.
+        HaHpCommand c = MakeCommand(h.Chance(p) ? seq : ++seq, h.Uniform(0.0f, 1.0f),
+                                    h.Uniform(-cfg.elevator_pull_limit_deg, 10.0f),
+                                    h.Uniform(-10.0f, 10.0f), h.Uniform(-10.0f, 10.0f));
         if (h.Chance(p * 5.0)) {  // beyond S_u with a valid CRC: only the region check can stop it
           switch (h.U32() % 4u) {
             case 0:
