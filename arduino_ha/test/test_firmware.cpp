@@ -9,10 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "fake_board.h"
+#include "firmware_on_fake_board.h"
 #include "ha_aircraft.h"
-#include "ha_firmware.h"
-#include "ha_test_util.h"
 #include "link_test_util.h"
 #include "vn_binary.h"
 #include "vn_packet_builder.h"
@@ -23,7 +21,6 @@ using link_test::Bytes;
 
 constexpr uint16_t kTopicRequest = 0;
 constexpr uint16_t kTopicLog = 7;
-constexpr uint16_t kTopicTime = 10;
 constexpr uint16_t kTopicPwm = HA_LINK_TOPIC_PWM;
 constexpr uint16_t kTopicDecision = HA_LINK_TOPIC_DECISION_STATUS;
 
@@ -93,68 +90,6 @@ size_t frames_on(const Bytes& written, uint16_t topic) {
   return n;
 }
 
-// The firmware on the fake board, its loop called every millisecond as a Due's loop() is (far
-// more often, there), the host answering time requests as the arduino node does.
-struct FirmwareOnFakeBoard {
-  HaAircraftConfig cfg = ha_aircraft_config;
-  FakeBoard board;
-  HaFirmware fw{};
-  bool cruising = true;  // false: the INS state comes only from the INS port
-  uint32_t seq = 1000;
-  uint32_t last_time_reply_us = 0;
-  uint32_t periods = 0;
-
-  FirmwareOnFakeBoard() {
-    board.now_us = 5000000u;  // not zero: time zero is not special
-    ha_firmware_start(&fw, &board.iface, &cfg, nullptr);
-  }
-  void Hp(const Bytes& b) { board.hp_rx.insert(board.hp_rx.end(), b.begin(), b.end()); }
-  void Ins(const Bytes& b) { board.ins_rx.insert(board.ins_rx.end(), b.begin(), b.end()); }
-  void Negotiate() {
-    Hp(link_test::frame(kTopicRequest, {}));
-    Pass();
-  }
-  // One pass of the loop `us` after the last; returns 1 when it ran a period.
-  int Pass(uint32_t us = 1000u) {
-    board.now_us += us;
-    if (cruising) {
-      WriteCruiseState(cfg, &fw.app.inputs, board.now_us - 100u, 200.0f, 60.0f);
-      board.airspeed_ftps = 60.0f;
-    }
-    if (board.now_us - last_time_reply_us >= 400000u) {
-      Bytes t;
-      link_test::put_u32(t, 1700000000u + board.now_us / 1000000u);
-      link_test::put_u32(t, 0u);
-      Hp(link_test::frame(kTopicTime, t));
-      last_time_reply_us = board.now_us;
-    }
-    const int ran = ha_firmware_loop(&fw);
-    periods += static_cast<uint32_t>(ran);
-    return ran;
-  }
-  // Passes until one has run a period.
-  const HaOutputs& Period() {
-    for (int i = 0; i < 100 && !Pass(); ++i) {
-    }
-    return fw.app.outputs;
-  }
-  HaHpCommand NextCommand(float aileron_deg = 2.0f) {
-    return MakeCommand(++seq, 0.45f, -1.0f, aileron_deg, 0.5f);
-  }
-  const HaOutputs& PeriodWithCommand(float aileron_deg = 2.0f) {
-    Hp(servo_frame(NextCommand(aileron_deg)));
-    return Period();
-  }
-  bool ReachHp() {
-    for (int i = 0; i < 1000; ++i) {
-      if (PeriodWithCommand().controller == HA_CONTROLLER_HP && !fw.app.core.transition_active) {
-        return true;
-      }
-    }
-    return false;
-  }
-};
-
 }  // namespace
 
 // The HP's command arrives on the HP port between two periods: the next period flies it. One
@@ -162,7 +97,7 @@ struct FirmwareOnFakeBoard {
 TEST(HaFirmwareStories, ServoFrameOnTheHpPortReachesTheServosInTheSamePeriod) {
   FirmwareOnFakeBoard ha;
   ha.Negotiate();
-  ASSERT_TRUE(ha.ReachHp());
+  ASSERT_TRUE(ha.ReachHp(servo_frame));
   ha.Pass();  // a pass after the period: the next command arrives mid-period
   const HaHpCommand cmd = ha.NextCommand(3.5f);
   ha.Hp(servo_frame(cmd));
@@ -204,10 +139,10 @@ TEST(HaFirmwareStories, SetHomeFromTheLinkIsRoutedToTheInsAdapter) {
 TEST(HaFirmwareStories, SelectHaFromTheLinkIsQueuedForTheCoreAndAcknowledged) {
   FirmwareOnFakeBoard ha;
   ha.Negotiate();
-  ASSERT_TRUE(ha.ReachHp());
+  ASSERT_TRUE(ha.ReachHp(servo_frame));
   const uint32_t home_seq = ha.fw.ins.ins.home_seq;
   ha.Hp(operator_frame(HA_OP_SELECT_HA, 41u));
-  const HaOutputs& out = ha.PeriodWithCommand();
+  const HaOutputs& out = ha.PeriodWithCommand(servo_frame);
   EXPECT_EQ(out.controller, HA_CONTROLLER_HA);
   EXPECT_EQ(out.reasons & HA_REASON_GROUND_COMMAND, HA_REASON_GROUND_COMMAND);
   EXPECT_EQ(out.operator_ack_id, 41u);
@@ -248,10 +183,9 @@ TEST(HaFirmwareStories, ALoopHeldUpForFivePeriodsRunsOnePeriodNotABurst) {
 // The reports: nothing before the host asks for topics; then a DecisionStatus and a pwm every
 // period, and the host hears the link is up.
 TEST(HaFirmwareStories, DecisionStatusAndPwmGoToTheHostEveryPeriodOnceItNegotiated) {
-  FirmwareOnFakeBoard ha;
   HaFirmwareOptions opts{};
   opts.link_up_text = "HA test link up";
-  ha_firmware_start(&ha.fw, &ha.board.iface, &ha.cfg, &opts);
+  FirmwareOnFakeBoard ha(&opts);
   for (int i = 0; i < 10; ++i) ha.Period();
   EXPECT_TRUE(ha.board.hp_tx.empty()) << "the HA spoke before the host asked for its topics";
   ha.Negotiate();
@@ -288,10 +222,9 @@ TEST(HaFirmwareStories, AFrameCorruptedOnTheHpPortIsReportedInTheHostsLog) {
 
 // The SIL's --param: the answer to the probe parameter comes back in the host's log.
 TEST(HaFirmwareStories, ProbeParameterAnswerIsLoggedBackWithItsValues) {
-  FirmwareOnFakeBoard ha;
   HaFirmwareOptions opts{};
   opts.probe_param = "link_probe";
-  ha_firmware_start(&ha.fw, &ha.board.iface, &ha.cfg, &opts);
+  FirmwareOnFakeBoard ha(&opts);
   ha.Negotiate();
   Bytes reply;  // rosserial_msgs/RequestParamResponse: int32[] ints, float32[] floats, string[]
   link_test::put_u32(reply, 2u);
