@@ -120,21 +120,20 @@ void sil_board_init(SilBoard *b) {
   b->slave_fd = -1;
   b->vn_fd = -1;
   b->channel_fd = -1;
-  b->iface.ctx = b;
-  b->iface.micros = board_micros;
-  b->iface.write_servos = board_write_servos;
-  b->iface.read_rc = board_read_rc;
-  b->iface.read_airspeed_ftps = board_read_airspeed;
-  b->iface.read_battery_v = board_read_battery;
-  b->iface.set_hp_reset = board_set_hp_reset;
-  b->iface.set_leds = board_set_leds;
-  b->iface.kick_watchdog = board_kick;
-  b->iface.read_retained = board_read_retained;
-  b->iface.write_retained = board_write_retained;
-  b->iface.hp_link.read = hp_read;
-  b->iface.hp_link.write = hp_write;
-  b->iface.ins.read = ins_read;
-  b->iface.ins.write = NULL; /* the HA never writes to its VN-200 */
+  b->iface = (HaBoard){.ctx = b,
+                       .micros = board_micros,
+                       .write_servos = board_write_servos,
+                       .read_rc = board_read_rc,
+                       .read_airspeed_ftps = board_read_airspeed,
+                       .read_battery_v = board_read_battery,
+                       .set_hp_reset = board_set_hp_reset,
+                       .set_leds = board_set_leds,
+                       .kick_watchdog = board_kick,
+                       .read_retained = board_read_retained,
+                       .write_retained = board_write_retained,
+                       .hp_link = {.read = hp_read, .write = hp_write},
+                       /* the HA never writes to its VN-200 */
+                       .ins = {.read = ins_read, .write = NULL}};
 }
 
 int sil_board_plug(SilBoard *b) {

@@ -237,3 +237,20 @@ TEST(HaFirmwareStories, ProbeParameterAnswerIsLoggedBackWithItsValues) {
   const std::vector<std::string> said = logs(ha.board.hp_tx);
   EXPECT_NE(std::find(said.begin(), said.end(), "param link_probe: 42 -2147483648"), said.end());
 }
+
+// A board with no INS wired and no way back to the HP (a bench Due with only the servos): the
+// loop still flies its periods on what it has, reading and writing nothing it was not given.
+TEST(HaFirmwareStories, ABoardWithoutAnInsPortOrAWayBackToTheHpStillRunsItsPeriods) {
+  FirmwareOnFakeBoard ha;
+  ha.board.iface.ins.read = nullptr;
+  ha.board.iface.hp_link.write = nullptr;
+  ha.Ins(parked_packet());  // bytes on a port the board does not have: never read
+  ha.Negotiate();           // the host asks, the HA cannot answer
+  const uint32_t periods = ha.periods;
+  for (int i = 0; i < 10; ++i) ha.Period();
+  EXPECT_EQ(ha.periods, periods + 10u);
+  EXPECT_EQ(ha.board.watchdog_kicks, ha.periods);
+  EXPECT_EQ(ha.board.ins_rx.size(), parked_packet().size());
+  EXPECT_TRUE(ha.board.hp_tx.empty());
+  EXPECT_EQ(ha.fw.link.counters.topic_requests, 1u);  // the HP port is still read
+}

@@ -52,7 +52,8 @@ typedef struct {
    * them), or 0 when the board keeps none; either pointer may be NULL for such a board. */
   int (*read_retained)(void *ctx, uint32_t words[HA_RETAINED_WORDS]);
   void (*write_retained)(void *ctx, const uint32_t words[HA_RETAINED_WORDS]);
-  /* The rosserial link to the HP (the Due's programming or native USB port; a pty on the host). */
+  /* The rosserial link to the HP (the Due's programming or native USB port; a pty on the host).
+   * A NULL read is a board without the port: the firmware then reads nothing from it. */
   HaBytePort hp_link;
   /* The VN-200's port 1 (the Due's Serial1; a pty the simulator writes on the host). */
   HaBytePort ins;

@@ -21,11 +21,11 @@ static void text_start(FwText *t) {
 }
 
 static void text_put(FwText *t, const char *s) {
+  const size_t n = strlen(s);
   size_t i;
-  for (i = 0u; s[i] != '\0' && t->len + 1u < sizeof t->text; ++i) {
-    t->text[t->len++] = s[i];
+  for (i = 0u; i < n && t->len + 1u < sizeof t->text; ++i) {
+    t->text[t->len++] = s[i]; /* the last byte stays '\0' */
   }
-  t->text[t->len] = '\0';
 }
 
 static void text_put_u32(FwText *t, uint32_t value) {
@@ -54,7 +54,9 @@ static void text_put_i32(FwText *t, int32_t value) {
 
 static void link_write(void *ctx, const uint8_t *bytes, size_t len) {
   const HaFirmware *fw = (const HaFirmware *)ctx;
-  fw->board->hp_link.write(fw->board->ctx, bytes, len);
+  if (fw->board->hp_link.write != NULL) { /* a board without a way to the HP hears nothing */
+    fw->board->hp_link.write(fw->board->ctx, bytes, len);
+  }
 }
 
 static void link_on_command(void *ctx, const HaHpCommand *cmd, uint32_t arrival_us) {
@@ -139,6 +141,9 @@ static size_t drain(HaFirmware *fw, const HaBytePort *port, int to_link, uint32_
   uint8_t bytes[HA_FW_READ_CHUNK];
   size_t taken = 0u;
   uint32_t k;
+  if (port->read == NULL) {
+    return 0u; /* a board without this port (no INS wired, say) */
+  }
   for (k = 0u; k < reads; ++k) {
     size_t n = port->read(fw->board->ctx, bytes, sizeof bytes);
     if (n > sizeof bytes) {
