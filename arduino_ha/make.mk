@@ -1,5 +1,6 @@
 # arduino_ha targets (included by the root Makefile).
-#   make verify-ha   Frama-C EVA over the HA core (no alarms allowed), Cortex-M3 cross-compile
+#   make verify-ha   Frama-C EVA over the HA core and over the firmware loop with all it runs
+#                    (no alarms allowed), Cortex-M3 cross-compile
 #                    with flash/RAM/stack figures, and the Due sketch built against an Arduino
 #                    API shim (-Werror) and run on the host with a fake Arduino. Deterministic;
 #                    fails on any alarm, unproven assertion, warning or failed check.
@@ -31,6 +32,20 @@ EVA_ha_ARGS = -I $(HA_CORE_DIR) --negative $(HA_DIR)/verify/eva_negative_control
   --case finite-any-periods:main:1:non-finite:-DHA_EVA_STEPS=0 \
   --case any-bits-any-periods:main:1:none:-DHA_EVA_ANY_BITS,-DHA_EVA_STEPS=0
 EVA_ha_DEPS = deps
+
+# EVA over the firmware loop (src/firmware) with all it runs: the core, the link and its reports,
+# the VN-200 feed and protocol core, on a board whose clock, readings, retained words and byte
+# ports are anything (verify/eva_firmware_main.c); part of verify-ha-eva.
+EVA_COMPONENTS += ha-fw
+EVA_ha-fw_SOURCES = $(HA_DIR)/verify/eva_firmware_main.c $(HA_DIR)/src/firmware/ha_firmware.c \
+  $(HA_DIR)/src/vn200/ha_vn200_feed.c $(addprefix $(ROOT)/vn200_driver/core/,vn_framer.c vn_binary.c vn_checksum.c vn_ascii.c) \
+  $(addprefix $(HA_DIR)/src/link/,ha_link.c ha_link_frame.c ha_link_report.c) $(LINK_GEN_DIR)/ha_msgs.c \
+  $(sort $(wildcard $(HA_CORE_DIR)/*.c))
+EVA_ha-fw_ARGS = -I $(HA_CORE_DIR) -I $(HA_DIR)/src/link -I $(HA_DIR)/src/firmware -I $(HA_DIR)/src/vn200 \
+  -I $(ROOT)/vn200_driver/core -D 'HA_LINK_GENERATED_HEADER="$(LINK_GEN_DIR)/ha_msgs.h"' \
+  --reach $(HA_DIR)/src/firmware --case any-board:main:1:none
+EVA_ha-fw_DEPS = deps $(LINK_GEN_DIR)/ha_msgs.c
+verify-ha-eva: verify-ha-fw-eva
 
 verify-ha-m3: deps
 	@bash $(HA_DIR)/verify/cross_size.sh $(HA_VERIFY_OUT)/m3

@@ -21,13 +21,14 @@ shift 2
 root=$(cd "$(dirname "$0")/.." && pwd)
 cpp_args=()
 includes=()
+reach_defines=()
 cases=()
 negative=""
 reach=""
 while [ $# -gt 0 ]; do
   case $1 in
     -I) cpp_args+=("-I$2"); includes+=("-I$2"); shift 2 ;;
-    -D) cpp_args+=("-D${2//\"/\\\"}"); shift 2 ;;  # frama-c hands these to cpp through a shell
+    -D) cpp_args+=("-D${2//\"/\\\"}"); reach_defines+=("-D$2"); shift 2 ;;  # frama-c hands these to cpp through a shell
     --case) cases+=("$2"); shift 2 ;;
     --negative) negative=$2; shift 2 ;;
     --reach) reach=$2; shift 2 ;;
@@ -111,7 +112,7 @@ if [ -n "$reach" ]; then
   mkdir -p "$out/nm"
   mapfile -t reach_sources < <(find "$reach" -maxdepth 1 -name '*.c' | LC_ALL=C sort)
   for src in "${reach_sources[@]}"; do
-    gcc -std=c99 -O0 "${includes[@]}" -c "$src" -o "$out/nm/$(basename "$src").o"
+    gcc -std=c99 -O0 "${includes[@]}" "${reach_defines[@]}" -c "$src" -o "$out/nm/$(basename "$src").o"
   done
   nm "$out"/nm/*.o | awk '$2 ~ /^[Tt]$/ { print $3 }' | LC_ALL=C sort -u > "$out/functions.txt"
   unreached_total=0

@@ -49,6 +49,28 @@ void write_retained(void* ctx, const uint32_t words[HA_RETAINED_WORDS]) {
   self(ctx)->retained_writes++;
 }
 
+size_t take(std::deque<uint8_t>* rx, uint32_t* reads, uint8_t* bytes, size_t max_len) {
+  size_t n = 0;
+  ++*reads;
+  while (n < max_len && !rx->empty()) {
+    bytes[n++] = rx->front();
+    rx->pop_front();
+  }
+  return n;
+}
+
+size_t hp_read(void* ctx, uint8_t* bytes, size_t max_len) {
+  return take(&self(ctx)->hp_rx, &self(ctx)->port_reads, bytes, max_len);
+}
+
+void hp_write(void* ctx, const uint8_t* bytes, size_t len) {
+  self(ctx)->hp_tx.insert(self(ctx)->hp_tx.end(), bytes, bytes + len);
+}
+
+size_t ins_read(void* ctx, uint8_t* bytes, size_t max_len) {
+  return take(&self(ctx)->ins_rx, &self(ctx)->port_reads, bytes, max_len);
+}
+
 }  // namespace
 
 FakeBoard::FakeBoard() {
@@ -63,6 +85,10 @@ FakeBoard::FakeBoard() {
   iface.kick_watchdog = kick_watchdog;
   iface.read_retained = read_retained;
   iface.write_retained = write_retained;
+  iface.hp_link.read = hp_read;
+  iface.hp_link.write = hp_write;
+  iface.ins.read = ins_read;
+  iface.ins.write = nullptr;  // the HA never writes to its VN-200
   CenterSticks();
 }
 

@@ -4,6 +4,7 @@
 #define ARDUINO_HA_TEST_FAKE_BOARD_H
 
 #include <cstdint>
+#include <deque>
 #include <vector>
 
 #include "ha_board.h"
@@ -34,6 +35,12 @@ struct FakeBoard {
   // The backup registers: kept across a reset of the HA (a new HaApp on the same board).
   uint32_t retained[HA_RETAINED_WORDS] = {};
   uint32_t retained_writes = 0;
+  // The two byte ports: bytes waiting to be read (the HP's, the VN-200's), and what the HA wrote
+  // to the HP. Each read hands over what is waiting, as a UART's ring would.
+  std::deque<uint8_t> hp_rx;
+  std::vector<uint8_t> hp_tx;
+  std::deque<uint8_t> ins_rx;
+  uint32_t port_reads = 0;  // reads of either port
 };
 
 #endif  // ARDUINO_HA_TEST_FAKE_BOARD_H

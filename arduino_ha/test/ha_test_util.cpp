@@ -43,23 +43,27 @@ Timeline::Timeline(const HaAircraftConfig& config) : cfg(config) {
   Cruise();
 }
 
+void WriteCruiseState(const HaAircraftConfig& cfg, HaInputs* in, uint32_t now_us,
+                      float altitude_agl_ft, float airspeed_ftps) {
+  in->roll_deg = 0.0f;
+  in->pitch_deg = 2.0f;
+  in->heading_deg = 90.0f;
+  in->p_deg_s = in->q_deg_s = in->r_deg_s = 0.0f;
+  in->altitude_agl_ft = altitude_agl_ft;
+  in->north_ft = cfg.sc_circle_radius_ft;
+  in->east_ft = 0.0f;
+  in->groundspeed_ftps = airspeed_ftps;
+  in->vel_north_ftps = 0.0f;  // heading 90: east, in still air
+  in->vel_east_ftps = airspeed_ftps;
+  in->climb_ftps = 0.0f;
+  in->altitude_msl_ft = altitude_agl_ft;  // a field at sea level
+  in->on_ground = 0;
+  in->state_valid = 1;
+  in->state_rx_us = now_us;
+}
+
 void Timeline::Cruise(float altitude_agl_ft, float airspeed_ftps) {
-  HaInputs& in = app.inputs;
-  in.roll_deg = 0.0f;
-  in.pitch_deg = 2.0f;
-  in.heading_deg = 90.0f;
-  in.p_deg_s = in.q_deg_s = in.r_deg_s = 0.0f;
-  in.altitude_agl_ft = altitude_agl_ft;
-  in.north_ft = cfg.sc_circle_radius_ft;
-  in.east_ft = 0.0f;
-  in.groundspeed_ftps = airspeed_ftps;
-  in.vel_north_ftps = 0.0f;  // heading 90: east, in still air
-  in.vel_east_ftps = airspeed_ftps;
-  in.climb_ftps = 0.0f;
-  in.altitude_msl_ft = altitude_agl_ft;  // a field at sea level
-  in.on_ground = 0;
-  in.state_valid = 1;
-  in.state_rx_us = board.now_us;
+  WriteCruiseState(cfg, &app.inputs, board.now_us, altitude_agl_ft, airspeed_ftps);
   board.airspeed_ftps = airspeed_ftps;
 }
 

@@ -19,6 +19,11 @@ bool SurfacesFinite(const HaSurfaces& s);
 // Inside the configured actuator box (which is what S_u describes).
 bool SurfacesInside(const HaAircraftConfig& cfg, const HaSurfaces& s);
 
+// Level flight at this altitude and airspeed, on the safety circle's edge, a fresh INS state at
+// now_us: what the INS adapter would have written.
+void WriteCruiseState(const HaAircraftConfig& cfg, HaInputs* in, uint32_t now_us,
+                      float altitude_agl_ft, float airspeed_ftps);
+
 class Timeline {
  public:
   explicit Timeline(const HaAircraftConfig& cfg = ha_aircraft_config);

@@ -166,10 +166,10 @@ def test_the_native_usb_link_build_is_a_whole_image_too(tmp_path):
     assert reset_faults(elf, (tmp_path / "arduino_ha.ino.bin").read_bytes()[:8]) == []
     assert missing_symbols(elf, SKETCH_SYMBOLS) == []
     assert undefined(elf) == []
-    assert "SerialUSB" in undefined(tmp_path / "build" / "sketch" / "src" / "board_due" / "due_link.cpp.o")
+    assert "SerialUSB" in undefined(tmp_path / "build" / "sketch" / "src" / "board_due" / "due_board.cpp.o")
 
 
 def test_the_default_build_links_the_hp_over_the_programming_port(image):
     """Serial, the UART behind the 16U2 that the programming port flashes through (README.md)."""
-    link = undefined(image["out"] / "build" / "sketch" / "src" / "board_due" / "due_link.cpp.o")
+    link = undefined(image["out"] / "build" / "sketch" / "src" / "board_due" / "due_board.cpp.o")
     assert "Serial" in link and "SerialUSB" not in link

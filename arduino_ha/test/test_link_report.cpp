@@ -1,5 +1,5 @@
 // What the HA tells the HP each period (src/link/ha_link_report.c), the one builder the Due
-// (board_due/due_link.cpp) and the host SIL (sil/ha_sil.c) both publish with. Before it the two
+// and the host SIL both publish with (through src/firmware/ha_firmware.c). Before it the two
 // derived pwm's PICCIC differently: the Due from the core's decision, the SIL from the switch's
 // pulse alone (>= 1500 us), so a pilot switch at PIC with the receiver lost read "pilot in
 // command" in the SIL while the HA flew.

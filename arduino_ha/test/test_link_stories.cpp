@@ -1,7 +1,7 @@
 // The HA's input paths end to end: the bytes the HP's `arduino` node writes to the Due (a ROS
 // message serialized by roscpp and framed by the node's own encoder, arduino_link's
-// encode_frame), through the Due's link decoder and session (ha_link_receive), into the core as
-// the boards route them (arduino_ha/src/board_due/due_link.cpp), period by period.
+// encode_frame), on the board's HP port, through the firmware loop every board runs
+// (src/firmware/: the link decoder and session, the routing) into the core, period by period.
 #include <gtest/gtest.h>
 #include <ros/serialization.h>
 
@@ -10,13 +10,13 @@
 
 #include <vector>
 
+#include "firmware_on_fake_board.h"
 #include "ha_link.h"
-#include "ha_test_util.h"
 #include "rosserial_framer.h"
 
 namespace {
 
-using Bytes = std::vector<uint8_t>;
+using link_test::Bytes;
 
 // What the arduino node does with a message it forwards (ArduinoLinkNode::on_ros_message, send).
 template <typename M>
@@ -63,51 +63,26 @@ drone_ros::OperatorCommand operator_msg(uint8_t command, uint32_t request_id) {
   return sealed(m);
 }
 
-// The HA as the Due runs it: the link hands commands and operator requests to app.inputs
-// between periods; the period runs at its end.
+Bytes servo_frame(const HaHpCommand& c) { return node_frame(HA_LINK_TOPIC_SERVO_OP, servo_msg(c)); }
+
+// The HA as every board runs it; the bytes arrive between two periods.
 struct LinkedHa {
-  Timeline t;
-  HaLink link{};
-  uint32_t operator_handed_over = 0;
+  FirmwareOnFakeBoard t;
+  HaLink& link = t.fw.link;
 
-  LinkedHa() {
-    HaLinkCallbacks cb{};
-    cb.write = [](void*, const uint8_t*, size_t) {};
-    cb.on_command = [](void* ctx, const HaHpCommand* cmd, uint32_t arrival_us) {
-      ha_inputs_put_hp_command(&static_cast<LinkedHa*>(ctx)->t.app.inputs, cmd, arrival_us);
-    };
-    cb.on_operator = [](void* ctx, const drone_ros_OperatorCommand* op, uint32_t) {
-      auto* self = static_cast<LinkedHa*>(ctx);
-      self->operator_handed_over++;
-      ha_inputs_put_operator(&self->t.app.inputs, op->command, op->request_id);
-    };
-    cb.ctx = this;
-    ha_link_init(&link, &cb);
-  }
-
-  // Bytes arriving mid-period, then the period.
+  LinkedHa() { t.Period(); }  // the first period, at power-up
   const HaOutputs& Period(const Bytes& bytes) {
-    ha_link_receive(&link, bytes.data(), bytes.size(), t.board.now_us + t.cfg.period_us / 2u);
-    return t.Step();
+    t.Hp(bytes);
+    return t.Period();
   }
-  Bytes NextCommandFrame() {
-    return node_frame(HA_LINK_TOPIC_SERVO_OP,
-                      servo_msg(MakeCommand(t.NextSeq(), 0.45f, -1.0f, 2.0f, 0.5f)));
-  }
+  Bytes NextCommandFrame() { return servo_frame(t.NextCommand()); }
   const HaOutputs& PeriodWithCommand(const Bytes& extra = {}) {
-    Bytes bytes = NextCommandFrame();
-    bytes.insert(bytes.end(), extra.begin(), extra.end());
-    return Period(bytes);
+    return t.PeriodWithCommand(servo_frame, extra);
   }
-  // Valid commands over the link until the HP flies and the handover slew is over.
-  bool ReachHp() {
-    for (int i = 0; i < 1000; ++i) {
-      if (PeriodWithCommand().controller == HA_CONTROLLER_HP && !t.app.core.transition_active) {
-        return true;
-      }
-    }
-    return false;
-  }
+  bool ReachHp() { return t.ReachHp(servo_frame); }
+  // Operator requests the link handed over (their CRC-32 matched).
+  uint32_t operator_handed_over() const { return link.counters.operator_commands; }
+  const HaOutputs& out() const { return t.fw.app.outputs; }
 };
 
 Bytes operator_frame(uint8_t command, uint32_t request_id) {
@@ -134,7 +109,7 @@ TEST(HaLinkStories, OneByteLostFromAServoCommandLosesOnlyThatCommandAndTheHpKeep
   }
   EXPECT_EQ(ha.link.counters.commands, delivered + 20u);  // every intact frame
   EXPECT_EQ(ha.link.decoder.counters.bad_checksum, 1u);
-  EXPECT_EQ(ha.t.out().restart_count, 0u);
+  EXPECT_EQ(ha.out().restart_count, 0u);
   EXPECT_EQ(ha.t.board.hp_reset_assertions, 0);
 }
 
@@ -147,7 +122,7 @@ TEST(HaLinkStories, TwoOperatorRequestsInOnePeriodAreBothExecutedInOrderAndEachA
   const Bytes restart = operator_frame(HA_OP_RESTART_HP, 42u);
   two.insert(two.end(), restart.begin(), restart.end());
   const HaOutputs& first = ha.PeriodWithCommand(two);
-  EXPECT_EQ(ha.operator_handed_over, 2u);
+  EXPECT_EQ(ha.operator_handed_over(), 2u);
   EXPECT_EQ(first.controller, HA_CONTROLLER_HA);  // SELECT_HA, executed
   EXPECT_EQ(first.reasons & HA_REASON_GROUND_COMMAND, HA_REASON_GROUND_COMMAND);
   EXPECT_EQ(first.operator_ack_id, 41u);
@@ -171,7 +146,7 @@ TEST(HaLinkStories, RestartRequestDeliveredThreeTimesRestartsTheHpOnceAndIsAckno
   LinkedHa ha;
   ASSERT_TRUE(ha.ReachHp());
   ha.PeriodWithCommand(operator_frame(HA_OP_SELECT_HA, 7u));  // the HA flies: restarts allowed
-  ASSERT_EQ(ha.t.controller(), HA_CONTROLLER_HA);
+  ASSERT_EQ(ha.out().controller, HA_CONTROLLER_HA);
   for (int delivery = 1; delivery <= 3; ++delivery) {
     const HaOutputs& out = ha.PeriodWithCommand(operator_frame(HA_OP_RESTART_HP, 0u));
     EXPECT_EQ(out.operator_ack_id, 0u) << "delivery " << delivery;
@@ -184,8 +159,8 @@ TEST(HaLinkStories, RestartRequestDeliveredThreeTimesRestartsTheHpOnceAndIsAckno
   // The next request, even one whose id wrapped around to 0 again after 2^32 - 1, is new.
   ha.Period(operator_frame(HA_OP_SELECT_HA, 0xFFFFFFFFu));
   ha.Period(operator_frame(HA_OP_RESTART_HP, 0u));
-  EXPECT_EQ(ha.t.out().operator_ack_id, 0u);
-  EXPECT_EQ(ha.t.out().restart_count, 2u);
+  EXPECT_EQ(ha.out().operator_ack_id, 0u);
+  EXPECT_EQ(ha.out().restart_count, 2u);
 }
 
 // K3: rosserial's 8-bit sum cannot see a byte that went up by one while another went down by
@@ -196,7 +171,7 @@ TEST(HaLinkStories, OperatorRequestChangedByABytePairTheFrameSumCannotSeeIsNever
   LinkedHa ha;
   ASSERT_TRUE(ha.ReachHp());
   ha.PeriodWithCommand(operator_frame(HA_OP_SELECT_HA, 50u));
-  ASSERT_EQ(ha.t.controller(), HA_CONTROLLER_HA);
+  ASSERT_EQ(ha.out().controller, HA_CONTROLLER_HA);
   // An intact SELECT_HA (51) on the way: its command byte one down (SELECT_HP), its
   // request_id's low byte one up.
   Bytes pair = operator_frame(HA_OP_SELECT_HA, 51u);
@@ -207,9 +182,9 @@ TEST(HaLinkStories, OperatorRequestChangedByABytePairTheFrameSumCannotSeeIsNever
   for (int i = 0; i < 50; ++i) ha.PeriodWithCommand(i == 0 ? pair : Bytes{});
   EXPECT_EQ(ha.link.decoder.counters.bad_checksum, 0u);  // the frame passed rosserial's check
   EXPECT_EQ(ha.link.counters.operator_bad_crc, 1u);
-  EXPECT_EQ(ha.operator_handed_over, 1u);  // only SELECT_HA (50)
-  EXPECT_EQ(ha.t.controller(), HA_CONTROLLER_HA);
-  EXPECT_EQ(ha.t.out().operator_ack_id, 50u);
+  EXPECT_EQ(ha.operator_handed_over(), 1u);  // only SELECT_HA (50)
+  EXPECT_EQ(ha.out().controller, HA_CONTROLLER_HA);
+  EXPECT_EQ(ha.out().operator_ack_id, 50u);
 
   // A SET_HOME whose latitude's bytes took a +1/-1 pair (40.4237054 -> 40.4315179 deg: 867 m
   // north) likewise.
@@ -226,11 +201,11 @@ TEST(HaLinkStories, OperatorRequestChangedByABytePairTheFrameSumCannotSeeIsNever
   moved[latitude_at] -= 1;      // 0xbe -> 0xbd
   ha.PeriodWithCommand(moved);
   EXPECT_EQ(ha.link.counters.operator_bad_crc, 2u);
-  EXPECT_EQ(ha.operator_handed_over, 1u);
+  EXPECT_EQ(ha.operator_handed_over(), 1u);
 
   // Intact requests still go through.
   ha.PeriodWithCommand(operator_frame(HA_OP_SELECT_HP, 54u));
-  EXPECT_EQ(ha.operator_handed_over, 2u);
-  EXPECT_EQ(ha.t.out().operator_ack_id, 54u);
-  EXPECT_EQ(ha.t.out().operator_ack_accepted, 1u);
+  EXPECT_EQ(ha.operator_handed_over(), 2u);
+  EXPECT_EQ(ha.out().operator_ack_id, 54u);
+  EXPECT_EQ(ha.out().operator_ack_accepted, 1u);
 }

@@ -12,9 +12,9 @@
 #include "arduino_shim/fake_arduino.h"
 #include "src/board_due/due_board.h"
 #include "src/board_due/due_config.h"
-#include "src/board_due/due_ins_seam.h"
 #include "src/board_due/due_main.h"
 #include "src/core/ha_aircraft.h"
+#include "src/vn200/ha_vn200_feed.h"
 #include "src/vn200/vn_checksum.h"
 
 namespace {
@@ -123,6 +123,9 @@ size_t vn200_packet(const Vn200Solution &s, uint8_t *out) {
   return n;
 }
 
+// The firmware's VN-200 feed on the Due, as the sketch runs it.
+const HaVn200Feed &due_feed() { return due_main_firmware()->ins; }
+const HaIns *due_ins_state() { return &due_feed().ins; }
 void send_vn200(const Vn200Solution &s) {
   uint8_t pkt[VN_BIN_MAX_PACKET];
   const size_t len = vn200_packet(s, pkt);
@@ -197,7 +200,7 @@ int main() {
   // The VN-200 talks to the Due on Serial1: parked at home first, then flying; a packet
   // corrupted on the wire in between is counted and dropped. Home latches only when the core says
   // on the ground (its verdict of the period after a parked solution): with no pitot it cannot.
-  const DueInsStats ins_before = due_ins_stats();
+  const uint64_t bytes_before = due_feed().counts.bytes_read;
   send_vn200(kParkedAtHome);
   run_ms(20u, cic, true);
   send_vn200(kParkedAtHome);
@@ -223,19 +226,21 @@ int main() {
   send_vn200(kFlying50mUp);
   // Split across loop passes as the UART delivers it: a 64-byte read never holds a whole packet.
   run_ms(40u, cic, true);
-  const DueInsStats ins_after = due_ins_stats();
-  check(ins_after.bytes_read > ins_before.bytes_read && ins_after.binary_packets == 4u &&
-            ins_after.solutions_used == 4u,
+  check(due_feed().counts.bytes_read > bytes_before && due_feed().counts.binary_packets == 4u &&
+            due_feed().ins.solutions_used == 4u,
         "Vn200PacketsOnSerial1BecomeHaState", "four intact packets did not give four solutions");
-  check(ins_after.bad_packets == 1u && ins_after.solutions_rejected == 0u,
+  check(vn_framer_bad_packets(&due_feed().framer.stats) == 1u &&
+            due_feed().ins.solutions_rejected == 0u,
         "CorruptedVn200PacketCountedAndDropped", "the corrupted packet was not counted as bad");
   {
-    // The same bytes through the seam into a state the test can read: HA units, from home.
+    // The same bytes through a copy of the Due's feed (its home) into a state the test can read:
+    // HA units, from home.
+    HaVn200Feed feed = due_feed();
     uint8_t pkt[VN_BIN_MAX_PACKET];
     const size_t len = vn200_packet(kFlying50mUp, pkt);
     HaInputs in;
     std::memset(&in, 0, sizeof in);
-    due_ins_feed(pkt, len, &in, 0u, 123456u);
+    ha_vn200_feed_bytes(&feed, pkt, len, &in, 0u, 123456u);
     check(in.state_valid == 1u && in.state_rx_us == 123456u &&
               std::fabs(in.altitude_agl_ft - 164.04f) < 0.01f &&
               std::fabs(in.heading_deg - 90.0f) < 1e-4f && std::fabs(in.roll_deg + 15.0f) < 1e-4f &&
@@ -245,13 +250,13 @@ int main() {
     Vn200Solution no_fix = kFlying50mUp;
     no_fix.ins_status = 0x0002u;  // tracking but the GNSS fix bit clear
     const size_t no_fix_len = vn200_packet(no_fix, pkt);
-    due_ins_feed(pkt, no_fix_len, &in, 0u, 223456u);
+    ha_vn200_feed_bytes(&feed, pkt, no_fix_len, &in, 0u, 223456u);
     check(in.state_rx_us == 123456u, "Vn200WithoutFixIsDroppedUnstamped",
           "a solution without GNSS fix stamped the state");
     Vn200Solution nan_roll = kFlying50mUp;
     nan_roll.ypr_deg[2] = std::nanf("");  // CRC-valid, one field NaN
     const size_t nan_len = vn200_packet(nan_roll, pkt);
-    due_ins_feed(pkt, nan_len, &in, 0u, 323456u);
+    ha_vn200_feed_bytes(&feed, pkt, nan_len, &in, 0u, 323456u);
     check(
         in.state_valid == 1u && in.state_rx_us == 123456u && std::fabs(in.roll_deg + 15.0f) < 1e-4f,
         "Vn200NanPacketLeavesLastGoodState",

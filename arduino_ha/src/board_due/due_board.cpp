@@ -20,7 +20,43 @@ const uint32_t kLedPins[4] = {DUE_PIN_LED_HP, DUE_PIN_LED_HA, DUE_PIN_LED_MANUAL
                               DUE_PIN_LED_FAULT};
 const uint8_t kLedBits[4] = {HA_LED_HP, HA_LED_HA, HA_LED_MANUAL, HA_LED_FAULT};
 
+#if DUE_HP_LINK_PORT == DUE_HP_LINK_PORT_PROGRAMMING
+/* UART0 through the 16U2: its 128-byte receive ring holds 5 ms at 250000 baud (loop() drains it
+ * far more often); write() waits out a period's 150-byte burst (0.9 ms) in its transmit ring. */
+UARTClass &g_hp_port = Serial;
+#elif DUE_HP_LINK_PORT == DUE_HP_LINK_PORT_NATIVE
+Serial_ &g_hp_port = SerialUSB;
+#else
+#error "DUE_HP_LINK_PORT must be DUE_HP_LINK_PORT_PROGRAMMING or _NATIVE (due_config.h)"
+#endif
+
 DueBoard *as_due(void *ctx) { return static_cast<DueBoard *>(ctx); }
+
+/* What the port's receive ring holds, up to max_len: never waits for more. The VN-200's port 1 on
+ * Serial1 brings about 115 bytes a 10 ms period at 115200 baud. */
+template <typename Port>
+size_t read_port(Port &port, uint8_t *bytes, size_t max_len) {
+  size_t n = 0u;
+  while (n < max_len && port.available() > 0) {
+    bytes[n++] = static_cast<uint8_t>(port.read());
+  }
+  return n;
+}
+
+size_t hp_read(void *ctx, uint8_t *bytes, size_t max_len) {
+  (void)ctx;
+  return read_port(g_hp_port, bytes, max_len);
+}
+
+void hp_write(void *ctx, const uint8_t *bytes, size_t len) {
+  (void)ctx;
+  (void)g_hp_port.write(bytes, len);
+}
+
+size_t ins_read(void *ctx, uint8_t *bytes, size_t max_len) {
+  (void)ctx;
+  return read_port(Serial1, bytes, max_len);
+}
 
 uint32_t board_micros(void *ctx) {
   (void)ctx;
@@ -141,6 +177,10 @@ void due_board_begin(DueBoard *due, const HaAircraftConfig *cfg) {
   due->board.kick_watchdog = board_kick_watchdog;
   due->board.read_retained = board_read_retained;
   due->board.write_retained = board_write_retained;
+  due->board.hp_link.read = hp_read;
+  due->board.hp_link.write = hp_write;
+  due->board.ins.read = ins_read;
+  due->board.ins.write = nullptr; /* the VN-200's output is configured in its own flash */
 
   pinMode(DUE_PIN_HP_RESET, OUTPUT);
   digitalWrite(DUE_PIN_HP_RESET, LOW);
@@ -152,6 +192,8 @@ void due_board_begin(DueBoard *due, const HaAircraftConfig *cfg) {
   Wire.begin();
   Wire.setClock(DUE_I2C_CLOCK_HZ);
   due_rc_begin();
+  g_hp_port.begin(DUE_HP_LINK_BAUD); /* the native port ignores the rate */
+  Serial1.begin(DUE_VN200_BAUD);
 }
 
 const HaBoard *due_board_interface(DueBoard *due) { return &due->board; }

@@ -1,7 +1,9 @@
 /* The Due's implementation of the core's Board interface (core/ha_board.h) with the Arduino API:
  * Servo library outputs at 50 Hz, RC capture on pin-change interrupts, the AMS 5812 on I2C, the
- * battery on an ADC pin, the HP reset line, status LEDs and the SAM3X hardware watchdog. Thin on
- * purpose: every decision is the core's; this file only moves values in and out. */
+ * battery on an ADC pin, the HP reset line, status LEDs, the SAM3X hardware watchdog, the SAM3X's
+ * backup registers, and the two byte ports: the HP link on the USB port DUE_HP_LINK_PORT chooses
+ * (due_config.h) and the VN-200 on Serial1. Thin on purpose: every decision is the core's, every
+ * byte's meaning the firmware loop's (src/firmware/); this file only moves values in and out. */
 #ifndef DUE_BOARD_H
 #define DUE_BOARD_H
 
@@ -17,10 +19,11 @@ typedef struct {
   HaBoard board;
 } DueBoard;
 
-/* Configures pins, I2C, ADC, RC capture; leaves the HP out of reset and the servos detached. */
+/* Configures pins, I2C, ADC, RC capture and both serial ports; leaves the HP out of reset and the
+ * servos detached. */
 void due_board_begin(DueBoard *due, const HaAircraftConfig *cfg);
 
-/* The Board interface the core's ha_app_period() calls. */
+/* The Board interface the firmware loop runs over. */
 const HaBoard *due_board_interface(DueBoard *due);
 
 #endif /* DUE_BOARD_H */

@@ -2,7 +2,12 @@
 #ifndef DUE_MAIN_H
 #define DUE_MAIN_H
 
+#include "../firmware/ha_firmware.h"
+
 void due_main_setup(void);
 void due_main_loop(void);
+
+/* The firmware's state, for the sketch-on-host checks (verify/board_host_test.cpp). */
+const HaFirmware *due_main_firmware(void);
 
 #endif /* DUE_MAIN_H */

@@ -1,10 +1,13 @@
-/* The narrow Board interface between the portable HA core and the hardware. The Due layer
- * (arduino_ha/src/board_due/) and the host fake board (arduino_ha/test/) implement it; the core
- * never calls it directly: ha_app.c reads it once per period, hands plain values to ha_core_step
- * and writes the outputs back. Every function gets the implementation's context pointer first. */
+/* The narrow Board interface between the portable HA firmware and the hardware. The Due layer
+ * (arduino_ha/src/board_due/), the host SIL (arduino_ha/sil/) and the host fake board
+ * (arduino_ha/test/) implement it; the core never calls it directly: ha_app.c reads it once per
+ * period, hands plain values to ha_core_step and writes the outputs back, and the firmware loop
+ * (src/firmware/ha_firmware.h) moves the two byte ports' bytes. Every function gets the
+ * implementation's context pointer first. */
 #ifndef HA_BOARD_H
 #define HA_BOARD_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "ha_retained.h"
@@ -13,6 +16,17 @@
 #ifdef __cplusplus
 extern "C" {
 #endif
+
+/* A serial port, as rosflight's board offers one: what has arrived is read without waiting. */
+typedef struct {
+  /* Copies up to max_len of the bytes that have arrived into bytes[] and returns how many: 0 when
+   * none, never more than max_len, never waiting for more. */
+  size_t (*read)(void *ctx, uint8_t *bytes, size_t max_len);
+  /* Sends len bytes: the Due's UART waits for room in its ring, the SIL's pty drops what a host
+   * that is not reading cannot take (the link is built to lose bytes). May be NULL on a port the
+   * firmware never writes to (the INS: its output is configured in the sensor's own flash). */
+  void (*write)(void *ctx, const uint8_t *bytes, size_t len);
+} HaBytePort;
 
 typedef struct {
   void *ctx;
@@ -38,6 +52,11 @@ typedef struct {
    * them), or 0 when the board keeps none; either pointer may be NULL for such a board. */
   int (*read_retained)(void *ctx, uint32_t words[HA_RETAINED_WORDS]);
   void (*write_retained)(void *ctx, const uint32_t words[HA_RETAINED_WORDS]);
+  /* The rosserial link to the HP (the Due's programming or native USB port; a pty on the host).
+   * A NULL read is a board without the port: the firmware then reads nothing from it. */
+  HaBytePort hp_link;
+  /* The VN-200's port 1 (the Due's Serial1; a pty the simulator writes on the host). */
+  HaBytePort ins;
 } HaBoard;
 
 #ifdef __cplusplus

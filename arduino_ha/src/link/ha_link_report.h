@@ -1,10 +1,10 @@
-/* What the HA tells the HP every period, built from the core's state in one place for both
- * firmwares that speak the link: the Due (board_due/due_link.cpp) and the host SIL
- * (sil/ha_sil.c). decision_status is the core's outputs field for field; pwm carries the pilot's
- * sticks (decoded with the calibration the core flies them with in manual mode) and PICCIC from
- * the core's decision (0 exactly when the core gives the pilot the servos, which also needs a
- * valid RC link); home is the INS adapter's, offered so that the link repeats it only now and
- * then (ha_link_offer_home). C99, no heap, time passed in. */
+/* What the HA tells the HP every period, built from the core's state in one place for every
+ * board that speaks the link, through the firmware loop (firmware/ha_firmware.c).
+ * decision_status is the core's outputs field for field; pwm carries the pilot's sticks (decoded
+ * with the calibration the core flies them with in manual mode) and PICCIC from the core's decision
+ * (0 exactly when the core gives the pilot the servos, which also needs a valid RC link); home is
+ * the INS adapter's, offered so that the link repeats it only now and then (ha_link_offer_home).
+ * C99, no heap, time passed in. */
 #ifndef HA_LINK_REPORT_H
 #define HA_LINK_REPORT_H
 

@@ -48,23 +48,24 @@ static void apply_packet(HaVn200Feed *feed, const VnFrame *frame, HaInputs *inpu
   (void)ha_ins_update(&feed->ins, feed->cfg, &sample, ha_on_ground, now_us, inputs);
 }
 
-void ha_vn200_feed_bytes(HaVn200Feed *feed, const uint8_t *bytes, size_t len, HaInputs *inputs,
-                         uint8_t ha_on_ground, uint32_t now_us) {
-  size_t offset = 0u;
+/* The framer hands out one frame per call, so a byte may complete one and the next call take
+ * none; each byte goes in by itself (the framer's output does not depend on how the stream is
+ * cut), which keeps every read it makes inside that one byte for any reader, EVA included. */
+static void feed_byte(HaVn200Feed *feed, const uint8_t *byte, HaInputs *inputs,
+                      uint8_t ha_on_ground, uint32_t now_us) {
+  size_t left = 1u;
   size_t pass;
-  if (feed->cfg == NULL) {
-    return; /* not initialised */
-  }
-  feed->counts.bytes_read += len;
-  /* Each pass consumes input or hands out a frame from the framer's bounded buffer, so the
-   * loop ends; the cap only makes that obvious. */
-  for (pass = 0u; pass < len + VN_FRAME_MAX + 1u; ++pass) {
+  /* Each pass takes the byte or hands out a frame from the framer's bounded buffer, so the loop
+   * ends; the cap only makes that obvious. */
+  for (pass = 0u; pass < VN_FRAME_MAX + 2u; ++pass) {
     size_t used = 0u;
     VnFrame frame;
-    const int got = vn_framer_next(&feed->framer, bytes + offset, len - offset, &used, &frame);
-    offset += used;
+    int got;
+    memset(&frame, 0, sizeof frame); /* defined on every path: EVA needs no path reasoning */
+    got = vn_framer_next(&feed->framer, byte, left, &used, &frame);
+    left = used < left ? left - used : 0u;
     if (got == 0) {
-      break;
+      return;
     }
     if (frame.kind == VN_FRAME_BINARY) {
       feed->counts.binary_packets++;
@@ -72,5 +73,17 @@ void ha_vn200_feed_bytes(HaVn200Feed *feed, const uint8_t *bytes, size_t len, Ha
     } else {
       feed->counts.ascii_frames++;
     }
+  }
+}
+
+void ha_vn200_feed_bytes(HaVn200Feed *feed, const uint8_t *bytes, size_t len, HaInputs *inputs,
+                         uint8_t ha_on_ground, uint32_t now_us) {
+  size_t k;
+  if (feed->cfg == NULL) {
+    return; /* not initialised */
+  }
+  feed->counts.bytes_read += len;
+  for (k = 0u; k < len; ++k) {
+    feed_byte(feed, &bytes[k], inputs, ha_on_ground, now_us);
   }
 }

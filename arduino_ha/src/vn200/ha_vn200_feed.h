@@ -1,8 +1,9 @@
 /* The VN-200 stream into the HA core: bytes from the sensor's port 1 are split into packets by the
  * VN-200 protocol core (vn_framer_next), binary packets decoded (vn_bin_decode), copied into the
  * core's plain HaInsSample and handed to the core's INS adapter (core/ha_ins.c), the only place
- * INS data enters HaInputs. Plain C99 with no byte source of its own, so the Due's seam
- * (board_due/due_ins_seam.cpp, Serial1) and the host SIL (sil/ha_sil.c, a pty) run this one rule.
+ * INS data enters HaInputs. Plain C99 with no byte source of its own: the firmware loop
+ * (firmware/ha_firmware.c) reads the Board's INS port into it, so the Due (Serial1), the host SIL
+ * (a pty) and the fake board run this one rule.
  *
  * The protocol core's headers are included by name: in the sketch they sit beside this file
  * (`make sketch-ha` puts vn200_driver/core here), host builds link CMake's vn200_core. */
