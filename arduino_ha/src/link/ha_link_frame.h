@@ -5,8 +5,8 @@
  * The decoder takes one byte and the time at a time, keeps the bytes of at most one frame, and
  * counts every kind of bad input it drops. When a frame fails (protocol, length checksum, length,
  * checksum), the search for the next sync byte restarts one byte after the failed one, among the
- * bytes that frame had already taken, as rosserial's own decoder does: a frame that lost a byte
- * took the next frame's sync byte as its checksum, and that next frame still arrives.
+ * bytes that frame had already taken: a frame that lost a byte took the next frame's sync byte
+ * as its checksum, and that next frame still arrives.
  * C99, no heap, no recursion, time passed in. */
 #ifndef HA_LINK_FRAME_H
 #define HA_LINK_FRAME_H
