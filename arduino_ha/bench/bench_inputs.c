@@ -113,7 +113,9 @@ uint32_t ha_bench_timeline_next(HaBenchTimeline *t, HaInputs *in) {
   cmd.stamp_sec = t->now_us / 1000000u;
   cmd.stamp_nsec = (t->now_us % 1000000u) * 1000u;
   cmd.throttle = uniform(t, cfg->throttle_min, cfg->throttle_max);
-  cmd.elevator_deg = uniform(t, -cfg->elevator_limit_deg, cfg->elevator_limit_deg) * 0.9f;
+  /* No more nose-up than the pull limit: a pull past it is refused in flight (REASON_PULL) and
+   * would keep the timeline's HP out of control, unmeasured. */
+  cmd.elevator_deg = uniform(t, -cfg->elevator_pull_limit_deg, cfg->elevator_limit_deg) * 0.9f;
   cmd.aileron_deg = uniform(t, -cfg->aileron_limit_deg, cfg->aileron_limit_deg) * 0.9f;
   cmd.rudder_deg = uniform(t, -cfg->rudder_limit_deg, cfg->rudder_limit_deg) * 0.9f;
   cmd.alpha_est_deg = uniform(t, -2.0f, 6.0f); /* inside the stall alpha of limits.yaml */
