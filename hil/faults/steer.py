@@ -16,8 +16,12 @@ class SteeringFault(CommandFault):
         return False  # the command itself is acceptable; the state it leads to is not
 
     def clamp(self, v, surface):
-        lim = 0.9 * self.ctx.limits["actuators"][surface + "_limit_deg"]
-        return max(-lim, min(lim, v))
+        """Inside S_u, and the elevator no more nose-up than the HA's pull limit (a pull past it is
+        refused in flight as unsafe output, REASON_PULL: not a valid command)."""
+        a = self.ctx.limits["actuators"]
+        lim = 0.9 * a[surface + "_limit_deg"]
+        low = -0.9 * a["elevator_pull_limit_deg"] if surface == "elevator" else -lim
+        return max(low, min(lim, v))
 
     def toward(self, start, target, t_s):
         """The bad HP's target: from where it was when it started (at at_s, and again each time a
