@@ -218,8 +218,10 @@ def build(doc, airframe=None):
     c["surface_release_rate_deg_per_s"] = need(act, "surface_release_rate_deg_per_s",
                                                c["surface_rate_limit_deg_per_s"], 600.0)
 
-    c["elevator_pull_limit_deg"] = need(act, "elevator_pull_limit_deg", 0.0,
-                                        c["elevator_limit_deg"])
+    c["elevator_pull_limit_deg"] = ranged(doc, "actuators/elevator_pull_limit_deg")
+    if c["elevator_pull_limit_deg"] > c["elevator_limit_deg"]:
+        raise ConfigError("elevator_pull_limit_deg = %g is past elevator_limit_deg %g"
+                          % (c["elevator_pull_limit_deg"], c["elevator_limit_deg"]))
     c["sc_elevator_pull_max_deg"] = need(sc, "elevator_pull_max_deg", 0.0,
                                          c["elevator_pull_limit_deg"])
     c["alpha_limit_deg"] = ranged(doc, "state/alpha_limit_deg")

@@ -130,6 +130,7 @@ bool output_finite(const DG808_GNC_Output &o) {
 bool params_valid(const DG808_GNC_Params &p) {
   const double v[] = {p.dt_s,
                       p.elevator_limit_deg,
+                      p.elevator_pull_limit_deg,
                       p.aileron_limit_deg,
                       p.rudder_limit_deg,
                       p.throttle_min,
@@ -153,9 +154,10 @@ bool params_valid(const DG808_GNC_Params &p) {
   if (!finite_all(v, sizeof(v) / sizeof(v[0]))) {
     return false;
   }
-  return p.dt_s > 0.0 && p.dt_s <= 0.1 && p.elevator_limit_deg > 0.0 && p.aileron_limit_deg > 0.0 &&
-         p.rudder_limit_deg > 0.0 && p.throttle_min >= 0.0 && p.throttle_max <= 1.0 &&
-         p.throttle_min < p.throttle_max && p.stall_speed_ftps > 0.0 &&
+  return p.dt_s > 0.0 && p.dt_s <= 0.1 && p.elevator_limit_deg > 0.0 &&
+         p.elevator_pull_limit_deg > 0.0 && p.elevator_pull_limit_deg <= p.elevator_limit_deg &&
+         p.aileron_limit_deg > 0.0 && p.rudder_limit_deg > 0.0 && p.throttle_min >= 0.0 &&
+         p.throttle_max <= 1.0 && p.throttle_min < p.throttle_max && p.stall_speed_ftps > 0.0 &&
          p.vt_trim_ftps > p.stall_speed_ftps && p.mpf_radius_ft > 0.0 &&
          p.max_allow_error_ft > 0.0 && p.dist2b_ft > 0.0 && p.kp_lon_rad_per_ft >= 0.0 &&
          p.ki_lon_rad_per_ft_s >= 0.0 && p.max_bank_deg > 0.0 && p.max_bank_deg < 90.0 &&
@@ -205,8 +207,12 @@ extern "C" int DG808_GNC_initialize(const DG808_GNC_Params *params) {
     return -1;
   }
   g_gnc.params = *params;
-  g_gnc.limits = {params->elevator_limit_deg * kDegToRad, params->aileron_limit_deg * kDegToRad,
-                  params->rudder_limit_deg * kDegToRad, params->throttle_min, params->throttle_max};
+  g_gnc.limits = {params->elevator_limit_deg * kDegToRad,
+                  params->elevator_pull_limit_deg * kDegToRad,
+                  params->aileron_limit_deg * kDegToRad,
+                  params->rudder_limit_deg * kDegToRad,
+                  params->throttle_min,
+                  params->throttle_max};
   g_gnc.last = neutral_output(params->throttle_min);
   g_gnc.guidance.reset(*params, DG808_TRIM_THETA_RAD);
   g_gnc.loops.reset();

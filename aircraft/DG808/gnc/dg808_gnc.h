@@ -24,6 +24,8 @@ typedef struct {
   double dt_s; /* step period */
   /* limits.yaml */
   double elevator_limit_deg, aileron_limit_deg, rudder_limit_deg;
+  /* the HA refuses a pull past this airborne (REASON_PULL): the loops saturate there */
+  double elevator_pull_limit_deg;
   double throttle_min, throttle_max;
   double stall_speed_ftps;
   /* controller_param.yaml */

@@ -8,7 +8,7 @@ namespace dg808 {
 
 Surfaces clamp_to_limits(const Surfaces &u, const SurfaceLimits &lim) {
   Surfaces c;
-  c.elevator_rad = std::clamp(u.elevator_rad, -lim.elevator_rad, lim.elevator_rad);
+  c.elevator_rad = std::clamp(u.elevator_rad, -lim.elevator_pull_rad, lim.elevator_rad);
   c.aileron_rad = std::clamp(u.aileron_rad, -lim.aileron_rad, lim.aileron_rad);
   c.rudder_rad = std::clamp(u.rudder_rad, -lim.rudder_rad, lim.rudder_rad);
   c.throttle = std::clamp(u.throttle, lim.throttle_min, lim.throttle_max);

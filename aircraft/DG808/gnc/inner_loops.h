@@ -22,8 +22,10 @@ struct Surfaces {
   double elevator_rad = 0.0, aileron_rad = 0.0, rudder_rad = 0.0, throttle = 0.0;
 };
 
+// Symmetric but for the elevator: trailing edge down positive, so a pull is negative, and the
+// loops pull no further than the HA accepts airborne (limits.yaml elevator_pull_limit_deg).
 struct SurfaceLimits {
-  double elevator_rad, aileron_rad, rudder_rad, throttle_min, throttle_max;
+  double elevator_rad, elevator_pull_rad, aileron_rad, rudder_rad, throttle_min, throttle_max;
 };
 
 Surfaces clamp_to_limits(const Surfaces &u, const SurfaceLimits &lim);

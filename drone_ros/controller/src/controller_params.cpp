@@ -88,6 +88,9 @@ bool build_controller_params(const ParamLookup &lookup, ControllerParams *params
   p.rate_hz = g.dt_s > 0.0 ? 1.0 / g.dt_s : 0.0;
 
   g.elevator_limit_deg = r.get_limit(limits_ranges::kActuatorsElevatorLimitDeg);
+  g.elevator_pull_limit_deg = r.get_limit(limits_ranges::kActuatorsElevatorPullLimitDeg);
+  r.require(g.elevator_pull_limit_deg <= g.elevator_limit_deg,
+            "limits: elevator_pull_limit_deg must not exceed elevator_limit_deg");
   g.aileron_limit_deg = r.get_limit(limits_ranges::kActuatorsAileronLimitDeg);
   g.rudder_limit_deg = r.get_limit(limits_ranges::kActuatorsRudderLimitDeg);
   g.throttle_min = r.get_limit(limits_ranges::kActuatorsThrottleMin);

@@ -451,3 +451,55 @@ TEST(GncClosedLoop, SlowInATurnTheHpBanksOnlyAsFarAsItsSpeedPays) {
   EXPECT_GT(max_bank_deg, 10.0) << "it must still turn";
   RecordProperty("max_bank_deg", std::to_string(max_bank_deg));
 }
+
+namespace {
+
+// The elevator the GNC commands over 2 s in a 30 deg dive at the trim airspeed (the INS's
+// attitude and velocity overwritten on the trimmed sim's): the loops ask for a hard pull-out.
+double most_nose_up_in_a_dive_deg(Flight *f) {
+  f->sim().set_trimmed_flight(f->params().gnc.vt_trim_ftps, 200.0, 0.0);
+  const double plan[1][3] = {{30000.0, 0.0, 200.0}};
+  f->set_plan(plan, 1);
+  while (f->t() < 3.0) f->step();
+  const double dive_rad = -30.0 / kRadToDeg;
+  const double v_mps = f->params().gnc.vt_trim_ftps * 0.3048;
+  double most_nose_up_deg = 0.0;
+  for (int i = 0; i < 200; ++i) {
+    f->sim().sense(f->in());
+    f->in().theta_rad = dive_rad;
+    f->in().vel_north_mps = v_mps * std::cos(dive_rad);
+    f->in().vel_down_mps = -v_mps * std::sin(dive_rad);
+    DG808_GNC_Output out{};
+    DG808_GNC_step(&f->in(), &out);
+    most_nose_up_deg = std::max(most_nose_up_deg, -out.elevator_rad * kRadToDeg);
+  }
+  return most_nose_up_deg;
+}
+
+}  // namespace
+
+// Issue 22: the HA refuses, airborne, an elevator more nose-up than elevator_pull_limit_deg
+// (REASON_PULL: 7 deg trims the wing at 1.5 x its stall). The HP's loops saturate their pull
+// there, so a healthy HP pulling out of a dive is never taken over for it; they saturated at
+// elevator_limit_deg (20 deg).
+TEST(GncLimits, PullingOutOfADiveStopsAtTheHasPullLimit) {
+  Flight f;
+  const double pull_limit_deg = f.value("limits/actuators/elevator_pull_limit_deg");
+  const double most_deg = most_nose_up_in_a_dive_deg(&f);
+  std::printf("30 deg dive: most nose-up elevator %.2f deg (pull limit %.1f)\n", most_deg,
+              pull_limit_deg);
+  EXPECT_LE(most_deg, pull_limit_deg + 1e-9);
+  EXPECT_GE(most_deg, pull_limit_deg - 1e-9) << "the dive did not ask for the limit";
+}
+
+// A pull limit past the elevator's own travel is a typo in limits.yaml: the controller refuses
+// to start, naming the key.
+TEST(GncLimits, PullLimitPastTheElevatorsTravelIsRefused) {
+  controller::ControllerParams p{};
+  std::string error;
+  auto values = controller_test::aircraft_params(AIRCRAFT_DIR, {});
+  values["limits/actuators/elevator_pull_limit_deg"] =
+      values["limits/actuators/elevator_limit_deg"] + 1.0;
+  EXPECT_FALSE(controller::build_controller_params(controller_test::lookup_in(values), &p, &error));
+  EXPECT_NE(error.find("elevator_pull_limit_deg"), std::string::npos) << error;
+}
