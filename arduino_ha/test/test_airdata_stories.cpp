@@ -113,6 +113,35 @@ TEST(HaAirdataStories, PullUpAt70FtpsIsJudgedByTheLoadFactorTheGyrosShow) {
   EXPECT_EQ(t.out().reasons_at_switch, HA_REASON_STALL);
 }
 
+// HiL campaign seed 25 #94, moderate turbulence: the HP, pulling 4 deg inside the pull limit in
+// a 27 deg bank, left the wing pitching up at 21 deg/s when the HA took over for STALL. The HA
+// eased the pull out and then moved nose down at the bumpless rate, its pitch law still asking
+// for height: the inherited pitch rate carried the wing 0.02 s past its stall. A stall is flown
+// out as a pilot does: the nose down to the pitch limit, no pull held in the integrator, and the
+// elevator moved nose down at the release rate, not eased.
+TEST(HaAirdataStories, HpsPitchRateAtAStallTakeoverIsUnloadedAtOnceNotEasedOut) {
+  Timeline t;
+  t.Cruise(200.0f, 70.0f);
+  ASSERT_GT(t.ReachHp(), 0);
+  FlyEast(&t, 70.0f, 0.0f, 2.0f, 0.0f);
+  t.app.inputs.q_deg_s = 40.0f;  // 2.5 g at 70 ft/s: the switch speed x sqrt(2.5)
+  int periods = 0;
+  for (; periods < 10 && t.controller() == HA_CONTROLLER_HP; ++periods) {
+    t.StepWithGood(2.0f, -4.0f);  // the HP's pull: inside elevator_pull_limit_deg
+  }
+  ASSERT_NE(t.controller(), HA_CONTROLLER_HP) << "a 2.5 g pull at 70 ft/s was left to the HP";
+  ASSERT_EQ(t.out().reasons_at_switch, HA_REASON_STALL);
+  const float at_takeover_deg = t.servos().elevator_deg;
+  for (int i = 0; i < 4; ++i) t.Step();  // the wing still pitching up: still a stall
+  ASSERT_TRUE(t.out().reasons & HA_REASON_STALL);
+  const float bumpless_deg = 4.0f * t.cfg.surface_rate_limit_deg_per_s * t.cfg.period_us * 1e-6f;
+  std::printf("STALL takeover: elevator %.2f -> %.2f deg (trailing edge down +) in 4 periods\n",
+              at_takeover_deg, t.servos().elevator_deg);
+  EXPECT_GT(t.servos().elevator_deg, 0.0f) << "the HP's pull still on a stalling wing";
+  EXPECT_GT(t.servos().elevator_deg - at_takeover_deg, 2.0f * bumpless_deg)
+      << "eased nose down at the bumpless rate";
+}
+
 // F2. The thesis's own stall signature: nose high, the pitot reading 12 ft/s (the relative wind
 // far off its axis) while the INS sees 45 over the ground and the aircraft sinking. Not a lying
 // pitot to be ignored: a stall, the HP reset, and the HA lowering the nose and opening the

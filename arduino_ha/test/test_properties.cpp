@@ -84,13 +84,15 @@ Source SourceOf(const HaOutputs& out) {
 // the HP's accepted command passes bit for bit (property 2), the pilot's sticks pass straight
 // through, and the safety controller's PID output is only saturated.
 bool WithinRateLimit(const HaAircraftConfig& cfg, const HaSurfaces& before, const HaSurfaces& after,
-                     uint32_t dt_us) {
+                     uint32_t dt_us, bool ha_unloading_a_stall) {
   const double dt_s = dt_us * 1e-6;
   const double surface_step = cfg.surface_rate_limit_deg_per_s * dt_s + 1e-4;
   const double throttle_step = cfg.throttle_rate_limit_per_s * dt_s + 1e-6;
-  // A pull (elevator negative) may be eased towards neutral at the release rate, not past it.
-  const double released =
-      std::min(0.0, before.elevator_deg + cfg.surface_release_rate_deg_per_s * dt_s + 1e-4);
+  // A pull (elevator negative) may be eased towards neutral at the release rate, not past it;
+  // the HA unloading a stall moves nose down at the release rate all the way.
+  const double release_step = cfg.surface_release_rate_deg_per_s * dt_s + 1e-4;
+  const double released = ha_unloading_a_stall ? before.elevator_deg + release_step
+                                               : std::min(0.0, before.elevator_deg + release_step);
   const double elevator_up_to = std::max(double{before.elevator_deg} + surface_step, released);
   return double{after.elevator_deg} <= elevator_up_to &&
          double{after.elevator_deg} >= before.elevator_deg - surface_step &&
@@ -206,7 +208,8 @@ TEST(HaProperties, ServosAlwaysFiniteInsideSuAndOutsideCommandsNeverReachThem) {
             << "pilot's sticks";
         pilot_handed += source != Source::kManual ? 1u : 0u;
       } else if (source_now != source || was_in_transition) {
-        ASSERT_TRUE(WithinRateLimit(cfg, applied_before, out.surfaces, dt_us))
+        ASSERT_TRUE(WithinRateLimit(cfg, applied_before, out.surfaces, dt_us,
+                                    source_now == Source::kHa && (out.reasons & HA_REASON_STALL)))
             << "episode " << episode << " step " << i << " from source " << static_cast<int>(source)
             << " to " << static_cast<int>(source_now) << " dt_us " << dt_us << " aileron "
             << applied_before.aileron_deg << " -> " << out.surfaces.aileron_deg << " elevator "

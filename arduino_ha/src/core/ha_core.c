@@ -289,6 +289,7 @@ void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *
   policy.operator_restart = (uint8_t)handle_operator(core, in, &view, now_us);
   reasons = ha_checks_evaluate(cfg, &facts, &view, &sx_max, &su_max) |
             (core->ground_command ? HA_REASON_GROUND_COMMAND : 0u);
+  view.stalling = (uint8_t)((reasons & HA_REASON_STALL) != 0u);
   core->stable_for_us = (reasons & HA_REASONS_COMMAND) ? 0u : add_sat(core->stable_for_us, dt_us);
   core->own_state_for_us =
       (reasons & HA_REASON_NO_HA_STATE) ? 0u : add_sat(core->own_state_for_us, dt_us);
@@ -361,8 +362,8 @@ void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *
   }
   if (core->transition_active) {
     HaSurfaces limited;
-    core->transition_active =
-        (uint8_t)!ha_surfaces_rate_limit(cfg, &core->applied, &target, dt_s, &limited);
+    core->transition_active = (uint8_t)!ha_surfaces_rate_limit(
+        cfg, &core->applied, &target, dt_s, view.stalling && source == SRC_HA, &limited);
     target = limited;
   }
   ha_surfaces_saturate(cfg, &target); /* the last word: nothing outside S_u reaches a servo */

@@ -126,7 +126,11 @@ void ha_safety_ctrl_step(HaSafetyCtrlState *st, const HaAircraftConfig *cfg, con
      * source switching from a doubted pitot to the INS) is flown towards at a bounded pull, not
      * with the elevator at its stop (HiL pitot reading low: 38 deg of error at 75 ft/s, full up
      * elevator, 3.4 g and the wing stalled in the pull-out). Both terms are clamped: finite. */
-    const float pitch_err = ha_limitf(pitch_command_deg(cfg, s) - s->x[HA_X_PITCH_DEG],
+    /* A stall is flown out as a pilot does, whatever the height asks: the nose to the pitch
+     * limit below the horizon while the check holds (the pid's pull is dropped below). */
+    const float pitch_cmd_deg =
+        s->stalling ? -cfg->sc_pitch_cmd_limit_deg : pitch_command_deg(cfg, s);
+    const float pitch_err = ha_limitf(pitch_cmd_deg - s->x[HA_X_PITCH_DEG],
                                       -cfg->sc_pitch_error_max_deg, cfg->sc_pitch_error_max_deg);
     roll_pd = cfg->sc_roll_kp * roll_err - cfg->sc_roll_kd * s->x[HA_X_P_DEG_S];
     roll_step = cfg->sc_roll_ki * roll_err * dt_s;
@@ -165,6 +169,10 @@ void ha_safety_ctrl_step(HaSafetyCtrlState *st, const HaAircraftConfig *cfg, con
   /* Elevator trailing edge down is positive (nose down): the loop works in nose-up degrees. */
   nose_up_deg = pid(&st->pitch_integ_deg, pitch_pd, pitch_step, cfg->elevator_limit_deg, auth,
                     in_control, -applied->elevator_deg);
+  if (s->stalling && ha_greater(st->pitch_integ_deg, 0.0f)) {
+    st->pitch_integ_deg = 0.0f; /* no pull held, the one it tracked from the HP or its own */
+    nose_up_deg = ha_clampf(pitch_pd, -cfg->elevator_limit_deg, cfg->elevator_limit_deg);
+  }
   /* The elevator stop: the HA's own pull never trims the wing at its stall (the generator holds
    * sc_elevator_pull_max_deg to airframe.yaml). Flying, the integrator is wound back to the stop
    * so that it does not hold a pull beyond it; tracking another controller, the surfaces it

@@ -26,11 +26,21 @@ static float step_towards(float prev, float target, float max_step, int *reached
 /* A pull (trailing edge up, negative) that the new controller eases towards neutral goes at the
  * release rate: bumpless transfer must not keep the last controller's pull on a wing it is
  * stalling (HiL: 0.3 s of an HP's pull slewed out at 60 deg/s took the wing to 24 deg of alpha
- * after a STALL takeover). Past neutral, and every pull, at the bumpless rate. */
+ * after a STALL takeover). Past neutral, and every pull, at the bumpless rate; but the HA
+ * unloading a stall moves nose down at the release rate all the way (HiL campaign seed 25 #94:
+ * eased past neutral at 60 deg/s, the HP's inherited 21 deg/s pitch-up carried the wing 0.02 s
+ * past its stall). */
 static float elevator_towards(const HaAircraftConfig *cfg, float prev, float target, float dt_s,
-                              int *reached) {
+                              int unloading, int *reached) {
   const float bumpless =
       step_towards(prev, target, cfg->surface_rate_limit_deg_per_s * dt_s, reached);
+  if (unloading && ha_greater(target, bumpless)) {
+    int released = 1;
+    const float released_deg =
+        step_towards(prev, target, cfg->surface_release_rate_deg_per_s * dt_s, &released);
+    *reached = *reached && released;
+    return released_deg;
+  }
   if (ha_greater(0.0f, prev) && ha_greater(target, bumpless)) {
     int released = 1;
     const float released_deg = step_towards(prev, ha_greater(0.0f, target) ? target : 0.0f,
@@ -41,12 +51,12 @@ static float elevator_towards(const HaAircraftConfig *cfg, float prev, float tar
 }
 
 int ha_surfaces_rate_limit(const HaAircraftConfig *cfg, const HaSurfaces *prev,
-                           const HaSurfaces *target, float dt_s, HaSurfaces *out) {
+                           const HaSurfaces *target, float dt_s, int unloading, HaSurfaces *out) {
   const float surface_step = cfg->surface_rate_limit_deg_per_s * dt_s;
   const float throttle_step = cfg->throttle_rate_limit_per_s * dt_s;
   int reached = 1;
   out->elevator_deg =
-      elevator_towards(cfg, prev->elevator_deg, target->elevator_deg, dt_s, &reached);
+      elevator_towards(cfg, prev->elevator_deg, target->elevator_deg, dt_s, unloading, &reached);
   out->aileron_deg = step_towards(prev->aileron_deg, target->aileron_deg, surface_step, &reached);
   out->rudder_deg = step_towards(prev->rudder_deg, target->rudder_deg, surface_step, &reached);
   out->throttle = step_towards(prev->throttle, target->throttle, throttle_step, &reached);
