@@ -362,6 +362,36 @@ TEST(HaAirdataStories, PitotZeroedBeforeTheWindIsKnownFliesPitchAndPowerNotGroun
   EXPECT_GE(min_throttle, cfg.sc_throttle_trim - 0.01f) << "a tailwind's speed cut the power";
 }
 
+// The stall unload flies by a speed the HA may fly by. With the pitot zeroed before the wind is
+// known, the checks judge by the INS's speed over the ground (the thesis's stall signature), and
+// into a 28 ft/s headwind that is 38 ft/s at a true 66: STALL. Pushed to the pitch limit on it,
+// the HA dived a healthy aircraft in every lap's upwind leg (pitch down to -6.5 deg, 146 ft from
+// the band's middle of 200); it flies pitch and power instead.
+TEST(HaAirdataStories, AHeadwindTheInsReadsAsAStallIsNotDivedIntoWithTheWindUnknown) {
+  HaAloneFlight f;
+  const HaAircraftConfig& cfg = f.cfg;
+  PointMassAircraft& ac = f.ac;
+  const float band_mid_ft = 0.5f * (cfg.sc_alt_min_ft + cfg.sc_alt_max_ft);
+  f.StartOnTheCircle(band_mid_ft, 62.0f);
+  ac.wind_east_ftps = 28.0f;
+  ASSERT_LT(ac.wind_east_ftps, cfg.max_wind_ftps);
+  float min_h = ac.altitude_ft, min_pitch = ac.pitch_deg;
+  uint32_t stall_periods = 0u;
+  for (int i = 0; i < 100 * 120; ++i) {
+    const HaOutputs& out = f.StepWithPitot(0.0f);
+    ASSERT_NE(out.controller, HA_CONTROLLER_HP);
+    stall_periods += (out.reasons & HA_REASON_STALL) ? 1u : 0u;
+    min_h = std::min(min_h, ac.altitude_ft);
+    min_pitch = std::min(min_pitch, ac.pitch_deg);
+  }
+  std::printf(
+      "pitot zeroed in a %.0f ft/s wind: %u periods of STALL, lowest %.1f ft, pitch >= %.1f\n",
+      ac.wind_east_ftps, stall_periods, min_h, min_pitch);
+  ASSERT_GT(stall_periods, 0u) << "the headwind never read as a stall: the story is not told";
+  EXPECT_GT(min_h, cfg.sc_alt_min_ft - 20.0f);
+  EXPECT_GT(min_pitch, -0.5f * cfg.sc_pitch_cmd_limit_deg);
+}
+
 // F8. A healthy pitot downwind at 6,500 ft: 60 ft/s indicated is 66.1 true there, and 94 over
 // the ground is a 28 ft/s tailwind, inside max_wind. Compared as indicated airspeed against
 // groundspeed (34 apart) it displaced a healthy HP.

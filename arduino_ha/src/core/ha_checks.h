@@ -35,7 +35,7 @@ typedef struct {
   uint8_t airborne;  /* set by the core: the latch */
   uint8_t on_ground; /* set by the core: the one rule (HaOutputs.on_ground) */
   uint8_t parked;    /* set by the core: on the ground, still, at a known height: self-test */
-  uint8_t stalling;  /* set by the core: this period's checks raised STALL */
+  uint8_t stalling;  /* set by the core: STALL raised on a speed_known: fly it out */
   /* The HA's own airspeed picture (ha_airdata.c), whatever the pitot does. */
   uint8_t speed_ok;    /* ias_ftps set: the pitot believed, else the INS (the checks judge by it) */
   uint8_t speed_known; /* ... and an airspeed: the pitot's, or the INS's less a known wind */

@@ -289,7 +289,9 @@ void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *
   policy.operator_restart = (uint8_t)handle_operator(core, in, &view, now_us);
   reasons = ha_checks_evaluate(cfg, &facts, &view, &sx_max, &su_max) |
             (core->ground_command ? HA_REASON_GROUND_COMMAND : 0u);
-  view.stalling = (uint8_t)((reasons & HA_REASON_STALL) != 0u);
+  /* The stall is flown out only on a speed the HA may fly by: the INS's speed over the ground,
+   * the wind unknown, reads a headwind as a stall, and a push on it dives a healthy aircraft. */
+  view.stalling = (uint8_t)((reasons & HA_REASON_STALL) != 0u && view.speed_known);
   core->stable_for_us = (reasons & HA_REASONS_COMMAND) ? 0u : add_sat(core->stable_for_us, dt_us);
   core->own_state_for_us =
       (reasons & HA_REASON_NO_HA_STATE) ? 0u : add_sat(core->own_state_for_us, dt_us);
