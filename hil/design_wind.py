@@ -11,8 +11,8 @@ give it back (HiL campaign seed 24: an 11.4 m/s headwind turned into a 12.8 m/s 
 """
 import math
 
-FT_PER_M = 1.0 / 0.3048
-G_FTPS2 = 32.174
+from hil.units import FT_PER_M, G_FTPS2
+
 TURBULENCE = ("none", "light", "moderate")
 
 

@@ -24,11 +24,10 @@ import tty
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "vn200_driver",
                                 "scripts"))
+from hil.units import FT_PER_M, G_MPS2  # noqa: E402
 from vn200_emulation import (INS_STATUS_TRACKING_FIX, NS_PER_WEEK, Registers, Solution,  # noqa: E402
                              binary_packet, packet_length)
 
-FT_PER_M = 3.280839895
-G_MPS2 = 9.80665
 WGS84_A = 6378137.0
 WGS84_E2 = 6.69437999014e-3
 GPS_EPOCH_OFFSET_NS = 2390 * NS_PER_WEEK  # a GPS week of 2025; only its consistency matters

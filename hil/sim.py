@@ -47,8 +47,8 @@ from hil import faults, gs_monitor, ha_channel, link_relay, mission, sensors, ve
 from hil.faults.base import RC_NEUTRAL, Board  # noqa: E402
 from hil.design_wind import DesignWind  # noqa: E402
 from hil.fdm import Fdm, FdmCrash, Surfaces, Wind  # noqa: E402
+from hil.units import FT_PER_M  # noqa: E402
 
-FT_PER_M = sensors.FT_PER_M
 CONTROLLER_NAMES = {0: "HP", 1: "HA", 2: "RECOVERING", 3: "HA_LATCHED", 4: "MANUAL"}
 # What the controller subscribes to (drone_ros/controller/README.md): connected before a step.
 CONTROLLER_INPUTS = ["/hil/lockstep", "/ins", "/attitude", "/gps_position", "/gps_velocity",

@@ -10,9 +10,10 @@ ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), 
 sys.path.insert(0, os.path.join(ROOT, "arduino_ha", "tools"))
 import gen_aircraft_config  # noqa: E402
 
+from hil.units import FT_PER_M  # noqa: E402
+
 WGS84_A = 6378137.0
 WGS84_E2 = 6.69437999014e-3
-FT_PER_M = 3.280839895
 CONTROLLERS = {0: "HP", 1: "HA", 2: "RECOVERING", 3: "HA_LATCHED", 4: "MANUAL"}
 HA_SIDE = (1, 2, 3)  # the HA safety controller drives the servos (incl. recovering, latched)
 # A float32 surface value may sit a rounding step past a limit given in decimal.

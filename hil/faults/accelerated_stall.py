@@ -11,7 +11,7 @@ stalls."""
 import math
 
 from hil.faults.steer import SteeringFault
-from hil.sensors import FT_PER_M
+from hil.units import FT_PER_M
 
 
 class AcceleratedStall(SteeringFault):

@@ -14,7 +14,6 @@ import numpy as np
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
 import check_config  # noqa: E402  (aircraft/schema/: no unknown, missing or mistyped key)
 
-FT_PER_M = 1.0 / 0.3048
 LBF_PER_N = 0.2248089430997105
 
 

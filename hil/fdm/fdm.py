@@ -10,13 +10,14 @@ import tempfile
 import jsbsim
 import numpy as np
 
-from .airframe import FT_PER_M, Airframe
+from hil.units import FT_PER_M, M_PER_FT
+
+from .airframe import Airframe
 from .model_xml import SURFACE_PROPERTIES, THROTTLE_PROPERTY, write_model
 from .servo import Servo
 from .turbulence import Turbulence
 from .types import Surfaces, Truth, Wind
 
-M_PER_FT = 0.3048
 PA_PER_PSF = 47.88025898
 KG_M3_PER_SLUG_FT3 = 515.3788184
 # A constant earth field for the magnetometer, NED [gauss]: roughly the mid-latitude northern

@@ -16,7 +16,9 @@ import os
 import sys
 from xml.sax.saxutils import escape
 
-from .airframe import FT_PER_M, LBF_PER_N, Airframe
+from hil.units import FT_PER_M
+
+from .airframe import LBF_PER_N, Airframe
 
 THRUST_PROPERTY = "external_reactions/thrust/magnitude"
 SURFACE_PROPERTIES = {

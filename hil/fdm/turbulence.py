@@ -14,7 +14,8 @@ import math
 
 import numpy as np
 
-FT_PER_M = 1.0 / 0.3048
+from hil.units import FT_PER_M
+
 KT_TO_MPS = 0.514444
 # Wind speed at 20 ft, the low-altitude model's severity parameter (MIL-F-8785C 3.7.2.3).
 W20_KT = {"none": 0.0, "light": 15.0, "moderate": 30.0}
