@@ -45,15 +45,14 @@ struct Gnc {
 // Stall prevention, as ArduPlane's: the HA judges the stall by the load factor (IAS^2 cos(bank)
 // against its switch speed squared, issue 22 F1), so a bank the speed cannot pay for is a
 // takeover. The bank is limited so that V^2 cos(bank) stays at min_airspeed_cmd^2 (never below
-// kMinStallPreventionBankRad: the aircraft must still steer), and the airspeed demand rises with
+// stall_prevention_min_bank_deg: the aircraft must still steer), and the airspeed demand rises with
 // the square root of the load factor of the bank commanded. (HiL, moderate turbulence in a
 // 16 ft/s headwind: the HP slowed to 49.5 ft/s in a 32 deg bank and lost the servos for STALL
 // until latched.)
-constexpr double kMinStallPreventionBankRad = 10.0 * kDegToRad;
 void stall_prevention(const DG808_GNC_Params &p, double vt_ftps, dg808::GuidanceCommand *gc) {
   const double floor_sq = p.min_airspeed_cmd_ftps * p.min_airspeed_cmd_ftps;
   const double cos_min = vt_ftps > 0.0 ? std::min(1.0, floor_sq / (vt_ftps * vt_ftps)) : 1.0;
-  const double max_bank = std::max(kMinStallPreventionBankRad, std::acos(cos_min));
+  const double max_bank = std::max(p.stall_prevention_min_bank_deg * kDegToRad, std::acos(cos_min));
   gc->phi_cmd_rad = std::clamp(gc->phi_cmd_rad, -max_bank, max_bank);
   gc->vt_cmd_ftps =
       std::max(gc->vt_cmd_ftps, p.min_airspeed_cmd_ftps / std::sqrt(std::cos(gc->phi_cmd_rad)));
@@ -148,6 +147,7 @@ bool params_valid(const DG808_GNC_Params &p) {
                       p.max_pitch_cmd_deg,
                       p.attitude_cmd_rate_deg_s,
                       p.min_airspeed_cmd_ftps,
+                      p.stall_prevention_min_bank_deg,
                       p.airspeed_valid_min_ftps,
                       p.converged_sigma_deg,
                       p.airborne_agl_ft};
@@ -163,9 +163,10 @@ bool params_valid(const DG808_GNC_Params &p) {
          p.ki_lon_rad_per_ft_s >= 0.0 && p.max_bank_deg > 0.0 && p.max_bank_deg < 90.0 &&
          p.max_pitch_cmd_deg > 0.0 && p.max_pitch_cmd_deg < 90.0 &&
          p.attitude_cmd_rate_deg_s > 0.0 && p.min_airspeed_cmd_ftps > p.stall_speed_ftps &&
-         p.airspeed_valid_min_ftps > 0.0 && p.airspeed_valid_min_ftps < p.stall_speed_ftps &&
-         p.converged_sigma_deg > 0.0 && p.airborne_agl_ft >= 0.0 &&
-         (p.guidance_selection == 0 || p.guidance_selection == 1) &&
+         p.stall_prevention_min_bank_deg > 0.0 &&
+         p.stall_prevention_min_bank_deg <= p.max_bank_deg && p.airspeed_valid_min_ftps > 0.0 &&
+         p.airspeed_valid_min_ftps < p.stall_speed_ftps && p.converged_sigma_deg > 0.0 &&
+         p.airborne_agl_ft >= 0.0 && (p.guidance_selection == 0 || p.guidance_selection == 1) &&
          (p.mpf_switch == 0 || p.mpf_switch == 1) && (p.path_select == 0 || p.path_select == 1) &&
          std::fabs(p.alpha0_rad) < kPi / 2.0 && std::fabs(p.beta0_rad) < kPi / 2.0;
 }

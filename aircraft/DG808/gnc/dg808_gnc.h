@@ -41,6 +41,7 @@ typedef struct {
   double max_bank_deg, max_pitch_cmd_deg;
   double attitude_cmd_rate_deg_s; /* fastest the bank and pitch commands move */
   double min_airspeed_cmd_ftps;
+  double stall_prevention_min_bank_deg; /* stall prevention limits the bank no further */
   double airspeed_valid_min_ftps;
   double converged_sigma_deg;
   /* limits.yaml state/airborne_agl_ft (the HA's alt0): with a home, the estimator takes the wing

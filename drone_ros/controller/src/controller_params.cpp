@@ -136,6 +136,7 @@ bool build_controller_params(const ParamLookup &lookup, ControllerParams *params
       g.min_airspeed_cmd_ftps > handback_ftps,
       "min_airspeed_cmd_ftps must be above the HA's hand-back speed (limits' stall_speed_ftps "
       "x handback_stall_multiple)");
+  g.stall_prevention_min_bank_deg = r.get("stall_prevention_min_bank_deg", 1.0, g.max_bank_deg);
   g.airspeed_valid_min_ftps = r.get("airspeed_valid_min_ftps", 1.0, 300.0);
   r.require(g.airspeed_valid_min_ftps < g.stall_speed_ftps,
             "airspeed_valid_min_ftps must be below the stall speed, or flight has no air data");

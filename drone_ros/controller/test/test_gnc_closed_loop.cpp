@@ -416,40 +416,58 @@ TEST(GncClosedLoop, AHandBackIntoTheOppositeBankReversesItWithoutAFullAileronSna
               p_deg_s, aileron_deg, step_p_deg_s, step_aileron_deg);
 }
 
+namespace {
+
 // Stall prevention (issue 22): the HA judges the stall by the load factor, so the HP may not bank
 // further than its speed pays for. Asked to fly the slowest it may (a waypoint's speed of
 // min_airspeed_cmd) towards a waypoint behind it, the HP banks no further than
-// V^2 cos(bank) = min_airspeed_cmd^2 allows (never below 10 deg), and asks for the airspeed a
-// level turn at that bank needs.
+// V^2 cos(bank) = min_airspeed_cmd^2 allows (never below stall_prevention_min_bank_deg), and asks
+// for the airspeed a level turn at that bank needs. Returns the largest bank commanded.
 // Before, it rolled to max_bank_deg (35) at once: at 52 ft/s that is 1.22 g, past the lift the
 // HA's stall switch allows in moderate turbulence (HiL: the HP lost the servos for STALL).
-TEST(GncClosedLoop, SlowInATurnTheHpBanksOnlyAsFarAsItsSpeedPays) {
-  Flight f;
-  f.sim().set_trimmed_flight(52.0, 200.0, 0.0);  // heading north
+double slow_turn_max_bank_deg(Flight *f) {
+  f->sim().set_trimmed_flight(52.0, 200.0, 0.0);  // heading north
   const double behind[1][3] = {{-1500.0, 300.0, 200.0}};
-  f.set_plan(behind, 1);
-  f.in().wp_velocity_ftps[0] = f.params().gnc.min_airspeed_cmd_ftps;  // asked to fly slow
-  const double min_ftps = f.params().gnc.min_airspeed_cmd_ftps;
+  f->set_plan(behind, 1);
+  f->in().wp_velocity_ftps[0] = f->params().gnc.min_airspeed_cmd_ftps;  // asked to fly slow
+  const double min_ftps = f->params().gnc.min_airspeed_cmd_ftps;
+  const double floor_deg = f->params().gnc.stall_prevention_min_bank_deg;
   double worst_excess_deg = -90.0, max_bank_deg = 0.0;
   int checked = 0;
-  while (f.t() < 6.0) {
-    f.step();
-    ASSERT_TRUE(all_finite(f.out()));
-    if (!f.out().estimator_converged) continue;
-    const double v = f.out().vt_est_ftps;
+  while (f->t() < 6.0) {
+    f->step();
+    EXPECT_TRUE(all_finite(f->out()));
+    if (!f->out().estimator_converged) continue;
+    const double v = f->out().vt_est_ftps;
     const double allowed_deg =
-        std::max(10.0, std::acos(std::min(1.0, min_ftps * min_ftps / (v * v))) * kRadToDeg);
-    const double bank_deg = std::fabs(f.out().phi_cmd_rad) * kRadToDeg;
+        std::max(floor_deg, std::acos(std::min(1.0, min_ftps * min_ftps / (v * v))) * kRadToDeg);
+    const double bank_deg = std::fabs(f->out().phi_cmd_rad) * kRadToDeg;
     worst_excess_deg = std::max(worst_excess_deg, bank_deg - allowed_deg);
     max_bank_deg = std::max(max_bank_deg, bank_deg);
-    EXPECT_GE(f.out().vt_cmd_ftps, min_ftps / std::sqrt(std::cos(f.out().phi_cmd_rad)) - 0.5)
-        << "at t=" << f.t();
+    EXPECT_GE(f->out().vt_cmd_ftps, min_ftps / std::sqrt(std::cos(f->out().phi_cmd_rad)) - 0.5)
+        << "at t=" << f->t();
     ++checked;
   }
-  ASSERT_GT(checked, 50);  // 20 Hz, once the estimator has converged
+  EXPECT_GT(checked, 50);  // 20 Hz, once the estimator has converged
   EXPECT_LT(worst_excess_deg, 2.0) << "banked past what the speed pays for";
-  EXPECT_GT(max_bank_deg, 10.0) << "it must still turn";
+  return max_bank_deg;
+}
+
+}  // namespace
+
+TEST(GncClosedLoop, SlowInATurnTheHpBanksOnlyAsFarAsItsSpeedPays) {
+  Flight f;
+  const double max_bank_deg = slow_turn_max_bank_deg(&f);
+  EXPECT_GT(max_bank_deg, f.params().gnc.stall_prevention_min_bank_deg - 0.5)
+      << "it must still turn";
   RecordProperty("max_bank_deg", std::to_string(max_bank_deg));
+}
+
+// The floor is controller_param.yaml's, not a literal: raised to 20 deg, the slow HP turns at 20.
+TEST(GncClosedLoop, StallPreventionsBankFloorIsTheAircraftsParameter) {
+  Flight f({{"stall_prevention_min_bank_deg", 20.0}});
+  ASSERT_DOUBLE_EQ(f.params().gnc.stall_prevention_min_bank_deg, 20.0);
+  EXPECT_GT(slow_turn_max_bank_deg(&f), 19.5);
 }
 
 namespace {
