@@ -8,9 +8,8 @@
 /* One PID channel with conditional-integration anti-windup and output saturation. When another
  * controller drives the surface, the integrator is back-calculated so pd + integ == applied, as
  * far as its authority allows; the core's rate limiter covers any remaining difference. */
-static float pid(float *integ, float pd, float integ_step, float limit, float authority,
+static float pid(float *integ, float pd, float integ_step, float limit, float integ_limit,
                  int in_control, float applied) {
-  const float integ_limit = authority * limit;
   if (!in_control) {
     *integ = ha_clampf(applied - pd, -integ_limit, integ_limit);
   } else {
@@ -113,6 +112,7 @@ void ha_safety_ctrl_step(HaSafetyCtrlState *st, const HaAircraftConfig *cfg, con
   float thr_pd = cfg->sc_throttle_trim - throttle_mid, thr_step = 0.0f;
   float nose_up_deg;
   const float auth = cfg->sc_integrator_authority;
+  const float pitch_integ_limit = auth * cfg->elevator_limit_deg; /* pid's and the stop's */
   if (!s->attitude_ok && in_control) {
     /* Blind: nothing to close a loop on. What the integrators hold fades to the trims. */
     const float fade = cfg->sc_blind_fade_per_s * auth * dt_s;
@@ -164,11 +164,11 @@ void ha_safety_ctrl_step(HaSafetyCtrlState *st, const HaAircraftConfig *cfg, con
                           cfg->throttle_max - cfg->sc_throttle_trim);
     }
   }
-  out->aileron_deg = pid(&st->roll_integ_deg, roll_pd, roll_step, cfg->aileron_limit_deg, auth,
-                         in_control, applied->aileron_deg);
+  out->aileron_deg = pid(&st->roll_integ_deg, roll_pd, roll_step, cfg->aileron_limit_deg,
+                         auth * cfg->aileron_limit_deg, in_control, applied->aileron_deg);
   /* Elevator trailing edge down is positive (nose down): the loop works in nose-up degrees. */
-  nose_up_deg = pid(&st->pitch_integ_deg, pitch_pd, pitch_step, cfg->elevator_limit_deg, auth,
-                    in_control, -applied->elevator_deg);
+  nose_up_deg = pid(&st->pitch_integ_deg, pitch_pd, pitch_step, cfg->elevator_limit_deg,
+                    pitch_integ_limit, in_control, -applied->elevator_deg);
   if (s->stalling && ha_greater(st->pitch_integ_deg, 0.0f)) {
     st->pitch_integ_deg = 0.0f; /* no pull held, the one it tracked from the HP or its own */
     nose_up_deg = ha_clampf(pitch_pd, -cfg->elevator_limit_deg, cfg->elevator_limit_deg);
@@ -181,14 +181,15 @@ void ha_safety_ctrl_step(HaSafetyCtrlState *st, const HaAircraftConfig *cfg, con
     if (in_control) {
       st->pitch_integ_deg =
           ha_clampf(st->pitch_integ_deg - (nose_up_deg - cfg->sc_elevator_pull_max_deg),
-                    -auth * cfg->elevator_limit_deg, auth * cfg->elevator_limit_deg);
+                    -pitch_integ_limit, pitch_integ_limit);
     }
     nose_up_deg = cfg->sc_elevator_pull_max_deg;
   }
   out->elevator_deg = -nose_up_deg;
   /* Throttle is handled about the middle of its range so the same symmetric PID applies. */
-  out->throttle = throttle_mid + pid(&st->throttle_integ, thr_pd, thr_step, throttle_half, auth,
-                                     in_control, applied->throttle - throttle_mid);
+  out->throttle =
+      throttle_mid + pid(&st->throttle_integ, thr_pd, thr_step, throttle_half, auth * throttle_half,
+                         in_control, applied->throttle - throttle_mid);
   if (!s->airborne) {
     out->throttle = cfg->throttle_min; /* on the ground the motor idles */
   }
