@@ -178,10 +178,10 @@ def run_whole(argv, timeout_s, env=None, term_grace_s=30.0):
     return code, out, timed_out
 
 
-def run_completed(argv, timeout, env=None):
+def run_completed(argv, timeout, env=None, term_grace_s=30.0):
     """subprocess.run(argv, stdout=PIPE, stderr=STDOUT, timeout=timeout) for a flight, killed
     whole (run_whole) when it runs out of time, which it reports as subprocess.TimeoutExpired."""
-    code, out, timed_out = run_whole(argv, timeout, env=env)
+    code, out, timed_out = run_whole(argv, timeout, env=env, term_grace_s=term_grace_s)
     if timed_out:
         raise subprocess.TimeoutExpired(argv, timeout, output=out)
     return subprocess.CompletedProcess(argv, code, stdout=out)
