@@ -20,3 +20,20 @@ def pytest_configure(config):
     if not os.environ.get("HIL_TEST_FLIGHTS"):
         os.environ["HIL_TEST_FLIGHTS"] = tempfile.mkdtemp(prefix="hil_test_flights_")
 
+
+def pytest_collection_modifyitems(config, items):
+    """make test runs these tests on two workers (pytest-xdist, --dist loadgroup). A module whose
+    tests share a module-scoped fixture (one flight, one master, one build read by many tests)
+    goes to one worker as a whole, so that fixture is still made once per run; every other test
+    goes to whichever worker is free."""
+    if not config.pluginmanager.hasplugin("xdist"):
+        return
+    import pytest
+    for item in items:
+        info = getattr(item, "_fixtureinfo", None)
+        if info is None:
+            continue
+        shared = any(defs and defs[-1].scope == "module"
+                     for defs in (info.name2fixturedefs.get(n) for n in info.names_closure))
+        if shared:
+            item.add_marker(pytest.mark.xdist_group(item.module.__name__))
