@@ -63,7 +63,7 @@ def times(path):
     """When a file is used: to build, to run, to test."""
     parts = path.split("/")
     if any(p in ("test", "bench", "fuzz", "verify", "design") for p in parts[:-1]) or parts[-1].startswith("test_") \
-            or parts[-1].endswith(".test"):
+            or parts[-1].endswith(".test") or parts[-1] == "conftest.py":  # pytest's own set-up file
         return {"test"}
     if path in BUILD_AND_RUN:
         return {"build", "run"}

@@ -16,8 +16,16 @@ export DRONE_ROS_WS=$ws
 grep -E '^\[ *(FAILED|  PASSED|  OK) *\]|FAILURE|ERROR:' "$ws/../run_tests.log" | grep -vE '^\[ +OK \]' | tail -n 40
 
 mapfile -t pytest_dirs < <(cd "$root" && for d in test */test */*/test; do [ -d "$d" ] && ls "$d"/test_*.py >/dev/null 2>&1 && echo "$root/$d"; done)
+# On two workers (pytest-xdist; TEST_WORKERS=1 runs them in this process, one after another):
+# every flight, master and ground station of a test takes its own free ports, ptys and folders,
+# so independent tests run side by side; the tests of a module sharing a module-scoped fixture
+# stay on one worker (conftest.py), so a flight read by many tests is still flown once.
+workers=${TEST_WORKERS:-2}
+parallel=()
+[ "$workers" -gt 1 ] && parallel=(-n "$workers" --dist loadgroup)
 if [ ${#pytest_dirs[@]} -gt 0 ]; then
-  "$venv/bin/python" -m pytest -q -p no:cacheprovider --junitxml="$results/drone_ros/pytest.xml" "${pytest_dirs[@]}" || status=1
+  "$venv/bin/python" -m pytest -q -p no:cacheprovider "${parallel[@]}" --durations=25 \
+    --junitxml="$results/drone_ros/pytest.xml" "${pytest_dirs[@]}" || status=1
 fi
 
 "$venv/bin/python" "$root/tools/summarize_results.py" "$results" || status=1

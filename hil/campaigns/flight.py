@@ -178,13 +178,44 @@ def run_whole(argv, timeout_s, env=None, term_grace_s=30.0):
     return code, out, timed_out
 
 
-def run_completed(argv, timeout, env=None):
+def run_completed(argv, timeout, env=None, term_grace_s=30.0):
     """subprocess.run(argv, stdout=PIPE, stderr=STDOUT, timeout=timeout) for a flight, killed
     whole (run_whole) when it runs out of time, which it reports as subprocess.TimeoutExpired."""
-    code, out, timed_out = run_whole(argv, timeout, env=env)
+    code, out, timed_out = run_whole(argv, timeout, env=env, term_grace_s=term_grace_s)
     if timed_out:
         raise subprocess.TimeoutExpired(argv, timeout, output=out)
     return subprocess.CompletedProcess(argv, code, stdout=out)
+
+
+SHARED_FLIGHTS_VAR = "HIL_TEST_FLIGHTS"
+
+
+def run_once_per_test_run(argv, timeout):
+    """run_completed(argv + ["--folder", folder]) for a test, flown once per test run: the tests
+    that read one scenario (the same run_flight.py command line) share its flight, across modules
+    and pytest-xdist workers. The test run's folder for them is $HIL_TEST_FLIGHTS (conftest.py
+    makes one per run); without it every call flies. Returns (CompletedProcess, folder); lockstep
+    is deterministic, so a reader gets the flight it would have flown itself."""
+    import fcntl
+    import hashlib
+    base = os.environ.get(SHARED_FLIGHTS_VAR)
+    if not base:
+        import tempfile
+        folder = os.path.join(tempfile.mkdtemp(prefix="hil_flight_"), "flight")
+        return run_completed(list(argv) + ["--folder", folder], timeout), folder
+    key = hashlib.sha256(json.dumps(list(argv[1:])).encode()).hexdigest()[:16]
+    folder = os.path.join(base, key, "flight")
+    with open(os.path.join(base, key + ".lock"), "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)  # a second reader waits here for the first one's flight
+        done = os.path.join(base, key + ".json")
+        if not os.path.exists(done):
+            r = run_completed(list(argv) + ["--folder", folder], timeout)
+            with open(done, "w") as f:
+                json.dump({"argv": r.args, "returncode": r.returncode,
+                           "stdout": r.stdout.decode(errors="replace")}, f)
+        with open(done) as f:
+            d = json.load(f)
+    return subprocess.CompletedProcess(d["argv"], d["returncode"], stdout=d["stdout"].encode()), folder
 
 
 def run(flight, argv, folder, wall_limit_s, term_grace_s=30.0, env=None):

@@ -175,8 +175,10 @@ def test_a_test_flight_past_its_timeout_raises_and_leaves_no_process_behind():
     folder = tempfile.mkdtemp(prefix="campaign_stuck_test_")
     fl = plan_mod.Flight(0, "stuck", 5, 10.0, 1.0, (), 40.0)
     argv = plan_mod.command(fl, folder, AGREED, run_flight=FAKE)
+    # Its run_flight.py ignores SIGTERM: a grace of 1 s, not a real flight's 30 s, before the
+    # SIGKILL of everything holding its token (the same path, 29 s sooner).
     with pytest.raises(subprocess.TimeoutExpired):
-        flight_mod.run_completed(argv, timeout=10.0)
+        flight_mod.run_completed(argv, timeout=10.0, term_grace_s=1.0)
     with open(os.path.join(folder, "pids")) as f:
         pids = [int(p) for p in f.read().split()]
     assert len(pids) == 2, "the stuck flight had not started its processes within the timeout"

@@ -2,10 +2,8 @@
 it and runs the report, as `make run` does): every figure is drawn and on the page, and the
 page's switch list is the flight's switches as the simulator saw them on the servos (summary.json
 "who_flew", from the HA's replies in the loop), not as the report read them from the bag."""
-import json
 import os
 import sys
-import tempfile
 
 import pytest
 
@@ -13,25 +11,18 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from test_flight_report import FIGURES, page, png_size  # noqa: E402
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
-sys.path.insert(0, ROOT)
-from hil.campaigns.flight import run_completed  # noqa: E402  (a flight that runs out of time, killed whole)
+sys.path.insert(0, os.path.join(ROOT, "hil", "faults", "test"))
+from flight import fly  # noqa: E402  (the fault tests' flights, each flown once per test run)
 # The page's controller labels (report_core figures.CONTROLLER_LABELS) for the summary's names.
 LABELS = {"HP": "HP", "HA": "HA", "RECOVERING": "recovering", "HA_LATCHED": "latched", "MANUAL": "pilot"}
 
 
 @pytest.fixture(scope="module")
 def flight():
-    if "ROS_DISTRO" not in os.environ and "ROS_PACKAGE_PATH" not in os.environ:
-        pytest.fail("the workspace is not sourced (make test does it)")
-    folder = os.path.join(tempfile.mkdtemp(prefix="hil_report_"), "2026-11-24_101500-DG808-11")
     # A NaN aileron for 3 s from 15 s: the HA takes over, the HP is restarted and handed back.
-    argv = [sys.executable, os.path.join(ROOT, "hil", "run_flight.py"), "--seed", "11", "--fault", "nan",
-            "--fault-at", "15", "--fault-duration", "3", "--fault-param", "surface=aileron",
-            "--duration", "35", "--quiet", "--folder", folder]
-    r = run_completed(argv, timeout=1200)
-    assert r.returncode == 0, r.stdout.decode(errors="replace")[-3000:]
-    with open(os.path.join(folder, "summary.json")) as f:
-        return folder, json.load(f)
+    # hil/faults/test/test_nan.py's flight (with its bag and report), flown once per test run.
+    s = fly("nan", at_s=15.0, duration_s=3.0, params=["surface=aileron"], bag=True)
+    return s["_folder"], s
 
 
 def test_every_figure_of_the_fault_flight_is_drawn_and_on_the_page(flight):

@@ -4,30 +4,30 @@ which comes from the simulator's truth."""
 import json
 import os
 import sys
-import tempfile
 
 import yaml
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
 sys.path.insert(0, ROOT)
-from hil.campaigns.flight import run_completed  # noqa: E402  (a flight that runs out of time, killed whole)
+from hil.campaigns.flight import run_once_per_test_run  # noqa: E402  (killed whole if out of time; shared)
 with open(os.path.join(ROOT, "aircraft", "DG808", "limits.yaml")) as _f:
     HA_PERIOD_S = 1.0 / float(yaml.safe_load(_f)["decision"]["rate_hz"])
 
 
-def fly(fault, at_s=15.0, duration_s=-1.0, params=(), flight_s=35.0, seed=11, extra=()):
-    """Flies and returns (summary, replay command); extra: more run_flight.py arguments (the
-    world: --field-elevation-ft, --temperature-c, ...)."""
+def fly(fault, at_s=15.0, duration_s=-1.0, params=(), flight_s=35.0, seed=11, extra=(), bag=False):
+    """Flies and returns the summary (with its replay command and folder); extra: more
+    run_flight.py arguments (the world: --field-elevation-ft, --temperature-c, ...); bag: record
+    flight.bag and write its report. Tests asking for the same flight share it (one flight per
+    scenario per test run, hil/campaigns/flight.py run_once_per_test_run)."""
     if "ROS_DISTRO" not in os.environ and "ROS_PACKAGE_PATH" not in os.environ:
         raise AssertionError("the workspace is not sourced (make test does it)")
-    folder = os.path.join(tempfile.mkdtemp(prefix="hil_fault_%s_" % fault), "flight")
     argv = [os.path.join(ROOT, "hil", "run_flight.py"), "--seed", str(seed), "--fault", fault,
             "--fault-at", "%g" % at_s, "--fault-duration", "%g" % duration_s, "--duration", "%g" % flight_s]
     for p in params:
         argv += ["--fault-param", p]
-    argv += list(extra) + ["--no-bag", "--quiet", "--folder", folder]
-    r = run_completed([sys.executable] + argv, timeout=1200)
-    replay = "hil/run_flight.py " + " ".join(argv[1:-2])
+    argv += list(extra) + ([] if bag else ["--no-bag"]) + ["--quiet"]
+    r, folder = run_once_per_test_run([sys.executable] + argv, timeout=1200)
+    replay = "hil/run_flight.py " + " ".join(argv[1:])
     out = r.stdout.decode(errors="replace")
     assert r.returncode == 0, "flight failed (%s):\n%s" % (replay, out[-3000:])
     with open(os.path.join(folder, "summary.json")) as f:
