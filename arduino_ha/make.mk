@@ -82,3 +82,10 @@ PIL_OUT := $(ROOT)/.build/pil
 .PHONY: pil-image
 pil-image: deps
 	@bash $(HA_DIR)/pil/build_pil_image.sh $(PIL_OUT)
+
+# The firmware's instructions per period in the loop, counted in QEMU (-icount), printed as
+# metric: lines against the budget (hil/bench/bench_pil.py).
+BENCH_TARGETS += bench-pil
+.PHONY: bench-pil
+bench-pil: deps
+	@$(VENV)/bin/python $(ROOT)/hil/bench/bench_pil.py

@@ -23,7 +23,7 @@ gen=$sketch/src/link/generated
 
 m3_cflags=(-mcpu=cortex-m3 -mthumb -Os -std=c99 -ffunction-sections -fdata-sections -fstack-usage
   -Wall -Wextra -Werror -pedantic -I"$ha/src/core" -I"$ha/src/link" -I"$ha/src/vn200"
-  -I"$root/vn200_driver/core" -I"$ha/bench" -DHA_LINK_GENERATED_HEADER="\"$gen/ha_msgs.h\"")
+  -I"$root/vn200_driver/core" -I"$ha/bench" -DHA_LINK_GENERATED_HEADER="\"$gen/ha_msgs.h\"" ${PIL_CFLAGS:-})
 sources=("$ha"/src/core/*.c "$ha"/src/firmware/*.c "$ha"/src/link/*.c "$gen"/*.c
   "$ha"/src/vn200/*.c "$root"/vn200_driver/core/*.c "$ha"/sil/ha_sil_records.c
   "$ha"/sil/ha_sil_pins.c "$here"/*.c

@@ -12,8 +12,8 @@
  * SIL bounds them in wall time) and to count the period's instructions under -icount shift=0
  * (../bench/insn_timer.h: 40 instructions a tick).
  *
- * The reply frame is the SIL's reply record followed by a PilReplyTrailer. hil/ha_qemu.py starts
- * QEMU and bridges the simulator's control socket to UART2. */
+ * The reply frame is the SIL's reply record followed by a PilReplyTrailer (three u32 LE).
+ * hil/ha_qemu.py starts QEMU and bridges the simulator's control socket to UART2. */
 #include <stdint.h>
 #include <string.h>
 
@@ -38,14 +38,30 @@
 #define UART_HP 0
 #define UART_INS 1
 #define UART_CONTROL 2
-/* A byte the host side does not take within this many polls is dropped: a pty nobody reads must
- * not stop the HA (the link is built to lose bytes, as a full USB buffer on the Due loses them). */
-#define UART_TX_POLLS 100000u
-#define TIMER_TICKS_PER_MS 25000u /* the board's 25 MHz APB clock */
+#define TIMER_TICKS_PER_MS 25000u
+/* A byte the host side does not take within this much timer time is dropped (and counted): a pty
+ * nobody reads must not stop the HA (the link is built to lose bytes, as a full USB buffer on the
+ * Due loses them). Generous, since QEMU's thread that writes the pty may wait for a loaded CPU. */
+#define UART_TX_WAIT_TICKS (50u * TIMER_TICKS_PER_MS)
+/* After a period's inputs have come, the ports are read on until they have been quiet this long:
+ * QEMU hands a UART one byte at a time, so "what has arrived" is only known by waiting a little,
+ * and bytes left unread (the host's time sync, say) would pile up from period to period. */
+#define QUIET_TICKS (TIMER_TICKS_PER_MS / 2u)
+#ifndef PIL_IDLE_SPINS
+#define PIL_IDLE_SPINS 200u
+#endif /* the board's 25 MHz APB clock */
 
 static void uart_init(int n) {
   UART_BAUDDIV(n) = 217u; /* 25 MHz / 115200; QEMU moves bytes at the host's pace anyway */
   UART_CTRL(n) = UART_CTRL_TX_RX;
+}
+
+/* Polls without touching a device: every register read of a spinning guest takes QEMU's big lock,
+ * which the thread bringing the host's bytes to the UARTs needs too. */
+static void idle_a_little(void) {
+  volatile uint32_t k;
+  for (k = 0u; k < PIL_IDLE_SPINS; ++k) {
+  }
 }
 
 static size_t uart_read(int n, uint8_t *bytes, size_t max_len) {
@@ -56,14 +72,18 @@ static size_t uart_read(int n, uint8_t *bytes, size_t max_len) {
   return got;
 }
 
+static uint32_t g_tx_dropped;
+
 static void uart_write(int n, const uint8_t *bytes, size_t len) {
   size_t k;
   for (k = 0u; k < len; ++k) {
-    uint32_t polls = 0u;
+    const uint32_t start = ha_insn_timer_read();
     while ((UART_STATE(n) & UART_STATE_TX_FULL) != 0u) {
-      if (++polls >= UART_TX_POLLS) {
+      if ((uint32_t)(start - ha_insn_timer_read()) >= UART_TX_WAIT_TICKS) {
+        g_tx_dropped += (uint32_t)(len - k);
         return;
       }
+      idle_a_little();
     }
     UART_DATA(n) = bytes[k];
   }
@@ -128,8 +148,9 @@ typedef struct {
   uint32_t records_dropped;
   uint32_t period_insn_ticks; /* timer ticks of the period's ha_firmware_period (40 instr each
                                  under -icount shift=0) */
+  uint32_t tx_dropped;        /* bytes a UART's host side did not take in time */
 } PilReplyTrailer;
-#define PIL_TRAILER_LEN 8u
+#define PIL_TRAILER_LEN 12u
 
 static void send_reply(PilBoard *b, uint16_t flags, uint64_t t_us, uint32_t wait_us) {
   uint8_t rec[HA_SIL_REPLY_RECORD_LEN + PIL_TRAILER_LEN];
@@ -145,8 +166,10 @@ static void send_reply(PilBoard *b, uint16_t flags, uint64_t t_us, uint32_t wait
   ha_sil_encode_reply(&b->fw, &rb, rec);
   tr.records_dropped = b->control.bad_length + b->control.bad_crc + b->records_undecodable;
   tr.period_insn_ticks = b->period_ticks;
+  tr.tx_dropped = g_tx_dropped;
   ha_sil_put_u32(rec, &at, tr.records_dropped);
   ha_sil_put_u32(rec, &at, tr.period_insn_ticks);
+  ha_sil_put_u32(rec, &at, tr.tx_dropped);
   uart_write(UART_CONTROL, frame, pil_frame_encode(rec, sizeof rec, frame, sizeof frame));
 }
 
@@ -155,10 +178,16 @@ static void send_reply(PilBoard *b, uint16_t flags, uint64_t t_us, uint32_t wait
 static uint16_t gather_period_inputs(PilBoard *b, const HaSilStep *st, uint32_t *waited_ticks) {
   const uint32_t start = ha_insn_timer_read();
   const uint32_t bound = (st->wait_ms < 100000u ? st->wait_ms : 100000u) * TIMER_TICKS_PER_MS;
+  uint32_t last_byte = start;
   for (;;) {
     int want_cmd;
     int want_vn;
-    (void)ha_firmware_receive(&b->fw, b->now_us, 1u);
+    const uint32_t now = ha_insn_timer_read();
+    if (ha_firmware_receive(&b->fw, b->now_us, 1u) > 0u) {
+      last_byte = now;
+    } else {
+      idle_a_little();
+    }
     if ((st->flags & HA_SIL_WAIT_COUNT) != 0u) {
       want_cmd = (st->flags & HA_SIL_WAIT_COMMAND) != 0u && b->commands < st->cmd_seq;
     } else {
@@ -166,8 +195,8 @@ static uint16_t gather_period_inputs(PilBoard *b, const HaSilStep *st, uint32_t 
                  !(b->commands > 0u && b->last_cmd_seq == st->cmd_seq);
     }
     want_vn = b->vn_bytes < st->vn_bytes;
-    *waited_ticks = start - ha_insn_timer_read(); /* a down counter */
-    if (!want_cmd && !want_vn) {
+    *waited_ticks = start - now; /* a down counter */
+    if (!want_cmd && !want_vn && (uint32_t)(last_byte - now) >= QUIET_TICKS) {
       return 0u;
     }
     if (*waited_ticks >= bound) {
@@ -236,6 +265,7 @@ int main(void) {
     const uint8_t *payload = NULL;
     size_t len;
     if (uart_read(UART_CONTROL, &byte, 1u) == 0u) {
+      idle_a_little();
       continue;
     }
     len = pil_frame_rx_byte(&b->control, byte, &payload);

@@ -1,13 +1,10 @@
 """Processor in the loop: the HA firmware as Cortex-M3 machine code on QEMU's mps2-an385
 (arduino_ha/pil, hil/ha_qemu.py's QemuBoard), driven the way the simulator drives it: control
 records on its third UART, the simulator's VN-200 bytes on its second, rosserial frames from a
-host on its first (the HP link), stepped on simulation time. Only ptys; QEMU is stopped after
-each story. test_ha_channel.py runs the SIL's stories on this board too."""
+host on its first (the HP link), stepped on simulation time. Only ptys and QEMU's unix sockets;
+QEMU is stopped after each story. test_ha_channel.py runs the SIL's stories on this board too."""
 import os
-import struct
 import sys
-import tempfile
-import zlib
 
 import pytest
 
@@ -15,13 +12,10 @@ ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 sys.path.insert(0, ROOT)
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "drone_ros", "arduino_link", "test"))
-from hil import ha_channel, ha_qemu, sensors  # noqa: E402
-from wire_tap import frame, split_frames  # noqa: E402
-from ha_in_loop import Parked, build_pil_image  # noqa: E402
-
-HA, MANUAL, HP = 1, 4, 0
-CIC, PIC = (1100, 1500, 1500, 1500, 1000), (1100, 1800, 1500, 1500, 2000)
-SUBSCRIBER_INFO = 1  # rosserial's topic id of a device's subscriber announcement
+from hil import ha_channel, ha_qemu  # noqa: E402
+from wire_tap import frame  # noqa: E402
+from ha_in_loop import (HA, HP, MANUAL, PIC, PilRig, build_pil_image, negotiate,  # noqa: E402
+                        servo_command)
 
 
 @pytest.fixture(scope="module")
@@ -29,64 +23,11 @@ def image(tmp_path_factory):
     return build_pil_image(str(tmp_path_factory.mktemp("pil")))
 
 
-class Rig:
-    def __init__(self, image):
-        d = tempfile.mkdtemp(prefix="pil_")
-        self.vn = sensors.Vn200Port(os.path.join(d, "ha_vn200"), 1, seed=7,
-                                    baud=sensors.HA_VN200_BAUD, fixed_output=sensors.HA_OUTPUT_1)
-        self.board = ha_qemu.QemuBoard(image, os.path.join(d, "ha_vn200")).start()
-        self.host = ha_qemu.raw_open(self.board.hp_pty)  # the HP's end of the rosserial link
-        self.from_ha = bytearray()
-
-    def step(self, k, rc=CIC, wait_for=None, wait_ms=2000):
-        self.vn.emit_until(k * 0.01, lambda t: Parked)
-        rec = self.record(k, rc, wait_for, wait_ms)
-        reply, dropped, ticks = self.board.exchange(rec)
-        return ha_channel.decode_reply(reply), dropped, ticks
-
-    def record(self, k, rc=CIC, wait_for=None, wait_ms=2000):
-        flags = ha_channel.RC_VALID | ha_channel.AIRSPEED_OK | ha_channel.BATTERY_OK | \
-            (ha_channel.WAIT_COMMAND if wait_for is not None else 0)
-        return ha_channel.STEP.pack(ha_channel.MAGIC_STEP, ha_channel.VERSION, flags, k * 10000,
-                                    self.vn.pty.written, wait_for or 0, wait_ms, *rc, 0, 0.0, 12.4)
-
-    def frames_from_ha(self):
-        try:
-            while True:
-                self.from_ha += os.read(self.host, 4096)
-        except BlockingIOError:
-            pass
-        return split_frames(self.from_ha)
-
-    def close(self):
-        os.close(self.host)
-        self.board.stop()
-        self.vn.close()
-
-
 @pytest.fixture
 def rig(image):
-    r = Rig(image)
+    r = PilRig(image)
     yield r
     r.close()
-
-
-def servo_command(seq, elevator_deg):
-    fields = struct.pack("<III6fBB", seq, 1700000000, seq * 10000000 % 1000000000, 0.0, elevator_deg,
-                         1.5, -0.5, 2.0, 0.0, 1, 1)
-    return fields + struct.pack("<I", zlib.crc32(fields))
-
-
-def negotiate(rig, k):
-    """The host's topic request; returns the topic id the HA takes ServoCommands on."""
-    os.write(rig.host, frame(0, b""))
-    for k in range(k, k + 50):
-        rig.step(k)
-        for f in rig.frames_from_ha():
-            topic = f[5] | f[6] << 8
-            if topic == SUBSCRIBER_INFO and b"drone_ros/ServoCommand" in f:
-                return f[7] | f[8] << 8, k + 1
-    raise AssertionError("the HA never announced its ServoCommand subscriber")
 
 
 def test_with_no_hp_command_the_ha_flies_its_own_command_out_to_the_servos(rig):
