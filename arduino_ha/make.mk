@@ -8,6 +8,7 @@
 #   make due-image   build that sketch into the Due's .elf and .bin (.build/due_image) the way
 #                    arduino-cli does, against the real SAM core 1.6.12, Wire and Servo; prints
 #                    flash, RAM and the largest stack frame. Part of `make verify`.
+#   make pil-image   the firmware for QEMU mps2-an385 (.build/pil/ha_pil.elf): processor in the loop
 #   make bench-ha    instructions per control step on a Cortex-M3 under QEMU, ns per step on
 #                    the host.
 # Tools come from arduino_ha/apt-packages.txt through `make deps`.
@@ -73,3 +74,18 @@ VERIFY_TARGETS += due-image
 .PHONY: due-image
 due-image: deps
 	@JOBS=$(JOBS) DUE_EXTRA_FLAGS='$(DUE_EXTRA_FLAGS)' bash $(HA_DIR)/tools/build_due_image.sh $(ROOT)/.build/due_image
+
+# Processor in the loop: the firmware loop as Cortex-M3 machine code for QEMU's mps2-an385
+# (pil/pil_main.c: the HP link, the VN-200 and the simulator's control records on three UARTs),
+# which `hil/run_flight.py --ha qemu` flies (hil/ha_qemu.py). README.md, "Processor in the loop".
+PIL_OUT := $(ROOT)/.build/pil
+.PHONY: pil-image
+pil-image: deps
+	@bash $(HA_DIR)/pil/build_pil_image.sh $(PIL_OUT)
+
+# The firmware's instructions per period in the loop, counted in QEMU (-icount), printed as
+# metric: lines against the budget (hil/bench/bench_pil.py).
+BENCH_TARGETS += bench-pil
+.PHONY: bench-pil
+bench-pil: deps
+	@$(VENV)/bin/python $(ROOT)/hil/bench/bench_pil.py

@@ -158,6 +158,9 @@ def main(argv=None):
                     help="the field's elevation above sea level (default: the mission's home)")
     ap.add_argument("--temperature-c", type=float, default=None,
                     help="the day's temperature at the field (default: ISA there)")
+    ap.add_argument("--ha", choices=("sil", "qemu"), default="sil",
+                    help="the HA in the loop: its host build (ha_sil) or its Cortex-M3 machine code "
+                         "on QEMU mps2-an385 (built into the flight's folder; lockstep only)")
     ap.add_argument("--no-bag", action="store_true")
     ap.add_argument("--quiet", action="store_true", help="no progress bar")
     args = ap.parse_args(argv)
@@ -175,6 +178,8 @@ def main(argv=None):
     if any(" " in str(v) for v in fault_params.values()):
         ap.error("fault parameter values may not contain spaces")
 
+    if args.ha == "qemu" and args.realtime:
+        ap.error("--ha qemu runs in lockstep only (its clock is the simulator's step)")
     if args.realtime:
         raise_priority_for_realtime()
     stamp = datetime.datetime.utcnow().strftime("%Y-%m-%d_%H%M%S")
@@ -230,6 +235,8 @@ def main(argv=None):
                   "gs_udp_bind_port:=%d" % gs_bind, "gs_udp_remote_port:=%d" % gs_remote,
                   "gs_monitor:=%s" % ("false" if args.realtime else "true"),
                   "wait_for_recorder:=%s" % ("false" if args.no_bag else "true")]
+        if args.ha == "qemu":
+            launch += ["ha:=qemu", "ha_image:=" + build_pil_image(os.path.join(out, "pil"))]
         if args.field_elevation_ft is not None:
             launch.append("field_elevation_ft:=%r" % args.field_elevation_ft)
         if args.temperature_c is not None:
@@ -294,6 +301,16 @@ def main(argv=None):
     if not args.no_bag:
         code = write_report(out, args.aircraft)
     return code
+
+
+def build_pil_image(folder):
+    """The firmware for QEMU's mps2-an385 (make pil-image's script), built for this flight so the
+    flight's folder holds the very image that flew."""
+    script = os.path.join(HERE, "..", "arduino_ha", "pil", "build_pil_image.sh")
+    r = subprocess.run(["bash", script, folder], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    if r.returncode != 0:
+        raise RuntimeError("the PIL image did not build: %s" % r.stdout.strip()[-2000:])
+    return os.path.join(folder, "ha_pil.elf")
 
 
 def write_report(out, aircraft):

@@ -41,6 +41,7 @@
 #include "../src/firmware/ha_firmware.h"
 #include "ha_sil_board.h"
 #include "ha_sil_channel.h"
+#include "ha_sil_records.h"
 
 static volatile sig_atomic_t g_stop = 0;
 static volatile sig_atomic_t g_unplug = 0;
@@ -107,115 +108,22 @@ static int connect_channel(Sil *sil, const char *path) {
   return -1;
 }
 
-/* Little-endian field access: the records have a fixed layout whatever the host's padding. */
-static void put_u16(uint8_t *b, size_t *at, uint16_t v) {
-  b[(*at)++] = (uint8_t)v;
-  b[(*at)++] = (uint8_t)(v >> 8);
-}
-static void put_u32(uint8_t *b, size_t *at, uint32_t v) {
-  put_u16(b, at, (uint16_t)v);
-  put_u16(b, at, (uint16_t)(v >> 16));
-}
-static void put_u64(uint8_t *b, size_t *at, uint64_t v) {
-  put_u32(b, at, (uint32_t)v);
-  put_u32(b, at, (uint32_t)(v >> 32));
-}
-static void put_f32(uint8_t *b, size_t *at, float v) {
-  uint32_t u;
-  memcpy(&u, &v, sizeof u);
-  put_u32(b, at, u);
-}
-static uint16_t get_u16(const uint8_t *b, size_t *at) {
-  const uint16_t v = (uint16_t)(b[*at] | (b[*at + 1u] << 8));
-  *at += 2u;
-  return v;
-}
-static uint32_t get_u32(const uint8_t *b, size_t *at) {
-  const uint32_t lo = get_u16(b, at);
-  return lo | ((uint32_t)get_u16(b, at) << 16);
-}
-static uint64_t get_u64(const uint8_t *b, size_t *at) {
-  const uint64_t lo = get_u32(b, at);
-  return lo | ((uint64_t)get_u32(b, at) << 32);
-}
-static float get_f32(const uint8_t *b, size_t *at) {
-  const uint32_t u = get_u32(b, at);
-  float v;
-  memcpy(&v, &u, sizeof v);
-  return v;
-}
-
-#define STEP_RECORD_LEN 52u
-#define REPLY_RECORD_LEN 100u
-
-static int decode_step(const uint8_t *b, size_t len, HaSilStep *st) {
-  size_t at = 0u;
-  int k;
-  if (len != STEP_RECORD_LEN) {
-    return 0;
-  }
-  st->magic = get_u32(b, &at);
-  st->version = get_u16(b, &at);
-  st->flags = get_u16(b, &at);
-  st->t_us = get_u64(b, &at);
-  st->vn_bytes = get_u64(b, &at);
-  st->cmd_seq = get_u32(b, &at);
-  st->wait_ms = get_u32(b, &at);
-  for (k = 0; k < 5; ++k) {
-    st->rc_pulse_us[k] = get_u16(b, &at);
-  }
-  st->reserved = get_u16(b, &at);
-  st->airspeed_ftps = get_f32(b, &at);
-  st->battery_v = get_f32(b, &at);
-  return (st->magic == HA_SIL_MAGIC_STEP || st->magic == HA_SIL_MAGIC_POLL ||
-          st->magic == HA_SIL_MAGIC_RESET) &&
-         st->version == HA_SIL_VERSION;
-}
-
 /* Lockstep: the simulator waits for each reply, so the send may block. Real time: the SIL keeps
  * its own clock and never waits for the simulator; a reply that finds the socket full is dropped.
  */
 static void send_reply(Sil *sil, uint16_t flags, uint64_t t_us, uint32_t wait_us) {
-  const HaFirmware *fw = &sil->fw;
-  const HaOutputs *o = &fw->app.outputs;
-  uint8_t b[REPLY_RECORD_LEN];
-  size_t at = 0u;
-  if (ha_link_connected(&fw->link)) flags |= HA_SIL_R_LINK_CONNECTED;
-  if (fw->app.inputs.state_valid) flags |= HA_SIL_R_STATE_VALID;
-  if (fw->ins.ins.home_latched) flags |= HA_SIL_R_HOME;
-  if (sil->board.hp_reset) flags |= HA_SIL_R_HP_RESET;
-  if (o->restart_requested && (flags & HA_SIL_R_STEPPED)) flags |= HA_SIL_R_RESTART_REQUESTED;
-  put_u32(b, &at, HA_SIL_MAGIC_REPLY);
-  put_u16(b, &at, HA_SIL_VERSION);
-  put_u16(b, &at, flags);
-  put_u64(b, &at, t_us);
-  put_f32(b, &at, o->surfaces.elevator_deg);
-  put_f32(b, &at, o->surfaces.aileron_deg);
-  put_f32(b, &at, o->surfaces.rudder_deg);
-  put_f32(b, &at, o->surfaces.throttle);
-  put_f32(b, &at, o->ha_command.elevator_deg);
-  put_f32(b, &at, o->ha_command.aileron_deg);
-  put_f32(b, &at, o->ha_command.rudder_deg);
-  put_f32(b, &at, o->ha_command.throttle);
-  b[at++] = o->controller;
-  b[at++] = o->leds;
-  put_u16(b, &at, o->restart_count);
-  put_u32(b, &at, o->reasons);
-  put_u32(b, &at, o->reasons_at_switch);
-  put_u32(b, &at, o->last_seq);
-  put_u32(b, &at, sil->commands);
-  put_f32(b, &at, o->stable_for_s);
-  put_f32(b, &at, o->state_region_max);
-  put_f32(b, &at, o->actuator_region_max);
-  put_u32(b, &at, (uint32_t)sil->board.vn_bytes);
-  put_u32(b, &at, fw->ins.ins.solutions_used);
-  put_u32(b, &at, fw->ins.ins.solutions_rejected);
-  put_u32(b, &at, vn_framer_bad_packets(&fw->ins.framer.stats) + fw->ins.counts.decode_errors);
-  put_u32(b, &at, wait_us);
+  uint8_t b[HA_SIL_REPLY_RECORD_LEN];
+  const HaSilReplyBoard board = {.flags = flags,
+                                 .t_us = t_us,
+                                 .commands = sil->commands,
+                                 .vn_bytes = sil->board.vn_bytes,
+                                 .hp_reset = sil->board.pins.hp_reset,
+                                 .wait_us = wait_us};
+  ha_sil_encode_reply(&sil->fw, &board, b);
   {
-    const ssize_t n = send(sil->board.channel_fd, b, at,
+    const ssize_t n = send(sil->board.channel_fd, b, sizeof b,
                            MSG_NOSIGNAL | (sil->board.sim_clock ? 0 : MSG_DONTWAIT));
-    if (n != (ssize_t)at && !(n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK))) {
+    if (n != (ssize_t)sizeof b && !(n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK))) {
       g_stop = 1; /* the simulator is gone: so is the world this HA lives in */
     }
   }
@@ -272,7 +180,7 @@ static uint16_t gather_period_inputs(Sil *sil, const HaSilStep *st) {
 static void firmware_reset(Sil *sil) {
   sil->resets++;
   ha_firmware_start(&sil->fw, &sil->board.iface, &ha_aircraft_config, &sil->opts);
-  sil->board.hp_reset = 0; /* the Due's pins come up low: the HP out of reset */
+  sil->board.pins.hp_reset = 0; /* the Due's pins come up low: the HP out of reset */
   fprintf(stderr, "ha_sil: reset %u (as a watchdog reset): home %s, airborne %u\n",
           (unsigned)sil->resets, sil->fw.ins.ins.home_latched ? "kept" : "none",
           (unsigned)sil->fw.app.core.airborne);
@@ -296,7 +204,7 @@ static void run_lockstep(Sil *sil) {
       fprintf(stderr, "ha_sil: simulator closed the control channel\n");
       break;
     }
-    if (!decode_step(rec, (size_t)n, &st)) {
+    if (!ha_sil_decode_step(rec, (size_t)n, &st)) {
       fprintf(stderr, "ha_sil: dropped a control record of %zd bytes (not a step or poll)\n", n);
       continue;
     }
@@ -322,8 +230,8 @@ static void run_lockstep(Sil *sil) {
       waited_s = wall_s();
       flags = gather_period_inputs(sil, &st);
       waited_s = wall_s() - waited_s;
-      b->board_in = st;
-      b->have_board_in = 1;
+      b->pins.in = st;
+      b->pins.have_in = 1;
       ha_firmware_period(&sil->fw, b->sim_now_us);
       ha_firmware_service(&sil->fw, b->sim_now_us);
       send_reply(sil, (uint16_t)(flags | HA_SIL_R_STEPPED), st.t_us, (uint32_t)(waited_s * 1e6));
@@ -355,10 +263,11 @@ static void run_realtime(Sil *sil, uint32_t unplug_us) {
       if (n == 0) {
         break; /* the simulator is gone */
       }
-      if (n > 0 && decode_step(rec, (size_t)n, &st) && st.magic == HA_SIL_MAGIC_STEP) {
-        b->board_in = st;
-        b->have_board_in = 1;
-      } else if (n > 0 && decode_step(rec, (size_t)n, &st) && st.magic == HA_SIL_MAGIC_RESET) {
+      if (n > 0 && ha_sil_decode_step(rec, (size_t)n, &st) && st.magic == HA_SIL_MAGIC_STEP) {
+        b->pins.in = st;
+        b->pins.have_in = 1;
+      } else if (n > 0 && ha_sil_decode_step(rec, (size_t)n, &st) &&
+                 st.magic == HA_SIL_MAGIC_RESET) {
         firmware_reset(sil);
       }
     }
@@ -432,6 +341,7 @@ int main(int argc, char **argv) {
             strerror(errno));
     return 1;
   }
+  b->pins.standalone = channel_path == NULL;
   if (sil_board_plug(b) != 0) {
     perror("ha_sil: openpty");
     return 1;

@@ -22,71 +22,6 @@ static uint32_t board_micros(void *ctx) {
   return (uint32_t)((uint64_t)ts.tv_sec * 1000000u + (uint64_t)ts.tv_nsec / 1000u);
 }
 
-static void board_write_servos(void *ctx, const HaSurfaces *s) {
-  (void)ctx;
-  (void)s; /* the simulator reads the core's outputs, which is what was written */
-}
-
-/* Without a simulator a healthy receiver in computer-in-command and a pitot at 60 ft/s; with one
- * the inputs of its latest record. */
-static void board_read_rc(void *ctx, HaRcInputs *rc) {
-  const SilBoard *b = as_sil(ctx);
-  int k;
-  if (b->have_board_in) {
-    for (k = 0; k < HA_RC_CHANNELS; ++k) {
-      rc->pulse_us[k] = b->board_in.rc_pulse_us[k];
-    }
-    rc->valid = (uint8_t)((b->board_in.flags & HA_SIL_RC_VALID) != 0u);
-    return;
-  }
-  rc->pulse_us[HA_RC_THROTTLE] = 1100u;
-  rc->pulse_us[HA_RC_ELEVATOR] = 1500u;
-  rc->pulse_us[HA_RC_AILERON] = 1500u;
-  rc->pulse_us[HA_RC_RUDDER] = 1500u;
-  rc->pulse_us[HA_RC_PIC] = 1000u; /* computer in command */
-  rc->valid = 1u;
-}
-
-static int board_read_airspeed(void *ctx, float *v) {
-  const SilBoard *b = as_sil(ctx);
-  if (b->have_board_in) {
-    *v = b->board_in.airspeed_ftps;
-    return (b->board_in.flags & HA_SIL_AIRSPEED_OK) != 0u;
-  }
-  /* In a simulator's loop the board reads nothing until the simulator's first record (real time:
-   * the SIL's periods start before it): a made-up 60 ft/s would latch airborne on the ground. */
-  *v = 60.0f;
-  return b->channel_fd < 0;
-}
-
-static int board_read_battery(void *ctx, float *v) {
-  const SilBoard *b = as_sil(ctx);
-  if (b->have_board_in) {
-    *v = b->board_in.battery_v;
-    return (b->board_in.flags & HA_SIL_BATTERY_OK) != 0u;
-  }
-  *v = 12.1f;
-  return b->channel_fd < 0;
-}
-
-static void board_set_hp_reset(void *ctx, int asserted) { as_sil(ctx)->hp_reset = asserted; }
-
-static void board_set_leds(void *ctx, uint8_t leds) {
-  (void)ctx;
-  (void)leds; /* the simulator reads the core's outputs */
-}
-
-static void board_kick(void *ctx) { (void)ctx; }
-
-static int board_read_retained(void *ctx, uint32_t words[HA_RETAINED_WORDS]) {
-  memcpy(words, as_sil(ctx)->retained, sizeof as_sil(ctx)->retained);
-  return 1;
-}
-
-static void board_write_retained(void *ctx, const uint32_t words[HA_RETAINED_WORDS]) {
-  memcpy(as_sil(ctx)->retained, words, sizeof as_sil(ctx)->retained);
-}
-
 static size_t read_fd(int fd, uint8_t *bytes, size_t max_len) {
   const ssize_t n = fd >= 0 ? read(fd, bytes, max_len) : -1;
   return n > 0 ? (size_t)n : 0u;
@@ -120,20 +55,12 @@ void sil_board_init(SilBoard *b) {
   b->slave_fd = -1;
   b->vn_fd = -1;
   b->channel_fd = -1;
-  b->iface = (HaBoard){.ctx = b,
-                       .micros = board_micros,
-                       .write_servos = board_write_servos,
-                       .read_rc = board_read_rc,
-                       .read_airspeed_ftps = board_read_airspeed,
-                       .read_battery_v = board_read_battery,
-                       .set_hp_reset = board_set_hp_reset,
-                       .set_leds = board_set_leds,
-                       .kick_watchdog = board_kick,
-                       .read_retained = board_read_retained,
-                       .write_retained = board_write_retained,
-                       .hp_link = {.read = hp_read, .write = hp_write},
-                       /* the HA never writes to its VN-200 */
-                       .ins = {.read = ins_read, .write = NULL}};
+  b->pins.standalone = 1; /* until a simulator's channel is connected */
+  ha_sil_pins_board(&b->iface);
+  b->iface.ctx = b;
+  b->iface.micros = board_micros;
+  b->iface.hp_link = (HaBytePort){.read = hp_read, .write = hp_write};
+  b->iface.ins = (HaBytePort){.read = ins_read, .write = NULL}; /* the HA never writes to it */
 }
 
 int sil_board_plug(SilBoard *b) {

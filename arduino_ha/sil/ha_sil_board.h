@@ -1,5 +1,5 @@
 /* The SIL's Board (core/ha_board.h): what the Due reads from its pins comes from the simulator's
- * latest control record (ha_sil_channel.h), its clock is the host's or the simulator's, its HP
+ * latest control record (ha_sil_pins.h), its clock is the host's or the simulator's, its HP
  * link is a pseudo-terminal standing in for the USB cable and its INS port the pty the simulator
  * writes the VN-200's port 1 to. Everything else is the firmware loop's (src/firmware/). */
 #ifndef HA_SIL_BOARD_H
@@ -10,8 +10,10 @@
 
 #include "../src/core/ha_board.h"
 #include "ha_sil_channel.h"
+#include "ha_sil_pins.h"
 
 typedef struct {
+  HaSilPins pins; /* first: the pins' Board functions take this board's ctx (ha_sil_pins.h) */
   HaBoard iface;
   int master_fd; /* the HP link's pty, -1 while unplugged */
   int slave_fd;  /* held open so the node reopening its end never hangs up ours */
@@ -21,11 +23,6 @@ typedef struct {
   int channel_fd;    /* the simulator's control channel, -1 without --lockstep */
   int sim_clock;     /* 1: micros() is sim_now_us (lockstep) */
   uint32_t sim_now_us;
-  HaSilStep board_in; /* the latest board inputs from the simulator */
-  int have_board_in;
-  int hp_reset;
-  /* The Due's backup registers: kept across a reset of the HA. */
-  uint32_t retained[HA_RETAINED_WORDS];
 } SilBoard;
 
 /* No pty, no VN-200 port, no channel yet; the Board's functions set. */

@@ -23,25 +23,20 @@ cflags=(-mcpu=cortex-m3 -mthumb -Os -std=c99 -ffunction-sections -fdata-sections
   -Wall -Wextra -Werror -I"$core")
 
 mapfile -t core_sources < <(find "$core" -maxdepth 1 -name '*.c' | LC_ALL=C sort)
-objects=()
-for src in "${core_sources[@]}"; do
-  obj=$out/core/$(basename "${src%.c}").o
-  (cd "$out/core" && "$cc" "${cflags[@]}" -fcallgraph-info=su -c "$src" -o "$obj")
-  objects+=("$obj")
-done
-for src in "$here/size_main.c" "$ha/bench/startup_m3.c" "$ha/bench/semihost.c"; do
-  obj=$out/image/$(basename "${src%.c}").o
-  (cd "$out/image" && "$cc" "${cflags[@]}" -I"$ha/bench" -c "$src" -o "$obj")
-  objects+=("$obj")
-done
+# shellcheck source=m3_lib.sh
+source "$here/m3_lib.sh"
+m3_objects=()
+m3_cflags=("${cflags[@]}" -fcallgraph-info=su)
+m3_compile "$out/core" "${core_sources[@]}"
+m3_cflags=("${cflags[@]}" -I"$ha/bench")
+m3_compile "$out/image" "$here/size_main.c" "$ha/bench/startup_m3.c" "$ha/bench/semihost.c"
+objects=("${m3_objects[@]}")
 
 elf=$out/ha_core_m3.elf
 "$cc" -mcpu=cortex-m3 -mthumb -nostartfiles --specs=nano.specs -Wl,--gc-sections \
   -Wl,-Map="$out/ha_core_m3.map" -T "$here/due_sam3x8e.ld" "${objects[@]}" -lm -lc -lgcc -o "$elf"
 
-read -r text data bss < <(arm-none-eabi-size -A "$elf" | awk '
-  $1 == ".text" || $1 == ".ARM.exidx" { t += $2 } $1 == ".data" { d += $2 } $1 == ".bss" { b += $2 }
-  END { print t + 0, d + 0, b + 0 }')
+read -r text data bss < <(m3_sizes "$elf")
 # The core's own share: its input sections kept in the image (the map lists them after the
 # garbage collection; the "Discarded input sections" part before it is skipped).
 core_code=$(/usr/bin/python3 - "$out/ha_core_m3.map" "$out/core/" <<'PY'

@@ -1,5 +1,7 @@
-"""The HA in the loop without ROS: ha_sil driven over its control channel, its VN-200 port fed by
-the simulator's sensor model, stepped on simulation time."""
+"""The HA in the loop without ROS: driven over its control channel, its VN-200 port fed by the
+simulator's sensor model, stepped on simulation time. Each story runs twice: on the host SIL
+(ha_sil) and on the firmware as Cortex-M3 machine code in QEMU (hil/ha_qemu.py, processor in the
+loop), which takes the same arguments and speaks the same records."""
 import math
 import os
 import subprocess
@@ -11,7 +13,9 @@ import pytest
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 sys.path.insert(0, ROOT)
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from hil import ha_channel, sensors  # noqa: E402
+from ha_in_loop import Parked, build_pil_image  # noqa: E402
 
 
 def ha_sil_path():
@@ -22,27 +26,26 @@ def ha_sil_path():
     return path
 
 
-class Parked:
-    """Truth of an aircraft parked at a field (what the HA's INS sees before take-off)."""
-    lat_deg, lon_deg, alt_msl_m = 38.95, -95.26, 260.0
-    vn_mps = ve_mps = vd_mps = 0.0
-    roll_deg, pitch_deg, heading_deg = 0.0, 2.0, 30.0
-    p_rad_s = q_rad_s = r_rad_s = 0.0
-    accel_body_mps2 = (0.0, 0.0, -9.81)
-    mag_body_gauss = (0.2, 0.0, 0.45)
-    temperature_c, pressure_pa = 20.0, 98000.0
+@pytest.fixture(scope="session")
+def pil_image(tmp_path_factory):
+    return build_pil_image(str(tmp_path_factory.mktemp("pil")))
 
 
-@pytest.fixture
-def rig():
+@pytest.fixture(params=["sil", "qemu"])
+def rig(request):
     d = tempfile.mkdtemp(prefix="ha_channel_")
     chan = ha_channel.HaChannel(os.path.join(d, "ctl"))
     vn = sensors.Vn200Port(os.path.join(d, "ha_vn200"), 1, seed=7, baud=sensors.HA_VN200_BAUD,
                            fixed_output=sensors.HA_OUTPUT_1)
-    proc = subprocess.Popen([ha_sil_path(), "--port", os.path.join(d, "ha_link"), "--vn200",
-                             os.path.join(d, "ha_vn200"), "--lockstep", os.path.join(d, "ctl")],
-                            stderr=subprocess.PIPE)
-    assert chan.accept(20.0), "ha_sil did not connect to the control channel"
+    args = ["--port", os.path.join(d, "ha_link"), "--vn200", os.path.join(d, "ha_vn200"),
+            "--lockstep", os.path.join(d, "ctl")]
+    if request.param == "sil":
+        argv = [ha_sil_path()] + args
+    else:
+        argv = [sys.executable, os.path.join(ROOT, "hil", "ha_qemu.py"), "--image",
+                request.getfixturevalue("pil_image")] + args
+    proc = subprocess.Popen(argv, stderr=subprocess.PIPE)
+    assert chan.accept(20.0), "the HA (%s) did not connect to the control channel" % request.param
     yield chan, vn, proc
     chan.close()
     proc.terminate()

@@ -1,0 +1,73 @@
+#include "pil_frame.h"
+
+#include <string.h>
+
+#include "../src/core/hp_command.h"
+
+void pil_frame_rx_init(PilFrameRx *rx) { memset(rx, 0, sizeof *rx); }
+
+static void drop_front(PilFrameRx *rx, size_t n) {
+  memmove(rx->held, rx->held + n, rx->have - n);
+  rx->have -= n;
+}
+
+static uint32_t get_le32(const uint8_t *b) {
+  return (uint32_t)b[0] | ((uint32_t)b[1] << 8) | ((uint32_t)b[2] << 16) | ((uint32_t)b[3] << 24);
+}
+
+size_t pil_frame_rx_byte(PilFrameRx *rx, uint8_t byte, const uint8_t **payload) {
+  if (rx->frame_len > 0u) { /* the frame handed over last time is done with */
+    drop_front(rx, rx->frame_len);
+    rx->frame_len = 0u;
+  }
+  if (rx->have < sizeof rx->held) {
+    rx->held[rx->have++] = byte;
+  }
+  /* Each pass decides on held[0] or waits for more: bounded by the bytes held. */
+  while (rx->have > 0u) {
+    size_t len;
+    if (rx->held[0] != PIL_FRAME_SYNC0 || (rx->have > 1u && rx->held[1] != PIL_FRAME_SYNC1)) {
+      drop_front(rx, 1u);
+      continue;
+    }
+    if (rx->have < 4u) {
+      return 0u;
+    }
+    len = (size_t)rx->held[2] | ((size_t)rx->held[3] << 8);
+    if (len == 0u || len > PIL_FRAME_RX_PAYLOAD_MAX) {
+      rx->bad_length++;
+      drop_front(rx, 1u);
+      continue;
+    }
+    if (rx->have < len + PIL_FRAME_OVERHEAD) {
+      return 0u;
+    }
+    if (ha_crc32(&rx->held[2], len + 2u) != get_le32(&rx->held[4u + len])) {
+      rx->bad_crc++;
+      drop_front(rx, 1u);
+      continue;
+    }
+    rx->frame_len = len + PIL_FRAME_OVERHEAD;
+    *payload = &rx->held[4];
+    return len;
+  }
+  return 0u;
+}
+
+size_t pil_frame_encode(const uint8_t *payload, size_t len, uint8_t *out, size_t out_cap) {
+  uint32_t crc;
+  if (len == 0u || len > 0xFFFFu || out_cap < len + PIL_FRAME_OVERHEAD) {
+    return 0u;
+  }
+  out[0] = PIL_FRAME_SYNC0;
+  out[1] = PIL_FRAME_SYNC1;
+  out[2] = (uint8_t)len;
+  out[3] = (uint8_t)(len >> 8);
+  memcpy(&out[4], payload, len);
+  crc = ha_crc32(&out[2], len + 2u);
+  out[4u + len] = (uint8_t)crc;
+  out[5u + len] = (uint8_t)(crc >> 8);
+  out[6u + len] = (uint8_t)(crc >> 16);
+  out[7u + len] = (uint8_t)(crc >> 24);
+  return len + PIL_FRAME_OVERHEAD;
+}

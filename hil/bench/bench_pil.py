@@ -1,0 +1,60 @@
+#!/usr/bin/env python3
+"""make bench-pil: the HA firmware's instructions per period in the loop, counted in QEMU.
+
+The PIL image (arduino_ha/pil) runs under -icount shift=0 (a virtual nanosecond per instruction;
+CMSDK timer 0 at 25 MHz then ticks once every 40 instructions: arduino_ha/bench/insn_timer.h,
+checked by make bench-ha's calibration), driven as the simulator drives it (hil/test/ha_in_loop.py's
+rig): parked with its own VN-200, the HA alone; then the HP's ServoCommands over rosserial until the
+HP flies; then the pilot's switch. Each reply carries the timer ticks of its period's
+ha_firmware_period: the core's step, servos, reset line, retained words and the link's reports
+(DecisionStatus, pwm, home) written to the UART. Not counted: reading the ports (the link's and the
+VN-200's decoding happen before the period). Prints metric: lines against the 16,800 budget
+(2 % of a 10 ms period at the Due's 84 MHz: arduino_ha/README.md)."""
+import os
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "test"))
+from ha_in_loop import HP, PIC, PilRig, build_pil_image, frame, negotiate, servo_command  # noqa: E402
+
+INSN_PER_TICK = 40
+BUDGET = 16800
+
+
+def main():
+    image = build_pil_image(tempfile.mkdtemp(prefix="bench_pil_"))
+    rig = PilRig(image, icount=True)
+    periods = {"ha": [], "hp": [], "manual": []}
+    try:
+        k = 0
+        for k in range(0, 300):
+            _, _, ticks = rig.step(k)
+            periods["ha"].append(ticks)
+        topic, k = negotiate(rig, k + 1)
+        seq = 0
+        for k in range(k, k + 1500):
+            seq += 1
+            os.write(rig.host, frame(topic, servo_command(seq, -2.5)))
+            r, _, ticks = rig.step(k, wait_for=seq)
+            (periods["hp"] if r.controller == HP else periods["ha"]).append(ticks)
+        for k in range(k + 1, k + 300):
+            _, _, ticks = rig.step(k, rc=PIC)
+            periods["manual"].append(ticks)
+    finally:
+        rig.close()
+    every = sorted(t * INSN_PER_TICK for v in periods.values() for t in v)
+    p99 = every[min(len(every) - 1, int(0.99 * len(every)))]
+    for name, v in periods.items():
+        if v:
+            print("metric: pil_period_insn_max_%s %d instructions (%d periods)" % (name, max(v) * INSN_PER_TICK, len(v)))
+    print("metric: pil_period_insn_median %d instructions" % every[len(every) // 2])
+    print("metric: pil_period_insn_p99 %d instructions" % p99)
+    print("metric: pil_period_insn_max %d instructions" % every[-1])
+    print("budget: worst period in the loop %d of %d instructions: %s" % (
+        every[-1], BUDGET, "MET" if every[-1] <= BUDGET else "OVER"))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
