@@ -251,6 +251,11 @@ def run(flight, argv, folder, wall_limit_s, term_grace_s=30.0, env=None):
         row["reason"] = ("exit %s: %s" % (code, s["error"])) if s.get("error") else _death_reason(folder, code)
     else:
         row["status"] = summary.get("status") or "ok"
+    if row["status"] in ("died", "timeout"):
+        # No world in its summary: its planned wind says which of the report's tables it is in
+        # (campaign seed 26: a cold_start parked in 10.8 m/s died and was counted inside).
+        from hil.campaigns import plan as plan_mod
+        row["beyond_design_wind"] = "; ".join(plan_mod.beyond_design_wind(flight))
     if row["status"] not in ("died", "timeout"):
         v, f = verdict_of(summary), fault_of(summary)
         row["took_effect"] = f.get("took_effect")

@@ -17,6 +17,8 @@ import shlex
 import subprocess
 import sys
 
+import yaml
+
 HIL = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 ROOT = os.path.dirname(HIL)
 RUN_FLIGHT = os.path.join(HIL, "run_flight.py")
@@ -158,6 +160,16 @@ def _limits():
 
 def max_wind_ftps():
     return float(_limits()["sensors"]["max_wind_ftps"])
+
+
+def beyond_design_wind(flight):
+    """Why the flight's planned steady wind and turbulence are beyond limits.yaml's design wind
+    ([]: within), as the simulator judges its world; for a flight that died or timed out before
+    its summary said so. A wind fault's change is the simulator's to judge: not known here."""
+    from hil.design_wind import DesignWind
+    with open(os.path.join(ROOT, "aircraft", "DG808", "airframe.yaml")) as f:
+        airframe = yaml.safe_load(f)
+    return DesignWind.load(_limits(), airframe).steady(flight.wind_mps, flight.turbulence)
 
 
 WIND_OVER_LIMIT = 1.5   # winds drawn up to this x sensors.max_wind_ftps: and beyond what the HA allows

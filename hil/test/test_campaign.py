@@ -203,6 +203,17 @@ def test_a_flight_that_dies_is_reported_as_died_with_its_reason():
     assert "test death" in row["reason"]
     assert json.loads(row["fault_params"]) == {"bits": "2"}
     assert "--fault-param bits=2" in row["command"]
+    assert row["beyond_design_wind"] == "", "a calm flight's death is inside the design wind"
+
+
+def test_a_flight_that_dies_in_a_wind_past_the_design_wind_is_counted_beyond_it():
+    # Campaign seed 26 #70: parked in 10.8 m/s the pitot is doubted, home never latches and the
+    # mission is refused; with no summary world it was counted inside the design wind.
+    folder = tempfile.mkdtemp(prefix="campaign_die_wind_")
+    fl = plan_mod.Flight(4, "die", 9, 10.0, 1.0, (), 40.0, wind_mps=10.8, wind_from_deg=51.7)
+    row = flight_mod.run(fl, plan_mod.command(fl, folder, AGREED, run_flight=FAKE), folder, wall_limit_s=300.0)
+    assert row["status"] == "died"
+    assert row["beyond_design_wind"].startswith("steady 35.4 ft/s"), row["beyond_design_wind"]
 
 
 def test_a_real_flight_whose_launch_fails_is_reported_as_died_with_run_flights_reason():
