@@ -2,6 +2,7 @@
 
 #include <string.h>
 
+#include "../sil/ha_sil_records.h"
 #include "../src/core/hp_command.h"
 
 void pil_frame_rx_init(PilFrameRx *rx) { memset(rx, 0, sizeof *rx); }
@@ -9,10 +10,6 @@ void pil_frame_rx_init(PilFrameRx *rx) { memset(rx, 0, sizeof *rx); }
 static void drop_front(PilFrameRx *rx, size_t n) {
   memmove(rx->held, rx->held + n, rx->have - n);
   rx->have -= n;
-}
-
-static uint32_t get_le32(const uint8_t *b) {
-  return (uint32_t)b[0] | ((uint32_t)b[1] << 8) | ((uint32_t)b[2] << 16) | ((uint32_t)b[3] << 24);
 }
 
 size_t pil_frame_rx_byte(PilFrameRx *rx, uint8_t byte, const uint8_t **payload) {
@@ -25,7 +22,7 @@ size_t pil_frame_rx_byte(PilFrameRx *rx, uint8_t byte, const uint8_t **payload) 
   }
   /* Each pass decides on held[0] or waits for more: bounded by the bytes held. */
   while (rx->have > 0u) {
-    size_t len;
+    size_t len, crc_at;
     if (rx->held[0] != PIL_FRAME_SYNC0 || (rx->have > 1u && rx->held[1] != PIL_FRAME_SYNC1)) {
       drop_front(rx, 1u);
       continue;
@@ -42,7 +39,8 @@ size_t pil_frame_rx_byte(PilFrameRx *rx, uint8_t byte, const uint8_t **payload) 
     if (rx->have < len + PIL_FRAME_OVERHEAD) {
       return 0u;
     }
-    if (ha_crc32(&rx->held[2], len + 2u) != get_le32(&rx->held[4u + len])) {
+    crc_at = 4u + len;
+    if (ha_crc32(&rx->held[2], len + 2u) != ha_sil_get_u32(rx->held, &crc_at)) {
       rx->bad_crc++;
       drop_front(rx, 1u);
       continue;
@@ -55,7 +53,7 @@ size_t pil_frame_rx_byte(PilFrameRx *rx, uint8_t byte, const uint8_t **payload) 
 }
 
 size_t pil_frame_encode(const uint8_t *payload, size_t len, uint8_t *out, size_t out_cap) {
-  uint32_t crc;
+  size_t crc_at = 4u + len;
   if (len == 0u || len > 0xFFFFu || out_cap < len + PIL_FRAME_OVERHEAD) {
     return 0u;
   }
@@ -64,10 +62,6 @@ size_t pil_frame_encode(const uint8_t *payload, size_t len, uint8_t *out, size_t
   out[2] = (uint8_t)len;
   out[3] = (uint8_t)(len >> 8);
   memcpy(&out[4], payload, len);
-  crc = ha_crc32(&out[2], len + 2u);
-  out[4u + len] = (uint8_t)crc;
-  out[5u + len] = (uint8_t)(crc >> 8);
-  out[6u + len] = (uint8_t)(crc >> 16);
-  out[7u + len] = (uint8_t)(crc >> 24);
+  ha_sil_put_u32(out, &crc_at, ha_crc32(&out[2], len + 2u));
   return len + PIL_FRAME_OVERHEAD;
 }
