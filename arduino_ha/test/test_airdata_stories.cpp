@@ -269,6 +269,51 @@ TEST(HaAirdataStories, HaInheritingASteepBankLowInTheBandPushesRatherThanLoadThe
   EXPECT_FLOAT_EQ(level_guarded.elevator_deg, level_unguarded.elevator_deg);
 }
 
+// HiL campaign seed 26 #91, moderate turbulence: the HP, flying a 33 deg bank with aileron held
+// into it against the gusts, lost the servos; the HA's roll integrator, back-calculated to that
+// aileron, held the bank for seconds (it unwinds at roll_ki, 0.4 deg/s at 8 deg of error) while
+// the proportional term asked to roll out, and a gust stalled the banked wing at 75 ft. Past
+// the bank limit no integrator holds the bank: the aileron rolls the wing out at once. Inside
+// the limit the integrator is the loop's own, kept.
+TEST(HaAirdataStories, AnInheritedSteepBankIsRolledOutAtOnceNotHeldByTheIntegrator) {
+  const HaAircraftConfig& cfg = ha_aircraft_config;
+  HaStateView v{};
+  v.attitude_ok = v.altitude_ok = v.position_ok = v.airspeed_ok = v.speed_ok = 1u;
+  v.speed_known = 1u;
+  v.airborne = 1u;
+  v.x[HA_X_ALT_AGL_FT] = 0.5f * (cfg.sc_alt_min_ft + cfg.sc_alt_max_ft);
+  v.airspeed_ftps = v.ias_ftps = v.tas_ftps = 65.0f;
+  v.ias_sq = 65.0f * 65.0f;
+  v.north_ft = cfg.sc_circle_radius_ft;  // on the circle, its course east or west
+  const auto fly = [&](float roll_deg, float hp_aileron_deg, int seconds) {
+    // Headed 90 deg off the course, towards the side of the bank: the command is the limit.
+    v.heading_north = roll_deg * cfg.sc_circle_direction > 0.0f ? 1.0f : -1.0f;
+    v.heading_east = 0.0f;
+    v.x[HA_X_ROLL_DEG] = roll_deg;
+    v.cos_bank = std::cos(roll_deg / kDegPerRad);
+    v.load_factor = v.lift_load_factor = 1.0f / v.cos_bank;
+    HaSafetyCtrlState st{};
+    HaSurfaces applied{}, out{};
+    applied.aileron_deg = hp_aileron_deg;
+    applied.throttle = cfg.sc_throttle_trim;
+    ha_safety_ctrl_step(&st, &cfg, &v, &applied, 0, 0.01f, &out);  // tracking the HP
+    float worst_into_bank_deg = -1e9f;
+    for (int i = 0; i < seconds * 100; ++i) {
+      ha_safety_ctrl_step(&st, &cfg, &v, &out, 1, 0.01f, &out);  // flying: the bank the gusts hold
+      worst_into_bank_deg =
+          std::max(worst_into_bank_deg, roll_deg > 0 ? out.aileron_deg : -out.aileron_deg);
+    }
+    return worst_into_bank_deg;
+  };
+  const float hold_deg = cfg.sc_integrator_authority * cfg.aileron_limit_deg;  // all it may hold
+  const float bank_deg = cfg.sc_bank_limit_deg + 8.0f;
+  EXPECT_LT(fly(bank_deg, hold_deg + 2.0f, 2), 0.0f) << "aileron into a bank past the limit";
+  EXPECT_LT(fly(-bank_deg, -hold_deg - 2.0f, 2), 0.0f) << "aileron into a bank past the limit";
+  // Inside the limit the integrator it tracked still trims the turn.
+  EXPECT_GT(fly(20.0f, hold_deg, 1), fly(20.0f, 0.0f, 1) + 0.5f * hold_deg)
+      << "the integrator dropped inside the bank limit";
+}
+
 // HiL campaigns, moderate turbulence: an updraft raises the angle of attack and the wing's load
 // with no pitch rate. At 53 ft/s, wings level, the gyros say 1.0 g and the pitch loop, low in its
 // band, pulls; the accelerometer says 1.6 g, past the 1.1 g the lift guard allows at that speed,

@@ -166,6 +166,18 @@ void ha_safety_ctrl_step(HaSafetyCtrlState *st, const HaAircraftConfig *cfg, con
   }
   out->aileron_deg = pid(&st->roll_integ_deg, roll_pd, roll_step, cfg->aileron_limit_deg,
                          auth * cfg->aileron_limit_deg, in_control, applied->aileron_deg);
+  /* Past the bank limit the integrator keeps no part that holds the bank, the one it tracked
+   * from the HP or its own: the proportional term rolls the wing back at once (HiL campaign
+   * seed 26 #91: the HA held the 33 deg bank it inherited for seconds, its integrator unwinding
+   * at roll_ki, and a gust stalled the wing at 75 ft). Finite: x is clamped by ha_state_view. */
+  if (in_control && s->attitude_ok &&
+      ((ha_greater(s->x[HA_X_ROLL_DEG], cfg->sc_bank_limit_deg) &&
+        ha_greater(st->roll_integ_deg, 0.0f)) ||
+       (ha_greater(-cfg->sc_bank_limit_deg, s->x[HA_X_ROLL_DEG]) &&
+        ha_greater(0.0f, st->roll_integ_deg)))) {
+    st->roll_integ_deg = 0.0f;
+    out->aileron_deg = ha_clampf(roll_pd, -cfg->aileron_limit_deg, cfg->aileron_limit_deg);
+  }
   /* Elevator trailing edge down is positive (nose down): the loop works in nose-up degrees. */
   nose_up_deg = pid(&st->pitch_integ_deg, pitch_pd, pitch_step, cfg->elevator_limit_deg,
                     pitch_integ_limit, in_control, -applied->elevator_deg);
