@@ -68,6 +68,7 @@ class Waiter:
         self.counts = {}
         self.latest = {}
         self.lost = {}
+        self.silent_at = {}
 
     def hit(self, key, msg=None):
         with self.cond:
@@ -83,12 +84,25 @@ class Waiter:
         """Waits until `expected` messages of `key` have arrived, less those given up on before.
         A message that never arrives (under heavy load one went out before the subscription was
         live) is waited for once, then counted as lost: otherwise the count stayed one short and
-        every later step waited out the timeout. Returns how many were given up on now."""
+        every later step waited out the timeout. Returns how many were given up on now.
+
+        A publisher that gave nothing in a whole timeout is silent: it is not waited for again
+        until it publishes once more. Otherwise a dead node cost the timeout on every message it
+        owed, and the flight never ended (campaign seed 26 #61: the vn200 node published nothing,
+        and the simulator waited 10 s a packet)."""
         lost = self.lost.get(key, 0)
-        if self.wait_count(key, expected - lost, timeout_s):
+        silent = key in self.silent_at and self.count(key) == self.silent_at[key]
+        if self.wait_count(key, expected - lost, 0.0 if silent else timeout_s):
+            self.silent_at.pop(key, None)
             return 0
+        self.silent_at[key] = self.count(key)
         self.lost[key] = expected - self.count(key)
         return self.lost[key] - lost
+
+    def silent(self, key):
+        """Whether the publisher of `key` is given up on until it publishes again."""
+        with self.cond:
+            return key in self.silent_at and self.counts.get(key, 0) == self.silent_at[key]
 
     def wait_count(self, key, at_least, timeout_s):
         deadline = time.monotonic() + timeout_s
@@ -537,9 +551,11 @@ class Simulation:
         for key, topic, expected in (("vn", "/vn200/temperature", self.hp_packets),
                                      ("status", "/decision_status", self.status_expected),
                                      ("pwm", "/pwm", self.status_expected)):
+            was_silent = self.waiter.silent(key)
             lost = self.waiter.wait_published(key, expected, self.wait_s)
-            if lost:
-                self.event(t_s, "%s late: %s %d of %d within %.1f s; %d counted as lost, not waited for again" %
+            if lost and not was_silent:
+                self.event(t_s, "%s late: %s %d of %d within %.1f s; %d counted as lost, not waited for again, "
+                           "nor the node until it publishes" %
                            ("vn200 node" if key == "vn" else "arduino node", topic, self.waiter.count(key),
                             expected, self.wait_s, lost))
         tm.lap("wait_hp_inputs")

@@ -5,6 +5,7 @@ waited out the full timeout (a 35 s flight that never ended)."""
 import os
 import sys
 import threading
+import time
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 sys.path.insert(0, ROOT)
@@ -43,3 +44,23 @@ def test_counts_are_kept_per_topic():
     assert w.wait_published("vn", 2, 0.05) == 1
     w.hit("status")
     assert w.wait_published("status", 1, 5.0) == 0
+
+
+
+def test_a_silent_publisher_costs_one_timeout_not_one_per_message_until_it_speaks_again():
+    """Campaign seed 26 #61: the vn200 node published nothing; each of its packets cost the
+    simulator the full wait, and the flight timed out instead of ending with the HA flying."""
+    w = Waiter()
+    w.hit("vn")
+    assert w.wait_published("vn", 2, 0.2) == 1  # waited out once: the node is silent
+    assert w.silent("vn")
+    start = time.monotonic()
+    for expected in range(3, 50):  # each later packet is given up on at once
+        assert w.wait_published("vn", expected, 0.2) == 1
+    assert time.monotonic() - start < 0.2, "waited for a silent node"
+    w.hit("vn")  # it speaks again
+    assert not w.silent("vn")
+    assert w.wait_published("vn", 50, 5.0) == 0
+    threading.Timer(0.05, lambda: w.hit("vn")).start()
+    assert w.wait_published("vn", 51, 5.0) == 0  # and is waited for as before
+    assert w.count("vn") == 3
