@@ -49,6 +49,28 @@ TEST(HaSafetyRegion, ActuatorLimitsAreTheBoundary) {
   EXPECT_GT(ha_actuator_region_max(&cfg, u), 1.0f);
 }
 
+// The core evaluates the thesis's general polytope S_x (x - x0) <= 1, not only the generator's
+// centred boxes: a region centred on a cruise height whose one row couples two states (the
+// steeper the bank, the more height it wants below the ceiling) judges a state by their sum,
+// about the centre.
+TEST(HaSafetyRegion, APolytopeRowCouplingTwoStatesAboutAnOffCentreIsJudgedOnTheirSum) {
+  HaAircraftConfig poly = cfg;
+  std::memset(poly.sx, 0, sizeof poly.sx);
+  std::memset(poly.x0, 0, sizeof poly.x0);
+  poly.sx_rows = 1u;
+  poly.x0[HA_X_ALT_AGL_FT] = 200.0f;
+  poly.sx[0][HA_X_ROLL_DEG] = 1.0f / 60.0f;     // 60 deg of bank alone ...
+  poly.sx[0][HA_X_ALT_AGL_FT] = 1.0f / 200.0f;  // ... or 200 ft above the centre alone
+  float x[HA_X_DIM] = {};
+  x[HA_X_ALT_AGL_FT] = 200.0f;
+  x[HA_X_ROLL_DEG] = 30.0f;
+  EXPECT_NEAR(ha_state_region_max(&poly, x), 0.5f, 1e-6f);  // at the centre: the bank's half
+  x[HA_X_ALT_AGL_FT] = 300.0f;
+  EXPECT_NEAR(ha_state_region_max(&poly, x), 1.0f, 1e-6f);  // half the bank + half the height
+  x[HA_X_ALT_AGL_FT] = 310.0f;
+  EXPECT_GT(ha_state_region_max(&poly, x), 1.0f);  // neither alone is past its edge
+}
+
 TEST(HaSafetyRegion, HugeValuesAreOutsideNotOverflowed) {
   float u[HA_U_DIM] = {3e38f, -3e38f, 3e38f, -3e38f};
   const float m = ha_actuator_region_max(&cfg, u);

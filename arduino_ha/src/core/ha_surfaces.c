@@ -35,11 +35,8 @@ static float elevator_towards(const HaAircraftConfig *cfg, float prev, float tar
   const float bumpless =
       step_towards(prev, target, cfg->surface_rate_limit_deg_per_s * dt_s, reached);
   if (unloading && ha_greater(target, bumpless)) {
-    int released = 1;
-    const float released_deg =
-        step_towards(prev, target, cfg->surface_release_rate_deg_per_s * dt_s, &released);
-    *reached = *reached && released;
-    return released_deg;
+    /* *reached is 0 already: the bumpless step fell short of the target. */
+    return step_towards(prev, target, cfg->surface_release_rate_deg_per_s * dt_s, reached);
   }
   if (ha_greater(0.0f, prev) && ha_greater(target, bumpless)) {
     int released = 1;
