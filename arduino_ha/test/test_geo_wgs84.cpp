@@ -149,6 +149,24 @@ TEST(GeoWgs84, AcrossTheAntimeridianTakesTheShortWayRound) {
   double lat, lon, alt;
   geo_from_neu_m(&r, west, &lat, &lon, &alt);
   EXPECT_LT(lon, -179.99);
+  // And from the other side: home just west of the line, a point just east of it.
+  const GeoRef w = ref_at(0.0, -179.999);
+  geo_to_neu_m(&w, 0.0, 179.999, 0.0, neu);
+  EXPECT_NEAR(neu[1], -0.002 * 111319.49, 0.01);
+  const double east[3] = {0.0, -300.0, 0.0};
+  geo_from_neu_m(&w, east, &lat, &lon, &alt);
+  EXPECT_GT(lon, 179.99);
+}
+
+// At a pole east has no length: a home there gives every point the home's longitude back, not a
+// division by zero.
+TEST(GeoWgs84, AtAPoleTheLongitudeStaysTheHomes) {
+  const GeoRef r = ref_at(90.0, 12.0);
+  const double neu[3] = {-100.0, 50.0, 0.0};
+  double lat, lon, alt;
+  geo_from_neu_m(&r, neu, &lat, &lon, &alt);
+  EXPECT_DOUBLE_EQ(lon, 12.0);
+  EXPECT_LT(lat, 90.0);
 }
 
 TEST(GeoWgs84, AReferenceOutOfRangeOrNotANumberIsRefusedAndTheOldOneKept) {

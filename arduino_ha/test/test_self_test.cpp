@@ -65,6 +65,55 @@ TEST(HaSelfTest, PilotSwitchAbortsSelfTest) {
   EXPECT_EQ(t.controller(), HA_CONTROLLER_MANUAL);
 }
 
+// The pilot on the sticks of a parked aircraft (taxiing it, checking the surfaces by hand): a
+// SELF_TEST request sweeping them under the pilot's hands is refused, and the sticks stay on the
+// servos.
+TEST(HaSelfTest, SelfTestRefusedWhileThePilotHasTheSticks) {
+  Timeline t;
+  t.Parked();
+  t.board.SetPilotInCommand(true);
+  for (int i = 0; i < 10; ++i) t.Step();
+  ASSERT_EQ(t.controller(), HA_CONTROLLER_MANUAL);
+  t.Operator(HA_OP_SELF_TEST);
+  t.Step();
+  EXPECT_EQ(t.out().operator_ack_count, 1u);
+  EXPECT_EQ(t.out().operator_ack_accepted, 0u);
+  EXPECT_EQ(t.out().self_test_active, 0u);
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_MANUAL);
+}
+
+// A ground station sending queued requests back to back, faster than one a period: what the
+// queue cannot hold is counted lost, never run and never acknowledged, so the acknowledgements
+// and the losses add up to what was sent and the sender knows which to send again.
+TEST(HaSelfTest, MoreOperatorRequestsInOnePeriodThanTheQueueHoldsAreCountedLostNotRun) {
+  Timeline t;
+  t.Parked();
+  for (int i = 0; i < 10; ++i) t.Step();
+  const uint32_t sent = HA_OPERATOR_QUEUE_LEN + 2u;
+  for (uint32_t k = 0; k < sent; ++k) t.Operator(k == 0 ? HA_OP_SELF_TEST : HA_OP_SELECT_HA);
+  for (int i = 0; i < 10; ++i) t.Step();
+  EXPECT_EQ(t.out().operator_lost, 2u);
+  EXPECT_EQ(t.out().operator_ack_count + t.out().operator_lost, sent);
+  EXPECT_EQ(t.out().operator_ack_id, t.operator_id);  // the last one sent was answered
+  EXPECT_EQ(t.out().self_test_active, 0u) << "the overwritten SELF_TEST ran";
+}
+
+// A request id is the sender's, and it may reuse one for another command (a restarted ground
+// station counting from 1 again): only the same id with the same command is a repeat.
+TEST(HaSelfTest, ARequestIdReusedForAnotherCommandIsANewRequest) {
+  Timeline t;
+  t.Parked();
+  for (int i = 0; i < 10; ++i) t.Step();
+  ha_inputs_put_operator(&t.app.inputs, HA_OP_SELECT_HA, 7u);
+  t.Step();
+  ASSERT_EQ(t.out().operator_ack_accepted, 1u);
+  ha_inputs_put_operator(&t.app.inputs, HA_OP_SELF_TEST, 7u);
+  t.Step();
+  EXPECT_EQ(t.out().operator_ack_count, 2u);
+  EXPECT_EQ(t.out().operator_ack_accepted, 1u);
+  EXPECT_EQ(t.out().self_test_active, 1u) << "taken for a repeat of SELECT_HA";
+}
+
 // Parked means level, still and stopped: a tilted, turning or rolling aircraft that reports
 // itself on the ground (a wrong INS flag, a failed pitot reading zero) never runs the self-test.
 TEST(HaSelfTest, SelfTestRefusedUnlessLevelStillAndStopped) {
