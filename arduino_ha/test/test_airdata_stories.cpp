@@ -37,6 +37,23 @@ void FlyEast(Timeline* t, float ground_ftps, float climb_ftps, float pitch_deg, 
   in.roll_deg = roll_deg;
 }
 
+// The safety controller's view of a flight believed in every sensor: wings level at this height
+// and speed, on the circle at its radius headed east.
+HaStateView FlyingView(const HaAircraftConfig& cfg, float alt_agl_ft, float ias_ftps) {
+  HaStateView v{};
+  v.attitude_ok = v.altitude_ok = v.position_ok = v.airspeed_ok = v.speed_ok = 1u;
+  v.speed_known = 1u;
+  v.airborne = 1u;
+  v.x[HA_X_ALT_AGL_FT] = alt_agl_ft;
+  v.airspeed_ftps = v.ias_ftps = v.tas_ftps = ias_ftps;
+  v.ias_sq = ias_ftps * ias_ftps;
+  v.cos_bank = v.load_factor = v.lift_load_factor = 1.0f;
+  v.north_ft = cfg.sc_circle_radius_ft;
+  v.heading_north = 0.0f;
+  v.heading_east = 1.0f;
+  return v;
+}
+
 // Steps with a healthy HP until the HA takes the servos; returns the periods it took (-1: never).
 int PeriodsUntilTakeover(Timeline* t, int max_periods) {
   for (int i = 1; i <= max_periods; ++i) {
@@ -235,20 +252,12 @@ TEST(HaAirdataStories, PitotReadingSteadilyHighWithItsNoiseIsNotStuck) {
 // accelerated_stall: pitching up in the HP's 47 deg bank, the HA stalled the wing at 61 ft/s).
 TEST(HaAirdataStories, HaInheritingASteepBankLowInTheBandPushesRatherThanLoadTheWing) {
   HaAircraftConfig cfg = ha_aircraft_config;
-  HaStateView v{};
-  v.attitude_ok = v.altitude_ok = v.position_ok = v.airspeed_ok = v.speed_ok = v.alpha_ok = 1u;
-  v.speed_known = 1u;
-  v.airborne = 1u;
+  HaStateView v = FlyingView(cfg, cfg.sc_alt_min_ft - 50.0f, 58.0f);
+  v.alpha_ok = 1u;
+  v.path_tas_sq = v.ias_sq;
   v.x[HA_X_ROLL_DEG] = 50.0f;
-  v.x[HA_X_PITCH_DEG] = 0.0f;
-  v.x[HA_X_ALT_AGL_FT] = cfg.sc_alt_min_ft - 50.0f;
-  v.airspeed_ftps = v.ias_ftps = v.tas_ftps = 58.0f;
-  v.path_tas_sq = v.ias_sq = 58.0f * 58.0f;
   v.cos_bank = std::cos(50.0f / kDegPerRad);
   v.load_factor = v.lift_load_factor = 1.0f / v.cos_bank;
-  v.north_ft = cfg.sc_circle_radius_ft;
-  v.heading_north = 0.0f;
-  v.heading_east = 1.0f;
   const HaSurfaces applied{};
   HaSurfaces guarded{}, unguarded{};
   HaSafetyCtrlState st{};
@@ -277,14 +286,7 @@ TEST(HaAirdataStories, HaInheritingASteepBankLowInTheBandPushesRatherThanLoadThe
 // the limit the integrator is the loop's own, kept.
 TEST(HaAirdataStories, AnInheritedSteepBankIsRolledOutAtOnceNotHeldByTheIntegrator) {
   const HaAircraftConfig& cfg = ha_aircraft_config;
-  HaStateView v{};
-  v.attitude_ok = v.altitude_ok = v.position_ok = v.airspeed_ok = v.speed_ok = 1u;
-  v.speed_known = 1u;
-  v.airborne = 1u;
-  v.x[HA_X_ALT_AGL_FT] = 0.5f * (cfg.sc_alt_min_ft + cfg.sc_alt_max_ft);
-  v.airspeed_ftps = v.ias_ftps = v.tas_ftps = 65.0f;
-  v.ias_sq = 65.0f * 65.0f;
-  v.north_ft = cfg.sc_circle_radius_ft;  // on the circle, its course east or west
+  HaStateView v = FlyingView(cfg, 0.5f * (cfg.sc_alt_min_ft + cfg.sc_alt_max_ft), 65.0f);
   const auto fly = [&](float roll_deg, float hp_aileron_deg, int seconds) {
     // Headed 90 deg off the course, towards the side of the bank: the command is the limit.
     v.heading_north = roll_deg * cfg.sc_circle_direction > 0.0f ? 1.0f : -1.0f;
@@ -320,18 +322,8 @@ TEST(HaAirdataStories, AnInheritedSteepBankIsRolledOutAtOnceNotHeldByTheIntegrat
 // and the HA pushes instead (HiL: the wing past its stall angle for up to 0.2 s, now 0.03).
 TEST(HaAirdataStories, AGustsLoadTheGyrosCannotSeeIsPushedAgainst) {
   const HaAircraftConfig& cfg = ha_aircraft_config;
-  HaStateView v{};
-  v.attitude_ok = v.altitude_ok = v.position_ok = v.airspeed_ok = v.speed_ok = 1u;
-  v.speed_known = 1u;
-  v.airborne = 1u;
-  v.x[HA_X_ALT_AGL_FT] = cfg.sc_alt_min_ft - 50.0f;
+  HaStateView v = FlyingView(cfg, cfg.sc_alt_min_ft - 50.0f, 56.0f);
   v.x[HA_X_PITCH_DEG] = -3.0f;
-  v.airspeed_ftps = v.ias_ftps = v.tas_ftps = 56.0f;
-  v.ias_sq = 56.0f * 56.0f;
-  v.cos_bank = v.load_factor = v.lift_load_factor = 1.0f;
-  v.north_ft = cfg.sc_circle_radius_ft;
-  v.heading_north = 0.0f;
-  v.heading_east = 1.0f;
   const HaSurfaces applied{};
   HaSurfaces calm{}, gust{};
   HaSafetyCtrlState st{}, st2{};
