@@ -28,11 +28,12 @@ import sys
 import tempfile
 import threading
 import time
-import tty
 import zlib
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
+sys.path.insert(0, ROOT)  # run as a script (hil/ha_qemu.py) too
+from hil import ptys  # noqa: E402
 DEFAULT_IMAGE = os.path.join(ROOT, ".build", "pil", "ha_pil.elf")
 SYNC = b"\xa5\x5a"
 REPLY_LEN = 100
@@ -132,10 +133,7 @@ class QemuBoard:
                     s.close()
             time.sleep(0.05)
         self.hp_sock, self.ctl = conns["hp"], conns["ctl"]
-        self.hp_master, self.hp_slave = os.openpty()
-        for fd in (self.hp_master, self.hp_slave):
-            tty.setraw(fd)
-        os.set_blocking(self.hp_master, False)
+        self.hp_master, self.hp_slave = ptys.open_raw()
         self.hp_pty = os.ttyname(self.hp_slave)  # the slave stays open: the node's reopen never hangs up
         self.relay = threading.Thread(target=self._carry_hp_link, daemon=True)
         self.relay.start()
@@ -249,15 +247,6 @@ def whole_frames(held):
     return bytes(out)
 
 
-def publish(target, link):
-    """link -> target, replaced atomically (the node may be polling for it)."""
-    tmp = link + ".tmp"
-    if os.path.lexists(tmp):
-        os.unlink(tmp)
-    os.symlink(target, tmp)
-    os.rename(tmp, link)
-
-
 def wait_for(path, stop, timeout_s=30.0):
     deadline = time.monotonic() + timeout_s
     while not os.path.exists(path):
@@ -317,7 +306,7 @@ def main(argv=None):
     log = open(args.record_log, "w", buffering=1) if args.record_log else None
     replies = 0
     try:
-        publish(board.hp_pty, args.port)
+        ptys.publish(board.hp_pty, args.port)
         print("ha_qemu: up on %s (%s), lockstep with %s" % (args.port, board.hp_pty, args.lockstep),
               file=sys.stderr)
         while not stop["now"]:

@@ -20,10 +20,10 @@ import math
 import os
 import random
 import sys
-import tty
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "vn200_driver",
                                 "scripts"))
+from hil import ptys  # noqa: E402
 from hil.units import FT_PER_M, G_MPS2  # noqa: E402
 from vn200_emulation import (INS_STATUS_TRACKING_FIX, NS_PER_WEEK, Registers, Solution,  # noqa: E402
                              binary_packet, packet_length)
@@ -134,15 +134,8 @@ class Pty:
 
     def __init__(self, link):
         self.link = link
-        self.master, self.slave = os.openpty()
-        tty.setraw(self.slave)
-        tty.setraw(self.master)
-        os.set_blocking(self.master, False)
-        tmp = link + ".tmp"
-        if os.path.lexists(tmp):
-            os.unlink(tmp)
-        os.symlink(os.ttyname(self.slave), tmp)
-        os.replace(tmp, link)
+        self.master, self.slave = ptys.open_raw()
+        ptys.publish(os.ttyname(self.slave), link)
         self.written = 0
 
     def write(self, data):
