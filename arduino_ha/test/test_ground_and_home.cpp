@@ -198,6 +198,32 @@ TEST(GroundAndHome, RetainedWordsWithoutAGoodRecordAreAPowerUp) {
   EXPECT_EQ(ha.t.app.core.airborne, 0u);
 }
 
+// A board without backup registers (a port that offers none: its read and write are NULL), or
+// whose read fails, runs all the same, and a reset is a power-up: on the ground, without home.
+TEST(GroundAndHome, ABoardWithoutRetainedWordsOrAFailingReadWakesAsAtPowerUp) {
+  for (const bool failing_read : {false, true}) {
+    SCOPED_TRACE(failing_read ? "the read fails" : "no retained words");
+    Ha ha;
+    if (failing_read) {
+      ha.t.board.iface.read_retained = [](void*, uint32_t*) { return 0; };
+    } else {
+      ha.t.board.iface.read_retained = nullptr;
+      ha.t.board.iface.write_retained = nullptr;
+    }
+    ha.LatchHomeOnTheGround();
+    ha.Run(200, Level(200.0, 0.0011, 60.0f), 60.0f);
+    ASSERT_EQ(ha.t.app.core.airborne, 1u);
+    if (failing_read) {
+      EXPECT_GT(ha.t.board.retained_writes, 0u);  // written all the same: a later read may work
+    } else {
+      EXPECT_EQ(ha.t.board.retained_writes, 0u);
+    }
+    ha.Reset();
+    EXPECT_EQ(ha.ins.home_latched, 0u);
+    EXPECT_EQ(ha.t.app.core.airborne, 0u);
+  }
+}
+
 // The HA's own latches are kept too: an HA latched at the restart cap stays latched, and the
 // operator's HA selection stands, across a reset (only a power cycle clears them).
 TEST(GroundAndHome, ResetKeepsTheRestartCapLatchAndTheOperatorsChoice) {
