@@ -82,6 +82,20 @@ TEST(HaSelfTest, SelfTestRefusedWhileThePilotHasTheSticks) {
   EXPECT_EQ(t.controller(), HA_CONTROLLER_MANUAL);
 }
 
+// On the ground with the HP's commands on the servos (taxiing, a pre-flight check of the HP's
+// loop): a SELF_TEST would sweep the surfaces out from under the HP. Refused; the HP keeps them.
+TEST(HaSelfTest, SelfTestRefusedWhileTheHpHasTheServosOnTheGround) {
+  Timeline t;
+  t.Parked();
+  ASSERT_GT(t.ReachHp(), 0);
+  t.Operator(HA_OP_SELF_TEST);
+  t.StepWithGood();
+  EXPECT_EQ(t.out().operator_ack_count, 1u);
+  EXPECT_EQ(t.out().operator_ack_accepted, 0u);
+  EXPECT_EQ(t.out().self_test_active, 0u);
+  EXPECT_EQ(t.controller(), HA_CONTROLLER_HP);
+}
+
 // A ground station sending queued requests back to back, faster than one a period: what the
 // queue cannot hold is counted lost, never run and never acknowledged, so the acknowledgements
 // and the losses add up to what was sent and the sender knows which to send again.
