@@ -45,6 +45,12 @@ Vn200Node::Vn200Node(ros::NodeHandle nh, ros::NodeHandle pnh, const NodeParams& 
   diag_.setHardwareID(params_.replay_file.empty() ? "VN-200 on " + params_.port
                                                   : "VN-200 replay " + params_.replay_file);
   diag_.add("VN-200 link", this, &Vn200Node::diag_link);
+  ins_rate_hz_ = params_.rate_hz * (params_.replay_file.empty() ? 1.0 : params_.replay_speed);
+  // A window of 3 updates (2 s at the updater's 1 Hz): long enough to average a USB frame's
+  // bunching, short enough to show a stall within seconds.
+  ins_rate_ = std::make_unique<diagnostic_updater::FrequencyStatus>(
+      diagnostic_updater::FrequencyStatusParam(&ins_rate_hz_, &ins_rate_hz_, 0.1, 3), "/ins rate");
+  diag_.add(*ins_rate_);
 
   session_.on_binary = [this](const VnBinaryData& d, double) {
     if (!params_.replay_file.empty()) pace_replay(d);
@@ -227,6 +233,7 @@ void Vn200Node::publish_packet(const VnBinaryData& d) {
 
   // Original topics.
   ins_pub_.publish(to_ins(d, stamp, params_.frame_id));
+  ins_rate_->tick();
   if (d.has & VN_HAS_YPR) attitude_pub_.publish(to_attitude(d));
   if (d.has & VN_HAS_POSITION_LLA) {
     const sensor_msgs::NavSatFix fix = to_nav_sat_fix(d, stamp, params_.frame_id);

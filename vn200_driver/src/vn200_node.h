@@ -3,6 +3,7 @@
 #pragma once
 
 #include <diagnostic_updater/diagnostic_updater.h>
+#include <diagnostic_updater/update_functions.h>
 #include <drone_ros/HomePosition.h>
 #include <ros/ros.h>
 #include <tf2_ros/transform_broadcaster.h>
@@ -40,6 +41,10 @@ class Vn200Node {
   drone_ros_common::SerialPort port_;
   TimeMapper time_mapper_;
   diagnostic_updater::Updater diag_;
+  // The /ins stream's rate against the configured output rate (x the replay speed): a lab's
+  // rqt_runtime_monitor shows a sensor running slow or stalled, not just a link up or down.
+  double ins_rate_hz_ = 0.0;
+  std::unique_ptr<diagnostic_updater::FrequencyStatus> ins_rate_;
   tf2_ros::TransformBroadcaster tf_;
 
   // A replay that must reach its subscribers whole starts only once they are all connected.

@@ -63,6 +63,11 @@ def make_recorder():
     return r
 
 
+def rate_statuses(rec):
+    """Every "/ins rate" status the node has published, oldest first."""
+    return [st for arr in rec.get("/diagnostics") for st in arr.status if "/ins rate" in st.name]
+
+
 def diag_values(rec):
     for arr in reversed(rec.get("/diagnostics")):
         for st in arr.status:
@@ -172,6 +177,16 @@ class LiveSensor(unittest.TestCase, ValueChecks):
                                      int(diag_values(rec)[0].get("connections", "0")) >= 2, 5.0))
         values, _ = diag_values(rec)
         self.assertGreater(int(values["bad packets"]), 0, "injected corrupt packets not counted")
+        # The /ins rate: 50 Hz met while the sensor streams, and said to fall short (or stop)
+        # across the unplugs.
+        self.assertTrue(rec.wait_for(lambda: any(st.level == st.OK for st in rate_statuses(rec)), 10.0),
+                        "the /ins rate never reported the 50 Hz met")
+        ok = [st for st in rate_statuses(rec) if st.level == st.OK][-1]
+        rate = {kv.key: kv.value for kv in ok.values}
+        self.assertAlmostEqual(50.0, float(rate["Target frequency (Hz)"]), places=3)
+        self.assertAlmostEqual(50.0, float(rate["Actual frequency (Hz)"]), delta=5.0)
+        self.assertTrue(rec.wait_for(lambda: any(st.level != st.OK for st in rate_statuses(rec)), 10.0),
+                        "an unplugged sensor's /ins rate still reported met")
         self.assertGreater(int(values["bad binary CRC"]), 0)
         self.assertGreaterEqual(int(values["link losses"]), 1)
 
