@@ -121,6 +121,11 @@ ControllerNode::ControllerNode(ros::NodeHandle &nh, ros::NodeHandle &pnh,
 
   diag_.setHardwareID(std::string("controller_") + GNC_AIRCRAFT_NAME);
   diag_.add("performance controller", this, &ControllerNode::diagnose);
+  servo_op_rate_hz_ = params_.rate_hz;
+  servo_op_rate_ = std::make_unique<diagnostic_updater::FrequencyStatus>(
+      diagnostic_updater::FrequencyStatusParam(&servo_op_rate_hz_, &servo_op_rate_hz_, 0.1, 3),
+      "/servo_op rate");
+  diag_.add(*servo_op_rate_);
   if (lockstep_) {
     lockstep_sub_ = nh.subscribe("/hil/lockstep", 100, &ControllerNode::on_lockstep, this,
                                  ros::TransportHints().tcpNoDelay());
@@ -296,6 +301,7 @@ void ControllerNode::step(double now, const ros::Time &stamp) {
     ++invalid_steps_;
   }
   servo_pub_.publish(cmd);
+  servo_op_rate_->tick();
 
   drone_ros::data data;
   data.header.stamp = stamp;

@@ -8,6 +8,7 @@
 #define CONTROLLER_NODE_H
 
 #include <diagnostic_updater/diagnostic_updater.h>
+#include <diagnostic_updater/update_functions.h>
 #include <drone_ros/DecisionStatus.h>
 #include <drone_ros/HomePosition.h>
 #include <drone_ros/LockstepStep.h>
@@ -16,6 +17,7 @@
 #include <sensor_msgs/BatteryState.h>
 #include <sensor_msgs/FluidPressure.h>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -74,6 +76,10 @@ class ControllerNode {
   uint64_t lockstep_wait_timeouts_ = 0;
   ros::ServiceServer set_tunable_srv_;
   diagnostic_updater::Updater diag_;
+  // The /servo_op stream's rate against rate_hz: a controller that falls behind shows in the
+  // lab's runtime monitor before the HA's deadline check takes the servos.
+  double servo_op_rate_hz_ = 0.0;
+  std::unique_ptr<diagnostic_updater::FrequencyStatus> servo_op_rate_;
   GncInput in_{};
   GncOutput out_{};
   uint32_t seq_ = 0;

@@ -14,6 +14,7 @@ import zlib
 
 import rospy
 import rostest
+from diagnostic_msgs.msg import DiagnosticArray
 from drone_ros.msg import DecisionStatus, ServoCommand, data, hil_data
 
 COLLECT_S = 3.0
@@ -39,6 +40,9 @@ class ServoOpRate(unittest.TestCase):
                 if len(msgs) > 1 and (m.stamp - msgs[0].stamp).to_sec() >= COLLECT_S:
                     done.set()
 
+        rates = []
+        rospy.Subscriber("/diagnostics", DiagnosticArray, lambda arr: rates.extend(
+            st for st in arr.status if "/servo_op rate" in st.name))
         rospy.Subscriber("/servo_op", ServoCommand, on_cmd, queue_size=1000)
         rospy.Subscriber("/data", data, lambda _m: other.__setitem__("data", other["data"] + 1))
         rospy.Subscriber("/to_hil", hil_data, lambda _m: other.__setitem__("hil", other["hil"] + 1))
@@ -55,6 +59,15 @@ class ServoOpRate(unittest.TestCase):
         self.assertAlmostEqual(median, 1.0 / expected_hz, delta=0.2 / expected_hz,
                                msg="median period %.4f s" % median)
         self.assertTrue(got[-1].sensor_links_healthy, "fresh sensors reported unhealthy")
+        # The node's own "/servo_op rate" diagnostic says the same: the configured rate, met.
+        deadline = rospy.Time.now() + rospy.Duration(5.0)
+        while not any(st.level == st.OK for st in rates) and rospy.Time.now() < deadline:
+            rospy.sleep(0.1)
+        met = [st for st in rates if st.level == st.OK]
+        self.assertTrue(met, "the /servo_op rate never reported met: %s" % [st.message for st in rates])
+        values = {kv.key: kv.value for kv in met[-1].values}
+        self.assertAlmostEqual(expected_hz, float(values["Target frequency (Hz)"]), places=3)
+        self.assertAlmostEqual(expected_hz, float(values["Actual frequency (Hz)"]), delta=0.1 * expected_hz)
         self.assertGreater(other["data"], 0)
         self.assertGreater(other["hil"], 0)
         if rospy.get_param("~exercise_restart", False):
