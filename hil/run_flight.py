@@ -21,6 +21,7 @@ flies on the wall clock, with the ground station's telemetry on UDP 14550 for QG
 Needs the workspace sourced (make run does it)."""
 import argparse
 import datetime
+import ipaddress
 import json
 import os
 import shutil
@@ -161,6 +162,15 @@ def main(argv=None):
     ap.add_argument("--ha", choices=("sil", "qemu"), default="sil",
                     help="the HA in the loop: its host build (ha_sil) or its Cortex-M3 machine code "
                          "on QEMU mps2-an385 (built into the flight's folder; lockstep only)")
+    ap.add_argument("--gcs-host", default="127.0.0.1", metavar="IPV4",
+                    help="where the ground station's telemetry goes: a QGroundControl on another "
+                         "machine (the vehicle then listens on every interface; default: this one)")
+    ap.add_argument("--gcs-port", type=int, default=None,
+                    help="its UDP port (default: 14550, QGroundControl's, in real time or with "
+                         "--gcs-host; a free one for the simulator's own ground station otherwise)")
+    ap.add_argument("--vehicle-port", type=int, default=None,
+                    help="the vehicle's UDP port (default: 14555 in real time or with --gcs-host, "
+                         "where a ground station expects it; a free one otherwise)")
     ap.add_argument("--no-bag", action="store_true")
     ap.add_argument("--quiet", action="store_true", help="no progress bar")
     args = ap.parse_args(argv)
@@ -178,6 +188,16 @@ def main(argv=None):
     if any(" " in str(v) for v in fault_params.values()):
         ap.error("fault parameter values may not contain spaces")
 
+    try:
+        gcs_is_local = ipaddress.IPv4Address(args.gcs_host).is_loopback
+    except ValueError:
+        ap.error("--gcs-host must be an IPv4 address, got %r" % args.gcs_host)
+    for name in ("gcs_port", "vehicle_port"):
+        port_arg = getattr(args, name)
+        if port_arg is not None and not 1 <= port_arg <= 65535:
+            ap.error("--%s must be in 1..65535" % name.replace("_", "-"))
+    # A ground station of the user's (QGroundControl) rather than the simulator's own monitor.
+    external_gcs = args.realtime or args.gcs_host != "127.0.0.1" or args.gcs_port is not None
     if args.ha == "qemu" and args.realtime:
         ap.error("--ha qemu runs in lockstep only (its clock is the simulator's step)")
     if args.realtime:
@@ -198,8 +218,8 @@ def main(argv=None):
     env.pop("ROS_NAMESPACE", None)
     procs = Processes(env, out)
     controller_hz = args.controller_hz or args.rate_hz
-    gs_bind = free_port(socket.SOCK_DGRAM)
-    gs_remote = 14550 if args.realtime else free_port(socket.SOCK_DGRAM)
+    gs_bind = args.vehicle_port or (14555 if external_gcs else free_port(socket.SOCK_DGRAM))
+    gs_remote = args.gcs_port or (14550 if external_gcs else free_port(socket.SOCK_DGRAM))
     stop = {"now": False}
 
     def on_signal(sig, _frame):
@@ -233,7 +253,9 @@ def main(argv=None):
                   "wind_mps:=%g" % args.wind_mps, "wind_from_deg:=%g" % args.wind_from_deg,
                   "turbulence:=" + args.turbulence,
                   "gs_udp_bind_port:=%d" % gs_bind, "gs_udp_remote_port:=%d" % gs_remote,
-                  "gs_monitor:=%s" % ("false" if args.realtime else "true"),
+                  "gs_udp_remote_address:=" + args.gcs_host,
+                  "gs_udp_bind_address:=" + ("127.0.0.1" if gcs_is_local else "0.0.0.0"),
+                  "gs_monitor:=%s" % ("false" if external_gcs else "true"),
                   "wait_for_recorder:=%s" % ("false" if args.no_bag else "true")]
         if args.ha == "qemu":
             launch += ["ha:=qemu", "ha_image:=" + build_pil_image(os.path.join(out, "pil"))]

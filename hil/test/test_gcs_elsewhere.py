@@ -1,0 +1,73 @@
+"""A ground station on another machine (issue 27): run_flight.py --gcs-host/--gcs-port send the
+vehicle's telemetry where a lab's QGroundControl listens, and the vehicle answers it from the port
+it was given. The "other machine" is 127.0.0.2 (loopback, but another address than the vehicle's):
+a pymavlink link listening there as QGroundControl does (udpin) hears the HEARTBEATs and positions
+of a lockstep flight and gets a parameter back when it asks for one."""
+import os
+import socket
+import subprocess
+import sys
+import tempfile
+import threading
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+sys.path.insert(0, ROOT)
+os.environ.setdefault("MAVLINK20", "1")
+from pymavlink import mavutil  # noqa: E402  (MAVLINK20 must be set first)
+
+from hil.campaigns.flight import run_completed  # noqa: E402
+
+GCS_HOST = "127.0.0.2"
+
+
+def free_udp_port(host):
+    with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as s:
+        s.bind((host, 0))
+        return s.getsockname()[1]
+
+
+def test_a_ground_station_at_another_address_hears_the_vehicle_and_is_answered():
+    gcs_port, vehicle_port = free_udp_port(GCS_HOST), free_udp_port("127.0.0.1")
+    gcs = mavutil.mavlink_connection("udpin:%s:%d" % (GCS_HOST, gcs_port), source_system=255)
+    folder = os.path.join(tempfile.mkdtemp(prefix="hil_gcs_"), "flight")
+    result = {}
+
+    def fly():
+        result["r"] = run_completed([sys.executable, os.path.join(ROOT, "hil", "run_flight.py"), "--duration", "30",
+                                     "--fault", "none", "--no-bag", "--quiet", "--folder", folder,
+                                     "--gcs-host", GCS_HOST, "--gcs-port", str(gcs_port),
+                                     "--vehicle-port", str(vehicle_port)], timeout=600)
+    flight = threading.Thread(target=fly)
+    flight.start()
+    try:
+        seen = {}
+        while flight.is_alive() and not ({"HEARTBEAT", "GLOBAL_POSITION_INT"} <= set(seen)):
+            m = gcs.recv_match(type=["HEARTBEAT", "GLOBAL_POSITION_INT"], blocking=True, timeout=1.0)
+            if m is not None and m.get_srcSystem() == 1:
+                seen[m.get_type()] = m
+        assert {"HEARTBEAT", "GLOBAL_POSITION_INT"} <= set(seen), "the vehicle sent nothing to %s:%d" % (
+            GCS_HOST, gcs_port)
+        # From the port it was given, which a ground station's link is configured with.
+        assert gcs.clients == {("127.0.0.1", vehicle_port)}, gcs.clients
+        # Asked back (udpin answers the address it heard the vehicle from), the vehicle answers.
+        answer = None
+        for _ in range(10):
+            gcs.mav.param_request_read_send(1, 1, b"", 0)
+            answer = gcs.recv_match(type="PARAM_VALUE", blocking=True, timeout=1.0)
+            if answer is not None or not flight.is_alive():
+                break
+        assert answer is not None, "no PARAM_VALUE back to the ground station at %s" % GCS_HOST
+        assert answer.param_count > 0
+    finally:
+        flight.join(timeout=600)
+        gcs.close()
+    r = result["r"]
+    assert r.returncode == 0, r.stdout.decode(errors="replace")[-3000:]
+
+
+def test_a_ground_station_address_that_is_not_ipv4_is_refused_before_anything_starts():
+    r = subprocess.run([sys.executable, os.path.join(ROOT, "hil", "run_flight.py"), "--gcs-host", "lab-laptop",
+                        "--folder", os.path.join(tempfile.mkdtemp(prefix="hil_gcs_bad_"), "flight")],
+                       capture_output=True, text=True, timeout=60)
+    assert r.returncode == 2
+    assert "--gcs-host must be an IPv4 address" in r.stderr
