@@ -12,6 +12,11 @@ it is this node's child and is stopped with it.
 
 Parameters: ~node (the node to supervise, default /controller_DG808), ~package and ~type (its
 executable, default drone_ros controller_DG808), ~kill_grace_s (1.0), ~boot_delay_s (0.0).
+
+Diagnostics (/diagnostics, once a second, "hp_supervisor: <node>"): OK while supervising, WARN
+while a restart is under way, ERROR when the last one could not start the node (no executable);
+its values: restarts, how the last old process ended, the PID
+of the new one.
 """
 import os
 import signal
@@ -25,6 +30,7 @@ from urllib.parse import urlparse
 import rosgraph
 import roslib.packages
 import rospy
+from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 from drone_ros.msg import DecisionStatus
 
 # node_query.py lies beside this file (the devel space runs it from the source folder).
@@ -65,6 +71,11 @@ class Supervisor:
         self.busy = threading.Lock()
         self.restarts = 0
         self.known = (None, None)  # (uri, pid) of the node while it answered
+        self.last_stop = None  # how the last restart ended the old process
+        self.failure = None  # why the last restart could not start the node, if it could not
+        self.started_pid = None
+        self.diag_pub = rospy.Publisher("/diagnostics", DiagnosticArray, queue_size=1)
+        rospy.Timer(rospy.Duration(1.0), self.publish_diagnostics)
         self.learner = threading.Thread(target=self.learn_pids, daemon=True)
         self.learner.start()
         rospy.Subscriber("/decision_status", DecisionStatus, self.on_status, queue_size=10)
@@ -80,6 +91,18 @@ class Supervisor:
             rospy.logwarn("hp_supervisor: restart requested while one is under way; ignored")
             return
         threading.Thread(target=self.restart, daemon=True).start()
+
+    def publish_diagnostics(self, _event=None):
+        st = DiagnosticStatus(name="hp_supervisor: %s" % self.node, hardware_id="HP computer")
+        if self.failure:
+            st.level, st.message = DiagnosticStatus.ERROR, "cannot restart: %s" % self.failure
+        elif self.busy.locked():
+            st.level, st.message = DiagnosticStatus.WARN, "restarting"
+        else:
+            st.level, st.message = DiagnosticStatus.OK, "supervising (%d restarts)" % self.restarts
+        st.values = [KeyValue("restarts", str(self.restarts)), KeyValue("last stop", self.last_stop or "-"),
+                     KeyValue("started pid", str(self.started_pid or "-"))]
+        self.diag_pub.publish(DiagnosticArray(header=rospy.Header(stamp=rospy.Time.now()), status=[st]))
 
     def learn_pids(self):
         """Remembers the node's PID while it answers: a hung node cannot be asked."""
@@ -97,6 +120,7 @@ class Supervisor:
             return None
         if not local(uri):
             rospy.logwarn("hp_supervisor: %s runs on %s, not here: cannot restart it", self.node, uri)
+            self.last_stop = "not stopped: runs on %s" % uri
             return None
         pid = ask_pid(uri, rospy.get_name())
         if pid is None and self.known[0] == uri:
@@ -107,9 +131,12 @@ class Supervisor:
         pid = self.find_pid()
         if pid is None or not alive(pid):
             rospy.logwarn("hp_supervisor: %s is not running (crashed)", self.node)
+            if self.last_stop is None:  # not set by find_pid: not a node elsewhere
+                self.last_stop = "not running (crashed)"
             return
         rospy.logwarn("hp_supervisor: stopping %s (pid %d)", self.node, pid)
         os.kill(pid, signal.SIGTERM)
+        self.last_stop = "SIGTERM"
         deadline = time.monotonic() + self.kill_grace_s
         while time.monotonic() < deadline and alive(pid):
             time.sleep(0.01)
@@ -117,6 +144,7 @@ class Supervisor:
             rospy.logwarn("hp_supervisor: %s did not stop within %.1f s (hung): SIGKILL",
                           self.node, self.kill_grace_s)
             os.kill(pid, signal.SIGKILL)
+            self.last_stop = "SIGKILL (hung)"
             while alive(pid):
                 time.sleep(0.01)
 
@@ -124,16 +152,20 @@ class Supervisor:
         found = roslib.packages.find_node(self.package, self.type)
         if not found:
             rospy.logerr("hp_supervisor: no executable %s in %s", self.type, self.package)
+            self.failure = "no executable %s in %s" % (self.type, self.package)
             return
         ns, name = rosgraph.names.namespace(self.node), self.node.rstrip("/").rsplit("/", 1)[-1]
         child = subprocess.Popen([found[0], "__name:=" + name, "__ns:=" + ns])
         self.children.append(child)
+        self.started_pid = child.pid
+        self.failure = None
         self.restarts += 1
         rospy.logwarn("hp_supervisor: started %s again (pid %d, restart %d)", self.node,
                       child.pid, self.restarts)
 
     def restart(self):
         try:
+            self.last_stop = None
             self.stop_running()
             if self.boot_delay_s > 0.0:
                 rospy.sleep(self.boot_delay_s)
