@@ -90,6 +90,36 @@ TEST(HaSafetyCtrl, KeepsAircraftInsideRegionWithHpGone) {
   }
 }
 
+// limits.yaml's circle_direction -1 (a left-hand circle, say for a field whose terrain or
+// spectators lie to the right): the HA circles home anticlockwise seen from above, at the same
+// radius and bank limit as the right-hand circle, from a start heading the other way.
+TEST(HaSafetyCtrl, ALeftHandCircleIsFlownAnticlockwise) {
+  HaAircraftConfig left = ha_aircraft_config;
+  ASSERT_EQ(left.sc_circle_direction, 1.0f);
+  left.sc_circle_direction = -1.0f;
+  HaAloneFlight f(123456u, left);
+  f.StartOnTheCircle(200.0f, 60.0f);
+  f.ac.heading_deg = 270.0f;  // west at the north point: the left-hand circle's tangent
+  double turned_deg = 0.0, prev_deg = std::atan2(f.ac.east_ft, f.ac.north_ft) * 57.29578;
+  float max_abs_roll_deg = 0.0f, min_radius_ft = 1e9f, max_radius_ft = 0.0f;
+  const int steps = static_cast<int>(300.0f / f.PeriodS());
+  for (int i = 0; i < steps; ++i) {
+    f.Step();
+    const double bearing_deg = std::atan2(f.ac.east_ft, f.ac.north_ft) * 57.29578;
+    turned_deg += std::remainder(bearing_deg - prev_deg, 360.0);
+    prev_deg = bearing_deg;
+    if (i * f.PeriodS() >= 60.0f) {
+      max_abs_roll_deg = std::max(max_abs_roll_deg, std::fabs(f.ac.roll_deg));
+      min_radius_ft = std::min(min_radius_ft, f.ac.DistanceFt());
+      max_radius_ft = std::max(max_radius_ft, f.ac.DistanceFt());
+    }
+  }
+  EXPECT_LT(turned_deg, -360.0) << "the bearing from home did not turn anticlockwise";
+  EXPECT_LE(max_abs_roll_deg, left.sc_bank_limit_deg + 2.0f);
+  EXPECT_GT(min_radius_ft, 0.7f * left.sc_circle_radius_ft);
+  EXPECT_LT(max_radius_ft, 1.3f * left.sc_circle_radius_ft);
+}
+
 // A blind HA (its INS feed gone) does not hold the HP's last surfaces: they fade to the trims.
 TEST(HaSafetyCtrl, BlindHaFadesTheHpsLastSurfacesToTrim) {
   Timeline t;
