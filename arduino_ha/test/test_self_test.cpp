@@ -65,6 +65,15 @@ TEST(HaSelfTest, PilotSwitchAbortsSelfTest) {
   EXPECT_EQ(t.controller(), HA_CONTROLLER_MANUAL);
 }
 
+// The answer to a SELF_TEST that must be refused: acknowledged once, not accepted, not started,
+// and whoever had the servos keeps them.
+void ExpectSelfTestRefusedAndServosKept(const Timeline& t, uint8_t controller) {
+  EXPECT_EQ(t.out().operator_ack_count, 1u);
+  EXPECT_EQ(t.out().operator_ack_accepted, 0u);
+  EXPECT_EQ(t.out().self_test_active, 0u);
+  EXPECT_EQ(t.controller(), controller);
+}
+
 // The pilot on the sticks of a parked aircraft (taxiing it, checking the surfaces by hand): a
 // SELF_TEST request sweeping them under the pilot's hands is refused, and the sticks stay on the
 // servos.
@@ -76,10 +85,7 @@ TEST(HaSelfTest, SelfTestRefusedWhileThePilotHasTheSticks) {
   ASSERT_EQ(t.controller(), HA_CONTROLLER_MANUAL);
   t.Operator(HA_OP_SELF_TEST);
   t.Step();
-  EXPECT_EQ(t.out().operator_ack_count, 1u);
-  EXPECT_EQ(t.out().operator_ack_accepted, 0u);
-  EXPECT_EQ(t.out().self_test_active, 0u);
-  EXPECT_EQ(t.controller(), HA_CONTROLLER_MANUAL);
+  ExpectSelfTestRefusedAndServosKept(t, HA_CONTROLLER_MANUAL);
 }
 
 // On the ground with the HP's commands on the servos (taxiing, a pre-flight check of the HP's
@@ -90,10 +96,7 @@ TEST(HaSelfTest, SelfTestRefusedWhileTheHpHasTheServosOnTheGround) {
   ASSERT_GT(t.ReachHp(), 0);
   t.Operator(HA_OP_SELF_TEST);
   t.StepWithGood();
-  EXPECT_EQ(t.out().operator_ack_count, 1u);
-  EXPECT_EQ(t.out().operator_ack_accepted, 0u);
-  EXPECT_EQ(t.out().self_test_active, 0u);
-  EXPECT_EQ(t.controller(), HA_CONTROLLER_HP);
+  ExpectSelfTestRefusedAndServosKept(t, HA_CONTROLLER_HP);
 }
 
 // A ground station sending queued requests back to back, faster than one a period: what the
