@@ -120,6 +120,42 @@ TEST(HaSafetyCtrl, ALeftHandCircleIsFlownAnticlockwise) {
   EXPECT_LT(max_radius_ft, 1.3f * left.sc_circle_radius_ft);
 }
 
+// Campaign seed 27 #4: the HP's output froze 500 ft outside the circle, heading away, and the HA
+// that took over turned home at its 25 deg bank limit for 20 s, 4 ft/s under its cruise speed.
+// The nose may rise only as far as the speed pays, and the speed loop alone gave the turn too
+// little power: 193 ft became 35. Low in the band the HA now spends power on height and banks no
+// more than its circle needs, and still comes home.
+TEST(HaSafetyCtrl, TakenOverLowAndFarOutTheHaClimbsOnPowerAndTurnsHomeNoSteeperThanItsCircle) {
+  HaAloneFlight f(246800u);
+  const HaAircraftConfig& cfg = f.cfg;
+  f.ac.north_ft = 3.0f * cfg.sc_circle_radius_ft;
+  f.ac.heading_deg = 0.0f;  // away from home
+  f.ac.altitude_ft = cfg.sc_alt_min_ft - 10.0f;
+  f.ac.airspeed_ftps = cfg.stall_speed_ftps * cfg.sc_cruise_margin - 4.0f;
+  float lowest_ft = f.ac.altitude_ft, steepest_low_deg = 0.0f, most_throttle = 0.0f;
+  const int steps = static_cast<int>(120.0f / f.PeriodS());
+  for (int i = 0; i < steps; ++i) {
+    const float was_ft = f.ac.altitude_ft;
+    f.Step();
+    most_throttle = std::max(most_throttle, f.out.surfaces.throttle);
+    lowest_ft = std::min(lowest_ft, f.ac.altitude_ft);
+    // The roll follows the command within a second: judged after the first one.
+    if (i * f.PeriodS() > 1.0f && was_ft < cfg.sc_alt_min_ft - 5.0f) {
+      steepest_low_deg = std::max(steepest_low_deg, std::fabs(f.ac.roll_deg));
+    }
+  }
+  std::printf(
+      "from %.0f ft, %.0f ft out heading away: lowest %.1f ft, steepest bank below the band "
+      "%.1f deg, most throttle %.2f; after 120 s %.1f ft, %.0f ft from home\n",
+      cfg.sc_alt_min_ft - 10.0f, 3.0f * cfg.sc_circle_radius_ft, lowest_ft, steepest_low_deg,
+      most_throttle, f.ac.altitude_ft, f.ac.DistanceFt());
+  EXPECT_GT(most_throttle, 0.5f * (cfg.sc_throttle_trim + cfg.throttle_max));
+  EXPECT_GT(lowest_ft, cfg.sc_alt_min_ft - 20.0f);
+  EXPECT_LE(steepest_low_deg, cfg.sc_circle_bank_ff_deg + 2.0f);
+  EXPECT_GE(f.ac.altitude_ft, cfg.sc_alt_min_ft);
+  EXPECT_LT(f.ac.DistanceFt(), 1.3f * cfg.sc_circle_radius_ft);
+}
+
 // A blind HA (its INS feed gone) does not hold the HP's last surfaces: they fade to the trims.
 TEST(HaSafetyCtrl, BlindHaFadesTheHpsLastSurfacesToTrim) {
   Timeline t;

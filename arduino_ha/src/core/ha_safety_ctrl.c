@@ -43,7 +43,7 @@ static float bank_command_deg(const HaAircraftConfig *cfg, const HaStateView *s)
   const float dir = cfg->sc_circle_direction;
   const float n = s->north_ft;
   const float e = s->east_ft;
-  float tan_corr, course_n, course_e, cross, dot, err_deg, bank_deg;
+  float tan_corr, course_n, course_e, cross, dot, err_deg, bank_deg, limit_deg;
   if (!s->position_ok) {
     return 0.0f; /* without a position: wings level */
   }
@@ -65,7 +65,13 @@ static float bank_command_deg(const HaAircraftConfig *cfg, const HaStateView *s)
   }
   /* Feed-forward: the bank of a steady turn of this radius at the target speed. */
   bank_deg = dir * cfg->sc_circle_bank_ff_deg + cfg->sc_heading_to_bank_gain * err_deg;
-  return ha_limitf(bank_deg, -cfg->sc_bank_limit_deg, cfg->sc_bank_limit_deg); /* finite */
+  /* Below the band, height beats the circle: no more bank than the circle's own, whose load the
+   * power pays for; the circle is joined wider (HiL campaign seed 27 #4: 25 deg held for 20 s far
+   * outside the circle sank the aircraft from 193 to 35 ft at 59 ft/s). */
+  limit_deg = (s->altitude_ok && ha_greater(cfg->sc_alt_min_ft, s->x[HA_X_ALT_AGL_FT]))
+                  ? cfg->sc_circle_bank_ff_deg
+                  : cfg->sc_bank_limit_deg;
+  return ha_limitf(bank_deg, -limit_deg, limit_deg); /* finite */
 }
 
 /* Outer longitudinal loop: the altitude band, but slow beats low. The nose may rise only as far
@@ -150,19 +156,21 @@ void ha_safety_ctrl_step(HaSafetyCtrlState *st, const HaAircraftConfig *cfg, con
     thr_pd += cfg->sc_throttle_kp_per_ftps * speed_err;
     thr_step = cfg->sc_throttle_ki_per_ft * speed_err * dt_s;
   } else if (in_control && s->attitude_ok) {
-    /* Pitch and power: the nose at the attitude that holds the speed, the power for the height:
-     * throttle_trim from the band's middle up, full at its floor. Whatever the HP or a speed
-     * loop fed a lying sensor left in the integrator fades (HiL: the throttle cut to 0.05 on a
-     * tailwind's speed over the ground); less power than the trim would slow the aircraft at
-     * that attitude, so the band's ceiling is the pitch term's. */
+    /* Pitch and power: the nose at the attitude that holds the speed, the power for the height.
+     * Whatever the HP or a speed loop fed a lying sensor left in the integrator fades (HiL: the
+     * throttle cut to 0.05 on a tailwind's speed over the ground); less power than the trim
+     * would slow the aircraft at that attitude, so the band's ceiling is the pitch term's. */
     st->throttle_integ =
         toward_zero(st->throttle_integ, cfg->sc_blind_fade_per_s * auth * dt_s * throttle_half);
-    if (s->altitude_ok) {
-      const float below_ft =
-          0.5f * (cfg->sc_alt_min_ft + cfg->sc_alt_max_ft) - s->x[HA_X_ALT_AGL_FT];
-      thr_pd += ha_clampf(cfg->sc_power_throttle_per_ft * below_ft, 0.0f,
-                          cfg->throttle_max - cfg->sc_throttle_trim);
-    }
+  }
+  /* Power for height in both modes: below the band's middle, throttle_trim's margin to full in
+   * proportion, full at the band's floor. With the speed known, the nose may rise only as far
+   * as the speed pays, and the speed loop alone gave a turn's drag too little power (HiL
+   * campaign seed 27 #4: 4 ft/s slow at throttle 0.6, pitch held at 2 deg, 158 ft lost). */
+  if (s->airborne && s->attitude_ok && s->altitude_ok) {
+    const float below_ft = 0.5f * (cfg->sc_alt_min_ft + cfg->sc_alt_max_ft) - s->x[HA_X_ALT_AGL_FT];
+    thr_pd += ha_clampf(cfg->sc_power_throttle_per_ft * below_ft, 0.0f,
+                        cfg->throttle_max - cfg->sc_throttle_trim);
   }
   out->aileron_deg = pid(&st->roll_integ_deg, roll_pd, roll_step, cfg->aileron_limit_deg,
                          auth * cfg->aileron_limit_deg, in_control, applied->aileron_deg);
