@@ -15,10 +15,10 @@ summary still says why ("died": the simulator stopped, "timeout": past --timeout
 
 Each flight gets its own ROS master (a free port on loopback), its own ptys and control socket
 (a temporary folder) and its own output folder hil/out/<YYYY-MM-DD_HHMMSS>-<aircraft>-<seed>/
-with flight.bag (hil/HIL_INTERFACES.md section 3), summary.json and the logs. A progress bar goes to
-stderr. Every process started here is stopped at the end, on Ctrl-C and on error. --realtime
-flies on the wall clock, with the ground station's telemetry on UDP 14550 for QGroundControl.
-Needs the workspace sourced (make run does it)."""
+with flight.bag (hil/HIL_INTERFACES.md section 3), flight.tlog (the ground link's MAVLink),
+summary.json and the logs. A progress bar goes to stderr. Every process started here is
+stopped at the end, on Ctrl-C and on error. --realtime flies on the wall clock, with the ground
+station's telemetry on UDP 14550 for QGroundControl. Needs the workspace sourced (make run does it)."""
 import argparse
 import datetime
 import ipaddress
@@ -256,7 +256,9 @@ def main(argv=None):
                   "gs_udp_remote_address:=" + args.gcs_host,
                   "gs_udp_bind_address:=" + ("127.0.0.1" if gcs_is_local else "0.0.0.0"),
                   "gs_monitor:=%s" % ("false" if external_gcs else "true"),
-                  "wait_for_recorder:=%s" % ("false" if args.no_bag else "true")]
+                  "wait_for_recorder:=%s" % ("false" if args.no_bag else "true"),
+                  # The vehicle side of the ground link, beside the bag (microhard_gs/README.md).
+                  "gs_tlog_path:=" + ("" if args.no_bag else os.path.join(os.path.abspath(out), "flight.tlog"))]
         if args.ha == "qemu":
             launch += ["ha:=qemu", "ha_image:=" + build_pil_image(os.path.join(out, "pil"))]
         if args.field_elevation_ft is not None:

@@ -553,6 +553,49 @@ TEST(Robustness, CorruptFramesAreCountedAndTheNextGoodFrameStillParses) {
   EXPECT_EQ(b.core.take_operator_requests().size(), 1u);
 }
 
+// What the telemetry log gets of the received side: each whole frame with a good CRC, byte for
+// byte, however the link chunked it; refused ones too (what the link carried), corrupt ones not.
+TEST(ReceivedFrames, EveryGoodFrameIsKeptAsItCameCorruptOnesAreNot) {
+  SigningKey key{};
+  for (size_t i = 0; i < key.size(); ++i) key[i] = static_cast<uint8_t>(i + 1);
+  GsConfig c = base_config();
+  c.signing = true;
+  c.signing_key = key;
+  c.keep_received_frames = true;
+  Bench b(c);
+  b.run_for(10);
+  const auto signed_count = Gcs(&key).count(2);
+  const auto unsigned_command = Gcs().command(MAV_CMD_DO_SET_MODE, 1, 1);  // refused: unsigned
+  auto corrupt = Gcs().command(MAV_CMD_DO_SET_MODE, 1, 0);
+  corrupt[corrupt.size() - 1] ^= 0x55;
+  const std::vector<uint8_t> garbage{0x00, 0xFD, 0x42, 0x13};  // a stray STX among them
+  std::vector<uint8_t> stream = garbage;
+  for (const std::vector<uint8_t>* f :
+       std::vector<const std::vector<uint8_t>*>{&signed_count, &corrupt, &unsigned_command}) {
+    stream.insert(stream.end(), f->begin(), f->end());
+  }
+  for (uint8_t byte : stream) b.feed({byte});  // a serial link: one byte at a time
+  const auto kept = b.core.take_received_frames();
+  ASSERT_EQ(kept.size(), 2u);
+  EXPECT_EQ(kept[0], signed_count);
+  EXPECT_EQ(kept[1], unsigned_command);
+  EXPECT_EQ(b.core.counters().frames_bad_crc, 1u);
+  EXPECT_TRUE(b.core.take_received_frames().empty());  // taken once
+
+  b.feed(stream);  // a datagram holding them all
+  const auto again = b.core.take_received_frames();
+  ASSERT_EQ(again.size(), 2u);
+  EXPECT_EQ(again[0], signed_count);  // a replay now: refused, still what the link carried
+  EXPECT_EQ(again[1], unsigned_command);
+}
+
+TEST(ReceivedFrames, NoneAreKeptUnlessAsked) {
+  Bench b;
+  b.feed(Gcs().command(MAV_CMD_DO_SET_MODE, 1, 0));
+  EXPECT_EQ(b.core.counters().frames_ok, 1u);
+  EXPECT_TRUE(b.core.take_received_frames().empty());
+}
+
 TEST(SigningKeyFile, HexKeyParsesAndGarbageIsRefused) {
   SigningKey key{};
   std::string error;

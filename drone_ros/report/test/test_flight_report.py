@@ -1,6 +1,7 @@
 """flight_report run as a person runs it (the built `rosrun drone_ros flight_report` executable)
 on bags of a scripted flight: HP flying, a crash, the HA taking over with REASON_NO_COMMAND,
-RECOVERING, back to the HP."""
+RECOVERING, back to the HP. Also its CSV export (--export csv), read back with the csv module."""
+import csv
 import os
 import struct
 import subprocess
@@ -250,3 +251,113 @@ def test_reason_names_come_from_the_message_definition():
     # A reason a newer HA sends is shown by value, never dropped.
     assert definitions.bit_names(DecisionStatus.REASON_STALL | (1 << 20), names) == [
         "STALL", "unnamed bit 0x100000"]
+
+
+# ------------------------------------------------------------------------- --export csv
+
+def read_csv(path):
+    with open(path, newline="") as f:
+        rows = list(csv.reader(f))
+    return rows[0], [dict(zip(rows[0], row)) for row in rows[1:]]
+
+
+def test_csv_export_writes_si_columns_named_with_their_units(tmp_path):
+    """One message per stream with known values in the bag's units (feet, ft/s, g) at known ROS
+    times: each comes back converted, in a column named with its unit."""
+    import rosbag
+    import rospy
+    from drone_ros.msg import HilTruth, ServoCommand, data
+    bag_path = tmp_path / "flight.bag"
+    t0 = 1795000000.25  # a real flight's stamps: wall time
+    with rosbag.Bag(str(bag_path), "w") as bag:
+        d = data()
+        d.header.stamp = rospy.Time.from_sec(t0)
+        d.lla.x, d.lla.y, d.lla.z = 38.9717, -95.2353, 250.5
+        d.angle.x = 0.25
+        d.velocity.x = 17.0
+        d.acceleration.z = -1.0  # g
+        d.air_velocity = 100.0  # ft/s
+        d.a_usbstatus = d.v_usbstatus = 1
+        bag.write("/data", d, d.header.stamp)
+        status = DecisionStatus(stamp=rospy.Time.from_sec(t0 + 0.5), controller=DecisionStatus.CONTROLLER_HA,
+                                reasons=DecisionStatus.REASON_NO_COMMAND | DecisionStatus.REASON_STALL,
+                                last_seq=41, airspeed_ftps=50.0, altitude_agl_ft=1000.0, elevator_deg=-1.5)
+        bag.write("/decision_status", status, status.stamp)
+        cmd = ServoCommand(seq=7, stamp=rospy.Time.from_sec(t0 + 1.0), throttle=0.5, aileron_deg=3.25)
+        bag.write("/servo_op", cmd, cmd.stamp)
+        truth = HilTruth(north_ft=1000.0, height_above_home_ft=400.0, airspeed_ftps=60.0,
+                         accel_z_ft_s2=-32.0, roll_deg=20.0)
+        truth.header.stamp = rospy.Time.from_sec(t0 + 2.0)
+        bag.write("/hil/truth", truth, truth.header.stamp)
+    out = tmp_path / "csv"
+    result = run(str(bag_path), "--export", "csv", "--out", str(out))
+    assert result.returncode == 0, result.stderr
+    assert sorted(os.listdir(out)) == ["decision.csv", "ins.csv", "servo_commands.csv", "truth.csv"]
+
+    header, rows = read_csv(out / "ins.csv")
+    assert header[:6] == ["t_s", "ros_time_s", "lat_deg", "lon_deg", "alt_m", "roll_rad"]
+    assert {"airspeed_mps", "v_north_mps", "accel_z_mps2", "p_rad_s", "ha_link_up"} <= set(header)
+    (ins,) = rows
+    assert float(ins["t_s"]) == 0.0  # the first message of the flight
+    assert float(ins["ros_time_s"]) == pytest.approx(t0, abs=1e-6)
+    assert float(ins["airspeed_mps"]) == pytest.approx(30.48, abs=1e-9)  # 100 ft/s
+    assert float(ins["accel_z_mps2"]) == pytest.approx(-9.80665, abs=1e-9)  # -1 g
+    assert (float(ins["lat_deg"]), float(ins["alt_m"]), float(ins["roll_rad"])) == (38.9717, 250.5, 0.25)
+    assert float(ins["v_north_mps"]) == 17.0 and ins["ha_link_up"] == "1"
+
+    header, (decision,) = read_csv(out / "decision.csv")
+    assert {"altitude_agl_m", "airspeed_mps", "elevator_deg", "controller_name", "reason_names"} <= set(header)
+    assert float(decision["t_s"]) == pytest.approx(0.5, abs=1e-6)
+    assert float(decision["altitude_agl_m"]) == pytest.approx(304.8, abs=1e-9)  # 1000 ft
+    assert float(decision["airspeed_mps"]) == pytest.approx(15.24, abs=1e-9)  # 50 ft/s
+    assert (decision["controller"], decision["controller_name"]) == ("1", "HA")
+    assert decision["reason_names"] == "NO_COMMAND|STALL"
+    assert decision["last_seq"] == "41" and float(decision["elevator_deg"]) == -1.5
+
+    _, (command,) = read_csv(out / "servo_commands.csv")
+    assert float(command["t_s"]) == pytest.approx(1.0, abs=1e-6)
+    assert command["seq"] == "7" and float(command["aileron_deg"]) == 3.25
+
+    _, (state,) = read_csv(out / "truth.csv")
+    assert float(state["north_m"]) == pytest.approx(304.8, abs=1e-9)
+    assert float(state["height_above_home_m"]) == pytest.approx(121.92, abs=1e-9)
+    assert float(state["airspeed_mps"]) == pytest.approx(18.288, abs=1e-9)
+    assert float(state["accel_z_mps2"]) == pytest.approx(-9.7536, abs=1e-9)  # -32 ft/s^2
+    assert float(state["roll_deg"]) == 20.0
+
+
+def test_csv_export_of_a_whole_flight_has_a_row_per_message_on_the_reports_time_axis(hil_flight, tmp_path):
+    import rosbag
+    bag_path = hil_flight.parent / "flight.bag"
+    result = run(str(bag_path), "--export", "csv", "--out", str(tmp_path / "csv"))
+    assert result.returncode == 0, result.stderr
+    with rosbag.Bag(str(bag_path)) as bag:
+        counts = {topic: bag.get_message_count(topic) for topic in
+                  ("/data", "/hil/truth", "/servo_op", "/decision_status")}
+    for name, topic in (("ins", "/data"), ("truth", "/hil/truth"), ("servo_commands", "/servo_op"),
+                        ("decision", "/decision_status")):
+        _, rows = read_csv(tmp_path / "csv" / (name + ".csv"))
+        assert len(rows) == counts[topic], name
+        times = [float(r["t_s"]) for r in rows]
+        assert times == sorted(times) and 0.0 <= times[0] < 0.01 and times[-1] < scripted_flight.END_S
+    _, rows = read_csv(tmp_path / "csv" / "decision.csv")
+    took_over = next(r for r in rows if r["controller_name"] == "HA")
+    assert float(took_over["t_s"]) == pytest.approx(scripted_flight.SWITCHES[0][0], abs=0.011)
+    assert took_over["reason_names"] == "NO_COMMAND"
+
+
+def test_csv_export_of_a_missing_bag_or_one_without_the_streams_says_so(tmp_path):
+    import rosbag
+    from drone_ros.msg import pwm
+    result = run(str(tmp_path / "nowhere.bag"), "--export", "csv")
+    assert result.returncode == 2
+    assert "no such file" in result.stderr and "nowhere.bag" in result.stderr
+    assert "Traceback" not in result.stderr
+    bag_path = tmp_path / "flight.bag"
+    with rosbag.Bag(str(bag_path), "w") as bag:
+        bag.write("/pwm", pwm())
+    result = run(str(bag_path), "--export", "csv", "--out", str(tmp_path / "csv"))
+    assert result.returncode == 2
+    assert "nothing to export" in result.stderr and "/decision_status" in result.stderr
+    assert "Traceback" not in result.stderr
+    assert not (tmp_path / "csv").exists()

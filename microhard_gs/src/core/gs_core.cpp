@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "gs_core_emit.h"
 
@@ -27,6 +28,12 @@ void GsCore::handle_bytes(const uint8_t* data, size_t len, const Clock& now) {
     mavlink_message_t msg;
     mavlink_status_t status;
     const uint8_t r = mavlink_frame_char_buffer(&rx_buffer_, &rx_status_, data[i], &msg, &status);
+    rx_recent_[rx_recent_next_] = data[i];
+    rx_recent_next_ = (rx_recent_next_ + 1) % MAVLINK_MAX_PACKET_LEN;
+    if (config_.keep_received_frames &&
+        (r == MAVLINK_FRAMING_OK || r == MAVLINK_FRAMING_BAD_SIGNATURE)) {
+      keep_received_frame(msg);
+    }
     if (r == MAVLINK_FRAMING_OK) {
       ++counters_.frames_ok;
       dispatch(msg, now);
@@ -52,6 +59,21 @@ void GsCore::handle_bytes(const uint8_t* data, size_t len, const Clock& now) {
       }
     }
   }
+}
+
+void GsCore::keep_received_frame(const mavlink_message_t& msg) {
+  // msg.len is the payload length as received (a MAVLink 2 sender trims trailing zeros; the
+  // parser only pads its copy), so this is the frame's length on the wire.
+  const bool v1 = msg.magic == MAVLINK_STX_MAVLINK1;
+  const bool is_signed = !v1 && (msg.incompat_flags & MAVLINK_IFLAG_SIGNED) != 0;
+  const size_t len = (v1 ? MAVLINK_CORE_HEADER_MAVLINK1_LEN : MAVLINK_CORE_HEADER_LEN) + 1u +
+                     msg.len + MAVLINK_NUM_CHECKSUM_BYTES +
+                     (is_signed ? MAVLINK_SIGNATURE_BLOCK_LEN : 0u);
+  std::vector<uint8_t> frame(len);
+  size_t at = (rx_recent_next_ + MAVLINK_MAX_PACKET_LEN - len) % MAVLINK_MAX_PACKET_LEN;
+  for (size_t k = 0; k < len; ++k, at = (at + 1) % MAVLINK_MAX_PACKET_LEN)
+    frame[k] = rx_recent_[at];
+  received_frames_.push_back(std::move(frame));
 }
 
 bool GsCore::addressed_to_us(uint8_t target_system, uint8_t target_component) {
@@ -191,6 +213,7 @@ std::vector<T> take(std::vector<T>* v) {
 }  // namespace
 
 std::vector<std::vector<uint8_t>> GsCore::take_frames() { return take(&frames_); }
+std::vector<std::vector<uint8_t>> GsCore::take_received_frames() { return take(&received_frames_); }
 std::vector<WayPlan> GsCore::take_way_plans() { return take(&way_plans_); }
 std::vector<OperatorRequest> GsCore::take_operator_requests() { return take(&operator_requests_); }
 std::vector<ParamSetRequest> GsCore::take_param_set_requests() {

@@ -38,6 +38,8 @@ struct GsConfig {
   bool signing = false;
   SigningKey signing_key{};
   uint8_t signing_link_id = 0;
+  // Keep every frame received, as it came, for take_received_frames() (the telemetry log).
+  bool keep_received_frames = false;
 };
 
 // What the controller reported last on /data, in the units of the `data` message.
@@ -131,6 +133,9 @@ class GsCore {
 
   // Outputs, drained by the caller.
   std::vector<std::vector<uint8_t>> take_frames();
+  // With keep_received_frames: every frame received whole with a good CRC, byte for byte as it
+  // came, whether acted on or refused (signing, another target): what the link carried.
+  std::vector<std::vector<uint8_t>> take_received_frames();
   std::vector<WayPlan> take_way_plans();
   std::vector<OperatorRequest> take_operator_requests();
   std::vector<HomeRequest> take_home_requests();
@@ -181,6 +186,7 @@ class GsCore {
   void start_signing();
   void update_signing_clock(const Clock& now);
   void dispatch(const mavlink_message_t& msg, const Clock& now);
+  void keep_received_frame(const mavlink_message_t& msg);
   bool addressed_to_us(uint8_t target_system, uint8_t target_component);
 
   void on_param_request_list();
@@ -224,6 +230,11 @@ class GsCore {
 
   mavlink_status_t rx_status_{};
   mavlink_message_t rx_buffer_{};
+  // The last bytes received, a ring as long as the longest frame: a frame just parsed is its
+  // last bytes, whatever the chunking and whatever came before it.
+  uint8_t rx_recent_[MAVLINK_MAX_PACKET_LEN] = {};
+  size_t rx_recent_next_ = 0;
+  std::vector<std::vector<uint8_t>> received_frames_;
   mavlink_status_t tx_status_{};
   mavlink_signing_t signing_{};
   mavlink_signing_streams_t signing_streams_{};

@@ -25,10 +25,15 @@
 #include "hp_command.h"
 #include "node_config.h"
 #include "serial_transport.h"
+#include "tlog_writer.h"
 #include "udp_transport.h"
 
 namespace microhard_gs {
 namespace {
+
+// How often the tlog's buffer goes to the file: what a crash of the node can lose, at one
+// write(2) of a few KB (telemetry at 10 Hz is about 3 KB/s).
+constexpr uint64_t kTlogFlushPeriodMs = 500;
 
 static_assert(kControllerHp == drone_ros::DecisionStatus::CONTROLLER_HP &&
                   kControllerHa == drone_ros::DecisionStatus::CONTROLLER_HA &&
@@ -162,7 +167,8 @@ class Node {
       : config_(std::move(config)),
         link_(std::move(link)),
         core_(config_.core, config_.params),
-        tunables_(config_.controller_param_ns + "/set_tunable") {
+        tunables_(config_.controller_param_ns + "/set_tunable"),
+        tlog_(kTlogFlushPeriodMs) {
     way_pub_ = nh.advertise<drone_ros::way>("/way", 1, true);  // latched: a late controller gets it
     command_pub_ = nh.advertise<drone_ros::OperatorCommand>("/operator_command", 10);
     data_sub_ = nh.subscribe("/data", 10, &Node::on_data, this);
@@ -170,6 +176,10 @@ class Node {
     home_sub_ = nh.subscribe("/home", 1, &Node::on_home, this);  // latched by the `arduino` node
     updater_.setHardwareID(link_->describe());
     updater_.add("link", this, &Node::diagnose);
+    if (!config_.tlog_path.empty() && tlog_.open(config_.tlog_path, now_clock().mono_ms)) {
+      ROS_INFO("microhard_gs: MAVLink telemetry log (both directions) in %s",
+               config_.tlog_path.c_str());
+    }
   }
 
   void run() {
@@ -185,12 +195,18 @@ class Node {
           ++link_errors_;
           break;
         }
-        core_.handle_bytes(buf, static_cast<size_t>(n), now_clock());
+        const Clock now = now_clock();
+        core_.handle_bytes(buf, static_cast<size_t>(n), now);
+        for (const auto& frame : core_.take_received_frames()) {
+          tlog_.add(now.unix_us, TlogDirection::kReceived, frame.data(), frame.size());
+        }
         n = link_->receive(buf, sizeof buf, 0);
       }
       ros::spinOnce();
       core_.tick(now_clock());
       flush();
+      tlog_.flush_if_due(now_clock().mono_ms);
+      report_tlog_failure();
       updater_.update();
     }
   }
@@ -235,6 +251,15 @@ class Node {
     last_link_error_ = h.last_error;
   }
 
+  // A tlog that cannot be written costs the log, never the link: said once, then in the
+  // diagnostics.
+  void report_tlog_failure() {
+    if (tlog_error_reported_ || !tlog_.failed()) return;
+    ROS_ERROR("microhard_gs: tlog stopped: %s; the ground link goes on without it",
+              tlog_.error().c_str());
+    tlog_error_reported_ = true;
+  }
+
   void flush() {
     // Answers first, so their PARAM_VALUE goes out in this round.
     for (const ParamSetRequest& r : core_.take_param_set_requests()) tunables_.submit(r);
@@ -248,11 +273,14 @@ class Node {
     // With the link down the core still runs (mission timeouts, announcements); what it would
     // have sent is dropped and counted, as a radio out of range would lose it.
     const bool up = link_->health().up;
+    const uint64_t sent_us = now_clock().unix_us;
     for (const auto& frame : core_.take_frames()) {
       if (!up) {
         ++frames_not_sent_link_down_;
       } else if (!link_->send(frame.data(), frame.size())) {
         ++send_failures_;
+      } else {
+        tlog_.add(sent_us, TlogDirection::kSent, frame.data(), frame.size());
       }
     }
     for (const WayPlan& plan : core_.take_way_plans()) {
@@ -338,12 +366,19 @@ class Node {
     std::string missing;
     for (const auto& m : config_.missing_params) missing += (missing.empty() ? "" : ",") + m;
     s.add("parameters_missing", missing);
+    s.add("tlog", config_.tlog_path.empty() ? std::string("off") : config_.tlog_path);
+    s.add("tlog_records", tlog_.records_written());
+    s.add("tlog_records_lost", tlog_.records_lost());
+    s.add("tlog_error", tlog_.error());
+    if (tlog_.failed()) s.mergeSummary(diagnostic_msgs::DiagnosticStatus::WARN, "tlog stopped");
   }
 
   NodeConfig config_;
   std::unique_ptr<Transport> link_;
   GsCore core_;
   TunableClient tunables_;
+  TlogWriter tlog_;
+  bool tlog_error_reported_ = false;
   ros::Publisher way_pub_;
   ros::Publisher command_pub_;
   ros::Subscriber data_sub_;

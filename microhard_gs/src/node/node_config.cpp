@@ -3,6 +3,7 @@
 #include <ros/param.h>
 
 #include <cmath>
+#include <ctime>
 #include <fstream>
 #include <sstream>
 
@@ -37,6 +38,22 @@ bool need_limit(const ros::NodeHandle& nh, const limits_ranges::Range& range, do
   return need(nh, name, out, error) && in_range(name, *out, range.min, range.max, error);
 }
 
+// Fills the path's strftime fields (%Y-%m-%d_%H%M%S) with the local time, as record_flight
+// names the bag, so a flight launch can put the tlog beside it under the same kind of name.
+bool expand_time_fields(const std::string& pattern, std::string* out, std::string* error) {
+  const std::time_t now = std::time(nullptr);
+  std::tm local{};
+  localtime_r(&now, &local);
+  char buf[4096];
+  const size_t n = std::strftime(buf, sizeof buf, pattern.c_str(), &local);
+  if (n == 0) {
+    *error = "tlog_path " + pattern + " is too long once its time fields are filled in";
+    return false;
+  }
+  *out = std::string(buf, n);
+  return true;
+}
+
 }  // namespace
 
 bool read_node_config(const ros::NodeHandle& nh, NodeConfig* c, std::string* error) {
@@ -58,6 +75,8 @@ bool read_node_config(const ros::NodeHandle& nh, NodeConfig* c, std::string* err
   nh.param<std::string>("controller_param_ns", c->controller_param_ns, "/controller_DG808");
   int system_id = 1;
   nh.param("system_id", system_id, 1);
+  std::string tlog_pattern;
+  nh.param<std::string>("tlog_path", tlog_pattern, "");
 
   if (c->transport != "udp" && c->transport != "serial") {
     *error = "transport must be udp or serial, not " + c->transport;
@@ -74,6 +93,15 @@ bool read_node_config(const ros::NodeHandle& nh, NodeConfig* c, std::string* err
   // The controller answers in milliseconds; the ceiling stays under the second or so a GCS
   // waits for the echo (QGroundControl then resends the PARAM_SET).
   if (!in_range("param_set_timeout_s", param_set_timeout_s, 0.05, 1.0, error)) return false;
+  if (!tlog_pattern.empty()) {
+    // A node started by roslaunch runs in ROS_HOME: a relative path would land there unseen.
+    if (tlog_pattern.front() != '/' || tlog_pattern.back() == '/') {
+      *error = "tlog_path must be an absolute file path (or empty: no tlog), not " + tlog_pattern;
+      return false;
+    }
+    if (!expand_time_fields(tlog_pattern, &c->tlog_path, error)) return false;
+    c->core.keep_received_frames = true;
+  }
   c->core.param_set_timeout_ms = static_cast<uint32_t>(std::lround(param_set_timeout_s * 1000.0));
   c->core.system_id = static_cast<uint8_t>(system_id);
 

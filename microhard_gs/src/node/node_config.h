@@ -20,6 +20,9 @@ struct NodeConfig {
   double reopen_period_s = 1.0;  // serial: how often a missing or unplugged modem port is retried
   std::string signing_key_file;
   std::string controller_param_ns;
+  // The MAVLink telemetry log (.tlog): absolute, its strftime fields filled in with the local
+  // time at start; empty: none.
+  std::string tlog_path;
   GsConfig core;
   ParamTable params;
   std::vector<std::string> missing_params;  // tunables absent from the parameter server

@@ -22,8 +22,12 @@ TOPIC_HOME = "/home"  # the HA's latched home, the whole stack's one (drone_ros/
 TOPICS = (TOPIC_TRUTH, TOPIC_DECISION, TOPIC_SERVO_OP, TOPIC_PWM, TOPIC_INS, TOPIC_DATA, TOPIC_WAY,
           TOPIC_HOME)
 
-FT_PER_M = 1.0 / 0.3048
-G_FTPS2 = 32.174
+# The report's one set of unit conversions (export.py's SI columns too): the international foot
+# and standard gravity are exact by definition, so everything else follows from them.
+M_PER_FT = 0.3048
+FT_PER_M = 1.0 / M_PER_FT
+G_MPS2 = 9.80665
+G_FTPS2 = G_MPS2 * FT_PER_M
 # WGS84, for the flat-earth north/east of a real flight's fixes around home.
 _WGS84_A_M = 6378137.0
 _WGS84_E2 = 6.69437999014e-3

@@ -7,8 +7,7 @@ from typing import List, Tuple
 
 from . import definitions
 from .figures import CONTROLLER_COLOURS, CONTROLLER_LABELS
-
-M_PER_FT = 0.3048
+from .flight_log import M_PER_FT
 
 
 def hex_rgb(colour):
