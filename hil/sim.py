@@ -51,8 +51,10 @@ from hil.units import FT_PER_M  # noqa: E402
 
 CONTROLLER_NAMES = {0: "HP", 1: "HA", 2: "RECOVERING", 3: "HA_LATCHED", 4: "MANUAL"}
 # What the controller subscribes to (drone_ros/controller/README.md): connected before a step.
-CONTROLLER_INPUTS = ["/hil/lockstep", "/ins", "/attitude", "/gps_position", "/gps_velocity",
-                     "/imu_PQR_acceleration", "/pwm", "/decision_status", "/way"]
+# Names relative to the flight's namespace, as every node of it uses them; resolved where the
+# master's graph is asked (it knows only full names).
+CONTROLLER_INPUTS = ["hil/lockstep", "ins", "attitude", "gps_position", "gps_velocity",
+                     "imu_PQR_acceleration", "pwm", "decision_status", "way"]
 
 
 def isa_temperature_c(elevation_ft):
@@ -186,14 +188,14 @@ class PhaseTimer:
 
 
 def node_pid(master, name):
-    return node_query.node_pid(master, name, "/hil_sim")
+    return node_query.node_pid(master, name, rospy.get_name())
 
 
 def inbound_missing(master, name, topics):
     """Those of topics on which node `name` has no live inbound connection (all of them while
     the node does not answer)."""
     uri = node_query.node_uri(master, name)
-    info = None if uri is None else node_query.bus_info(uri, "/hil_sim")
+    info = None if uri is None else node_query.bus_info(uri, rospy.get_name())
     if info is None:
         return list(topics)
     got = {c[4] for c in info if c[2] == "i" and (len(c) < 6 or c[5])}
@@ -240,7 +242,7 @@ def publisher_connected(master, name, topic, publisher):
     """Whether node `name` has a live inbound connection on topic from node `publisher` (rospy
     names an inbound connection by the publisher's XML-RPC URI)."""
     uri, pub = node_query.node_uri(master, name), node_query.node_uri(master, publisher)
-    info = None if uri is None or pub is None else node_query.bus_info(uri, "/hil_sim")
+    info = None if uri is None or pub is None else node_query.bus_info(uri, rospy.get_name())
     if info is None:
         return False
     return any(c[2] == "i" and c[4] == topic and (len(c) < 6 or c[5]) and c[1].rstrip("/") == pub.rstrip("/")
@@ -259,7 +261,10 @@ class Simulation:
         self.realtime = self.mode == "realtime"
         self.last_reply = None
         self.rate_hz = float(p("rate_hz", 100.0))
-        self.controller_node = p("controller_node", "/controller_DG808")
+        self.controller_node = rospy.resolve_name(p("controller_node", "controller_DG808"))
+        self.arduino_node = rospy.resolve_name("arduino")
+        self.controller_inputs = [rospy.resolve_name(t) for t in CONTROLLER_INPUTS]
+        self.servo_op_topic = rospy.resolve_name("servo_op")
         self.controller_dt_s = float(rospy.get_param(self.controller_node + "/dt", 0.05))
         self.reach_ft = float(rospy.get_param(self.controller_node + "/dist2b", 80.0))
         self.duration_s = float(p("duration_s", 240.0))
@@ -273,8 +278,9 @@ class Simulation:
         self.fault_duration_s = float(p("fault_duration_s", -1.0))
         self.fault_params = faults.parse_params(str(p("fault_params", "")).split())
         # Commands the HP corrupts pass through here: the arduino node then forwards
-        # ~servo_relay_topic instead of /servo_op (DG808_hil.launch's servo_relay).
-        self.relay_topic = p("servo_relay_topic", "") or None
+        # ~servo_relay_topic instead of servo_op (DG808_hil.launch's servo_relay).
+        relay_topic = p("servo_relay_topic", "")
+        self.relay_topic = rospy.resolve_name(relay_topic) if relay_topic else None
         self.ground_s = float(p("ground_s", 2.0))
         self.start_height_ft = float(p("start_height_ft", 200.0))
         self.start_airspeed_ftps = float(p("start_airspeed_ftps", 60.0))
@@ -313,14 +319,15 @@ class Simulation:
         if self.temperature_c is None:
             self.temperature_c = isa_c
 
-        self.master = rosgraph.Master("/hil_sim")
+        self.master = rosgraph.Master(rospy.get_name())
         self.waiter = Waiter()
         # queue_size None: published in this thread before publish() returns, which is what
         # makes "published" mean "on its way to every subscriber" in the stepping order.
         warnings.filterwarnings("ignore", message="The publisher should be created with an explicit keyword")
+        # /clock is the master's one time (use_sim_time is global too): the one absolute name.
         self.clock_pub = rospy.Publisher("/clock", Clock, queue_size=None)
-        self.lockstep_pub = rospy.Publisher("/hil/lockstep", LockstepStep, queue_size=None, tcp_nodelay=True)
-        self.truth_pub = rospy.Publisher("/hil/truth", HilTruth, queue_size=None)
+        self.lockstep_pub = rospy.Publisher("hil/lockstep", LockstepStep, queue_size=None, tcp_nodelay=True)
+        self.truth_pub = rospy.Publisher("hil/truth", HilTruth, queue_size=None)
         self.latency = LatencyProbe() if self.realtime else None
         # Real time: every period the HA ran on its own clock, from its replies: (time.monotonic()
         # of its tick, commands its link had delivered, controller, reasons at switch).
@@ -328,16 +335,16 @@ class Simulation:
         # that axis). In lockstep the records are the HA's periods.
         self.ha_periods = [] if self.realtime else None
         self.pace0_mono = None
-        rospy.Subscriber("/vn200/temperature", Temperature, self.on_vn_delivered, queue_size=1000, tcp_nodelay=True)
-        rospy.Subscriber("/decision_status", DecisionStatus, lambda m: self.waiter.hit("status", m), queue_size=1000, tcp_nodelay=True)
+        rospy.Subscriber("vn200/temperature", Temperature, self.on_vn_delivered, queue_size=1000, tcp_nodelay=True)
+        rospy.Subscriber("decision_status", DecisionStatus, lambda m: self.waiter.hit("status", m), queue_size=1000, tcp_nodelay=True)
         # The HA's own reports only: the arduino node's link-down /pwm (usbstatus 0) runs on the wall clock.
-        rospy.Subscriber("/pwm", pwm, lambda m: m.usbstatus and self.waiter.hit("pwm"), queue_size=1000, tcp_nodelay=True)
-        rospy.Subscriber("/servo_op", ServoCommand, self.on_servo_op, queue_size=1000, tcp_nodelay=True)
-        rospy.Subscriber("/way", way, lambda m: self.waiter.hit("way", m), queue_size=10)
-        rospy.Subscriber("/to_hil", hil_data, self.on_to_hil, queue_size=1000)
+        rospy.Subscriber("pwm", pwm, lambda m: m.usbstatus and self.waiter.hit("pwm"), queue_size=1000, tcp_nodelay=True)
+        rospy.Subscriber("servo_op", ServoCommand, self.on_servo_op, queue_size=1000, tcp_nodelay=True)
+        rospy.Subscriber("way", way, lambda m: self.waiter.hit("way", m), queue_size=10)
+        rospy.Subscriber("to_hil", hil_data, self.on_to_hil, queue_size=1000)
         self.relay_pub = None if self.relay_topic is None else \
             rospy.Publisher(self.relay_topic, ServoCommand, queue_size=None, tcp_nodelay=True)
-        self.arduino_input = self.relay_topic or "/servo_op"
+        self.arduino_input = self.relay_topic or self.servo_op_topic
         self.relayed = 0        # commands the HA's link must have delivered (relay)
         self.relayed_last = None
         self.relay_verified = False
@@ -448,9 +455,9 @@ class Simulation:
         """The controller takes every input, the arduino node takes its commands, and so does this
         node: a restarted controller's first command would otherwise go by before this node's
         subscriber has connected to it, and the step would wait it out as an HP that is gone."""
-        return inbound_connected(self.master, self.controller_node, CONTROLLER_INPUTS) and \
-            inbound_connected(self.master, "/arduino", [self.arduino_input]) and \
-            publisher_connected(self.master, "/hil_sim", "/servo_op", self.controller_node)
+        return inbound_connected(self.master, self.controller_node, self.controller_inputs) and \
+            inbound_connected(self.master, self.arduino_node, [self.arduino_input]) and \
+            publisher_connected(self.master, rospy.get_name(), self.servo_op_topic, self.controller_node)
 
     def service_while_waiting(self):
         self.hp_vn.service_commands()
@@ -511,16 +518,18 @@ class Simulation:
             self.wait_until("ha_sil's link pty for the relay", lambda r: self.link_relay.connect(), 60.0)
         self.wait_until("the HA link (arduino node <-> ha_sil)", lambda r: r.flags & ha_channel.R_LINK_CONNECTED, 120.0)
         self.wait_until("the vn200 node's configuration of the VN-200", lambda r: self.hp_vn.configured(), 120.0)
-        inputs = CONTROLLER_INPUTS[1:] if self.realtime else CONTROLLER_INPUTS  # no /clock on the wall clock
+        # no hil/lockstep on the wall clock
+        inputs = self.controller_inputs[1:] if self.realtime else self.controller_inputs
         # This node counts what the vn200 and arduino nodes publish (the step waits for each VN-200
         # packet and HA report): a report sent before its own subscriber connected would leave the
         # count one short for the rest of the flight, every step waiting out wait_s.
-        self.wait_subscribed({self.controller_node: inputs, "/arduino": [self.arduino_input],
-                              "/hil_sim": ["/vn200/temperature", "/decision_status", "/pwm"]}, 120.0)
+        self.wait_subscribed({self.controller_node: inputs, self.arduino_node: [self.arduino_input],
+                              rospy.get_name(): [rospy.resolve_name(t) for t in
+                                                 ("vn200/temperature", "decision_status", "pwm")]}, 120.0)
         # With the relay, what reaches the HA must be what the relay sends, and nothing else.
         self.relay_verified = self.relay_topic is not None and \
-            inbound_connected(self.master, "/arduino", [self.relay_topic]) and \
-            not inbound_connected(self.master, "/arduino", ["/servo_op"])
+            inbound_connected(self.master, self.arduino_node, [self.relay_topic]) and \
+            not inbound_connected(self.master, self.arduino_node, [self.servo_op_topic])
         if self.relay_topic is not None and not self.relay_verified:
             raise RuntimeError("the arduino node does not take its commands from the relay %s only" % self.relay_topic)
         if self.wait_for_recorder:

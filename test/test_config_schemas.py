@@ -51,6 +51,7 @@ SLIPS = [
     ("controller_param.yaml", "hmcmd", "hmcmdd", "hmcmdd"),
     ("ground_station.yaml", "fixed", "fixd", "home.fixd"),  # home.fixed silently defaulted to false
     ("tunables.yaml", "tunables", "tunable", "tunable"),
+    ("vn200_mount.yaml", "pitch_deg", "pich_deg", "pich_deg"),  # the mount silently level
 ]
 
 
@@ -219,6 +220,7 @@ def test_the_hil_launch_passes_and_records_what_it_checked(package_copy):
     ("DG808_hil.launch", "limits.yaml", "stall_speed_ftps", "stall_sped_ftps", "state.stall_sped_ftps"),
     ("DG808_flight.launch", "ground_station.yaml", "fixed", "fixd", "home.fixd"),
     ("DG808_flight.launch", "controller_param.yaml", "max_bank_deg", "max_bank_degs", "max_bank_degs"),
+    ("DG808_flight.launch", "vn200_mount.yaml", "pitch_deg", "pich_deg", "pich_deg"),
 ])
 def test_a_misspelt_key_fails_the_launch_files_before_any_node(package_copy, launch, name, key, typo, where):
     pkg, env = package_copy

@@ -24,7 +24,7 @@ PYTHON_MODULES = {
     "roscpp": "roscpp",
     "std_msgs": "std_msgs", "sensor_msgs": "sensor_msgs", "geometry_msgs": "geometry_msgs",
     "diagnostic_msgs": "diagnostic_msgs", "rosgraph_msgs": "rosgraph_msgs", "tf2_msgs": "tf2_msgs",
-    "visualization_msgs": "visualization_msgs",
+    "visualization_msgs": "visualization_msgs", "nav_msgs": "nav_msgs",
     "pymavlink": "pypi:pymavlink", "jsbsim": "pypi:jsbsim",
 }
 # C++ include (first path component, or the file name) -> rosdep key; None: this package's own.
@@ -33,7 +33,7 @@ CPP_INCLUDES = {
     "diagnostic_msgs": "diagnostic_msgs", "diagnostic_updater": "diagnostic_updater", "tf2_ros": "tf2_ros",
     "topic_tools": "topic_tools", "xmlrpcpp": "xmlrpcpp", "XmlRpcValue.h": "xmlrpcpp", "boost": "boost",
     "Eigen": "eigen", "yaml-cpp": "yaml-cpp", "gtest": "gtest", "rosgraph_msgs": "rosgraph_msgs",
-    SELF: None, "drone_ros_common": None,
+    "nav_msgs": "nav_msgs", SELF: None, "drone_ros_common": None,
     "development": "pypi:pymavlink",  # the MAVLink headers mavgen writes at build time
     # The Arduino core's (arduino-cli's, or arduino_ha/verify's shim of it): not built by catkin.
     "Arduino.h": None, "Wire.h": None, "Servo.h": None,

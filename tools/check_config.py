@@ -33,6 +33,7 @@ KINDS = {
     "controller_param.yaml": "controller_param",
     "ground_station.yaml": "ground_station",
     "tunables.yaml": "tunables",
+    "vn200_mount.yaml": "vn200_mount",
     "limits_ranges.yaml": "limits_ranges",
 }
 

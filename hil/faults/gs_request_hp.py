@@ -20,7 +20,7 @@ class GsRequestHp(Nan):
         import rospy
         from drone_ros.msg import OperatorCommand
         self.forwarded = 0
-        rospy.Subscriber("/operator_command", OperatorCommand, self.on_operator, queue_size=10)
+        rospy.Subscriber("operator_command", OperatorCommand, self.on_operator, queue_size=10)
         self.next_request_s = self.at_s + self.param("request_after_s", 0.5)
         self.acks = []
         self.link = None

@@ -3,7 +3,8 @@
 against the simulator's truth: the home the HA latched and publishes on /home, the home the
 controller flies /way from (its diagnostics, before and after hp_supervisor restarts it), the
 ground station's HOME_POSITION (asked for with MAV_CMD_GET_HOME_POSITION, as QGroundControl
-does) and the vn200 tf's origin are the same point, and that point is where the aircraft was
+does) and the origin of map, the tf tree's root (map -> odom -> base_link, from the vn200 node),
+are the same point, and that point is where the aircraft was
 parked. The truth's north/east use the simulator's own (Python) flat earth, independent of the
 stack's C module on purpose."""
 import bisect
@@ -83,7 +84,7 @@ class HomeAgreement(unittest.TestCase):
     @classmethod
     def _on_tf(cls, msg):
         for t in msg.transforms:
-            if t.child_frame_id == "vn200":
+            if (t.header.frame_id, t.child_frame_id) == ("odom", "base_link"):
                 cls._add(cls.tfs, t)
 
     @classmethod
@@ -145,8 +146,9 @@ class HomeAgreement(unittest.TestCase):
         self.assertEqual(round(h.longitude * 1e7), self.home_position.longitude)
         self.assertEqual(round(h.altitude * 1000), self.home_position.altitude)
 
-    def test_5_the_vn200_tf_puts_the_aircraft_where_the_truth_is_from_home(self):
-        self.assertTrue(self.tfs, "no vn200 tf")
+    def test_5_the_tf_puts_base_link_where_the_truth_is_from_home(self):
+        # map -> odom is the identity (vn200_driver/README.md), so odom -> base_link is from home.
+        self.assertTrue(self.tfs, "no tf odom -> base_link")
         stamps = [m.header.stamp.to_sec() for m in self.truth]
         airborne = [t for t in self.tfs if t.header.stamp.to_sec() > 5.0]
         self.assertGreater(len(airborne), 100)

@@ -24,8 +24,8 @@ TOPICS = {"/clock": "/hil_sim", "/hil/truth": "/hil_sim", "/ins": "/vn200", "/at
           "/gps_position": "/vn200", "/gps_velocity": "/vn200", "/imu_PQR_acceleration": "/vn200",
           "/servo_op": "/controller_DG808", "/data": "/controller_DG808", "/to_hil": "/controller_DG808",
           "/pwm": "/arduino", "/decision_status": "/arduino", "/home": "/arduino", "/way": "/microhard_gs",
-          "/flight_markers": "/flight_markers", "/tf": "/flight_markers"}
-FLOWING = ["/clock", "/ins", "/servo_op", "/decision_status", "/home", "/way", "/flight_markers"]
+          "/flight_markers": "/flight_markers", "/odom": "/vn200", "/tf": "/vn200", "/tf_static": "/vn200"}
+FLOWING = ["/clock", "/ins", "/odom", "/servo_op", "/decision_status", "/home", "/way", "/flight_markers"]
 
 
 def free_port(kind=socket.SOCK_STREAM):
@@ -109,6 +109,18 @@ def test_every_interface_topic_has_its_publisher(stack):
         pubs = dict(master.getSystemState()[0])
         return ["%s (from %s)" % (t, n) for t, n in TOPICS.items() if n not in pubs.get(t, [])]
     assert wait_for(lambda: not absent()), "no publisher: %s" % absent()
+
+
+def test_one_tf_tree_has_one_owner_the_ins_node(stack):
+    """REP-105: map -> odom -> base_link -> vn200 all come from the vn200 node; a second
+    broadcaster (flight_markers used to put map -> base_link on /tf) would make a second tree."""
+    master, _, _ = stack
+
+    def tf_publishers():
+        pubs = dict(master.getSystemState()[0])
+        return sorted(pubs.get("/tf", [])), sorted(pubs.get("/tf_static", []))
+    assert wait_for(lambda: tf_publishers()[0]), "no /tf publisher"
+    assert tf_publishers() == (["/vn200"], ["/vn200"])
 
 
 @pytest.fixture(scope="module")

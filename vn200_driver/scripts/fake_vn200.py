@@ -43,13 +43,13 @@ def yaw_deg(t):
     return (30.0 + 5.0 * t) % 360.0
 
 
-def solution(t_s):
-    """The made-up flight at sensor time t_s."""
+def solution(t_s, origin=(LAT0_DEG, LON0_DEG, ALT0_M)):
+    """The made-up flight at sensor time t_s, starting at origin (lat, lon in deg, alt in m)."""
     startup_ns = int(t_s * 1e9)
     return Solution(startup_ns=startup_ns, gps_ns=GPS_EPOCH_OFFSET_NS + startup_ns,
                     ypr_deg=(yaw_deg(t_s), PITCH_DEG, ROLL_DEG),
                     rate_radps=(0.01, -0.02, math.radians(5.0)),
-                    lla=(LAT0_DEG + 1e-5 * t_s, LON0_DEG, ALT0_M),
+                    lla=(origin[0] + 1e-5 * t_s, origin[1], origin[2]),
                     vel_ned_mps=(20.0, 1.0, -0.5), accel_mps2=(0.1, -0.3, -9.81))
 
 
@@ -160,10 +160,10 @@ class FakeSensor:
                 period = divisor / 800.0
                 burst = b""
                 while self.next_packet <= now:
-                    burst += binary_packet(groups, masks, solution(self.next_packet))
+                    burst += binary_packet(groups, masks, solution(self.next_packet, self.args.origin))
                     self.sent += 1
                     if self.args.noise_every and self.sent % self.args.noise_every == 0:
-                        bad = bytearray(binary_packet(groups, masks, solution(self.next_packet)))
+                        bad = bytearray(binary_packet(groups, masks, solution(self.next_packet, self.args.origin)))
                         bad[len(bad) // 2] ^= 0x5A
                         burst += b"\x00\x13" + bytes(bad)  # line noise, then a corrupt packet
                     self.next_packet += period
@@ -192,6 +192,9 @@ def main(argv):
     p.add_argument("--capture", help="write a binary capture to this file and exit")
     p.add_argument("--packets", type=int, default=100)
     p.add_argument("--rate-hz", type=float, default=50.0)
+    p.add_argument("--origin", type=float, nargs=3, default=(LAT0_DEG, LON0_DEG, ALT0_M),
+                   metavar=("LAT_DEG", "LON_DEG", "ALT_M"),
+                   help="where the flight starts (two fakes on one master: two places)")
     args = p.parse_args([a for a in argv if not a.startswith("__")])  # drop roslaunch's __name:=
     if args.capture:
         groups, masks = 0x39, [0x15FB, 0, 0, 0x0618, 0x0100, 0x0600]

@@ -13,6 +13,8 @@ Quat quat_multiply(const Quat& a, const Quat& b) {
           a[3] * b[3] - a[0] * b[0] - a[1] * b[1] - a[2] * b[2]};
 }
 
+Quat quat_conjugate(const Quat& q) { return {-q[0], -q[1], -q[2], q[3]}; }
+
 Vec3 quat_rotate(const Quat& q, const Vec3& v) {
   const Quat p{v[0], v[1], v[2], 0.0};
   const Quat qc{-q[0], -q[1], -q[2], q[3]};
@@ -34,11 +36,14 @@ Quat ned_frd_to_enu_flu(const Quat& q_ned_frd) {
   const Quat q_enu_ned{h, h, 0.0, 0.0};
   // FRD<-FLU: a half turn about x.
   const Quat q_frd_flu{1.0, 0.0, 0.0, 0.0};
-  Quat q = quat_multiply(quat_multiply(q_enu_ned, q_ned_frd), q_frd_flu);
-  if (q[3] < 0) {
-    for (double& c : q) c = -c;  // one canonical sign keeps consumers' diffs smooth
-  }
-  return q;
+  return canonical(quat_multiply(quat_multiply(q_enu_ned, q_ned_frd), q_frd_flu));
+}
+
+Quat frd_rotation_to_flu(const Quat& q_frd) { return {q_frd[0], -q_frd[1], -q_frd[2], q_frd[3]}; }
+
+Quat canonical(const Quat& q) {
+  if (q[3] >= 0) return q;
+  return {-q[0], -q[1], -q[2], -q[3]};
 }
 
 Vec3 frd_to_flu(const Vec3& v) { return {v[0], -v[1], -v[2]}; }

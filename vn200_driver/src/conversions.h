@@ -14,12 +14,18 @@ constexpr double kGaussToTesla = 1e-4;
 constexpr double kKpaToPa = 1000.0;
 
 Quat quat_multiply(const Quat& a, const Quat& b);
+Quat quat_conjugate(const Quat& q);
 // Rotates v by unit quaternion q.
 Vec3 quat_rotate(const Quat& q, const Vec3& v);
 // Body(FRD)->NED quaternion from yaw, pitch, roll [rad] (aerospace 3-2-1 sequence).
 Quat quat_from_ypr_ned(double yaw_rad, double pitch_rad, double roll_rad);
 // Body(FRD)->NED attitude to body(FLU)->ENU attitude.
 Quat ned_frd_to_enu_flu(const Quat& q_ned_frd);
+// A rotation between two FRD frames as the same rotation between their FLU twins (a half turn
+// about x on both sides), e.g. a sensor's mount measured in the airframe's FRD axes.
+Quat frd_rotation_to_flu(const Quat& q_frd);
+// w >= 0: q and -q are one rotation; one sign keeps consumers' differences smooth.
+Quat canonical(const Quat& q);
 Vec3 frd_to_flu(const Vec3& v);
 Vec3 ned_to_enu(const Vec3& v);
 // East/north/up offset [m] of (lat, lon, alt) from a reference, on a local tangent plane

@@ -1,5 +1,8 @@
 #include "node_params.h"
 
+#include <cmath>
+#include <set>
+
 #include "output_config.h"
 #include "vn_command.h"
 
@@ -14,7 +17,15 @@ bool load_params(const ros::NodeHandle& pnh, NodeParams* p, std::string* error) 
   pnh.param("binary_output", p->binary_output, p->binary_output);
   pnh.param("frame_id", p->frame_id, p->frame_id);
   pnh.param("frd_frame_id", p->frd_frame_id, p->frd_frame_id);
-  pnh.param("world_frame_id", p->world_frame_id, p->world_frame_id);
+  pnh.param("map_frame_id", p->map_frame_id, p->map_frame_id);
+  pnh.param("odom_frame_id", p->odom_frame_id, p->odom_frame_id);
+  pnh.param("base_frame_id", p->base_frame_id, p->base_frame_id);
+  pnh.param("mount/x_m", p->mount.x_m, p->mount.x_m);
+  pnh.param("mount/y_m", p->mount.y_m, p->mount.y_m);
+  pnh.param("mount/z_m", p->mount.z_m, p->mount.z_m);
+  pnh.param("mount/roll_deg", p->mount.roll_deg, p->mount.roll_deg);
+  pnh.param("mount/pitch_deg", p->mount.pitch_deg, p->mount.pitch_deg);
+  pnh.param("mount/yaw_deg", p->mount.yaw_deg, p->mount.yaw_deg);
   pnh.param("replay_file", p->replay_file, p->replay_file);
   pnh.param("replay_speed", p->replay_speed, p->replay_speed);
   pnh.param("replay_loop", p->replay_loop, p->replay_loop);
@@ -69,8 +80,25 @@ bool load_params(const ros::NodeHandle& pnh, NodeParams* p, std::string* error) 
              std::to_string(p->baud) + " carries (the sensor would answer $VNERR 12)";
     return false;
   }
-  if (p->frame_id.empty() || p->frd_frame_id.empty() || p->world_frame_id.empty()) {
-    *error = "~frame_id, ~frd_frame_id and ~world_frame_id must not be empty";
+  const std::set<std::string> frames{p->frame_id, p->frd_frame_id, p->map_frame_id,
+                                     p->odom_frame_id, p->base_frame_id};
+  if (frames.size() != 5 || frames.count("") != 0) {
+    *error =
+        "~frame_id, ~frd_frame_id, ~map_frame_id, ~odom_frame_id and ~base_frame_id must be "
+        "five different, non-empty names (one tf tree)";
+    return false;
+  }
+  // A lever arm beyond the airframe is a unit slip (mm for m), not a mount.
+  const SensorMount& m = p->mount;
+  for (const double arm : {m.x_m, m.y_m, m.z_m}) {
+    if (!std::isfinite(arm) || std::fabs(arm) > 10.0) {
+      *error = "~mount/x_m, y_m, z_m must be finite and within 10 m of base_link";
+      return false;
+    }
+  }
+  if (!(std::fabs(m.roll_deg) <= 180.0) || !(std::fabs(m.pitch_deg) <= 90.0) ||
+      !(std::fabs(m.yaw_deg) <= 180.0)) {
+    *error = "~mount/roll_deg and yaw_deg must be within +-180, pitch_deg within +-90";
     return false;
   }
   if (!(p->replay_speed > 0.0) || !(p->reconnect_period_s > 0.0) || !(p->data_timeout_s > 0.0) ||

@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <string>
 
+#include "packet_messages.h"
+
 namespace vn200 {
 
 struct NodeParams {
@@ -19,12 +21,18 @@ struct NodeParams {
   // global to the sensor, each routed to a port by its AsyncMode: Binary Output 1 belongs to the
   // HA on port 1, so the HP must never rewrite it, or it could silence the trusted side's INS.
   int binary_output = 2;
-  std::string frame_id = "vn200";  // body frame, REP-103 (x forward, y left, z up)
+  std::string frame_id = "vn200";  // the sensor's frame, REP-103 (x forward, y left, z up)
   std::string frd_frame_id =
-      "vn200_frd";  // body frame as the sensor reports (x fwd, y right, z down)
-  std::string world_frame_id = "vn200_enu";  // local ENU frame anchored at the first INS fix
-  std::string replay_file;                   // non-empty: read this capture instead of the port
-  double replay_speed = 1.0;                 // replay pacing: 1 = sensor time, 2 = twice as fast
+      "vn200_frd";  // the sensor's frame as it reports (x fwd, y right, z down)
+  // REP-105: map is ENU at home (the HA's /home); odom is map itself (a GPS-aided INS does not
+  // drift, so there is no jump for odom to hide); base_link is the airframe, the sensor on its
+  // mount (~mount/*, aircraft/<name>/vn200_mount.yaml).
+  std::string map_frame_id = "map";
+  std::string odom_frame_id = "odom";
+  std::string base_frame_id = "base_link";
+  SensorMount mount;
+  std::string replay_file;    // non-empty: read this capture instead of the port
+  double replay_speed = 1.0;  // replay pacing: 1 = sensor time, 2 = twice as fast
   bool replay_loop = false;
   double replay_delay_s = 0.0;               // wait before replaying, so subscribers can connect
   bool replay_wait_for_subscribers = false;  // and then until every data topic has one

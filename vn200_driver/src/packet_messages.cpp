@@ -149,20 +149,96 @@ sensor_msgs::Temperature to_temperature(const VnBinaryData& d, const std_msgs::H
   return t;
 }
 
-geometry_msgs::TransformStamped to_transform(const VnBinaryData& d, const ros::Time& stamp,
-                                             const std::string& world_frame_id,
-                                             const std::string& frame_id, double ref_lat_deg,
-                                             double ref_lon_deg, double ref_alt_m) {
-  geometry_msgs::TransformStamped tf;
-  tf.header = header(stamp, world_frame_id);
-  tf.child_frame_id = frame_id;
-  const Vec3 p =
+MountFlu mount_flu(const SensorMount& m) {
+  MountFlu out;
+  out.t_m = frd_to_flu({m.x_m, m.y_m, m.z_m});
+  out.q_base_sensor = canonical(frd_rotation_to_flu(
+      quat_from_ypr_ned(m.yaw_deg * kDegToRad, m.pitch_deg * kDegToRad, m.roll_deg * kDegToRad)));
+  return out;
+}
+
+BasePose base_pose(const VnBinaryData& d, const MountFlu& mount, double ref_lat_deg,
+                   double ref_lon_deg, double ref_alt_m) {
+  const Quat q_enu_sensor = ned_frd_to_enu_flu(attitude_ned(d));
+  BasePose pose;
+  pose.q_enu_base = canonical(quat_multiply(q_enu_sensor, quat_conjugate(mount.q_base_sensor)));
+  const Vec3 sensor =
       lla_to_local_enu(d.lat_deg, d.lon_deg, d.alt_m, ref_lat_deg, ref_lon_deg, ref_alt_m);
-  tf.transform.translation.x = p[0];
-  tf.transform.translation.y = p[1];
-  tf.transform.translation.z = p[2];
-  set_quat(&tf.transform.rotation, ned_frd_to_enu_flu(attitude_ned(d)));
+  const Vec3 arm = quat_rotate(pose.q_enu_base, mount.t_m);
+  pose.p_enu_m = {sensor[0] - arm[0], sensor[1] - arm[1], sensor[2] - arm[2]};
+  return pose;
+}
+
+geometry_msgs::TransformStamped to_transform(const ros::Time& stamp, const std::string& parent,
+                                             const std::string& child, const Vec3& t_m,
+                                             const Quat& q) {
+  geometry_msgs::TransformStamped tf;
+  tf.header = header(stamp, parent);
+  tf.child_frame_id = child;
+  set_vec(&tf.transform.translation, t_m);
+  set_quat(&tf.transform.rotation, q);
   return tf;
+}
+
+geometry_msgs::TransformStamped to_mount_transform(const MountFlu& mount, const ros::Time& stamp,
+                                                   const std::string& base_frame_id,
+                                                   const std::string& frame_id) {
+  return to_transform(stamp, base_frame_id, frame_id, mount.t_m, mount.q_base_sensor);
+}
+
+geometry_msgs::TransformStamped to_frd_transform(const ros::Time& stamp,
+                                                 const std::string& frame_id,
+                                                 const std::string& frd_frame_id) {
+  return to_transform(stamp, frame_id, frd_frame_id, {0.0, 0.0, 0.0}, {1.0, 0.0, 0.0, 0.0});
+}
+
+double gyro_rate_variance(double rate_hz) {
+  constexpr double kGyroNoiseDensityRadpsPerRtHz = 0.0035 * kDegToRad;
+  return kGyroNoiseDensityRadpsPerRtHz * kGyroNoiseDensityRadpsPerRtHz * rate_hz / 2.0;
+}
+
+nav_msgs::Odometry to_odometry(const VnBinaryData& d, const BasePose& pose, const MountFlu& mount,
+                               const ros::Time& stamp, const std::string& odom_frame_id,
+                               const std::string& base_frame_id, double angular_rate_var) {
+  nav_msgs::Odometry odom;
+  odom.header = header(stamp, odom_frame_id);
+  odom.child_frame_id = base_frame_id;
+  odom.pose.pose.position.x = pose.p_enu_m[0];
+  odom.pose.pose.position.y = pose.p_enu_m[1];
+  odom.pose.pose.position.z = pose.p_enu_m[2];
+  set_quat(&odom.pose.pose.orientation, pose.q_enu_base);
+  // The sensor moves with base_link plus the lever arm's swing: v_sensor = v_base + w x r.
+  const Vec3 w_base = quat_rotate(mount.q_base_sensor, frd_to_flu(vec3(d.angular_rate_radps)));
+  const Vec3 v_sensor_base =
+      quat_rotate(quat_conjugate(pose.q_enu_base), ned_to_enu(vec3(d.vel_ned_mps)));
+  const Vec3& r = mount.t_m;
+  const Vec3 swing{w_base[1] * r[2] - w_base[2] * r[1], w_base[2] * r[0] - w_base[0] * r[2],
+                   w_base[0] * r[1] - w_base[1] * r[0]};
+  set_vec(&odom.twist.twist.linear,
+          {v_sensor_base[0] - swing[0], v_sensor_base[1] - swing[1], v_sensor_base[2] - swing[2]});
+  set_vec(&odom.twist.twist.angular, w_base);
+  // Row-major 6x6 (x, y, z, rotation about x, y, z): the diagonals at 0, 7, 14, 21, 28, 35.
+  if (d.has & VN_HAS_INS_POS_UNC) {
+    const double var = static_cast<double>(d.ins_pos_unc_m) * d.ins_pos_unc_m;
+    odom.pose.covariance[0] = odom.pose.covariance[7] = odom.pose.covariance[14] = var;
+  }
+  if (d.has & VN_HAS_YPR_UNC) {
+    const double yaw = d.ypr_unc_deg[0] * kDegToRad, pitch = d.ypr_unc_deg[1] * kDegToRad,
+                 roll = d.ypr_unc_deg[2] * kDegToRad;
+    odom.pose.covariance[21] = roll * roll;
+    odom.pose.covariance[28] = pitch * pitch;
+    odom.pose.covariance[35] = yaw * yaw;
+  }
+  if (d.has & VN_HAS_INS_VEL_UNC) {
+    // One figure for every direction, so it holds in body axes as it does in NED.
+    const double var = static_cast<double>(d.ins_vel_unc_mps) * d.ins_vel_unc_mps;
+    odom.twist.covariance[0] = odom.twist.covariance[7] = odom.twist.covariance[14] = var;
+  }
+  if (d.has & VN_HAS_ANGULAR_RATE) {
+    odom.twist.covariance[21] = odom.twist.covariance[28] = odom.twist.covariance[35] =
+        angular_rate_var;
+  }
+  return odom;
 }
 
 }  // namespace vn200

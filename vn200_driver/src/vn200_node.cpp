@@ -27,12 +27,15 @@ double wall_now() { return ros::WallTime::now().toSec(); }
 
 Vn200Node::Vn200Node(ros::NodeHandle nh, ros::NodeHandle pnh, const NodeParams& params)
     : nh_(nh), pnh_(pnh), params_(params), session_(session_options(params)) {
-  // Original drone_ros interface (thesis): global names and types the controller subscribes to.
-  ins_pub_ = nh_.advertise<drone_ros::ins>("/ins", 10);
-  gps_position_pub_ = nh_.advertise<sensor_msgs::NavSatFix>("/gps_position", 10);
-  gps_velocity_pub_ = nh_.advertise<geometry_msgs::Twist>("/gps_velocity", 10);
-  imu_pqr_pub_ = nh_.advertise<sensor_msgs::Imu>("/imu_PQR_acceleration", 10);
-  attitude_pub_ = nh_.advertise<geometry_msgs::Point>("/attitude", 10);
+  // Original drone_ros interface (thesis): the names and types the controller subscribes to,
+  // relative, so an aircraft launched in a namespace (<group ns="uav1">) keeps its own.
+  ins_pub_ = nh_.advertise<drone_ros::ins>("ins", 10);
+  gps_position_pub_ = nh_.advertise<sensor_msgs::NavSatFix>("gps_position", 10);
+  gps_velocity_pub_ = nh_.advertise<geometry_msgs::Twist>("gps_velocity", 10);
+  imu_pqr_pub_ = nh_.advertise<sensor_msgs::Imu>("imu_PQR_acceleration", 10);
+  attitude_pub_ = nh_.advertise<geometry_msgs::Point>("attitude", 10);
+  // The aircraft's odometry (REP-105's odom -> base_link as a message), beside /ins.
+  odom_pub_ = nh_.advertise<nav_msgs::Odometry>("odom", 10);
   // REP-103/105 topics under the node's private namespace.
   imu_pub_ = pnh_.advertise<sensor_msgs::Imu>("imu/data", 10);
   fix_pub_ = pnh_.advertise<sensor_msgs::NavSatFix>("fix", 10);
@@ -40,7 +43,21 @@ Vn200Node::Vn200Node(ros::NodeHandle nh, ros::NodeHandle pnh, const NodeParams& 
   mag_pub_ = pnh_.advertise<sensor_msgs::MagneticField>("imu/mag", 10);
   pressure_pub_ = pnh_.advertise<sensor_msgs::FluidPressure>("pressure", 10);
   temperature_pub_ = pnh_.advertise<sensor_msgs::Temperature>("temperature", 10);
-  if (params_.publish_tf) home_sub_ = nh_.subscribe("/home", 1, &Vn200Node::on_home, this);
+  // Odometry needs map's origin too, so home is always listened to.
+  home_sub_ = nh_.subscribe("home", 1, &Vn200Node::on_home, this);
+  mount_ = mount_flu(params_.mount);
+  angular_rate_var_ = gyro_rate_variance(params_.rate_hz);
+  if (params_.publish_tf) {
+    // Static: latched on /tf_static, so a viewer started later has them; they do not wait for
+    // home, since neither depends on where map's origin is.
+    static_tf_ = std::make_unique<tf2_ros::StaticTransformBroadcaster>();
+    const ros::Time now = ros::Time::now();
+    static_tf_->sendTransform(
+        {to_transform(now, params_.map_frame_id, params_.odom_frame_id, {0.0, 0.0, 0.0},
+                      {0.0, 0.0, 0.0, 1.0}),
+         to_mount_transform(mount_, now, params_.base_frame_id, params_.frame_id),
+         to_frd_transform(now, params_.frame_id, params_.frd_frame_id)});
+  }
 
   diag_.setHardwareID(params_.replay_file.empty() ? "VN-200 on " + params_.port
                                                   : "VN-200 replay " + params_.replay_file);
@@ -159,7 +176,7 @@ int Vn200Node::run_port() {
 bool Vn200Node::every_data_topic_subscribed() const {
   for (const ros::Publisher* pub :
        {&ins_pub_, &gps_position_pub_, &gps_velocity_pub_, &imu_pqr_pub_, &attitude_pub_, &imu_pub_,
-        &fix_pub_, &velocity_pub_, &mag_pub_, &pressure_pub_, &temperature_pub_}) {
+        &fix_pub_, &velocity_pub_, &mag_pub_, &pressure_pub_, &temperature_pub_, &odom_pub_}) {
     if (pub->getNumSubscribers() == 0) return false;
   }
   return true;
@@ -242,7 +259,7 @@ void Vn200Node::publish_packet(const VnBinaryData& d) {
   }
   if (d.has & VN_HAS_VEL_NED) {
     gps_velocity_pub_.publish(to_gps_velocity(d));
-    velocity_pub_.publish(to_velocity_enu(d, stamp, params_.world_frame_id));
+    velocity_pub_.publish(to_velocity_enu(d, stamp, params_.odom_frame_id));
   }
   if (d.has & VN_HAS_ANGULAR_RATE) imu_pqr_pub_.publish(to_imu_pqr(d, stamp, params_.frd_frame_id));
 
@@ -253,7 +270,8 @@ void Vn200Node::publish_packet(const VnBinaryData& d) {
   if (d.has & VN_HAS_PRESSURE) pressure_pub_.publish(to_fluid_pressure(d, imu.header));
   if (d.has & VN_HAS_TEMP) temperature_pub_.publish(to_temperature(d, imu.header));
 
-  // tf: local ENU frame anchored at home, the stack's one origin (/home, from the HA).
+  // odom -> base_link and the odometry: ENU anchored at home, the stack's one origin (/home,
+  // from the HA), once the INS has a solution (mode 1 or 2).
   double ref_lat_deg, ref_lon_deg, ref_alt_m;
   bool have_ref;
   {
@@ -263,10 +281,16 @@ void Vn200Node::publish_packet(const VnBinaryData& d) {
     ref_lon_deg = ref_lon_deg_;
     ref_alt_m = ref_alt_m_;
   }
-  if (params_.publish_tf && have_ref && (d.has & VN_HAS_POSITION_LLA) &&
-      VN_INS_STATUS_MODE(d.ins_status) >= 1) {
-    tf_.sendTransform(to_transform(d, stamp, params_.world_frame_id, params_.frame_id, ref_lat_deg,
-                                   ref_lon_deg, ref_alt_m));
+  constexpr uint32_t kPoseFields = VN_HAS_POSITION_LLA | VN_HAS_VEL_NED | VN_HAS_ANGULAR_RATE;
+  if (have_ref && (d.has & kPoseFields) == kPoseFields &&
+      (d.has & (VN_HAS_QUATERNION | VN_HAS_YPR)) && VN_INS_STATUS_MODE(d.ins_status) >= 1) {
+    const BasePose pose = base_pose(d, mount_, ref_lat_deg, ref_lon_deg, ref_alt_m);
+    odom_pub_.publish(to_odometry(d, pose, mount_, stamp, params_.odom_frame_id,
+                                  params_.base_frame_id, angular_rate_var_));
+    if (params_.publish_tf) {
+      tf_.sendTransform(to_transform(stamp, params_.odom_frame_id, params_.base_frame_id,
+                                     pose.p_enu_m, pose.q_enu_base));
+    }
   }
 }
 

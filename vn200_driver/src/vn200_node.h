@@ -6,6 +6,7 @@
 #include <diagnostic_updater/update_functions.h>
 #include <drone_ros/HomePosition.h>
 #include <ros/ros.h>
+#include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_broadcaster.h>
 
 #include <memory>
@@ -45,12 +46,19 @@ class Vn200Node {
   // rqt_runtime_monitor shows a sensor running slow or stalled, not just a link up or down.
   double ins_rate_hz_ = 0.0;
   std::unique_ptr<diagnostic_updater::FrequencyStatus> ins_rate_;
+  // REP-105: as the one source of the navigation solution this node owns the aircraft's tree:
+  // map -> odom (identity, static), odom -> base_link (each solution), base_link -> frame_id (the
+  // mount, static) and frame_id -> frd_frame_id (static).
   tf2_ros::TransformBroadcaster tf_;
+  std::unique_ptr<tf2_ros::StaticTransformBroadcaster> static_tf_;
+  MountFlu mount_;
+  double angular_rate_var_ = 0.0;
 
   // A replay that must reach its subscribers whole starts only once they are all connected.
   bool every_data_topic_subscribed() const;
   ros::Publisher ins_pub_, gps_position_pub_, gps_velocity_pub_, imu_pqr_pub_, attitude_pub_;
   ros::Publisher imu_pub_, fix_pub_, velocity_pub_, mag_pub_, pressure_pub_, temperature_pub_;
+  ros::Publisher odom_pub_;
 
   bool link_up_ = false;  // decoded packets are arriving
   double next_open_s_ = 0.0;
@@ -59,7 +67,7 @@ class Vn200Node {
   unsigned reconnects_ = 0;
   unsigned link_losses_ = 0;
   std::string last_problem_;
-  // The tf's origin is home, from its one owner (the HA, on the latched /home): no tf before it.
+  // map's origin is home, from its one owner (the HA, on the latched /home): no tf before it.
   void on_home(const drone_ros::HomePosition::ConstPtr& msg);
   ros::Subscriber home_sub_;
   std::mutex ref_mutex_;

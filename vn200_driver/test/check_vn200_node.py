@@ -15,6 +15,7 @@ import rospy
 import rostest
 from diagnostic_msgs.msg import DiagnosticArray
 from geometry_msgs.msg import Point, Twist, TwistStamped
+from nav_msgs.msg import Odometry
 from sensor_msgs.msg import FluidPressure, Imu, MagneticField, NavSatFix, Temperature
 from tf2_msgs.msg import TFMessage
 
@@ -58,7 +59,8 @@ def make_recorder():
                        ("/vn200/imu/data", Imu), ("/vn200/fix", NavSatFix),
                        ("/vn200/velocity", TwistStamped), ("/vn200/imu/mag", MagneticField),
                        ("/vn200/pressure", FluidPressure), ("/vn200/temperature", Temperature),
-                       ("/diagnostics", DiagnosticArray), ("/tf", TFMessage)]:
+                       ("/odom", Odometry), ("/diagnostics", DiagnosticArray), ("/tf", TFMessage),
+                       ("/tf_static", TFMessage)]:
         r.sub(topic, cls)
     return r
 
@@ -120,32 +122,90 @@ class ValueChecks:
         self.check_tf(rec)
 
     def check_tf(self, rec):
-        """tf world -> body: the fake flies north (latitude rising) at constant height from home
-        (/home, published at its start), so the body moves along +y of the local ENU frame
-        anchored at home, and the
-        rotation is the REP-103 orientation published on ~imu/data at the same stamp."""
-        def body_tfs():
-            return [t for m in rec.get("/tf") for t in m.transforms if t.child_frame_id == "vn200"]
+        """REP-105, one tree: map -> odom (identity) and base_link -> vn200 (the mount, ~mount) on
+        /tf_static, odom -> base_link each solution on /tf. Composed, map -> vn200 must be the
+        sensor's INS solution: the fake flies north from home (/home, published at its start) at
+        constant height, so the sensor moves along +y of map, turned as ~imu/data says at the
+        same stamp. odom (nav_msgs/Odometry) is the same pose, and its body-frame twist, turned
+        back into map with the lever arm's swing added, the sensor's ENU velocity."""
+        def base_tfs():
+            return [t for m in rec.get("/tf") for t in m.transforms if t.child_frame_id == "base_link"]
 
-        # /tf and ~imu/data reach us on separate connections: under load either may lag the
-        # other, so wait for a transform whose imu sample has arrived too, then judge that one.
-        def imu_stamps():
-            return {m.header.stamp for m in rec.get("/vn200/imu/data")}
+        # /tf, odom and ~imu/data reach us on separate connections: under load any may lag the
+        # others, so wait for a transform whose imu and odom samples have arrived too.
+        def stamps(topic):
+            return {m.header.stamp for m in rec.get(topic)}
 
-        self.assertTrue(rec.wait_for(body_tfs, 5.0), "no tf vn200_enu -> vn200")
-        rec.wait_for(lambda: any(t.header.stamp in imu_stamps() for t in body_tfs()), 5.0)
-        stamps = imu_stamps()
-        matched = [t for t in body_tfs() if t.header.stamp in stamps]
-        last = matched[-1] if matched else body_tfs()[-1]
-        self.assertEqual("vn200_enu", last.header.frame_id)
-        self.assertAlmostEqual(0.0, last.transform.translation.x, places=2)
-        self.assertAlmostEqual(0.0, last.transform.translation.z, places=2)
-        self.assertGreater(last.transform.translation.y, 0.1)
-        same = [m for m in rec.get("/vn200/imu/data") if m.header.stamp == last.header.stamp]
-        self.assertTrue(same, "no ~imu/data sample with the tf's stamp")
-        q, r = same[-1].orientation, last.transform.rotation
-        for a, b in ((q.x, r.x), (q.y, r.y), (q.z, r.z), (q.w, r.w)):
+        def matched():
+            both = stamps("/vn200/imu/data") & stamps("/odom")
+            return [t for t in base_tfs() if t.header.stamp in both]
+
+        self.assertTrue(rec.wait_for(base_tfs, 5.0), "no tf odom -> base_link")
+        self.assertTrue(rec.wait_for(matched, 5.0), "no odom and ~imu/data at a tf's stamp")
+        last = matched()[-1]
+        self.assertEqual("odom", last.header.frame_id)
+        statics = {(t.header.frame_id, t.child_frame_id): t
+                   for m in rec.get("/tf_static") for t in m.transforms}
+        self.assertEqual({("map", "odom"), ("base_link", "vn200"), ("vn200", "vn200_frd")},
+                         set(statics))
+        identity = statics[("map", "odom")].transform
+        self.assertEqual((0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0), vec(identity.translation) + quat(identity.rotation))
+        self.assertEqual((1.0, 0.0, 0.0, 0.0), quat(statics[("vn200", "vn200_frd")].transform.rotation))
+        mount = statics[("base_link", "vn200")].transform
+        # The mount as given (FRD metres, yaw only in these tests) in REP-103 axes: y and z and
+        # the yaw change sign.
+        given = rospy.get_param("/vn200/mount", {})
+        x_m, y_m, z_m = (float(given.get(k, 0.0)) for k in ("x_m", "y_m", "z_m"))
+        half_yaw = math.radians(float(given.get("yaw_deg", 0.0))) / 2.0
+        for a, b in zip((x_m, -y_m, -z_m, 0.0, 0.0, -math.sin(half_yaw), math.cos(half_yaw)),
+                        vec(mount.translation) + quat(mount.rotation)):
             self.assertAlmostEqual(a, b, places=6)
+
+        q_base, p_base = quat(last.transform.rotation), vec(last.transform.translation)
+        arm = qrot(q_base, vec(mount.translation))
+        sensor = tuple(p + a for p, a in zip(p_base, arm))
+        self.assertAlmostEqual(0.0, sensor[0], places=2)
+        self.assertAlmostEqual(0.0, sensor[2], places=2)
+        self.assertGreater(sensor[1], 0.1)
+        q_sensor = qmul(q_base, quat(mount.rotation))
+        imu = [m for m in rec.get("/vn200/imu/data") if m.header.stamp == last.header.stamp][-1]
+        sign = 1.0 if q_sensor[3] * imu.orientation.w >= 0 else -1.0
+        for a, b in zip(quat(imu.orientation), q_sensor):
+            self.assertAlmostEqual(a, sign * b, places=5)
+
+        odom = [m for m in rec.get("/odom") if m.header.stamp == last.header.stamp][-1]
+        self.assertEqual(("odom", "base_link"), (odom.header.frame_id, odom.child_frame_id))
+        for a, b in zip(vec(odom.pose.pose.position) + quat(odom.pose.pose.orientation),
+                        p_base + q_base):
+            self.assertAlmostEqual(a, b, places=6)
+        self.assertAlmostEqual(4.0, odom.pose.covariance[0], places=4)  # INS PosU 2 m
+        self.assertGreater(odom.pose.covariance[35], 0.0)  # yaw, from the attitude uncertainty
+        self.assertGreater(odom.twist.covariance[35], 0.0)  # rates: the datasheet's gyro noise
+        w, r = vec(odom.twist.twist.angular), vec(mount.translation)
+        swing = (w[1] * r[2] - w[2] * r[1], w[2] * r[0] - w[0] * r[2], w[0] * r[1] - w[1] * r[0])
+        v_enu = qrot(q_base, tuple(v + s for v, s in zip(vec(odom.twist.twist.linear), swing)))
+        for a, b in zip((1.0, 20.0, 0.5), v_enu):  # east, north, up
+            self.assertAlmostEqual(a, b, places=3)
+
+
+def vec(v):
+    return (v.x, v.y, v.z)
+
+
+def quat(q):
+    return (q.x, q.y, q.z, q.w)
+
+
+def qmul(a, b):
+    ax, ay, az, aw = a
+    bx, by, bz, bw = b
+    return (aw * bx + ax * bw + ay * bz - az * by, aw * by - ax * bz + ay * bw + az * bx,
+            aw * bz + ax * by - ay * bx + az * bw, aw * bw - ax * bx - ay * by - az * bz)
+
+
+def qrot(q, v):
+    x, y, z, _ = qmul(qmul(q, v + (0.0,)), (-q[0], -q[1], -q[2], q[3]))
+    return (x, y, z)
 
 
 class LiveSensor(unittest.TestCase, ValueChecks):

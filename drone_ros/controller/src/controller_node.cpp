@@ -49,10 +49,12 @@ ControllerNode::ControllerNode(ros::NodeHandle &nh, ros::NodeHandle &pnh,
   if (gnc_initialize(&params_.gnc) != 0) {
     throw std::runtime_error("the GNC refused its parameters");
   }
+  // Every topic name is relative: resolved in the node's namespace, so each aircraft launched in
+  // a namespace of its own (<group ns="uav1">) flies on its own sensors only.
   // Home has one owner, the HA, which latches it from its own INS; the `arduino` node keeps it
   // on the latched /home, so a controller started again (HP restart) has the same home at once.
   subs_.push_back(nh.subscribe<drone_ros::HomePosition>(
-      "/home", 1, [this](const drone_ros::HomePosition::ConstPtr &m) {
+      "home", 1, [this](const drone_ros::HomePosition::ConstPtr &m) {
         if (board_.on_home(m->latitude, m->longitude, m->altitude)) {
           ROS_INFO("home %u from the HA: %.7f %.7f %.1f m", m->seq, m->latitude, m->longitude,
                    m->altitude);
@@ -64,58 +66,55 @@ ControllerNode::ControllerNode(ros::NodeHandle &nh, ros::NodeHandle &pnh,
   // step declares must reach a callback to be counted, so none may be pushed out of the queue.
   pnh_.param("lockstep", lockstep_, false);
   const uint32_t q = lockstep_ ? 100 : 1;
-  subs_.push_back(
-      nh.subscribe<drone_ros::pwm>("/pwm", q, [this](const drone_ros::pwm::ConstPtr &m) {
-        board_.on_pwm(*m, now_s());
-        if (m->usbstatus != 0) {
-          on_input(kInPwm);  // the HA's report; the node's own link-down /pwm is nobody's step
-        }
-      }));
-  subs_.push_back(
-      nh.subscribe<drone_ros::ins>("/ins", q, [this](const drone_ros::ins::ConstPtr &m) {
-        board_.on_ins(*m, now_s());
-        on_input(kInIns);
-      }));
-  subs_.push_back(
-      nh.subscribe<drone_ros::way>("/way", 1, [this](const drone_ros::way::ConstPtr &m) {
-        if (board_.on_way(*m)) {
-          ROS_INFO("new flight plan: %d waypoints", m->fp);
-        } else {
-          ROS_WARN("flight plan dropped: fp out of range or a waypoint not finite");
-        }
-      }));
+  subs_.push_back(nh.subscribe<drone_ros::pwm>("pwm", q, [this](const drone_ros::pwm::ConstPtr &m) {
+    board_.on_pwm(*m, now_s());
+    if (m->usbstatus != 0) {
+      on_input(kInPwm);  // the HA's report; the node's own link-down /pwm is nobody's step
+    }
+  }));
+  subs_.push_back(nh.subscribe<drone_ros::ins>("ins", q, [this](const drone_ros::ins::ConstPtr &m) {
+    board_.on_ins(*m, now_s());
+    on_input(kInIns);
+  }));
+  subs_.push_back(nh.subscribe<drone_ros::way>("way", 1, [this](const drone_ros::way::ConstPtr &m) {
+    if (board_.on_way(*m)) {
+      ROS_INFO("new flight plan: %d waypoints", m->fp);
+    } else {
+      ROS_WARN("flight plan dropped: fp out of range or a waypoint not finite");
+    }
+  }));
   subs_.push_back(nh.subscribe<sensor_msgs::NavSatFix>(
-      "/gps_position", q, [this](const sensor_msgs::NavSatFix::ConstPtr &m) {
+      "gps_position", q, [this](const sensor_msgs::NavSatFix::ConstPtr &m) {
         board_.on_gps_position(*m, now_s());
         on_input(kInGpsPosition);
       }));
   subs_.push_back(nh.subscribe<geometry_msgs::Twist>(
-      "/gps_velocity", q, [this](const geometry_msgs::Twist::ConstPtr &m) {
+      "gps_velocity", q, [this](const geometry_msgs::Twist::ConstPtr &m) {
         board_.on_gps_velocity(*m, now_s());
         on_input(kInGpsVelocity);
       }));
-  subs_.push_back(nh.subscribe<sensor_msgs::Imu>("/imu_PQR_acceleration", q,
+  subs_.push_back(nh.subscribe<sensor_msgs::Imu>("imu_PQR_acceleration", q,
                                                  [this](const sensor_msgs::Imu::ConstPtr &m) {
                                                    board_.on_imu(*m, now_s());
                                                    on_input(kInImu);
                                                  }));
   subs_.push_back(nh.subscribe<geometry_msgs::Point>(
-      "/attitude", q, [this](const geometry_msgs::Point::ConstPtr &m) {
+      "attitude", q, [this](const geometry_msgs::Point::ConstPtr &m) {
         board_.on_attitude(*m, now_s());
         on_input(kInAttitude);
       }));
   subs_.push_back(nh.subscribe<sensor_msgs::FluidPressure>(
-      "/pressure", 1, [this](const sensor_msgs::FluidPressure::ConstPtr &m) {
+      "pressure", 1, [this](const sensor_msgs::FluidPressure::ConstPtr &m) {
         board_.on_pressure(m->fluid_pressure);
       }));
   subs_.push_back(nh.subscribe<sensor_msgs::BatteryState>(
-      "/battery_state", 1,
+      "battery_state", 1,
       [this](const sensor_msgs::BatteryState::ConstPtr &m) { board_.on_battery(m->voltage); }));
   subs_.push_back(
-      nh.subscribe("/decision_status", lockstep_ ? 100 : 10, &ControllerNode::on_decision, this));
-  servo_pub_ = nh.advertise<drone_ros::ServoCommand>("/servo_op", 10);
-  data_pub_ = nh.advertise<drone_ros::data>("/data", 10);
-  hil_pub_ = nh.advertise<drone_ros::hil_data>("/to_hil", 10);
+      nh.subscribe("decision_status", lockstep_ ? 100 : 10, &ControllerNode::on_decision, this));
+  servo_pub_ = nh.advertise<drone_ros::ServoCommand>("servo_op", 10);
+  data_pub_ = nh.advertise<drone_ros::data>("data", 10);
+  hil_pub_ = nh.advertise<drone_ros::hil_data>("to_hil", 10);
 
   set_tunable_srv_ = pnh_.advertiseService("set_tunable", &ControllerNode::on_set_tunable, this);
 
@@ -127,7 +126,7 @@ ControllerNode::ControllerNode(ros::NodeHandle &nh, ros::NodeHandle &pnh,
       "/servo_op rate");
   diag_.add(*servo_op_rate_);
   if (lockstep_) {
-    lockstep_sub_ = nh.subscribe("/hil/lockstep", 100, &ControllerNode::on_lockstep, this,
+    lockstep_sub_ = nh.subscribe("hil/lockstep", 100, &ControllerNode::on_lockstep, this,
                                  ros::TransportHints().tcpNoDelay());
     // Wall time: a declared message that never comes (a defect) must not stop the flight.
     lockstep_wait_timer_ = nh.createSteadyTimer(

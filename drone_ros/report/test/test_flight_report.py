@@ -196,7 +196,7 @@ def test_the_flight_log_records_the_stacks_home():
     import xml.etree.ElementTree as ET
     root = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
     args = ET.parse(os.path.join(root, "launch", "record.launch")).getroot().find("node").get("args")
-    assert "/home" in args.split()
+    assert "home" in args.split()  # relative: /home from the root namespace, /uav1/home in uav1
     sys.path.insert(0, os.path.join(root, "hil"))
     import run_flight
     assert "/home" in run_flight.BAG_TOPICS

@@ -60,7 +60,7 @@ def alive(pid):
 
 class Supervisor:
     def __init__(self):
-        self.node = rospy.resolve_name(rospy.get_param("~node", "/controller_DG808"))
+        self.node = rospy.resolve_name(rospy.get_param("~node", "controller_DG808"))
         self.package = rospy.get_param("~package", "drone_ros")
         self.type = rospy.get_param("~type", "controller_DG808")
         self.kill_grace_s = float(rospy.get_param("~kill_grace_s", 1.0))
@@ -78,7 +78,7 @@ class Supervisor:
         rospy.Timer(rospy.Duration(1.0), self.publish_diagnostics)
         self.learner = threading.Thread(target=self.learn_pids, daemon=True)
         self.learner.start()
-        rospy.Subscriber("/decision_status", DecisionStatus, self.on_status, queue_size=10)
+        rospy.Subscriber("decision_status", DecisionStatus, self.on_status, queue_size=10)
         rospy.loginfo("hp_supervisor: restarts %s when the HA asks (boot delay %.1f s)",
                       self.node, self.boot_delay_s)
 

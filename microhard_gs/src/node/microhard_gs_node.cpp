@@ -169,11 +169,12 @@ class Node {
         core_(config_.core, config_.params),
         tunables_(config_.controller_param_ns + "/set_tunable"),
         tlog_(kTlogFlushPeriodMs) {
-    way_pub_ = nh.advertise<drone_ros::way>("/way", 1, true);  // latched: a late controller gets it
-    command_pub_ = nh.advertise<drone_ros::OperatorCommand>("/operator_command", 10);
-    data_sub_ = nh.subscribe("/data", 10, &Node::on_data, this);
-    decision_sub_ = nh.subscribe("/decision_status", 10, &Node::on_decision, this);
-    home_sub_ = nh.subscribe("/home", 1, &Node::on_home, this);  // latched by the `arduino` node
+    // Relative names: the aircraft's namespace, so two aircraft on one master keep apart.
+    way_pub_ = nh.advertise<drone_ros::way>("way", 1, true);  // latched: a late controller gets it
+    command_pub_ = nh.advertise<drone_ros::OperatorCommand>("operator_command", 10);
+    data_sub_ = nh.subscribe("data", 10, &Node::on_data, this);
+    decision_sub_ = nh.subscribe("decision_status", 10, &Node::on_decision, this);
+    home_sub_ = nh.subscribe("home", 1, &Node::on_home, this);  // latched by the `arduino` node
     updater_.setHardwareID(link_->describe());
     updater_.add("link", this, &Node::diagnose);
     if (!config_.tlog_path.empty() && tlog_.open(config_.tlog_path, now_clock().mono_ms)) {

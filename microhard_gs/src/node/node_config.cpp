@@ -72,7 +72,7 @@ bool read_node_config(const ros::NodeHandle& nh, NodeConfig* c, std::string* err
   nh.param<std::string>("signing_key_file", c->signing_key_file, "");
   // The controller loads its tunables (aircraft/<name>/controller_param.yaml) into its private
   // namespace; the thesis kept them in /controller_param.
-  nh.param<std::string>("controller_param_ns", c->controller_param_ns, "/controller_DG808");
+  nh.param<std::string>("controller_param_ns", c->controller_param_ns, "controller_DG808");
   int system_id = 1;
   nh.param("system_id", system_id, 1);
   std::string tlog_pattern;

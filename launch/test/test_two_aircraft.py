@@ -1,0 +1,194 @@
+"""Two aircraft side by side on one ROS master: DG808_flight.launch twice, under <group ns="uav1">
+and <group ns="uav2"> (launch/test/two_aircraft.launch), each with its own fake VN-200 on a pty
+flying from its own place and its own home. Every topic an aircraft's nodes use must lie in its
+namespace (or be one of the master's own: /rosout, /diagnostics, /tf, /tf_static), each
+controller must read its own INS and only it, and each aircraft must have its own tf tree
+(uavN/map -> uavN/odom -> uavN/base_link -> uavN/vn200), rooted at its own home.
+
+Not two HiL flights: a lockstep HiL flight's simulator owns the master's one /clock
+(use_sim_time is a global parameter too), so two would drive one clock back and forth; see
+hil/README.md. With absolute topic names the two vn200 nodes would both publish /ins and each
+controller would fly on both sensors: these checks fail then."""
+import os
+import signal
+import socket
+import subprocess
+import tempfile
+import time
+
+import pytest
+import rosgraph
+import yaml
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+AIRCRAFT = ("uav1", "uav2")
+# Where each fake VN-200 starts (lat, lon in deg, alt in m), and so each aircraft's home: 11 km
+# apart, so a reading from the other aircraft cannot pass for one's own.
+ORIGIN = {"uav1": (45.4642, 9.1900, 150.0), "uav2": (45.5542, 9.3100, 210.0)}
+# What an aircraft's namespace needs: every node of DG808_flight.launch (the fake sensor is no
+# ROS node).
+NODES = ["controller_DG808", "hp_supervisor", "vn200", "arduino", "microhard_gs"]
+# The master's own topics, shared by design: the log, diagnostics (each status names its node)
+# and tf (one tree per aircraft, told apart by the frame prefix).
+SHARED = {"/rosout", "/diagnostics", "/tf", "/tf_static"}
+
+
+def free_port(kind=socket.SOCK_STREAM):
+    with socket.socket(socket.AF_INET, kind) as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def stop(procs):
+    for p in reversed(procs):
+        if p.poll() is None:
+            os.killpg(p.pid, signal.SIGINT)
+    for p in reversed(procs):
+        try:
+            p.wait(timeout=20)
+        except subprocess.TimeoutExpired:
+            os.killpg(p.pid, signal.SIGKILL)
+            p.wait()
+
+
+def wait_for(cond, timeout_s=90.0):
+    deadline = time.time() + timeout_s
+    while time.time() < deadline:
+        value = cond()
+        if value:
+            return value
+        time.sleep(0.2)
+    return cond()
+
+
+@pytest.fixture(scope="module")
+def fleet():
+    if "ROS_PACKAGE_PATH" not in os.environ:
+        pytest.fail("the workspace is not sourced (make test does it)")
+    port = free_port()
+    run_dir = tempfile.mkdtemp(prefix="fleet_")
+    env = dict(os.environ, ROS_MASTER_URI="http://127.0.0.1:%d" % port, ROS_IP="127.0.0.1",
+               ROS_LOG_DIR=os.path.join(run_dir, "ros"), PYTHONUNBUFFERED="1")
+    env.pop("ROS_HOSTNAME", None)
+    procs = []
+
+    def start(cmd):
+        log = open(os.path.join(run_dir, "%d.log" % len(procs)), "wb")
+        procs.append(subprocess.Popen(cmd, env=env, stdout=log, stderr=subprocess.STDOUT,
+                                      start_new_session=True))
+
+    try:
+        start(["roscore", "-p", str(port)])
+        master = rosgraph.Master("/fleet_test", master_uri=env["ROS_MASTER_URI"])
+        if not wait_for(lambda: _master_up(master), 60.0):
+            raise RuntimeError("roscore did not come up")
+        gs = {a: "%d %d" % (free_port(socket.SOCK_DGRAM), free_port(socket.SOCK_DGRAM)) for a in AIRCRAFT}
+        start(["roslaunch", "--wait", os.path.join(HERE, "two_aircraft.launch"), "run_dir:=" + run_dir,
+               "origin_uav1:=%s %s %s" % ORIGIN["uav1"], "origin_uav2:=%s %s %s" % ORIGIN["uav2"],
+               "gs_ports_uav1:=" + gs["uav1"], "gs_ports_uav2:=" + gs["uav2"]])
+        # Each aircraft's home, latched, as its `arduino` node keeps the HA's: map's origin.
+        for a in AIRCRAFT:
+            lat, lon, alt = ORIGIN[a]
+            start(["rostopic", "pub", "-l", "/%s/home" % a, "drone_ros/HomePosition",
+                   "{seq: 1, latitude: %r, longitude: %r, altitude: %r}" % (lat, lon, alt)])
+        yield master, env
+    finally:
+        stop(procs)
+
+
+def _master_up(master):
+    try:
+        master.getPid()
+        return True
+    except OSError:
+        return False
+
+
+def echo(env, topic, count):
+    """`count` messages of topic, as dicts (rostopic echo's YAML)."""
+    out = subprocess.run(["rostopic", "echo", "-n", str(count), topic], env=env, capture_output=True,
+                         text=True, timeout=120)
+    assert out.returncode == 0, "%s: %s" % (topic, out.stderr[-500:])
+    return [d for d in yaml.safe_load_all(out.stdout) if d]
+
+
+def graph(master):
+    """{node: set of topics it publishes or subscribes to}."""
+    uses = {}
+    pubs, subs, _ = master.getSystemState()
+    for topic, nodes in list(pubs) + list(subs):
+        for n in nodes:
+            uses.setdefault(n, set()).add(topic)
+    return uses
+
+
+def test_each_aircraft_runs_every_node_in_its_namespace(fleet):
+    master, _ = fleet
+    wanted = ["/%s/%s" % (a, n) for a in AIRCRAFT for n in NODES]
+
+    def missing():
+        return [n for n in wanted if n not in graph(master)]
+    assert wait_for(lambda: not missing()), "not up: %s" % missing()
+
+
+def test_every_topic_of_an_aircraft_lies_in_its_namespace(fleet):
+    master, _ = fleet
+    wait_for(lambda: all("/%s/vn200" % a in graph(master) for a in AIRCRAFT))
+    # The controller subscribes to everything it flies on: wait until it has.
+    wait_for(lambda: all("/%s/ins" % a in graph(master).get("/%s/controller_DG808" % a, ())
+                         for a in AIRCRAFT), 60.0)
+    stray = {}
+    for node, topics in graph(master).items():
+        for a in AIRCRAFT:
+            if node.startswith("/%s/" % a):
+                out = sorted(t for t in topics if not t.startswith("/%s/" % a) and t not in SHARED)
+                if out:
+                    stray[node] = out
+    assert stray == {}
+
+
+def test_each_controller_reads_its_own_ins_and_only_it(fleet):
+    master, env = fleet
+    for a in AIRCRAFT:
+        other = [b for b in AIRCRAFT if b != a][0]
+
+        def wired():
+            pubs, subs, _ = master.getSystemState()
+            return (dict(pubs).get("/%s/ins" % a) == ["/%s/vn200" % a]
+                    and "/%s/controller_DG808" % a in dict(subs).get("/%s/ins" % a, []))
+        assert wait_for(wired), "/%s/ins: %s" % (a, master.getSystemState()[:2])
+        subs = dict(master.getSystemState()[1])
+        assert "/%s/controller_DG808" % a not in subs.get("/%s/ins" % other, [])
+        # What the controller flies on: its telemetry carries the last fix it read, which must be
+        # its own sensor's every time (the other flies 11 km away).
+        lat, lon, _ = ORIGIN[a]
+        fixes = [(d["lla"]["x"], d["lla"]["y"]) for d in echo(env, "/%s/data" % a, 20)
+                 if d["lla"]["x"] != 0.0]
+        assert len(fixes) >= 10, fixes
+        assert all(abs(x - lat) < 0.01 and abs(y - lon) < 0.01 for x, y in fixes), (a, fixes)
+
+
+def test_each_aircraft_has_its_own_tf_tree_rooted_at_its_own_home(fleet):
+    _, env = fleet
+    statics = {(t["header"]["frame_id"], t["child_frame_id"])
+               for m in echo(env, "/tf_static", 2) for t in m["transforms"]}
+    for a in AIRCRAFT:
+        assert {(a + "/map", a + "/odom"), (a + "/base_link", a + "/vn200"),
+                (a + "/vn200", a + "/vn200_frd")} <= statics, statics
+    seen = {}
+    deadline = time.time() + 60
+    while set(seen) != set(AIRCRAFT) and time.time() < deadline:
+        for m in echo(env, "/tf", 20):
+            for t in m["transforms"]:
+                assert "/" in t["child_frame_id"], "a frame of no aircraft: %s" % t["child_frame_id"]
+                a = t["child_frame_id"].split("/")[0]
+                seen[a] = t
+    assert set(seen) == set(AIRCRAFT), seen
+    for a, t in seen.items():
+        assert (t["header"]["frame_id"], t["child_frame_id"]) == (a + "/odom", a + "/base_link")
+        p = t["transform"]["translation"]
+        # The fake flies north at about 1 m/s from its own home: near that home, not 11 km off.
+        assert abs(p["x"]) < 1.0 and abs(p["z"]) < 1.0 and 0.0 <= p["y"] < 500.0, (a, p)
+    for a in AIRCRAFT:
+        odom = echo(env, "/%s/odom" % a, 1)[0]
+        assert (odom["header"]["frame_id"], odom["child_frame_id"]) == (a + "/odom", a + "/base_link")
