@@ -54,6 +54,7 @@ for tool in frama-c why3 z3 cvc4; do
     exit 2
   fi
 done
+rm -rf "$out/session"  # every run proves afresh: no result is taken from a cache
 mkdir -p "$out"
 # A configuration of our own, so the provers found are this machine's and no user's settings
 # (time or memory limits) change what is proved.
@@ -61,7 +62,7 @@ why3 config detect -C "$out/why3.conf" > "$out/why3-detect.log" 2>&1
 export WHY3CONFIG=$out/why3.conf
 common=(-machdep gcc_x86_32 -c11 -cpp-extra-args="${cpp_args[*]}"
   -wp -wp-rte -wp-model Typed+int+float -wp-prover cvc4,z3 -wp-par 1
-  -wp-session "$out/session" -wp-warn-key "pedantic-assigns=inactive")
+  -wp-session "$out/session" -wp-cache none -wp-warn-key "pedantic-assigns=inactive")
 if [ -n "$driver" ]; then common+=(-wp-driver "$driver"); fi
 
 # Runs WP over the given functions and sources; sets run_proved, run_total, run_ok.
