@@ -11,6 +11,9 @@
 #   make pil-image   the firmware for QEMU mps2-an385 (.build/pil/ha_pil.elf): processor in the loop
 #   make bench-ha    instructions per control step on a Cortex-M3 under QEMU, ns per step on
 #                    the host.
+#   make prove-ha    Frama-C WP over the core's ACSL contracts (src/core/README.md, "Proofs"):
+#                    a line per contract, `goals: N proved of M`; fails on any goal not proved
+#                    or a negative control proved. Part of `make verify`.
 #   make coverage-ha branch coverage of the HA core by the HA's host tests (gcov, -O0): metric
 #                    lines per file, every untaken branch listed; fails below the floors below.
 # Tools come from arduino_ha/apt-packages.txt through `make deps`.
@@ -100,3 +103,15 @@ VERIFY_TARGETS += coverage-ha
 HA_COVERAGE_FLOORS := ha_policy.c ha_checks.c ha_region.c hp_command.c ha_surfaces.c
 coverage-ha: deps
 	@$(HA_DIR)/tools/coverage_ha.sh $(ROOT) $(foreach f,$(HA_COVERAGE_FLOORS),--floor $(f)=100) --total-floor 95
+
+# The contracts WP proves (HA_WP: EVA and the compilers never see them): the policy's rules,
+# the restart history, the saturation into S_u. verify/wp_negative_control.c must stay unproved.
+WP_COMPONENTS += ha
+VERIFY_TARGETS += prove-ha
+WP_ha_SOURCES = $(addprefix $(HA_CORE_DIR)/,ha_policy.c ha_surfaces.c ha_core.c)
+# 60 s a goal: the saturation's take Z3 5 s on an idle core, and other work shares the cores.
+WP_ha_ARGS = -I $(HA_CORE_DIR) -D HA_WP --driver $(HA_DIR)/verify/ha_wp.driver --timeout 60 \
+  --fct ha_policy_decide,ha_policy_restart,ha_surfaces_saturate,ha_clampf_final,prune_restarts,request_restart,ha_elapsed_us \
+  --negative $(HA_DIR)/verify/wp_negative_control.c \
+  --negative-fct clamp_lets_nan_through,handback_forgetting_state,record_forgetting
+WP_ha_DEPS = deps

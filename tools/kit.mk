@@ -7,6 +7,12 @@
 #   EVA_<c>_ARGS     eva.sh options: -I, -D, --case, --negative, --reach
 #   EVA_<c>_DEPS     files to make first (generated headers)
 #
+# Frama-C WP (tools/wp.sh), target prove-<c> (list it in VERIFY_TARGETS):
+#   WP_COMPONENTS += <c>
+#   WP_<c>_SOURCES   the sources whose contracts are proved
+#   WP_<c>_ARGS      wp.sh options: -I, -D, --fct, --driver, --negative, --negative-fct, --timeout
+#   WP_<c>_DEPS      files to make first
+#
 # libFuzzer (tools/fuzz.sh), targets fuzz-<c> (FUZZ_SECONDS per harness, default 120) and
 # fuzz-smoke-<c> (FUZZ_SMOKE_SECONDS per harness, default 10; CI), binaries in .build/fuzz/<c>/:
 #   FUZZ_COMPONENTS += <c>
@@ -27,6 +33,14 @@ verify-$(1)-eva: $(EVA_$(1)_DEPS)
 	@$(ROOT)/tools/eva.sh $(1) $(EVA_OUT)/$(1) $(EVA_$(1)_ARGS) -- $(EVA_$(1)_SOURCES)
 endef
 
+WP_OUT := $(ROOT)/.build/wp
+
+define wp_component
+.PHONY: prove-$(1)
+prove-$(1): $(WP_$(1)_DEPS)
+	@$(ROOT)/tools/wp.sh $(1) $(WP_OUT)/$(1) $(WP_$(1)_ARGS) -- $(WP_$(1)_SOURCES)
+endef
+
 define fuzz_harness
 $(FUZZ_OUT)/$(1)/fuzz_$(2): $(FUZZ_$(1)_$(2)_SOURCES) $(FUZZ_$(1)_DEPS) $(ROOT)/tools/fuzz.sh
 	@mkdir -p $(FUZZ_OUT)/$(1)
@@ -45,4 +59,5 @@ fuzz-smoke-$(1): $(addprefix $(FUZZ_OUT)/$(1)/fuzz_,$(FUZZ_$(1)_HARNESSES))
 endef
 
 $(foreach c,$(EVA_COMPONENTS),$(eval $(call eva_component,$(c))))
+$(foreach c,$(WP_COMPONENTS),$(eval $(call wp_component,$(c))))
 $(foreach c,$(FUZZ_COMPONENTS),$(eval $(call fuzz_component,$(c))))

@@ -13,6 +13,10 @@
    HA_REASON_ACTUATOR_REGION | HA_REASON_ALPHA_BETA | HA_REASON_SENSOR_LINK | HA_REASON_FROZEN | \
    HA_REASON_INTEGRITY | HA_REASON_ESTIMATOR | HA_REASON_PULL)
 
+/* Reasons that concern the state the HA judges by: a hand-back needs none of them. */
+#define HA_REASONS_STATE \
+  (HA_REASON_STALL | HA_REASON_CEILING | HA_REASON_STATE_REGION | HA_REASON_NO_HA_STATE)
+
 /* Reasons that are no fault of the HP: the HA's own sensors, the operator's choice. A switch for
  * these alone neither resets the HP nor counts towards the restart cap. */
 #define HA_REASONS_NOT_HP (HA_REASON_NO_HA_STATE | HA_REASON_GROUND_COMMAND)

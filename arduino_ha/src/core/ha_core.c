@@ -13,9 +13,6 @@
 /* Who produced the surfaces last period (a change starts a rate-limited transition). */
 enum { SRC_HA = 0, SRC_HP = 1, SRC_MANUAL = 2, SRC_SELF_TEST = 3 };
 
-#define HA_REASONS_STATE \
-  (HA_REASON_STALL | HA_REASON_CEILING | HA_REASON_STATE_REGION | HA_REASON_NO_HA_STATE)
-
 static uint32_t add_sat(uint32_t a, uint32_t b) { return a > UINT32_MAX - b ? UINT32_MAX : a + b; }
 
 void ha_core_init(HaCore *core, const HaAircraftConfig *cfg) {
@@ -132,9 +129,40 @@ static void decide_airborne(HaCore *core, uint32_t dt_us, HaStateView *v) {
   v->parked = (uint8_t)(v->on_ground && v->still && v->altitude_ok);
 }
 
-/* Forget restarts older than the window (before the 32-bit clock could wrap onto them). */
+/* Forget restarts older than the window (before the 32-bit clock could wrap onto them). Proved
+ * (make prove-ha): what is kept is exactly the history's restarts of the last window, so the cap
+ * counts every one of them and none older. */
+#ifdef HA_WP
+/*@ // The restarts among the first n of t within the window of now.
+  @ logic integer ha_recent{L}(uint32_t *t, integer n, integer now, integer window) =
+  @   n <= 0 ? 0 : ha_recent(t, n - 1, now, window) + (ha_elapsed(now, t[n - 1]) < window ? 1 : 0);
+  @ */
+/*@ requires \valid(core) && \valid_read(core->cfg) && \separated(core, core->cfg);
+  @ requires core->restart_history_len <= HA_MAX_RESTARTS_CAP;
+  @ assigns core->restart_times_us[0 .. HA_MAX_RESTARTS_CAP - 1], core->restart_history_len;
+  @ ensures history_only_in_window: \forall integer j; 0 <= j < core->restart_history_len ==>
+  @   ha_elapsed(now_us, core->restart_times_us[j]) < core->cfg->restart_window_us;
+  @ ensures history_keeps_every_recent: core->restart_history_len ==
+  @   \at(ha_recent(&core->restart_times_us[0], core->restart_history_len, now_us,
+  @                  core->cfg->restart_window_us), Pre);
+  @ */
+#endif
 static void prune_restarts(HaCore *core, uint32_t now_us) {
   uint32_t kept = 0u, i;
+#ifdef HA_WP
+  /*@ loop invariant 0 <= kept <= i <= \at(core->restart_history_len, Pre);
+    @ loop invariant core->cfg == \at(core->cfg, Pre) &&
+    @   core->cfg->restart_window_us == \at(core->cfg->restart_window_us, Pre);
+    @ loop invariant kept == ha_recent{Pre}(&core->restart_times_us[0], i, now_us,
+    @                                       \at(core->cfg->restart_window_us, Pre));
+    @ loop invariant \forall integer j; 0 <= j < kept ==>
+    @   ha_elapsed(now_us, core->restart_times_us[j]) < \at(core->cfg->restart_window_us, Pre);
+    @ loop invariant \forall integer j; i <= j < HA_MAX_RESTARTS_CAP ==>
+    @   core->restart_times_us[j] == \at(core->restart_times_us[j], Pre);
+    @ loop assigns kept, i, core->restart_times_us[0 .. HA_MAX_RESTARTS_CAP - 1];
+    @ loop variant HA_MAX_RESTARTS_CAP - i;
+    @ */
+#endif
   for (i = 0u; i < core->restart_history_len && i < HA_MAX_RESTARTS_CAP; ++i) {
     if (ha_elapsed_us(now_us, core->restart_times_us[i]) < core->cfg->restart_window_us) {
       core->restart_times_us[kept++] = core->restart_times_us[i];
@@ -147,6 +175,19 @@ static int restart_cap_reached(const HaCore *core) {
   return core->restart_history_len >= core->cfg->max_restarts;
 }
 
+#ifdef HA_WP
+/*@ requires \valid(core) && \valid(out) && \separated(core, out);
+  @ requires core->restart_history_len <= HA_MAX_RESTARTS_CAP;
+  @ assigns core->restart_times_us[0 .. HA_MAX_RESTARTS_CAP - 1], core->restart_history_len,
+  @   core->restart_count, core->reset_active, core->reset_started_us, core->awaiting_boot,
+  @   core->hp_up, out->restart_requested;
+  @ ensures every_restart_counted: \old(core->restart_history_len) < HA_MAX_RESTARTS_CAP ==>
+  @   core->restart_history_len == \old(core->restart_history_len) + 1 &&
+  @   core->restart_times_us[\old(core->restart_history_len)] == now_us;
+  @ ensures history_bounded: core->restart_history_len <= HA_MAX_RESTARTS_CAP;
+  @ ensures reset_line_pulsed: core->reset_active == 1 && out->restart_requested == 1;
+  @ */
+#endif
 static void request_restart(HaCore *core, uint32_t now_us, HaOutputs *out) {
   if (core->restart_history_len < HA_MAX_RESTARTS_CAP) {
     core->restart_times_us[core->restart_history_len++] = now_us;

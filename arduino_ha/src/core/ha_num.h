@@ -63,8 +63,30 @@ static inline float ha_clampf(float v, float lo, float hi) {
   return lo > 0.0f ? lo : (hi < 0.0f ? hi : 0.0f); /* NaN */
 }
 
+/* Contracts for make prove-ha (Frama-C WP, src/core/README.md "Proofs"), compiled only there:
+ * EVA would try to decide them too, and relational properties are WP's to prove, not EVA's. */
+#ifdef HA_WP
+/*@ axiomatic HaFloat {
+  @   // IEEE-754 negation (exact): verify/ha_wp.driver maps it onto WP's own, so a float bound
+  @   // can be negated without leaving the float model for the reals.
+  @   logic float ha_neg(float x);
+  @ }
+  @ predicate ha_within(float v, float lo, float hi) =
+  @   \is_finite(v) && \le_float(lo, v) && \le_float(v, hi);
+  @ */
+#endif
+
 /* The same result as ha_clampf, in a form EVA proves finite whatever bits v holds (it follows
  * v == v through a NaN): for the values that reach a servo. One compare more. */
+#ifdef HA_WP
+/*@ requires bounds: \is_finite(lo) && \is_finite(hi) && \le_float(lo, hi);
+  @ assigns \nothing;
+  @ ensures clamp_in_bounds: ha_within(\result, lo, hi);
+  @ ensures clamp_keeps_in_range: ha_within(v, lo, hi) ==> \eq_float(\result, v);
+  @ ensures clamp_nan_nearest_zero: \is_NaN(v) &&
+  @   \le_float(lo, (float)0.0) && \le_float((float)0.0, hi) ==> \eq_float(\result, (float)0.0);
+  @ */
+#endif
 static inline float ha_clampf_final(float v, float lo, float hi) {
   if (v < lo) {
     return lo;
@@ -88,6 +110,14 @@ static inline float ha_limitf(float v, float lo, float hi) {
 }
 
 /* Microseconds from then to now on the wrapping 32-bit clock. */
+#ifdef HA_WP
+/*@ // The difference modulo 2^32, as the wrapping clock gives it.
+  @ logic integer ha_elapsed(integer now, integer then) = (uint32_t)(now - then);
+  @ */
+/*@ assigns \nothing;
+  @ ensures elapsed_wraps: \result == ha_elapsed(now_us, then_us);
+  @ */
+#endif
 static inline uint32_t ha_elapsed_us(uint32_t now_us, uint32_t then_us) { return now_us - then_us; }
 
 #endif /* HA_NUM_H */

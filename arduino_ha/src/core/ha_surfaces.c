@@ -2,6 +2,17 @@
 
 #include "ha_num.h"
 
+#ifdef HA_WP /* make prove-ha (README.md, "Proofs") */
+/*@ requires \valid(s) && \valid_read(cfg) && \separated(s, cfg);
+  @ requires su_box: ha_su_box(cfg);
+  @ assigns *s;
+  @ ensures saturated_in_su: ha_in_su(cfg, *s);
+  @ ensures in_su_unchanged: ha_in_su(cfg, \old(*s)) ==>
+  @   \eq_float(s->elevator_deg, \old(s->elevator_deg)) &&
+  @   \eq_float(s->aileron_deg, \old(s->aileron_deg)) &&
+  @   \eq_float(s->rudder_deg, \old(s->rudder_deg)) && \eq_float(s->throttle, \old(s->throttle));
+  @ */
+#endif
 void ha_surfaces_saturate(const HaAircraftConfig *cfg, HaSurfaces *s) {
   s->elevator_deg =
       ha_clampf_final(s->elevator_deg, -cfg->elevator_limit_deg, cfg->elevator_limit_deg);
