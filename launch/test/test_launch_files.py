@@ -15,6 +15,8 @@ import time
 import pytest
 import rosgraph
 
+from launch_procs import free_port, stop, wait_for
+
 # ha_sil is no ROS node (the HA speaks rosserial over its pty, as the Due does): /decision_status
 # flowing from the arduino node below is what shows it up.
 NODES = ["/controller_DG808", "/hp_supervisor", "/vn200", "/arduino", "/microhard_gs", "/hil_sim",
@@ -28,10 +30,6 @@ TOPICS = {"/clock": "/hil_sim", "/hil/truth": "/hil_sim", "/ins": "/vn200", "/at
 FLOWING = ["/clock", "/ins", "/odom", "/servo_op", "/decision_status", "/home", "/way", "/flight_markers"]
 
 
-def free_port(kind=socket.SOCK_STREAM):
-    with socket.socket(socket.AF_INET, kind) as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
 
 
 @pytest.fixture(scope="module")
@@ -72,25 +70,9 @@ def stack():
                "out_dir:=" + logs])
         yield master, env, logs
     finally:
-        for p in reversed(procs):
-            if p.poll() is None:
-                os.killpg(p.pid, signal.SIGINT)
-        for p in reversed(procs):
-            try:
-                p.wait(timeout=20)
-            except subprocess.TimeoutExpired:
-                os.killpg(p.pid, signal.SIGKILL)
-                p.wait()
+        stop(procs)
 
 
-def wait_for(cond, timeout_s=120.0):
-    deadline = time.time() + timeout_s
-    while time.time() < deadline:
-        value = cond()
-        if value:
-            return value
-        time.sleep(0.1)
-    return cond()
 
 
 def test_every_node_of_the_launch_files_comes_up(stack):

@@ -10,7 +10,6 @@ Not two HiL flights: a lockstep HiL flight's simulator owns the master's one /cl
 hil/README.md. With absolute topic names the two vn200 nodes would both publish /ins and each
 controller would fly on both sensors: these checks fail then."""
 import os
-import signal
 import socket
 import subprocess
 import tempfile
@@ -19,6 +18,8 @@ import time
 import pytest
 import rosgraph
 import yaml
+
+from launch_procs import free_port, stop, wait_for
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 AIRCRAFT = ("uav1", "uav2")
@@ -33,32 +34,10 @@ NODES = ["controller_DG808", "hp_supervisor", "vn200", "arduino", "microhard_gs"
 SHARED = {"/rosout", "/diagnostics", "/tf", "/tf_static"}
 
 
-def free_port(kind=socket.SOCK_STREAM):
-    with socket.socket(socket.AF_INET, kind) as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
 
 
-def stop(procs):
-    for p in reversed(procs):
-        if p.poll() is None:
-            os.killpg(p.pid, signal.SIGINT)
-    for p in reversed(procs):
-        try:
-            p.wait(timeout=20)
-        except subprocess.TimeoutExpired:
-            os.killpg(p.pid, signal.SIGKILL)
-            p.wait()
 
 
-def wait_for(cond, timeout_s=90.0):
-    deadline = time.time() + timeout_s
-    while time.time() < deadline:
-        value = cond()
-        if value:
-            return value
-        time.sleep(0.2)
-    return cond()
 
 
 @pytest.fixture(scope="module")

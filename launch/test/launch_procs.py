@@ -1,0 +1,36 @@
+"""What the launch tests share: a free loopback port, a wait on a condition, and stopping every
+process a test started (SIGINT first, so roslaunch takes its nodes down, then SIGKILL)."""
+import os
+import signal
+import socket
+import subprocess
+import time
+
+
+def free_port(kind=socket.SOCK_STREAM):
+    with socket.socket(socket.AF_INET, kind) as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def stop(procs):
+    for p in reversed(procs):
+        if p.poll() is None:
+            os.killpg(p.pid, signal.SIGINT)
+    for p in reversed(procs):
+        try:
+            p.wait(timeout=20)
+        except subprocess.TimeoutExpired:
+            os.killpg(p.pid, signal.SIGKILL)
+            p.wait()
+
+
+def wait_for(cond, timeout_s=120.0):
+    """cond()'s first true value within timeout_s, else its last value."""
+    deadline = time.time() + timeout_s
+    while time.time() < deadline:
+        value = cond()
+        if value:
+            return value
+        time.sleep(0.1)
+    return cond()
