@@ -35,6 +35,7 @@ from collections import deque
 import rosgraph
 import rospy
 import yaml
+from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 from drone_ros.msg import DecisionStatus, HilTruth, LockstepStep, ServoCommand, hil_data, pwm, way
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import Temperature
@@ -328,6 +329,10 @@ class Simulation:
         self.clock_pub = rospy.Publisher("/clock", Clock, queue_size=None)
         self.lockstep_pub = rospy.Publisher("hil/lockstep", LockstepStep, queue_size=None, tcp_nodelay=True)
         self.truth_pub = rospy.Publisher("hil/truth", HilTruth, queue_size=None)
+        # The master's one /diagnostics, as every node's: how fast the simulation goes, and in
+        # real time whether it keeps up with the wall clock.
+        self.diag_pub = rospy.Publisher("/diagnostics", DiagnosticArray, queue_size=10)
+        self.late_steps = 0  # real time: steps that began more than a period after their time
         self.latency = LatencyProbe() if self.realtime else None
         # Real time: every period the HA ran on its own clock, from its replies: (time.monotonic()
         # of its tick, commands its link had delivered, controller, reasons at switch).
@@ -761,6 +766,7 @@ class Simulation:
         ground_steps = int(round(self.ground_s * self.rate_hz))
         airborne = False
         last_progress = 0.0
+        diag = (wall0, 0, 0)  # (wall time, step, late steps) at the last report
         k = 0
         try:
             for k in range(steps + 1):
@@ -786,6 +792,8 @@ class Simulation:
                     delay = pace0 + k * self.period_us * 1e-6 - time.monotonic()
                     if delay > 0.0:
                         time.sleep(delay)
+                    elif delay < -self.period_us * 1e-6:
+                        self.late_steps += 1
                     self.step_realtime(k)
                 else:
                     self.step(k)
@@ -801,9 +809,28 @@ class Simulation:
                 if now - last_progress > 0.5:
                     last_progress = now
                     self.write_progress(k * self.period_us * 1e-6)
+                if now - diag[0] >= 1.0:
+                    self.publish_diagnostics(k, now, diag)
+                    diag = (now, k, self.late_steps)
         finally:
             self.wall_s = time.monotonic() - wall0
             self.write_progress(k * self.period_us * 1e-6)
+
+    def publish_diagnostics(self, k, now, since):
+        """One status for the last wall second: the simulation's speed, and in real time the steps
+        that started more than a period late (the HA and the HP then see sensor time slip)."""
+        wall0, k0, late0 = since
+        x_real = (k - k0) * self.period_us * 1e-6 / (now - wall0)
+        late = self.late_steps - late0
+        st = DiagnosticStatus(name="%s: simulation" % rospy.get_name().lstrip("/"), hardware_id="HiL simulator")
+        if self.realtime and late > 0:
+            st.level, st.message = DiagnosticStatus.WARN, "falling behind real time (%d late steps)" % late
+        else:
+            st.level, st.message = DiagnosticStatus.OK, "%s at %.1fx real time" % (self.mode, x_real)
+        st.values = [KeyValue("simulated s", "%.2f" % (k * self.period_us * 1e-6)),
+                     KeyValue("steps", str(k)), KeyValue("x real time", "%.2f" % x_real),
+                     KeyValue("late steps", str(self.late_steps))]
+        self.diag_pub.publish(DiagnosticArray(header=rospy.Header(stamp=rospy.Time.now()), status=[st]))
 
     def upload_mission(self, t_s):
         self.event(t_s, "uploading the mission (%d waypoints) through microhard_gs" % len(self.plan.items))

@@ -6,6 +6,8 @@ import socket
 import subprocess
 import time
 
+import yaml
+
 
 def free_port(kind=socket.SOCK_STREAM):
     with socket.socket(socket.AF_INET, kind) as s:
@@ -34,3 +36,11 @@ def wait_for(cond, timeout_s=120.0):
             return value
         time.sleep(0.1)
     return cond()
+
+
+def echo(env, topic, count, timeout_s=120):
+    """`count` messages of topic, as dicts (rostopic echo's YAML)."""
+    out = subprocess.run(["rostopic", "echo", "-n", str(count), topic], env=env, capture_output=True,
+                         text=True, timeout=timeout_s)
+    assert out.returncode == 0, "%s: %s" % (topic, out.stderr[-500:])
+    return [d for d in yaml.safe_load_all(out.stdout) if d]

@@ -14,8 +14,9 @@ import time
 
 import pytest
 import rosgraph
+import yaml
 
-from launch_procs import free_port, stop, wait_for
+from launch_procs import echo, free_port, stop, wait_for
 
 # ha_sil is no ROS node (the HA speaks rosserial over its pty, as the Due does): /decision_status
 # flowing from the arduino node below is what shows it up.
@@ -143,3 +144,26 @@ def test_the_recorder_writes_a_dated_log_of_aircraft_and_mode(stack):
     _, _, logs = stack
     found = wait_for(lambda: glob.glob(os.path.join(logs, "*-DG808-hil.bag*")), 60.0)
     assert found, os.listdir(logs) if os.path.isdir(logs) else "no log folder"
+
+
+# Every node of the HiL stack that reports on /diagnostics, the simulator included.
+REPORTERS = ["vn200", "controller_DG808", "arduino", "microhard_gs", "hp_supervisor", "hil_sim"]
+
+
+def test_every_diagnostic_falls_under_exactly_one_aggregator_analyzer(stack):
+    """A lab's monitor groups /diagnostics with launch/diagnostics_aggregator.yaml's analyzers
+    (diagnostic_aggregator's GenericAnalyzer matches a status whose name contains one of its
+    strings): a status under none is lost in "Other", one under two is shown twice."""
+    _, env, _ = stack
+    path = os.path.join(os.path.dirname(__file__), "..", "diagnostics_aggregator.yaml")
+    with open(path) as f:
+        analyzers = yaml.safe_load(f)["analyzers"]
+    names, deadline = set(), time.time() + 180
+    while time.time() < deadline:
+        names |= {st["name"] for m in echo(env, "/diagnostics", 30) for st in m["status"]}
+        if all(any(n.startswith(r + ":") for n in names) for r in REPORTERS):
+            break
+    assert all(any(n.startswith(r + ":") for n in names) for r in REPORTERS), sorted(names)
+    for n in sorted(names):
+        under = [k for k, a in analyzers.items() if any(c in n for c in a.get("contains", []))]
+        assert len(under) == 1, "%r falls under %s" % (n, under or "no analyzer")

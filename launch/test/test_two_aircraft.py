@@ -17,9 +17,8 @@ import time
 
 import pytest
 import rosgraph
-import yaml
 
-from launch_procs import free_port, stop, wait_for
+from launch_procs import echo, free_port, stop, wait_for
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 AIRCRAFT = ("uav1", "uav2")
@@ -81,14 +80,6 @@ def _master_up(master):
         return True
     except OSError:
         return False
-
-
-def echo(env, topic, count):
-    """`count` messages of topic, as dicts (rostopic echo's YAML)."""
-    out = subprocess.run(["rostopic", "echo", "-n", str(count), topic], env=env, capture_output=True,
-                         text=True, timeout=120)
-    assert out.returncode == 0, "%s: %s" % (topic, out.stderr[-500:])
-    return [d for d in yaml.safe_load_all(out.stdout) if d]
 
 
 def graph(master):
