@@ -2,7 +2,8 @@
 vehicle's telemetry where a lab's QGroundControl listens, and the vehicle answers it from the port
 it was given. The "other machine" is 127.0.0.2 (loopback, but another address than the vehicle's):
 a pymavlink link listening there as QGroundControl does (udpin) hears the HEARTBEATs and positions
-of a lockstep flight and gets a parameter back when it asks for one."""
+of a lockstep flight and gets a parameter back when it asks for one; MAVProxy, run there as an
+operator runs it, sees the vehicle come online and downloads the mission the flight flies."""
 import os
 import socket
 import subprocess
@@ -16,6 +17,9 @@ os.environ.setdefault("MAVLINK20", "1")
 from pymavlink import mavutil  # noqa: E402  (MAVLINK20 must be set first)
 
 from hil.campaigns.flight import run_completed  # noqa: E402
+
+sys.path.insert(0, os.path.join(ROOT, "microhard_gs", "test"))
+from mavproxy_gcs import MavProxy, read_qgc_wpl  # noqa: E402
 
 GCS_HOST = "127.0.0.2"
 
@@ -61,6 +65,41 @@ def test_a_ground_station_at_another_address_hears_the_vehicle_and_is_answered()
     finally:
         flight.join(timeout=600)
         gcs.close()
+    r = result["r"]
+    assert r.returncode == 0, r.stdout.decode(errors="replace")[-3000:]
+
+
+def test_mavproxy_at_another_address_sees_the_vehicle_online_and_downloads_its_mission():
+    gcs_port, vehicle_port = free_udp_port(GCS_HOST), free_udp_port("127.0.0.1")
+    mavproxy = MavProxy(gcs_port, host=GCS_HOST)
+    folder = os.path.join(tempfile.mkdtemp(prefix="hil_gcs_mavproxy_"), "flight")
+    result = {}
+
+    def fly():
+        result["r"] = run_completed([sys.executable, os.path.join(ROOT, "hil", "run_flight.py"), "--duration", "40",
+                                     "--fault", "none", "--no-bag", "--quiet", "--folder", folder,
+                                     "--gcs-host", GCS_HOST, "--gcs-port", str(gcs_port),
+                                     "--vehicle-port", str(vehicle_port)], timeout=600)
+    flight = threading.Thread(target=fly)
+    flight.start()
+    try:
+        assert mavproxy.wait_for("online system 1", 300) is not None, mavproxy.output()[-3000:]
+        # The simulator uploads the case study's mission once the stack is up; listed until then.
+        rows = None
+        while flight.is_alive() and not rows:
+            mark = mavproxy.mark()
+            mavproxy.command("wp list")
+            saved = mavproxy.wait_for("Saved", 15, since=mark)
+            if saved is not None and "waypoints to" in saved:
+                # Every row: the vehicle's items are the waypoints from seq 0, no home row
+                # (the simulator uploads as QGroundControl does: microhard_gs/README.md, "Item 0 as home").
+                rows = read_qgc_wpl(saved.split(" to ", 1)[1].strip())
+        assert rows, "MAVProxy at %s got no mission: %s" % (GCS_HOST, mavproxy.output()[-3000:])
+        flown = read_qgc_wpl(os.path.join(ROOT, "aircraft", "DG808", "missions", "case_study.waypoints"))[1:]
+        assert [(round(r[2], 6), round(r[3], 6)) for r in rows] == [(round(r[2], 6), round(r[3], 6)) for r in flown]
+    finally:
+        flight.join(timeout=600)
+        mavproxy.stop()
     r = result["r"]
     assert r.returncode == 0, r.stdout.decode(errors="replace")[-3000:]
 

@@ -2,7 +2,8 @@
 
 Runs the pinned MAVProxy (microhard_gs/requirements.txt) headless: no console, no map, commands
 typed on its standard input as a user would type them, its output collected line by line. It
-listens on a loopback UDP port (`udpin:127.0.0.1:PORT`), the port the node sends to. HOME is a
+listens on a loopback UDP port (`udpin:127.0.0.1:PORT`, or another loopback address: a ground
+station on another machine), the port the node sends to. HOME is a
 private directory, so nothing of the user's MAVProxy or pymavlink set-up is read, and it holds
 the mode-name map the project ships for pymavlink-based ground stations. Every process started
 here is stopped by stop().
@@ -25,7 +26,7 @@ MODULES = "log,signing,wp,rally,fence,ftp,param,relay,tuneopt,arm,mode,calibrati
 
 
 class MavProxy:
-    def __init__(self, udp_port, mode_map=True):
+    def __init__(self, udp_port, mode_map=True, host="127.0.0.1"):
         self.home = tempfile.mkdtemp(prefix="mavproxy_gcs_")
         if mode_map:
             os.makedirs(os.path.join(self.home, ".pymavlink"))
@@ -36,7 +37,7 @@ class MavProxy:
         env.pop("DISPLAY", None)
         exe = os.path.join(os.path.dirname(sys.executable), "mavproxy.py")
         self.proc = subprocess.Popen(
-            [sys.executable, exe, "--master=udpin:127.0.0.1:%d" % udp_port, "--source-system=255",
+            [sys.executable, exe, "--master=udpin:%s:%d" % (host, udp_port), "--source-system=255",
              "--state-basedir=" + self.home, "--default-modules=" + MODULES],
             stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, env=env,
             cwd=self.home, start_new_session=True)
