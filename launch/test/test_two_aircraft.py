@@ -20,6 +20,9 @@ import rosgraph
 
 from launch_procs import echo, free_port, stop, wait_for
 
+os.environ.setdefault("MAVLINK20", "1")  # microhard_gs speaks MAVLink 2
+from pymavlink import mavutil  # noqa: E402  (MAVLINK20 must be set first)
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 AIRCRAFT = ("uav1", "uav2")
 # Where each fake VN-200 starts (lat, lon in deg, alt in m), and so each aircraft's home: 11 km
@@ -69,7 +72,7 @@ def fleet():
             lat, lon, alt = ORIGIN[a]
             start(["rostopic", "pub", "-l", "/%s/home" % a, "drone_ros/HomePosition",
                    "{seq: 1, latitude: %r, longitude: %r, altitude: %r}" % (lat, lon, alt)])
-        yield master, env
+        yield master, env, gs
     finally:
         stop(procs)
 
@@ -93,7 +96,7 @@ def graph(master):
 
 
 def test_each_aircraft_runs_every_node_in_its_namespace(fleet):
-    master, _ = fleet
+    master, _, _ = fleet
     wanted = ["/%s/%s" % (a, n) for a in AIRCRAFT for n in NODES]
 
     def missing():
@@ -102,7 +105,7 @@ def test_each_aircraft_runs_every_node_in_its_namespace(fleet):
 
 
 def test_every_topic_of_an_aircraft_lies_in_its_namespace(fleet):
-    master, _ = fleet
+    master, _, _ = fleet
     wait_for(lambda: all("/%s/vn200" % a in graph(master) for a in AIRCRAFT))
     # The controller subscribes to everything it flies on: wait until it has.
     wait_for(lambda: all("/%s/ins" % a in graph(master).get("/%s/controller_DG808" % a, ())
@@ -118,7 +121,7 @@ def test_every_topic_of_an_aircraft_lies_in_its_namespace(fleet):
 
 
 def test_each_controller_reads_its_own_ins_and_only_it(fleet):
-    master, env = fleet
+    master, env, _ = fleet
     for a in AIRCRAFT:
         other = [b for b in AIRCRAFT if b != a][0]
 
@@ -139,7 +142,7 @@ def test_each_controller_reads_its_own_ins_and_only_it(fleet):
 
 
 def test_each_aircraft_has_its_own_tf_tree_rooted_at_its_own_home(fleet):
-    _, env = fleet
+    _, env, _ = fleet
     statics = {(t["header"]["frame_id"], t["child_frame_id"])
                for m in echo(env, "/tf_static", 2) for t in m["transforms"]}
     for a in AIRCRAFT:
@@ -162,3 +165,18 @@ def test_each_aircraft_has_its_own_tf_tree_rooted_at_its_own_home(fleet):
     for a in AIRCRAFT:
         odom = echo(env, "/%s/odom" % a, 1)[0]
         assert (odom["header"]["frame_id"], odom["child_frame_id"]) == (a + "/odom", a + "/base_link")
+
+
+def test_each_aircraft_speaks_mavlink_as_its_own_system(fleet):
+    """A ground station that sees both aircraft tells them apart by the MAVLink system id
+    (DG808_flight.launch's gs_system_id): uav1 is system 1, uav2 system 2."""
+    _, _, gs = fleet
+    for system_id, a in enumerate(AIRCRAFT, start=1):
+        remote_port = int(gs[a].split()[1])
+        link = mavutil.mavlink_connection("udpin:127.0.0.1:%d" % remote_port, source_system=255)
+        try:
+            heartbeat = link.recv_match(type="HEARTBEAT", blocking=True, timeout=30)
+        finally:
+            link.close()
+        assert heartbeat is not None, "%s: no HEARTBEAT on UDP %d" % (a, remote_port)
+        assert heartbeat.get_srcSystem() == system_id, a
