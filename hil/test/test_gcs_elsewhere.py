@@ -30,19 +30,26 @@ def free_udp_port(host):
         return s.getsockname()[1]
 
 
-def test_a_ground_station_at_another_address_hears_the_vehicle_and_is_answered():
-    gcs_port, vehicle_port = free_udp_port(GCS_HOST), free_udp_port("127.0.0.1")
-    gcs = mavutil.mavlink_connection("udpin:%s:%d" % (GCS_HOST, gcs_port), source_system=255)
+def fly_in_background(duration_s, gcs_port, vehicle_port):
+    """A lockstep flight whose ground station is GCS_HOST:gcs_port, flown in a thread while the
+    test plays the ground station: (the thread, a dict whose "r" is run_flight.py's result)."""
     folder = os.path.join(tempfile.mkdtemp(prefix="hil_gcs_"), "flight")
     result = {}
 
     def fly():
-        result["r"] = run_completed([sys.executable, os.path.join(ROOT, "hil", "run_flight.py"), "--duration", "30",
-                                     "--fault", "none", "--no-bag", "--quiet", "--folder", folder,
-                                     "--gcs-host", GCS_HOST, "--gcs-port", str(gcs_port),
+        result["r"] = run_completed([sys.executable, os.path.join(ROOT, "hil", "run_flight.py"),
+                                     "--duration", str(duration_s), "--fault", "none", "--no-bag", "--quiet",
+                                     "--folder", folder, "--gcs-host", GCS_HOST, "--gcs-port", str(gcs_port),
                                      "--vehicle-port", str(vehicle_port)], timeout=600)
     flight = threading.Thread(target=fly)
     flight.start()
+    return flight, result
+
+
+def test_a_ground_station_at_another_address_hears_the_vehicle_and_is_answered():
+    gcs_port, vehicle_port = free_udp_port(GCS_HOST), free_udp_port("127.0.0.1")
+    gcs = mavutil.mavlink_connection("udpin:%s:%d" % (GCS_HOST, gcs_port), source_system=255)
+    flight, result = fly_in_background(30, gcs_port, vehicle_port)
     try:
         seen = {}
         while flight.is_alive() and not ({"HEARTBEAT", "GLOBAL_POSITION_INT"} <= set(seen)):
@@ -72,16 +79,7 @@ def test_a_ground_station_at_another_address_hears_the_vehicle_and_is_answered()
 def test_mavproxy_at_another_address_sees_the_vehicle_online_and_downloads_its_mission():
     gcs_port, vehicle_port = free_udp_port(GCS_HOST), free_udp_port("127.0.0.1")
     mavproxy = MavProxy(gcs_port, host=GCS_HOST)
-    folder = os.path.join(tempfile.mkdtemp(prefix="hil_gcs_mavproxy_"), "flight")
-    result = {}
-
-    def fly():
-        result["r"] = run_completed([sys.executable, os.path.join(ROOT, "hil", "run_flight.py"), "--duration", "40",
-                                     "--fault", "none", "--no-bag", "--quiet", "--folder", folder,
-                                     "--gcs-host", GCS_HOST, "--gcs-port", str(gcs_port),
-                                     "--vehicle-port", str(vehicle_port)], timeout=600)
-    flight = threading.Thread(target=fly)
-    flight.start()
+    flight, result = fly_in_background(40, gcs_port, vehicle_port)
     try:
         assert mavproxy.wait_for("online system 1", 300) is not None, mavproxy.output()[-3000:]
         # The simulator uploads the case study's mission once the stack is up; listed until then.
