@@ -151,4 +151,29 @@ TEST(HaBumpless, PilotsStickReversalsPassUnlimited) {
   EXPECT_EQ(lagging, 0);
 }
 
+
+// HiL campaign seed 27 #5: the HA took over from an HP at idle, so its throttle eased up at 0.5 a
+// second while the elevator held the pull it inherited; a gust put 1.9 g on the wing at 59 ft/s
+// and stalled it. The HA flies pitch from the period it takes over, not once the slowest servo
+// has arrived: the lift guard's push reaches the elevator while the throttle is still on its way.
+TEST(HaBumpless, WhileTheThrottleStillEasesUpTheHaAlreadyPushesAgainstAGust) {
+  Timeline t;
+  t.Cruise(160.0f, 62.0f);  // low in the band
+  ASSERT_GT(t.ReachHp(), 0);
+  for (int i = 0; i < 50; ++i) t.StepWithGood(0.0f, -1.9f, 0.0f, 0.05f);  // a pull, at idle
+  for (int i = 0; i < 20; ++i) t.Step();  // the HP falls silent: a deadline miss
+  ASSERT_EQ(t.controller(), HA_CONTROLLER_HA);
+  const float calm_elevator_deg = t.servos().elevator_deg;
+  // 1.9 g at 62 ft/s, past the 1.53 g the guard allows: some 5.6 deg of push. Low in its band
+  // the HA wants the nose up, more than the pull it inherited (as in #5 at 158 ft).
+  t.app.inputs.accel_ok = 1u;
+  t.app.inputs.accel_load_factor = 1.9f;
+  for (int i = 0; i < 10; ++i) t.Step();
+  ASSERT_EQ(t.controller(), HA_CONTROLLER_HA);
+  EXPECT_LT(t.servos().throttle, t.out().ha_command.throttle - 0.2f)
+      << "the story needs the throttle still easing";
+  EXPECT_GT(t.servos().elevator_deg - calm_elevator_deg, 3.0f)
+      << "trailing edge down against the gust within 0.1 s (the rate allows 6 deg)";
+}
+
 }  // namespace

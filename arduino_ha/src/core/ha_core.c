@@ -378,10 +378,14 @@ void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *
     }
   }
 
-  /* The safety controller runs every period; it tracks the applied surfaces unless it alone
-   * produced them last period. */
-  ha_safety_ctrl_step(&core->sc, cfg, &view, &core->applied,
-                      core->last_source == SRC_HA && !core->transition_active, dt_s, &ha_cmd);
+  /* The safety controller runs every period; it tracks the applied surfaces unless it was the
+   * source last period, so that it starts from them. From then on it flies, the rate limiter
+   * easing the servos to it: tracking through the handover left pitch and roll unflown while
+   * the throttle (0.5 a second) or the yaw damper's rudder still eased (HiL campaign seed 27 #5:
+   * 1.08 s with the elevator frozen at 1.9 deg of pull while a gust put 1.9 g on the wing and
+   * stalled it; the lift guard's push went into the tracking integrator). */
+  ha_safety_ctrl_step(&core->sc, cfg, &view, &core->applied, core->last_source == SRC_HA, dt_s,
+                      &ha_cmd);
   source = choose_source(core);
   target = ha_cmd;
   if (source == SRC_MANUAL) {
