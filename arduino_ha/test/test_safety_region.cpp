@@ -76,7 +76,7 @@ TEST(HaSafetyRegion, APolytopeRowCouplingTwoStatesAboutAnOffCentreIsJudgedOnThei
 TEST(HaSafetyRegion, ARowEndPastTheTermTableStopsAtItsEnd) {
   HaAircraftConfig poly = cfg;
   std::memset(poly.x0, 0, sizeof poly.x0);
-  for (auto &term : poly.sx) term = {HA_X_ROLL_DEG, 1.0f / 60.0f};
+  for (auto& term : poly.sx) term = {HA_X_ROLL_DEG, 1.0f / 60.0f};
   poly.sx_rows = 1u;
   poly.sx_row_end[0] = 255u;  // past HA_SX_MAX_TERMS
   float x[HA_X_DIM] = {};

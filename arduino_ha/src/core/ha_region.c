@@ -8,8 +8,8 @@
  * the verdict is unchanged, and the sums can neither overflow nor meet inf - inf. */
 #define HA_REGION_SPAN 1.0e6f
 /* region_max masks a column into its vector: both dimensions must be powers of two. */
-typedef char ha_region_dims_are_powers_of_two[((HA_X_DIM & (HA_X_DIM - 1)) == 0 &&
-                                               (HA_U_DIM & (HA_U_DIM - 1)) == 0) ? 1 : -1];
+typedef char ha_region_dims_are_powers_of_two
+    [((HA_X_DIM & (HA_X_DIM - 1)) == 0 && (HA_U_DIM & (HA_U_DIM - 1)) == 0) ? 1 : -1];
 
 /* Exactly +/-0 (integer test on its bits: no soft-float call on the Cortex-M3). A zero centre
  * subtracts nothing, so skipping it changes no result. */
@@ -48,8 +48,8 @@ float ha_state_region_max(const HaAircraftConfig *cfg, const float x[HA_X_DIM]) 
     d[j] = is_exact_zero(cfg->x0[j]) ? x[j] : x[j] - cfg->x0[j];
   }
   return region_max(cfg->sx, cfg->sx_row_end,
-                    cfg->sx_rows < HA_SX_MAX_ROWS ? cfg->sx_rows : HA_SX_MAX_ROWS,
-                    HA_SX_MAX_TERMS, d, HA_X_DIM);
+                    cfg->sx_rows < HA_SX_MAX_ROWS ? cfg->sx_rows : HA_SX_MAX_ROWS, HA_SX_MAX_TERMS,
+                    d, HA_X_DIM);
 }
 
 float ha_actuator_region_max(const HaAircraftConfig *cfg, const float u[HA_U_DIM]) {
@@ -60,6 +60,6 @@ float ha_actuator_region_max(const HaAircraftConfig *cfg, const float u[HA_U_DIM
     d[j] = is_exact_zero(cfg->u0[j]) ? clamped : clamped - cfg->u0[j];
   }
   return region_max(cfg->su, cfg->su_row_end,
-                    cfg->su_rows < HA_SU_MAX_ROWS ? cfg->su_rows : HA_SU_MAX_ROWS,
-                    HA_SU_MAX_TERMS, d, HA_U_DIM);
+                    cfg->su_rows < HA_SU_MAX_ROWS ? cfg->su_rows : HA_SU_MAX_ROWS, HA_SU_MAX_TERMS,
+                    d, HA_U_DIM);
 }

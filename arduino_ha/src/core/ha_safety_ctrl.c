@@ -86,10 +86,9 @@ static float pitch_command_deg(const HaAircraftConfig *cfg, const HaStateView *s
   if (s->altitude_ok) {
     pitch_deg = cfg->sc_alt_to_pitch_gain_deg_per_ft * (cfg->sc_alt_mid_ft - s->x[HA_X_ALT_AGL_FT]);
   }
-  const float allowed_deg =
-      s->speed_known
-          ? cfg->sc_speed_to_pitch_gain_deg_per_ftps * (s->ias_ftps - cfg->sc_speed_floor_ftps)
-                     : cfg->sc_power_pitch_deg;
+  const float allowed_deg = s->speed_known ? cfg->sc_speed_to_pitch_gain_deg_per_ftps *
+                                                 (s->ias_ftps - cfg->sc_speed_floor_ftps)
+                                           : cfg->sc_power_pitch_deg;
   pitch_deg = allowed_deg < pitch_deg ? allowed_deg : pitch_deg;
   return ha_clampf(pitch_deg, -cfg->sc_pitch_cmd_limit_deg, cfg->sc_pitch_cmd_limit_deg);
 }
@@ -167,8 +166,7 @@ void ha_safety_ctrl_step(HaSafetyCtrlState *st, const HaAircraftConfig *cfg, con
    * campaign seed 27 #4: 4 ft/s slow at throttle 0.6, pitch held at 2 deg, 158 ft lost). */
   if (s->airborne && s->attitude_ok && s->altitude_ok) {
     const float below_ft = cfg->sc_alt_mid_ft - s->x[HA_X_ALT_AGL_FT];
-    thr_pd +=
-        ha_clampf(cfg->sc_power_throttle_per_ft * below_ft, 0.0f, cfg->sc_power_throttle_max);
+    thr_pd += ha_clampf(cfg->sc_power_throttle_per_ft * below_ft, 0.0f, cfg->sc_power_throttle_max);
   }
   out->aileron_deg = pid(&st->roll_integ_deg, roll_pd, roll_step, cfg->aileron_limit_deg,
                          cfg->sc_aileron_integ_limit, in_control, applied->aileron_deg);
@@ -205,9 +203,9 @@ void ha_safety_ctrl_step(HaSafetyCtrlState *st, const HaAircraftConfig *cfg, con
   }
   out->elevator_deg = -nose_up_deg;
   /* Throttle is handled about the middle of its range so the same symmetric PID applies. */
-  out->throttle =
-      throttle_mid + pid(&st->throttle_integ, thr_pd, thr_step, throttle_half,
-                         cfg->sc_throttle_integ_limit, in_control, applied->throttle - throttle_mid);
+  out->throttle = throttle_mid + pid(&st->throttle_integ, thr_pd, thr_step, throttle_half,
+                                     cfg->sc_throttle_integ_limit, in_control,
+                                     applied->throttle - throttle_mid);
   if (!s->airborne) {
     out->throttle = cfg->throttle_min; /* on the ground the motor idles */
   }
