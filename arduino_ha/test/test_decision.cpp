@@ -194,7 +194,7 @@ TEST(HaDecision, ClimbTowardsTheCeilingIsTakenOverBeforeItWithAnInsReadingLow) {
 TEST(HaDecision, RollOutTowardsTheLimitIsTakenOverAndStoppedInsideIt) {
   Timeline t;
   ASSERT_GT(t.ReachHp(), 0);
-  const float roll_limit = 1.0f / t.cfg.sx[4][HA_X_ROLL_DEG];
+  const float roll_limit = 1.0f / t.cfg.sx[4].coef;  // row 4: +roll, its one term
   PointMassAircraft ac;
   ac.north_ft = t.cfg.sc_circle_radius_ft;
   ac.heading_deg = 90.0f;
@@ -302,7 +302,7 @@ TEST(HaDecision, SwitchBackOnlyAfterStableWindowInsideInnerRegion) {
   t.StepWith(glitch);
   ASSERT_EQ(t.controller(), HA_CONTROLLER_HA);
   // Roll between the inner and the outer region: inside S_x, not inside the inner region.
-  const float roll_limit = 1.0f / t.cfg.sx[4][HA_X_ROLL_DEG];
+  const float roll_limit = 1.0f / t.cfg.sx[4].coef;  // row 4: +roll, its one term
   t.app.inputs.roll_deg = roll_limit * 0.5f * (1.0f + t.cfg.inner_region_fraction);
   const int window = static_cast<int>(t.cfg.stable_window_us / t.cfg.period_us);
   for (int i = 0; i < 3 * window; ++i) {

@@ -55,12 +55,12 @@ TEST(HaSafetyRegion, ActuatorLimitsAreTheBoundary) {
 // about the centre.
 TEST(HaSafetyRegion, APolytopeRowCouplingTwoStatesAboutAnOffCentreIsJudgedOnTheirSum) {
   HaAircraftConfig poly = cfg;
-  std::memset(poly.sx, 0, sizeof poly.sx);
   std::memset(poly.x0, 0, sizeof poly.x0);
   poly.sx_rows = 1u;
+  poly.sx_row_end[0] = 2u;
   poly.x0[HA_X_ALT_AGL_FT] = 200.0f;
-  poly.sx[0][HA_X_ROLL_DEG] = 1.0f / 60.0f;     // 60 deg of bank alone ...
-  poly.sx[0][HA_X_ALT_AGL_FT] = 1.0f / 200.0f;  // ... or 200 ft above the centre alone
+  poly.sx[0] = {HA_X_ROLL_DEG, 1.0f / 60.0f};     // 60 deg of bank alone ...
+  poly.sx[1] = {HA_X_ALT_AGL_FT, 1.0f / 200.0f};  // ... or 200 ft above the centre alone
   float x[HA_X_DIM] = {};
   x[HA_X_ALT_AGL_FT] = 200.0f;
   x[HA_X_ROLL_DEG] = 30.0f;
@@ -69,6 +69,19 @@ TEST(HaSafetyRegion, APolytopeRowCouplingTwoStatesAboutAnOffCentreIsJudgedOnThei
   EXPECT_NEAR(ha_state_region_max(&poly, x), 1.0f, 1e-6f);  // half the bank + half the height
   x[HA_X_ALT_AGL_FT] = 310.0f;
   EXPECT_GT(ha_state_region_max(&poly, x), 1.0f);  // neither alone is past its edge
+}
+
+// A hand-made configuration whose row claims terms past the table reads no further than the
+// table: the row is judged on the terms there are.
+TEST(HaSafetyRegion, ARowEndPastTheTermTableStopsAtItsEnd) {
+  HaAircraftConfig poly = cfg;
+  std::memset(poly.x0, 0, sizeof poly.x0);
+  for (auto& term : poly.sx) term = {HA_X_ROLL_DEG, 1.0f / 60.0f};
+  poly.sx_rows = 1u;
+  poly.sx_row_end[0] = 255u;  // past HA_SX_MAX_TERMS
+  float x[HA_X_DIM] = {};
+  x[HA_X_ROLL_DEG] = 1.0f;
+  EXPECT_NEAR(ha_state_region_max(&poly, x), HA_SX_MAX_TERMS / 60.0f, 1e-4f);
 }
 
 TEST(HaSafetyRegion, HugeValuesAreOutsideNotOverflowed) {

@@ -10,6 +10,7 @@ usage: gen_aircraft_config.py <limits.yaml> <out.h>     (out '-' writes to stdou
 """
 import math
 import os
+import struct
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
@@ -22,6 +23,8 @@ X_NAMES = ["alpha_deg", "beta_deg", "roll_deg", "pitch_deg", "p_deg_s", "q_deg_s
 U_NAMES = ["elevator_deg", "aileron_deg", "rudder_deg", "throttle"]
 SX_MAX_ROWS = 20
 SU_MAX_ROWS = 10
+SX_MAX_TERMS = 64
+SU_MAX_TERMS = 24
 MAX_RESTARTS_CAP = 16
 
 
@@ -282,6 +285,8 @@ def build(doc, airframe=None):
     c["u0"] = [0.0, 0.0, 0.0, (c["throttle_max"] + c["throttle_min"]) / 2.0]
     if len(sx) > SX_MAX_ROWS or len(su) > SU_MAX_ROWS:
         raise ConfigError("too many region rows for HA_SX_MAX_ROWS/HA_SU_MAX_ROWS")
+    if len(nonzero_terms(sx)[1]) > SX_MAX_TERMS or len(nonzero_terms(su)[1]) > SU_MAX_TERMS:
+        raise ConfigError("too many nonzero region coefficients for HA_SX_MAX_TERMS/HA_SU_MAX_TERMS")
 
     rate_hz = need(dec, "rate_hz", 1.0, 1000.0)
     c["period_us"] = us(1.0 / rate_hz, "rate_hz")
@@ -406,6 +411,7 @@ def build(doc, airframe=None):
                                      / (0.5 * (c["sc_alt_max_ft"] - c["sc_alt_min_ft"])))
     c["sc_integrator_authority"] = need(sc, "integrator_authority", 0.0, 1.0)
     c["sc_blind_fade_per_s"] = 1.0 / positive(sc, "blind_fade_s")
+    derive_safety_ctrl(c)
 
     step_s = positive(selft, "step_s")
     c["self_test_throttle_max"] = need(selft, "throttle_max", c["throttle_min"],
@@ -426,6 +432,32 @@ def build(doc, airframe=None):
         if isinstance(value, float):
             fits_f32(key, value, "derived value")
     return c
+
+
+def f32_round(value):
+    """value as the binary32 the C code holds it in."""
+    return struct.unpack("<f", struct.pack("<f", value))[0]
+
+
+def derive_safety_ctrl(c):
+    """What ha_safety_ctrl.c computed from the configuration every period, now once: each value
+    rounded after every operation as C's float arithmetic does, so the step's results are
+    unchanged to the bit (on the Due each operation was a soft-float call of ~50 instructions)."""
+    r = f32_round
+    auth = r(c["sc_integrator_authority"])
+    half = r(0.5 * r(r(c["throttle_max"]) - r(c["throttle_min"])))
+    mid = r(r(c["throttle_min"]) + half)
+    c["sc_target_ftps"] = r(r(c["stall_speed_ftps"]) * r(c["sc_cruise_margin"]))
+    c["sc_speed_floor_ftps"] = r(r(c["stall_speed_ftps"]) * r(c["sc_stall_margin"]))
+    c["sc_alt_mid_ft"] = r(0.5 * r(r(c["sc_alt_min_ft"]) + r(c["sc_alt_max_ft"])))
+    c["sc_throttle_half"] = half
+    c["sc_throttle_mid"] = mid
+    c["sc_throttle_trim_offset"] = r(r(c["sc_throttle_trim"]) - mid)
+    c["sc_power_throttle_max"] = r(r(c["throttle_max"]) - r(c["sc_throttle_trim"]))
+    c["sc_aileron_integ_limit"] = r(auth * r(c["aileron_limit_deg"]))
+    c["sc_elevator_integ_limit"] = r(auth * r(c["elevator_limit_deg"]))
+    c["sc_throttle_integ_limit"] = r(auth * half)
+    c["sc_blind_fade_auth_per_s"] = r(r(c["sc_blind_fade_per_s"]) * auth)
 
 
 def build_airdata(c, doc):
@@ -480,6 +512,24 @@ def row(values):
     return "{" + ", ".join(f32(v) for v in values) + "}"
 
 
+def nonzero_terms(rows):
+    """A dense matrix as the core holds it: each row's end in the term list, and the nonzero
+    terms (column, coefficient) row by row."""
+    ends, terms = [], []
+    for r in rows:
+        terms += [(j, v) for j, v in enumerate(r) if v != 0.0]
+        ends.append(len(terms))
+    return ends, terms
+
+
+def render_region(name, rows):
+    ends, terms = nonzero_terms(rows)
+    return (["    .%s_rows = %du, \\" % (name, len(rows)),
+             "    .%s_row_end = {%s}, \\" % (name, ", ".join("%du" % e for e in ends)),
+             "    .%s = { \\" % name]
+            + ["      {%du, %s}, \\" % (j, f32(v)) for j, v in terms] + ["    }, \\"])
+
+
 def render(c, source):
     floats = [k for k in c if isinstance(c[k], float)]
     ints = [k for k in c if isinstance(c[k], int)]
@@ -495,14 +545,9 @@ def render(c, source):
         "#define HA_AIRCRAFT_CONFIG_INITIALIZER \\",
         "  { \\",
         "    .aircraft = \"%s\", \\" % c["aircraft"],
-        "    .sx_rows = %du, \\" % len(c["sx"]),
-        "    .sx = { \\",
     ]
-    lines += ["      %s, \\" % row(r) for r in c["sx"]]
-    lines += ["    }, \\", "    .x0 = %s, \\" % row(c["x0"]),
-              "    .su_rows = %du, \\" % len(c["su"]), "    .su = { \\"]
-    lines += ["      %s, \\" % row(r) for r in c["su"]]
-    lines += ["    }, \\", "    .u0 = %s, \\" % row(c["u0"])]
+    lines += render_region("sx", c["sx"]) + ["    .x0 = %s, \\" % row(c["x0"])]
+    lines += render_region("su", c["su"]) + ["    .u0 = %s, \\" % row(c["u0"])]
     for key in floats:
         lines.append("    .%s = %s, \\" % (key, f32(c[key])))
     for key in ints:

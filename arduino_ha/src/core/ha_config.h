@@ -35,18 +35,32 @@ enum {
 
 #define HA_SX_MAX_ROWS 20
 #define HA_SU_MAX_ROWS 10
+/* Nonzero coefficients a region may hold (a box has one a row; the thesis's polytope more). */
+#define HA_SX_MAX_TERMS 64
+#define HA_SU_MAX_TERMS 24
+
+/* A nonzero coefficient of a region's row, S[row][col]: only these are stored, so that no zero
+ * is multiplied or even looked at per period (on the Due the scan of the dense 15 x 8 and 8 x 4
+ * matrices cost some 1,300 instructions a step). */
+typedef struct {
+  uint8_t col;
+  float coef;
+} HaRegionTerm;
 /* Upper bound on max_restarts (the restart history is a fixed array). */
 #define HA_MAX_RESTARTS_CAP 16
 
 typedef struct {
   const char *aircraft;
 
-  /* Safety regions: row i holds when sum_j s[i][j] * (v[j] - v0[j]) <= 1. */
+  /* Safety regions: row i holds when sum_j S[i][j] * (v[j] - v0[j]) <= 1, S by rows of nonzero
+   * terms: row i's are sx[sx_row_end[i - 1] .. sx_row_end[i] - 1] (from sx[0] for row 0). */
   uint32_t sx_rows;
-  float sx[HA_SX_MAX_ROWS][HA_X_DIM];
+  uint8_t sx_row_end[HA_SX_MAX_ROWS];
+  HaRegionTerm sx[HA_SX_MAX_TERMS];
   float x0[HA_X_DIM];
   uint32_t su_rows;
-  float su[HA_SU_MAX_ROWS][HA_U_DIM];
+  uint8_t su_row_end[HA_SU_MAX_ROWS];
+  HaRegionTerm su[HA_SU_MAX_TERMS];
   float u0[HA_U_DIM];
   float inner_region_fraction; /* switch back only while max(S_x (x - x0)) <= this */
   /* ... and, airborne, only above this airspeed (stall x handback_stall_multiple, derived by the
@@ -187,6 +201,14 @@ typedef struct {
   float sc_radial_tan_per_ft2;
   float sc_radial_tan_max;
   float sc_circle_radius_sq_ft2;
+  /* Derived by the generator, once instead of every period (ha_safety_ctrl.c): the throttle
+   * loop's target (stall x cruise margin), the slowest speed the nose may rise at (stall x stall
+   * margin), the band's middle, the throttle's half range and middle, the trim and the power's
+   * room to full about them, the integrators' limits (authority x range) and fade per second. */
+  float sc_target_ftps, sc_speed_floor_ftps, sc_alt_mid_ft;
+  float sc_throttle_half, sc_throttle_mid, sc_throttle_trim_offset, sc_power_throttle_max;
+  float sc_aileron_integ_limit, sc_elevator_integ_limit, sc_throttle_integ_limit;
+  float sc_blind_fade_auth_per_s;
 } HaAircraftConfig;
 
 #ifdef __cplusplus

@@ -397,7 +397,6 @@ void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *
     target = ha_cmd; /* the sequence just ended */
     source = SRC_HA;
   }
-  ha_surfaces_saturate(cfg, &target);
   if (source != core->last_source || source == SRC_SELF_TEST) {
     core->transition_active = 1u;
   }
@@ -409,6 +408,13 @@ void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *
   }
   if (core->transition_active) {
     HaSurfaces limited;
+    /* Inside S_u already (the checks passed), saturated all the same so that the limiter's
+     * arithmetic is bounded for static analysis too. The other sources are in S_u by
+     * construction (the sticks are saturated, the safety controller clamps each output, the
+     * self-test's are the limits), and saturating every target twice cost 4 compares a period. */
+    if (source == SRC_HP) {
+      ha_surfaces_saturate(cfg, &target);
+    }
     core->transition_active = (uint8_t)!ha_surfaces_rate_limit(
         cfg, &core->applied, &target, dt_s, view.stalling && source == SRC_HA, &limited);
     target = limited;

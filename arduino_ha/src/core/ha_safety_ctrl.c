@@ -82,15 +82,13 @@ static float bank_command_deg(const HaAircraftConfig *cfg, const HaStateView *s)
  * unreliable airspeed: the nose no higher than the attitude that, at throttle_trim, flies the
  * cruise speed whatever the wind (and the check reports the HA lacking state). */
 static float pitch_command_deg(const HaAircraftConfig *cfg, const HaStateView *s) {
-  const float floor_ftps = cfg->stall_speed_ftps * cfg->sc_stall_margin;
-  const float mid_ft = 0.5f * (cfg->sc_alt_min_ft + cfg->sc_alt_max_ft);
   float pitch_deg = 0.0f;
   if (s->altitude_ok) {
-    pitch_deg = cfg->sc_alt_to_pitch_gain_deg_per_ft * (mid_ft - s->x[HA_X_ALT_AGL_FT]);
+    pitch_deg = cfg->sc_alt_to_pitch_gain_deg_per_ft * (cfg->sc_alt_mid_ft - s->x[HA_X_ALT_AGL_FT]);
   }
-  const float allowed_deg =
-      s->speed_known ? cfg->sc_speed_to_pitch_gain_deg_per_ftps * (s->ias_ftps - floor_ftps)
-                     : cfg->sc_power_pitch_deg;
+  const float allowed_deg = s->speed_known ? cfg->sc_speed_to_pitch_gain_deg_per_ftps *
+                                                 (s->ias_ftps - cfg->sc_speed_floor_ftps)
+                                           : cfg->sc_power_pitch_deg;
   pitch_deg = allowed_deg < pitch_deg ? allowed_deg : pitch_deg;
   return ha_clampf(pitch_deg, -cfg->sc_pitch_cmd_limit_deg, cfg->sc_pitch_cmd_limit_deg);
 }
@@ -111,17 +109,16 @@ static float lift_excess_g(const HaAircraftConfig *cfg, const HaStateView *s) {
 
 void ha_safety_ctrl_step(HaSafetyCtrlState *st, const HaAircraftConfig *cfg, const HaStateView *s,
                          const HaSurfaces *applied, int in_control, float dt_s, HaSurfaces *out) {
-  const float target_ftps = cfg->stall_speed_ftps * cfg->sc_cruise_margin;
-  const float throttle_half = 0.5f * (cfg->throttle_max - cfg->throttle_min);
-  const float throttle_mid = cfg->throttle_min + throttle_half;
+  /* What depends on the configuration alone is the generator's (sc_target_ftps and the rest). */
+  const float throttle_half = cfg->sc_throttle_half;
+  const float throttle_mid = cfg->sc_throttle_mid;
   float roll_pd = 0.0f, roll_step = 0.0f, pitch_pd = 0.0f, pitch_step = 0.0f;
-  float thr_pd = cfg->sc_throttle_trim - throttle_mid, thr_step = 0.0f;
+  float thr_pd = cfg->sc_throttle_trim_offset, thr_step = 0.0f;
   float nose_up_deg;
-  const float auth = cfg->sc_integrator_authority;
-  const float pitch_integ_limit = auth * cfg->elevator_limit_deg; /* pid's and the stop's */
+  const float pitch_integ_limit = cfg->sc_elevator_integ_limit; /* pid's and the stop's */
   if (!s->attitude_ok && in_control) {
     /* Blind: nothing to close a loop on. What the integrators hold fades to the trims. */
-    const float fade = cfg->sc_blind_fade_per_s * auth * dt_s;
+    const float fade = cfg->sc_blind_fade_auth_per_s * dt_s;
     st->roll_integ_deg = toward_zero(st->roll_integ_deg, fade * cfg->aileron_limit_deg);
     st->pitch_integ_deg = toward_zero(st->pitch_integ_deg, fade * cfg->elevator_limit_deg);
     st->throttle_integ = toward_zero(st->throttle_integ, fade * throttle_half);
@@ -152,7 +149,7 @@ void ha_safety_ctrl_step(HaSafetyCtrlState *st, const HaAircraftConfig *cfg, con
     }
   }
   if (s->airborne && s->speed_known && s->attitude_ok) {
-    const float speed_err = target_ftps - s->ias_ftps;
+    const float speed_err = cfg->sc_target_ftps - s->ias_ftps;
     thr_pd += cfg->sc_throttle_kp_per_ftps * speed_err;
     thr_step = cfg->sc_throttle_ki_per_ft * speed_err * dt_s;
   } else if (in_control && s->attitude_ok) {
@@ -161,19 +158,18 @@ void ha_safety_ctrl_step(HaSafetyCtrlState *st, const HaAircraftConfig *cfg, con
      * throttle cut to 0.05 on a tailwind's speed over the ground); less power than the trim
      * would slow the aircraft at that attitude, so the band's ceiling is the pitch term's. */
     st->throttle_integ =
-        toward_zero(st->throttle_integ, cfg->sc_blind_fade_per_s * auth * dt_s * throttle_half);
+        toward_zero(st->throttle_integ, cfg->sc_blind_fade_auth_per_s * dt_s * throttle_half);
   }
   /* Power for height in both modes: below the band's middle, throttle_trim's margin to full in
    * proportion, full at the band's floor. With the speed known, the nose may rise only as far
    * as the speed pays, and the speed loop alone gave a turn's drag too little power (HiL
    * campaign seed 27 #4: 4 ft/s slow at throttle 0.6, pitch held at 2 deg, 158 ft lost). */
   if (s->airborne && s->attitude_ok && s->altitude_ok) {
-    const float below_ft = 0.5f * (cfg->sc_alt_min_ft + cfg->sc_alt_max_ft) - s->x[HA_X_ALT_AGL_FT];
-    thr_pd += ha_clampf(cfg->sc_power_throttle_per_ft * below_ft, 0.0f,
-                        cfg->throttle_max - cfg->sc_throttle_trim);
+    const float below_ft = cfg->sc_alt_mid_ft - s->x[HA_X_ALT_AGL_FT];
+    thr_pd += ha_clampf(cfg->sc_power_throttle_per_ft * below_ft, 0.0f, cfg->sc_power_throttle_max);
   }
   out->aileron_deg = pid(&st->roll_integ_deg, roll_pd, roll_step, cfg->aileron_limit_deg,
-                         auth * cfg->aileron_limit_deg, in_control, applied->aileron_deg);
+                         cfg->sc_aileron_integ_limit, in_control, applied->aileron_deg);
   /* Past the bank limit the integrator keeps no part that holds the bank, the one it tracked
    * from the HP or its own: the proportional term rolls the wing back at once (HiL campaign
    * seed 26 #91: the HA held the 33 deg bank it inherited for seconds, its integrator unwinding
@@ -207,9 +203,9 @@ void ha_safety_ctrl_step(HaSafetyCtrlState *st, const HaAircraftConfig *cfg, con
   }
   out->elevator_deg = -nose_up_deg;
   /* Throttle is handled about the middle of its range so the same symmetric PID applies. */
-  out->throttle =
-      throttle_mid + pid(&st->throttle_integ, thr_pd, thr_step, throttle_half, auth * throttle_half,
-                         in_control, applied->throttle - throttle_mid);
+  out->throttle = throttle_mid + pid(&st->throttle_integ, thr_pd, thr_step, throttle_half,
+                                     cfg->sc_throttle_integ_limit, in_control,
+                                     applied->throttle - throttle_mid);
   if (!s->airborne) {
     out->throttle = cfg->throttle_min; /* on the ground the motor idles */
   }
