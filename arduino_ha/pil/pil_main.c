@@ -127,44 +127,23 @@ static void pil_irq_handler(void) {
 
 void ha_bench_fault_handler(void); /* bench/startup_m3.c: a fault ends the run */
 typedef void (*PilVector)(void);
-/* The start-up's table has only the core's exceptions; this one adds the device interrupts
- * (VTOR: aligned to a power of two above its size). Entry 0 and 1 are read only at reset. */
-__attribute__((aligned(128))) static const PilVector k_vectors[16u + IRQ_COUNT] = {
-    NULL,
-    NULL,
-    ha_bench_fault_handler,
-    ha_bench_fault_handler,
-    ha_bench_fault_handler,
-    ha_bench_fault_handler,
-    ha_bench_fault_handler,
-    NULL,
-    NULL,
-    NULL,
-    NULL,
-    NULL,
-    NULL,
-    NULL,
-    NULL,
-    NULL,
-    pil_irq_handler,
-    pil_irq_handler,
-    pil_irq_handler,
-    pil_irq_handler,
-    pil_irq_handler,
-    pil_irq_handler,
-    pil_irq_handler,
-    pil_irq_handler,
-    pil_irq_handler,
-    pil_irq_handler,
-    pil_irq_handler,
-    pil_irq_handler,
-    pil_irq_handler,
-    pil_irq_handler,
-    pil_irq_handler,
-    pil_irq_handler};
+#define VECTOR_NMI 2u
+#define VECTOR_USAGE_FAULT 6u
+#define VECTOR_IRQ0 16u
+/* The start-up's table has only the core's exceptions; this one adds the device interrupts. In
+ * RAM, filled at start (VTOR: aligned to a power of two above its size); entries 0 and 1 are read
+ * only at reset, the core's others but the faults never taken here. */
+static PilVector g_vectors[VECTOR_IRQ0 + IRQ_COUNT] __attribute__((aligned(128)));
 
 static void interrupts_start(void) {
-  SCB_VTOR = (uint32_t)(uintptr_t)k_vectors;
+  uint32_t k;
+  for (k = VECTOR_NMI; k <= VECTOR_USAGE_FAULT; ++k) {
+    g_vectors[k] = ha_bench_fault_handler;
+  }
+  for (k = VECTOR_IRQ0; k < VECTOR_IRQ0 + IRQ_COUNT; ++k) {
+    g_vectors[k] = pil_irq_handler;
+  }
+  SCB_VTOR = (uint32_t)(uintptr_t)g_vectors;
   NVIC_ISER0 = IRQ_ENABLED;
 }
 
@@ -179,25 +158,25 @@ static int bytes_waiting(unsigned mask) {
   return any;
 }
 
-/* Sleeps until a byte has come on one of the UARTs in mask (bit n: UART n) or, with ticks > 0,
- * that many timer ticks have passed; any other interrupt may end it early. Interrupts are masked
- * from the check to the WFI, so a byte that comes in between wakes it instead of being missed
- * (a pending interrupt ends WFI even while PRIMASK holds it off). */
-static void sleep_until_bytes(unsigned mask, uint32_t ticks) {
-  if (ticks > 0u) {
-    TIMER1_CTRL = 0u;
-    TIMER1_RELOAD = ticks;
-    TIMER1_VALUE = ticks;
-    TIMER1_CTRL = TIMER_CTRL_ENABLE_IRQ;
-  }
+/* Sleeps until a byte has come on one of the UARTs in mask (bit n: UART n) or another interrupt
+ * (timer 1's, say). Interrupts are masked from the check to the WFI, so a byte that comes in
+ * between wakes it instead of being missed (a pending interrupt ends WFI even while PRIMASK
+ * holds it off). */
+static void sleep_until_bytes(unsigned mask) {
   __asm volatile("cpsid i" ::: "memory");
   if (!bytes_waiting(mask)) {
     __asm volatile("wfi" ::: "memory");
   }
   __asm volatile("cpsie i" ::: "memory");
-  if (ticks > 0u) {
-    TIMER1_CTRL = 0u;
-  }
+}
+
+/* Timer 1 interrupts every ticks from now until stopped: the deadline of a bounded wait. Armed
+ * once a wait, not once a sleep: each register write is an exit into QEMU under its big lock. */
+static void wake_every(uint32_t ticks) {
+  TIMER1_CTRL = 0u;
+  TIMER1_RELOAD = ticks;
+  TIMER1_VALUE = ticks;
+  TIMER1_CTRL = TIMER_CTRL_ENABLE_IRQ;
 }
 
 static size_t uart_read(int n, uint8_t *bytes, size_t max_len) {
@@ -328,6 +307,10 @@ static void send_reply(PilBoard *b, uint16_t flags, uint64_t t_us, uint32_t wait
 static uint16_t gather_period_inputs(PilBoard *b, const HaSilStep *st, uint32_t *waited_ticks) {
   const uint32_t start = ha_insn_timer_read();
   const uint32_t bound = (st->wait_ms < 100000u ? st->wait_ms : 100000u) * TIMER_TICKS_PER_MS;
+  uint16_t timeouts = 0u;
+  if (bound > 0u) { /* with none, the first pass returns before it would sleep */
+    wake_every(bound);
+  }
   for (;;) {
     int want_cmd;
     int want_vn;
@@ -341,14 +324,17 @@ static uint16_t gather_period_inputs(PilBoard *b, const HaSilStep *st, uint32_t 
     want_vn = b->vn_bytes < st->vn_bytes;
     *waited_ticks = start - ha_insn_timer_read(); /* a down counter */
     if (!want_cmd && !want_vn) {
-      return 0u;
+      break;
     }
     if (*waited_ticks >= bound) {
-      return (uint16_t)((want_cmd ? HA_SIL_R_COMMAND_TIMEOUT : 0u) |
-                        (want_vn ? HA_SIL_R_VN_TIMEOUT : 0u));
+      timeouts = (uint16_t)((want_cmd ? HA_SIL_R_COMMAND_TIMEOUT : 0u) |
+                            (want_vn ? HA_SIL_R_VN_TIMEOUT : 0u));
+      break;
     }
-    sleep_until_bytes((1u << UART_HP) | (1u << UART_INS), bound - *waited_ticks);
+    sleep_until_bytes((1u << UART_HP) | (1u << UART_INS));
   }
+  TIMER1_CTRL = 0u;
+  return timeouts;
 }
 
 static void start_firmware(PilBoard *b) {
@@ -411,7 +397,7 @@ int main(void) {
     const uint8_t *payload = NULL;
     size_t len;
     if (uart_read(UART_CONTROL, &byte, 1u) == 0u) {
-      sleep_until_bytes(1u << UART_CONTROL, 0u);
+      sleep_until_bytes(1u << UART_CONTROL);
       continue;
     }
     len = pil_frame_rx_byte(&b->control, byte, &payload);
