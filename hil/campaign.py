@@ -33,6 +33,8 @@ def main(argv=None):
     ap.add_argument("--workers", type=int, default=None, help="LocalCluster workers (default: one per core)")
     ap.add_argument("--duration", type=float, default=45.0, help="simulated seconds per flight")
     ap.add_argument("--fault-window", default="8,20", help="the fault starts in this window (s, simulated)")
+    ap.add_argument("--ha", choices=("sil", "qemu"), default="sil",
+                    help="the HA in every flight: its host build or its Cortex-M3 machine code in QEMU (run_flight.py --ha)")
     ap.add_argument("--wall-limit", type=float, default=None, help="wall-clock seconds a flight may take")
     ap.add_argument("--out", default=None, help="campaign folder (default hil/out/campaign-<date>-<seed>)")
     ap.add_argument("--plan-only", action="store_true", help="print the plan's commands, fly nothing")
@@ -55,7 +57,7 @@ def main(argv=None):
             ap.error("unknown fault class %s (available: %s)" % (", ".join(unknown), ", ".join(iface.classes)))
     lo, hi = (float(v) for v in args.fault_window.split(","))
     plan = plan_mod.make_plan(args.flights, args.seed, classes, duration_s=args.duration,
-                              fault_window_s=(lo, hi), interface=iface)
+                              fault_window_s=(lo, hi), interface=iface, ha=args.ha)
     out = args.out or os.path.join(ROOT, "hil", "out", "campaign-%s-%d" % (
         datetime.datetime.utcnow().strftime("%Y-%m-%d_%H%M%S"), args.seed))
     if args.plan_only:
@@ -65,8 +67,8 @@ def main(argv=None):
         return 0
 
     from hil.campaigns import runner
-    print("campaign: %d flights of %g s over %s, seed %d, on %s; table: %s" % (
-        len(plan), args.duration, ",".join(classes), args.seed,
+    print("campaign: %d flights of %g s over %s, seed %d, HA %s, on %s; table: %s" % (
+        len(plan), args.duration, ",".join(classes), args.seed, args.ha,
         args.scheduler or "a LocalCluster of %d workers" % (args.workers or os.cpu_count() or 1),
         os.path.join(out, "flights.csv")), file=sys.stderr)
     rows = runner.run_campaign(plan, iface, out, scheduler=args.scheduler, workers=args.workers,

@@ -12,7 +12,8 @@ the simulator's pty (--vn200) itself. UART2 carries the simulator's control reco
 (arduino_ha/pil/pil_frame.h); this process connects to the simulator's control socket as ha_sil
 does and carries each record to the board and its reply back, without the reply's trailer (the
 board's count of dropped records, the period's instruction ticks and the bytes its UARTs
-dropped), which --record-log writes one line a reply ("t_us dropped ticks tx_dropped host_dropped"). Lockstep
+dropped, the bytes that came to a full receive ring), which --record-log writes one line a reply
+("t_us dropped ticks tx_dropped host_dropped rx_dropped"). Lockstep
 only: real time (--realtime) is not built.
 --icount runs QEMU with -icount shift=0, so a timer tick is 40 instructions (bench/insn_timer.h).
 SIGINT/SIGTERM, or the simulator closing the socket, stop QEMU and remove the symlink."""
@@ -37,7 +38,7 @@ from hil import ptys  # noqa: E402
 DEFAULT_IMAGE = os.path.join(ROOT, ".build", "pil", "ha_pil.elf")
 SYNC = b"\xa5\x5a"
 REPLY_LEN = 100
-TRAILER = struct.Struct("<III")
+TRAILER = struct.Struct("<IIII")
 
 
 def frame(payload):
@@ -98,7 +99,8 @@ class QemuBoard:
         self.relay = None
         self.stopping = threading.Event()
         self.reader = FrameReader()
-        self.tx_dropped = 0  # bytes the board's UARTs dropped (its latest reply's count)
+        self.tx_dropped = 0  # bytes the board's UARTs could not send (its latest reply's count)
+        self.rx_dropped = 0  # bytes that came to a full receive ring of the board (the same)
         self.hp_link_dropped = 0  # bytes for the host its pty could not take
 
     def start(self, timeout_s=20.0):
@@ -112,7 +114,9 @@ class QemuBoard:
                 "-chardev", ins, "-serial", "chardev:ins",
                 "-chardev", "socket,id=ctl,path=%s,server=on,wait=off" % socks["ctl"], "-serial", "chardev:ctl"]
         if self.icount:
-            argv += ["-icount", "shift=0,align=off,sleep=off"]
+            # sleep=on: while the guest sleeps in WFI waiting for bytes, its clock follows the
+            # host's; sleep=off would jump it to the wait's deadline before the bytes could come.
+            argv += ["-icount", "shift=0,align=off,sleep=on"]
         self.proc = subprocess.Popen(argv, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
                                      stderr=subprocess.PIPE)
         deadline = time.monotonic() + timeout_s
@@ -182,7 +186,7 @@ class QemuBoard:
                 raise ConnectionError("qemu closed the control UART")
             for payload in self.reader.feed(data):
                 if len(payload) == REPLY_LEN + TRAILER.size:
-                    dropped, ticks, self.tx_dropped = TRAILER.unpack_from(payload, REPLY_LEN)
+                    dropped, ticks, self.tx_dropped, self.rx_dropped = TRAILER.unpack_from(payload, REPLY_LEN)
                     return payload[:REPLY_LEN], dropped, ticks
 
     def exchange(self, record, timeout_s=30.0):
@@ -323,8 +327,8 @@ def main(argv=None):
             reply, dropped, ticks = board.exchange(record, timeout_s=120.0)
             replies += 1
             if log:
-                log.write("%d %d %d %d %d\n" % (struct.unpack_from("<Q", reply, 8)[0], dropped, ticks,
-                                                 board.tx_dropped, board.hp_link_dropped))
+                log.write("%d %d %d %d %d %d\n" % (struct.unpack_from("<Q", reply, 8)[0], dropped, ticks,
+                                                 board.tx_dropped, board.hp_link_dropped, board.rx_dropped))
             chan.send(reply)
     except (TimeoutError, OSError) as e:
         print("ha_qemu: %s" % e, file=sys.stderr)

@@ -10,9 +10,10 @@
  * Lockstep only: the board's micros() is the time of the latest step record, never a free-running
  * clock. CMSDK APB timer 0 runs free only to bound the waits for a period's inputs (wait_ms, as the
  * SIL bounds them in wall time) and to count the period's instructions under -icount shift=0
- * (../bench/insn_timer.h: 40 instructions a tick).
+ * (../bench/insn_timer.h: 40 instructions a tick); timer 1 wakes a bounded wait. The UARTs'
+ * received bytes come by interrupt into rings, and the loop sleeps (WFI) while nothing comes.
  *
- * The reply frame is the SIL's reply record followed by a PilReplyTrailer (three u32 LE).
+ * The reply frame is the SIL's reply record followed by a PilReplyTrailer (four u32 LE).
  * hil/ha_qemu.py starts QEMU and bridges the simulator's control socket to UART2. */
 #include <stdint.h>
 #include <string.h>
@@ -31,44 +32,163 @@
 #define UART_DATA(n) (*(volatile uint32_t *)(UART_BASE(n) + 0x00u))
 #define UART_STATE(n) (*(volatile uint32_t *)(UART_BASE(n) + 0x04u))
 #define UART_CTRL(n) (*(volatile uint32_t *)(UART_BASE(n) + 0x08u))
+#define UART_INTSTATUS(n) (*(volatile uint32_t *)(UART_BASE(n) + 0x0Cu)) /* write 1 to clear */
 #define UART_BAUDDIV(n) (*(volatile uint32_t *)(UART_BASE(n) + 0x10u))
 #define UART_STATE_TX_FULL 1u
 #define UART_STATE_RX_FULL 2u
-#define UART_CTRL_TX_RX 3u
+#define UART_CTRL_TX_RX_RXINT 0xBu /* TX and RX enabled, the RX interrupt */
+#define UART_INT_RX 2u
 #define UART_HP 0
 #define UART_INS 1
 #define UART_CONTROL 2
+#define UART_COUNT 3
+/* CMSDK APB timer 1: the wake-up of a bounded wait (timer 0 is the free-running insn_timer). */
+#define TIMER1_CTRL (*(volatile uint32_t *)0x40001000u)
+#define TIMER1_VALUE (*(volatile uint32_t *)0x40001004u)
+#define TIMER1_RELOAD (*(volatile uint32_t *)0x40001008u)
+#define TIMER1_INTCLEAR (*(volatile uint32_t *)0x4000100Cu)
+#define TIMER_CTRL_ENABLE_IRQ 0x9u
+#define NVIC_ISER0 (*(volatile uint32_t *)0xE000E100u)
+#define SCB_VTOR (*(volatile uint32_t *)0xE000ED08u)
+/* mps2-an385's interrupts (QEMU hw/arm/mps2.c): UART n's RX and TX at 2n and 2n + 1 (TX is never
+ * enabled in the UART), the timers at 8 and 9. They all go to the one handler, which asks each
+ * device itself. The UARTs' overrun line (12) stays off: nothing here would clear it. */
+#define IRQ_COUNT 16u
+#define IRQ_ENABLED 0x33Fu
 #define TIMER_TICKS_PER_MS 25000u
 /* A byte the host side does not take within this much timer time is dropped (and counted): a pty
  * nobody reads must not stop the HA (the link is built to lose bytes, as a full USB buffer on the
- * Due loses them). Generous, since QEMU's thread that writes the pty may wait for a loaded CPU. */
-#define UART_TX_WAIT_TICKS (50u * TIMER_TICKS_PER_MS)
-/* After a period's inputs have come, the ports are read on until they have been quiet this long:
- * QEMU hands a UART one byte at a time, so "what has arrived" is only known by waiting a little,
- * and bytes left unread (the host's time sync, say) would pile up from period to period. */
-#define QUIET_TICKS (TIMER_TICKS_PER_MS / 2u)
+ * Due loses them; ha_qemu.py's relay drains the socket and drops at the pty). Generous: QEMU's
+ * socket takes a few hundred one-byte writes before the relay must read, and at load 18 on the
+ * 2 shared cores 50 ms lost 77 bytes of the topic negotiation's burst. In lockstep a wait costs
+ * no simulated time. */
+#define UART_TX_WAIT_TICKS (1000u * TIMER_TICKS_PER_MS)
 #ifndef PIL_IDLE_SPINS
 #define PIL_IDLE_SPINS 200u
-#endif /* the board's 25 MHz APB clock */
+#endif
+/* What each UART's receive interrupt keeps until the loop reads it, as the Due's core keeps its
+ * Serial bytes in a ring its UART interrupt fills (a power of two). Between two steps the HP link
+ * and the VN-200 deliver one period's bytes, a few hundred. */
+#define RX_RING_LEN 2048u
 
 static void uart_init(int n) {
   UART_BAUDDIV(n) = 217u; /* 25 MHz / 115200; QEMU moves bytes at the host's pace anyway */
-  UART_CTRL(n) = UART_CTRL_TX_RX;
+  UART_CTRL(n) = UART_CTRL_TX_RX_RXINT;
 }
 
 /* Polls without touching a device: every register read of a spinning guest takes QEMU's big lock,
- * which the thread bringing the host's bytes to the UARTs needs too. */
+ * which the thread bringing the host's bytes to the UARTs needs too. Only the rare full TX
+ * register is waited on this way. */
 static void idle_a_little(void) {
   volatile uint32_t k;
   for (k = 0u; k < PIL_IDLE_SPINS; ++k) {
   }
 }
 
-static size_t uart_read(int n, uint8_t *bytes, size_t max_len) {
-  size_t got = 0u;
-  while (got < max_len && (UART_STATE(n) & UART_STATE_RX_FULL) != 0u) {
-    bytes[got++] = (uint8_t)UART_DATA(n);
+/* The CMSDK UART holds one received byte, and QEMU hands it the next only from its main loop after
+ * the guest has read that one. A guest polling the status register spends its time in register
+ * exits that take QEMU's big lock from the thread bringing the bytes (0.1-0.2x real time in a
+ * flight). So each byte raises the RX interrupt, the handler moves it into a ring, and the loop
+ * sleeps (WFI) until a byte or its deadline: the vCPU idles while the main loop delivers. Spinning
+ * on the rings a while before sleeping measured 2-4x slower a step on the shared 2 cores: the
+ * spinning vCPU takes the core the main loop needs. */
+typedef struct {
+  uint8_t bytes[RX_RING_LEN];
+  volatile uint32_t head; /* written by the handler only */
+  volatile uint32_t tail; /* written by the loop only */
+  volatile uint32_t dropped;
+} RxRing;
+
+static RxRing g_rx[UART_COUNT];
+
+static void take_received(int n) {
+  RxRing *r = &g_rx[n];
+  /* Cleared before the data register is read: a byte that comes after the read raises it anew. */
+  UART_INTSTATUS(n) = UART_INT_RX;
+  while ((UART_STATE(n) & UART_STATE_RX_FULL) != 0u) {
+    const uint8_t byte = (uint8_t)UART_DATA(n);
+    const uint32_t head = r->head;
+    if (head - r->tail < RX_RING_LEN) {
+      r->bytes[head % RX_RING_LEN] = byte;
+      r->head = head + 1u;
+    } else {
+      r->dropped++; /* as the Due's Serial drops into a full ring */
+    }
   }
+}
+
+static void pil_irq_handler(void) {
+  int n;
+  TIMER1_INTCLEAR = 1u;
+  for (n = 0; n < UART_COUNT; ++n) {
+    take_received(n);
+  }
+}
+
+void ha_bench_fault_handler(void); /* bench/startup_m3.c: a fault ends the run */
+typedef void (*PilVector)(void);
+#define VECTOR_NMI 2u
+#define VECTOR_USAGE_FAULT 6u
+#define VECTOR_IRQ0 16u
+/* The start-up's table has only the core's exceptions; this one adds the device interrupts. In
+ * RAM, filled at start (VTOR: aligned to a power of two above its size); entries 0 and 1 are read
+ * only at reset, the core's others but the faults never taken here. */
+static PilVector g_vectors[VECTOR_IRQ0 + IRQ_COUNT] __attribute__((aligned(128)));
+
+static void interrupts_start(void) {
+  uint32_t k;
+  for (k = VECTOR_NMI; k <= VECTOR_USAGE_FAULT; ++k) {
+    g_vectors[k] = ha_bench_fault_handler;
+  }
+  for (k = VECTOR_IRQ0; k < VECTOR_IRQ0 + IRQ_COUNT; ++k) {
+    g_vectors[k] = pil_irq_handler;
+  }
+  SCB_VTOR = (uint32_t)(uintptr_t)g_vectors;
+  NVIC_ISER0 = IRQ_ENABLED;
+}
+
+static int ring_empty(int n) { return g_rx[n].head == g_rx[n].tail; }
+
+static int bytes_waiting(unsigned mask) {
+  int n;
+  int any = 0;
+  for (n = 0; n < UART_COUNT; ++n) {
+    any |= ((mask >> n) & 1u) != 0u && !ring_empty(n);
+  }
+  return any;
+}
+
+/* Sleeps until a byte has come on one of the UARTs in mask (bit n: UART n) or another interrupt
+ * (timer 1's, say). Interrupts are masked from the check to the WFI, so a byte that comes in
+ * between wakes it instead of being missed (a pending interrupt ends WFI even while PRIMASK
+ * holds it off). */
+static void sleep_until_bytes(unsigned mask) {
+  __asm volatile("cpsid i" ::: "memory");
+  if (!bytes_waiting(mask)) {
+    __asm volatile("wfi" ::: "memory");
+  }
+  __asm volatile("cpsie i" ::: "memory");
+}
+
+/* Timer 1 interrupts every ticks from now until stopped: the deadline of a bounded wait. Armed
+ * once a wait, not once a sleep: each register write is an exit into QEMU under its big lock. */
+static void wake_every(uint32_t ticks) {
+  TIMER1_CTRL = 0u;
+  TIMER1_RELOAD = ticks;
+  TIMER1_VALUE = ticks;
+  TIMER1_CTRL = TIMER_CTRL_ENABLE_IRQ;
+}
+
+static size_t uart_read(int n, uint8_t *bytes, size_t max_len) {
+  RxRing *r = &g_rx[n];
+  const uint32_t head = r->head;
+  uint32_t tail = r->tail;
+  size_t got = 0u;
+  while (got < max_len && tail != head) {
+    bytes[got++] = r->bytes[tail % RX_RING_LEN];
+    tail++;
+  }
+  r->tail = tail;
   return got;
 }
 
@@ -87,6 +207,10 @@ static void uart_write(int n, const uint8_t *bytes, size_t len) {
     }
     UART_DATA(n) = bytes[k];
   }
+}
+
+static uint32_t rx_dropped(void) {
+  return g_rx[UART_HP].dropped + g_rx[UART_INS].dropped + g_rx[UART_CONTROL].dropped;
 }
 
 /* ---- the Board ---- */
@@ -149,8 +273,9 @@ typedef struct {
   uint32_t period_insn_ticks; /* timer ticks of the period's ha_firmware_period (40 instr each
                                  under -icount shift=0) */
   uint32_t tx_dropped;        /* bytes a UART's host side did not take in time */
+  uint32_t rx_dropped;        /* bytes that came to a full receive ring */
 } PilReplyTrailer;
-#define PIL_TRAILER_LEN 12u
+#define PIL_TRAILER_LEN 16u
 
 static void send_reply(PilBoard *b, uint16_t flags, uint64_t t_us, uint32_t wait_us) {
   uint8_t rec[HA_SIL_REPLY_RECORD_LEN + PIL_TRAILER_LEN];
@@ -167,27 +292,29 @@ static void send_reply(PilBoard *b, uint16_t flags, uint64_t t_us, uint32_t wait
   tr.records_dropped = b->control.bad_length + b->control.bad_crc + b->records_undecodable;
   tr.period_insn_ticks = b->period_ticks;
   tr.tx_dropped = g_tx_dropped;
+  tr.rx_dropped = rx_dropped();
   ha_sil_put_u32(rec, &at, tr.records_dropped);
   ha_sil_put_u32(rec, &at, tr.period_insn_ticks);
   ha_sil_put_u32(rec, &at, tr.tx_dropped);
+  ha_sil_put_u32(rec, &at, tr.rx_dropped);
   uart_write(UART_CONTROL, frame, pil_frame_encode(rec, sizeof rec, frame, sizeof frame));
 }
 
 /* Reads the HP link and the VN-200 port until they have delivered what the simulator says it
- * sent for this period, bounded by wait_ms of timer time. Returns the HA_SIL_R_*_TIMEOUT flags. */
+ * sent for this period, bounded by wait_ms of timer time, as the SIL does (ha_sil.c): what has
+ * come is in the receive rings, so no wait for the ports to go quiet. Returns the
+ * HA_SIL_R_*_TIMEOUT flags. */
 static uint16_t gather_period_inputs(PilBoard *b, const HaSilStep *st, uint32_t *waited_ticks) {
   const uint32_t start = ha_insn_timer_read();
   const uint32_t bound = (st->wait_ms < 100000u ? st->wait_ms : 100000u) * TIMER_TICKS_PER_MS;
-  uint32_t last_byte = start;
+  uint16_t timeouts = 0u;
+  if (bound > 0u) { /* with none, the first pass returns before it would sleep */
+    wake_every(bound);
+  }
   for (;;) {
     int want_cmd;
     int want_vn;
-    const uint32_t now = ha_insn_timer_read();
-    if (ha_firmware_receive(&b->fw, b->now_us, 1u) > 0u) {
-      last_byte = now;
-    } else {
-      idle_a_little();
-    }
+    (void)ha_firmware_receive(&b->fw, b->now_us, RX_RING_LEN);
     if ((st->flags & HA_SIL_WAIT_COUNT) != 0u) {
       want_cmd = (st->flags & HA_SIL_WAIT_COMMAND) != 0u && b->commands < st->cmd_seq;
     } else {
@@ -195,15 +322,19 @@ static uint16_t gather_period_inputs(PilBoard *b, const HaSilStep *st, uint32_t 
                  !(b->commands > 0u && b->last_cmd_seq == st->cmd_seq);
     }
     want_vn = b->vn_bytes < st->vn_bytes;
-    *waited_ticks = start - now; /* a down counter */
-    if (!want_cmd && !want_vn && (uint32_t)(last_byte - now) >= QUIET_TICKS) {
-      return 0u;
+    *waited_ticks = start - ha_insn_timer_read(); /* a down counter */
+    if (!want_cmd && !want_vn) {
+      break;
     }
     if (*waited_ticks >= bound) {
-      return (uint16_t)((want_cmd ? HA_SIL_R_COMMAND_TIMEOUT : 0u) |
-                        (want_vn ? HA_SIL_R_VN_TIMEOUT : 0u));
+      timeouts = (uint16_t)((want_cmd ? HA_SIL_R_COMMAND_TIMEOUT : 0u) |
+                            (want_vn ? HA_SIL_R_VN_TIMEOUT : 0u));
+      break;
     }
+    sleep_until_bytes((1u << UART_HP) | (1u << UART_INS));
   }
+  TIMER1_CTRL = 0u;
+  return timeouts;
 }
 
 static void start_firmware(PilBoard *b) {
@@ -226,7 +357,7 @@ static void on_record(PilBoard *b, const uint8_t *payload, size_t len) {
     return;
   }
   if (st.magic == HA_SIL_MAGIC_POLL) {
-    (void)ha_firmware_receive(&b->fw, b->now_us, 1u);
+    (void)ha_firmware_receive(&b->fw, b->now_us, RX_RING_LEN);
     ha_firmware_service(&b->fw, b->now_us);
     send_reply(b, 0u, b->now_us, 0u);
     return;
@@ -253,6 +384,7 @@ int main(void) {
     uart_init(n);
   }
   ha_insn_timer_start();
+  interrupts_start();
   pil_frame_rx_init(&b->control);
   ha_sil_pins_board(&b->iface); /* standalone 0: nothing reads good before the first step */
   b->iface.ctx = b;
@@ -265,7 +397,7 @@ int main(void) {
     const uint8_t *payload = NULL;
     size_t len;
     if (uart_read(UART_CONTROL, &byte, 1u) == 0u) {
-      idle_a_little();
+      sleep_until_bytes(1u << UART_CONTROL);
       continue;
     }
     len = pil_frame_rx_byte(&b->control, byte, &payload);

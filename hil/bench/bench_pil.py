@@ -1,5 +1,10 @@
 #!/usr/bin/env python3
-"""make bench-pil: the HA firmware's instructions per period in the loop, counted in QEMU.
+"""make bench-pil: the PIL loop's speed, and the HA firmware's instructions per period in the loop,
+counted in QEMU.
+
+First the pace a flight gets (no -icount): 1,000 periods with the HP's ServoCommand and the
+VN-200's bytes, steps per second and QEMU's CPU. Wall time on a shared machine measures the
+neighbours too: the machine line gives the load at the start.
 
 The PIL image (arduino_ha/pil) runs under -icount shift=0 (a virtual nanosecond per instruction;
 CMSDK timer 0 at 25 MHz then ticks once every 40 instructions: arduino_ha/bench/insn_timer.h,
@@ -7,23 +12,65 @@ checked by make bench-ha's calibration), driven as the simulator drives it (hil/
 rig): parked with its own VN-200, the HA alone; then the HP's ServoCommands over rosserial until the
 HP flies; then the pilot's switch. Each reply carries the timer ticks of its period's
 ha_firmware_period: the core's step, servos, reset line, retained words and the link's reports
-(DecisionStatus, pwm, home) written to the UART. Not counted: reading the ports (the link's and the
-VN-200's decoding happen before the period). Prints metric: lines against the 16,800 budget
-(2 % of a 10 ms period at the Due's 84 MHz: arduino_ha/README.md)."""
+(DecisionStatus, pwm, home) written to the UART, and a receive interrupt that comes meanwhile.
+Not counted: reading the ports (the link's and the VN-200's decoding happen before the period).
+Prints metric: lines against the 16,800 budget (2 % of a 10 ms period at the Due's 84 MHz:
+arduino_ha/README.md)."""
 import os
+import subprocess
 import sys
 import tempfile
+import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "test"))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "tools"))
+from bench_machine import machine  # noqa: E402
 from ha_in_loop import HP, PIC, PilRig, build_pil_image, frame, negotiate, servo_command  # noqa: E402
 
 INSN_PER_TICK = 40
 BUDGET = 16800
 
 
+def qemu_version():
+    out = subprocess.run(["qemu-system-arm", "--version"], stdout=subprocess.PIPE, check=True).stdout
+    return out.decode().split()[3]
+
+
+def qemu_cpu_s(pid):
+    """User and system CPU seconds QEMU has used (proc(5): fields 14 and 15 of stat)."""
+    with open("/proc/%d/stat" % pid) as f:
+        fields = f.read().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def speed(image, steps=1000):
+    """The loop's pace as a flight sets it (no -icount): the HP's ServoCommand and the VN-200's
+    bytes each period, the step record, the reply. Returns (steps/s, QEMU's CPU % of one core)."""
+    rig = PilRig(image)
+    try:
+        k = 0
+        for k in range(0, 50):
+            rig.step(k)
+        topic, k = negotiate(rig, k + 1)
+        t0, cpu0 = time.monotonic(), qemu_cpu_s(rig.board.proc.pid)
+        for seq in range(1, steps + 1):
+            os.write(rig.host, frame(topic, servo_command(seq, -2.5)))
+            rig.step(k + seq, wait_for=seq)
+            rig.frames_from_ha()  # the HP reads what the HA sends, as the arduino node does
+        wall, cpu = time.monotonic() - t0, qemu_cpu_s(rig.board.proc.pid) - cpu0
+    finally:
+        rig.close()
+    return steps / wall, 100.0 * cpu / wall
+
+
 def main():
+    header = machine("QEMU %s" % qemu_version())
     image = build_pil_image(tempfile.mkdtemp(prefix="bench_pil_"))
+    rate, cpu = speed(image)
+    print("metric: pil_steps_per_s %.0f steps/s (%.2fx real time at 100 Hz; 1,000 periods with the HP's "
+          "commands, lockstep, no -icount)" % (rate, rate / 100.0))
+    print("metric: pil_qemu_cpu %.0f %% of one core" % cpu)
     rig = PilRig(image, icount=True)
     periods = {"ha": [], "hp": [], "manual": []}
     try:
@@ -53,6 +100,7 @@ def main():
     print("metric: pil_period_insn_max %d instructions" % every[-1])
     print("budget: worst period in the loop %d of %d instructions: %s" % (
         every[-1], BUDGET, "MET" if every[-1] <= BUDGET else "OVER"))
+    print("machine: %s" % header)
     return 0
 
 

@@ -20,7 +20,7 @@ import uuid
 TOKEN_VAR = "HIL_CAMPAIGN_FLIGHT"
 # The row's columns, in order (the CSV's header).
 COLUMNS = ["flight_id", "fault_class", "seed", "fault_at_s", "fault_duration_s", "fault_params",
-           "wind_mps", "wind_from_deg", "turbulence", "beyond_design_wind", "status", "reason", "took_effect", "ok", "broke_property", "unsafe_commands",
+           "wind_mps", "wind_from_deg", "turbulence", "beyond_design_wind", "ha", "status", "reason", "took_effect", "ok", "broke_property", "unsafe_commands",
            "envelope_violations_under_ha_s", "sx_inherited_from_hp_s", "sx_left_under_ha_s",
            "max_sx_row_under_ha", "takeover_latency_s", "takeover_within_one_period", "aircraft_crashed",
            "recovery_s", "latched", "stalled_under_ha_s", "longest_stall_under_ha_s", "stalled_from_fault_s",
@@ -227,7 +227,7 @@ def run(flight, argv, folder, wall_limit_s, term_grace_s=30.0, env=None):
                fault_at_s=flight.fault_at_s, fault_duration_s=flight.fault_duration_s,
                fault_params=json.dumps(dict(flight.params), sort_keys=True),
                wind_mps=getattr(flight, "wind_mps", 0.0), wind_from_deg=getattr(flight, "wind_from_deg", 0.0),
-               turbulence=getattr(flight, "turbulence", "none"),
+               turbulence=getattr(flight, "turbulence", "none"), ha=getattr(flight, "ha", "sil"),
                flight_duration_s=flight.duration_s, folder=folder,
                command=" ".join(_quote(a) for a in argv), worker=socket.gethostname())
     t0 = time.monotonic()

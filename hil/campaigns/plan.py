@@ -40,6 +40,9 @@ class Flight:
     wind_mps: float = 0.0
     wind_from_deg: float = 0.0
     turbulence: str = "none"
+    # The HA in the loop (run_flight.py's --ha): its host build, or its Cortex-M3 machine code
+    # in QEMU.
+    ha: str = "sil"
 
     def params_dict(self):
         return dict(self.params)
@@ -211,7 +214,7 @@ def _fmt(v):
 
 
 def make_plan(flights, seed, classes, duration_s=45.0, fault_window_s=(8.0, 20.0),
-              fault_duration_s=(0.5, 6.0), interface=None, wind=True):
+              fault_duration_s=(0.5, 6.0), interface=None, wind=True, ha="sil"):
     """flights: how many; seed: the campaign seed; classes: the fault classes to deal from.
     A fault starts in fault_window_s (after the HP has taken control, leaving time for the
     recovery) on the HA's 10 ms grid; a fault lasts fault_duration_s (steering faults 8-20 s; a
@@ -237,7 +240,7 @@ def make_plan(flights, seed, classes, duration_s=45.0, fault_window_s=(8.0, 20.0
         dur = _duration(cls, frng, fault_duration_s) if has_duration else -1.0
         params = _class_params(cls, frng) if has_params else ()
         fl = Flight(flight_id=i, fault_class=cls, seed=frng.randrange(1, 2 ** 31 - 1),
-                    fault_at_s=at, fault_duration_s=dur, params=params, duration_s=duration_s)
+                    fault_at_s=at, fault_duration_s=dur, params=params, duration_s=duration_s, ha=ha)
         if windy:
             w = draw_wind(seed, i, limit_ftps)
             fl = dataclasses.replace(fl, wind_mps=w[0], wind_from_deg=w[1], turbulence=w[2])
@@ -257,6 +260,8 @@ def command(flight, folder, interface, run_flight=RUN_FLIGHT, python=None):
     if getattr(interface, "has_wind", False):
         argv += ["--wind-mps", "%g" % flight.wind_mps, "--wind-from-deg", "%g" % flight.wind_from_deg,
                  "--turbulence", flight.turbulence]
+    if getattr(flight, "ha", "sil") != "sil":
+        argv += ["--ha", flight.ha]
     argv += ["--duration", "%g" % flight.duration_s, "--folder", folder, "--no-bag", "--quiet"]
     return argv
 

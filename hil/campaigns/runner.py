@@ -130,7 +130,7 @@ def run_campaign(plan, interface, out_dir, scheduler=None, workers=None, wall_li
                 row = {c: None for c in flight_mod.COLUMNS}
                 row.update(flight_id=fl.flight_id, fault_class=fl.fault_class, seed=fl.seed,
                            fault_at_s=fl.fault_at_s, fault_duration_s=fl.fault_duration_s,
-                           fault_params=json.dumps(dict(fl.params), sort_keys=True), status="died",
+                           fault_params=json.dumps(dict(fl.params), sort_keys=True), ha=fl.ha, status="died",
                            reason="the task failed on Dask: %s: %s" % (type(e).__name__, str(e)[:200]),
                            flight_duration_s=fl.duration_s, folder=folder, command=plan_mod.shell(argv),
                            broke_property=False)

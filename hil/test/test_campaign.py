@@ -145,6 +145,22 @@ def test_every_flight_of_every_class_flies_its_own_wind_up_to_beyond_the_has_lim
     assert "--wind-mps" not in plan_mod.command(plan[0], "/tmp/f", AGREED)
 
 
+def test_a_campaign_with_ha_qemu_flies_every_flight_with_the_ha_in_qemu_and_the_same_plan_otherwise():
+    """campaign.py --ha qemu: each flight's command (the one flown and the replay) takes --ha qemu,
+    and the flights are those of the SIL campaign with the same seed."""
+    argv = [sys.executable, os.path.join(ROOT, "hil", "campaign.py"), "--flights", "6", "--seed", "5",
+            "--classes", "crash,hang", "--plan-only", "--out", "/tmp/c"]
+    sil = subprocess.run(argv, stdout=subprocess.PIPE, check=True).stdout.decode().splitlines()
+    qemu = subprocess.run(argv + ["--ha", "qemu"], stdout=subprocess.PIPE, check=True).stdout.decode().splitlines()
+    assert len(qemu) == 6 and all(" --ha qemu " in line for line in qemu)
+    assert not any("--ha" in line for line in sil)
+    assert [line.replace(" --ha qemu", "") for line in qemu] == sil
+    fl = plan_mod.make_plan(1, 5, ("quick",), ha="qemu", interface=AGREED)[0]
+    folder = tempfile.mkdtemp(prefix="campaign_qemu_test_")
+    row = flight_mod.run(fl, plan_mod.command(fl, folder, AGREED, run_flight=FAKE), folder, 60.0)
+    assert row["status"] == "ok" and row["ha"] == "qemu" and " --ha qemu " in row["command"]
+
+
 def test_the_classes_come_from_this_checkouts_run_flight():
     iface = plan_mod.discover()
     assert {"crash", "hang"} <= set(iface.classes)
