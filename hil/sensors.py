@@ -54,10 +54,14 @@ class GaussMarkov:
     def __init__(self, rng, sigma, tau_s):
         self.rng, self.sigma, self.tau_s = rng, sigma, tau_s
         self.x = rng.gauss(0.0, sigma)
+        self.dt_s = None  # the step the coefficients below are for: every caller keeps one
 
     def step(self, dt_s):
-        a = math.exp(-dt_s / self.tau_s)
-        self.x = a * self.x + self.sigma * math.sqrt(1.0 - a * a) * self.rng.gauss(0.0, 1.0)
+        if dt_s != self.dt_s:
+            self.dt_s = dt_s
+            self.a = math.exp(-dt_s / self.tau_s)
+            self.k = self.sigma * math.sqrt(1.0 - self.a * self.a)
+        self.x = self.a * self.x + self.k * self.rng.gauss(0.0, 1.0)
         return self.x
 
 
