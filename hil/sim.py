@@ -763,6 +763,7 @@ class Simulation:
         self.home = (home_lat, home_lon, parked.alt_msl_m)
         self.preflight()
         wall0 = time.monotonic()
+        cpu0 = time.process_time()  # this process's CPU, its rospy threads included
         self.timer.t = time.perf_counter()
         steps = int(round(self.duration_s * self.rate_hz))
         ground_steps = int(round(self.ground_s * self.rate_hz))
@@ -816,6 +817,7 @@ class Simulation:
                     diag = (now, k, self.late_steps)
         finally:
             self.wall_s = time.monotonic() - wall0
+            self.cpu_s = time.process_time() - cpu0
             self.write_progress(k * self.period_us * 1e-6)
 
     def publish_diagnostics(self, k, now, since):
