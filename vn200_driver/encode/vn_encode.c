@@ -1,6 +1,7 @@
 #include "vn_encode.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <string.h>
 
 #include "vn_binary.h"
@@ -51,13 +52,6 @@ static void put_f32(Writer *w, double x) {
   put_le(w, u, 4u);
 }
 
-static void put_f32s(Writer *w, const double *x, unsigned n) {
-  unsigned i;
-  for (i = 0u; i < n; ++i) {
-    put_f32(w, x[i]);
-  }
-}
-
 /* vn200_emulation.quat_ned: body relative to NED, (x, y, z, w), the same operations in the same
  * order (Python's math.cos and math.sin are the C library's). */
 static void put_quaternion(Writer *w, const double ypr_deg[3]) {
@@ -78,81 +72,118 @@ static void put_quaternion(Writer *w, const double ypr_deg[3]) {
   q[1] = cr * sp * cy + sr * cp * sy;
   q[2] = cr * cp * sy - sr * sp * cy;
   q[3] = cr * cp * cy + sr * sp * sy;
-  put_f32s(w, q, 4u);
+  put_f32(w, q[0]);
+  put_f32(w, q[1]);
+  put_f32(w, q[2]);
+  put_f32(w, q[3]);
 }
+
+typedef enum {
+  ENC_U8,
+  ENC_U16,
+  ENC_U64,
+  ENC_F32,
+  ENC_F64,
+  ENC_QUAT,
+  ENC_GPS_TOW,
+  ENC_GPS_WEEK
+} EncKind;
+
+/* A field the solution carries: `count` values of `kind` from the solution's member at `offset`. */
+typedef struct {
+  uint8_t group;
+  uint8_t bit;
+  uint8_t kind;
+  uint8_t count;
+  size_t offset;
+} EncField;
+
+#define ENC_FIELD(g, b, kind, n, member) \
+  { g, b, kind, n, offsetof(VnSolution, member) }
+
+/* vn200_emulation.field_bytes, in the manual's field order; MagPres is the three magnetic
+ * components, temperature and pressure: five doubles in a row in VnSolution. */
+static const EncField k_fields[] = {
+    ENC_FIELD(0u, 0u, ENC_U64, 1u, time_startup_ns),
+    ENC_FIELD(0u, 1u, ENC_U64, 1u, time_gps_ns),
+    ENC_FIELD(0u, 3u, ENC_F32, 3u, ypr_deg),
+    ENC_FIELD(0u, 4u, ENC_QUAT, 3u, ypr_deg),
+    ENC_FIELD(0u, 5u, ENC_F32, 3u, angular_rate_radps),
+    ENC_FIELD(0u, 6u, ENC_F64, 3u, lla),
+    ENC_FIELD(0u, 7u, ENC_F32, 3u, vel_ned_mps),
+    ENC_FIELD(0u, 8u, ENC_F32, 3u, accel_mps2),
+    ENC_FIELD(0u, 10u, ENC_F32, 5u, mag_gauss),
+    ENC_FIELD(0u, 12u, ENC_U16, 1u, ins_status),
+    ENC_FIELD(1u, 0u, ENC_U64, 1u, time_startup_ns),
+    ENC_FIELD(1u, 2u, ENC_GPS_TOW, 1u, time_gps_ns),
+    ENC_FIELD(1u, 3u, ENC_GPS_WEEK, 1u, time_gps_ns),
+    ENC_FIELD(3u, 3u, ENC_U8, 1u, num_sats),
+    ENC_FIELD(3u, 4u, ENC_U8, 1u, gps_fix),
+    ENC_FIELD(3u, 9u, ENC_F32, 3u, gps_pos_unc_m),
+    ENC_FIELD(3u, 10u, ENC_F32, 1u, gps_vel_unc_mps),
+    ENC_FIELD(4u, 8u, ENC_F32, 3u, ypr_unc_deg),
+    ENC_FIELD(5u, 0u, ENC_U16, 1u, ins_status),
+    ENC_FIELD(5u, 1u, ENC_F64, 3u, lla),
+    ENC_FIELD(5u, 4u, ENC_F32, 3u, vel_ned_mps),
+    ENC_FIELD(5u, 9u, ENC_F32, 1u, ins_pos_unc_m),
+    ENC_FIELD(5u, 10u, ENC_F32, 1u, ins_vel_unc_mps),
+};
+
+/* MagPres reads five doubles from mag_gauss on: they must lie in a row. */
+typedef char mag_pres_in_a_row[(offsetof(VnSolution, pressure_kpa) ==
+                                offsetof(VnSolution, mag_gauss) + 4u * sizeof(double))
+                                   ? 1
+                                   : -1];
 
 /* Writes field `bit` of group index `g`; returns 0 if the solution does not carry it. */
 static int put_field(Writer *w, unsigned g, unsigned bit, const VnSolution *s) {
-  switch (g * 16u + bit) {
-    case 0u * 16u + 0u:
-    case 1u * 16u + 0u:
-      put_le(w, s->time_startup_ns, 8u);
-      return 1;
-    case 0u * 16u + 1u:
-      put_le(w, s->time_gps_ns, 8u);
-      return 1;
-    case 0u * 16u + 3u:
-      put_f32s(w, s->ypr_deg, 3u);
-      return 1;
-    case 0u * 16u + 4u:
-      put_quaternion(w, s->ypr_deg);
-      return 1;
-    case 0u * 16u + 5u:
-      put_f32s(w, s->angular_rate_radps, 3u);
-      return 1;
-    case 0u * 16u + 6u:
-    case 5u * 16u + 1u:
-      put_f64(w, s->lla[0]);
-      put_f64(w, s->lla[1]);
-      put_f64(w, s->lla[2]);
-      return 1;
-    case 0u * 16u + 7u:
-    case 5u * 16u + 4u:
-      put_f32s(w, s->vel_ned_mps, 3u);
-      return 1;
-    case 0u * 16u + 8u:
-      put_f32s(w, s->accel_mps2, 3u);
-      return 1;
-    case 0u * 16u + 10u:
-      put_f32s(w, s->mag_gauss, 3u);
-      put_f32(w, s->temp_c);
-      put_f32(w, s->pressure_kpa);
-      return 1;
-    case 0u * 16u + 12u:
-    case 5u * 16u + 0u:
-      put_le(w, s->ins_status, 2u);
-      return 1;
-    case 1u * 16u + 2u:
-      put_le(w, s->time_gps_ns % NS_PER_WEEK, 8u);
-      return 1;
-    case 1u * 16u + 3u:
-      /* 2^64 ns are 30,500 weeks: the week always fits its 16 bits. */
-      put_le(w, s->time_gps_ns / NS_PER_WEEK, 2u);
-      return 1;
-    case 3u * 16u + 3u:
-      put_u8(w, s->num_sats);
-      return 1;
-    case 3u * 16u + 4u:
-      put_u8(w, s->gps_fix);
-      return 1;
-    case 3u * 16u + 9u:
-      put_f32s(w, s->gps_pos_unc_m, 3u);
-      return 1;
-    case 3u * 16u + 10u:
-      put_f32(w, s->gps_vel_unc_mps);
-      return 1;
-    case 4u * 16u + 8u:
-      put_f32s(w, s->ypr_unc_deg, 3u);
-      return 1;
-    case 5u * 16u + 9u:
-      put_f32(w, s->ins_pos_unc_m);
-      return 1;
-    case 5u * 16u + 10u:
-      put_f32(w, s->ins_vel_unc_mps);
-      return 1;
-    default:
-      return 0;
+  size_t i;
+  for (i = 0u; i < sizeof k_fields / sizeof k_fields[0]; ++i) {
+    const EncField *f = &k_fields[i];
+    const unsigned char *p = (const unsigned char *)s + f->offset;
+    double d[5];
+    uint64_t u = 0u;
+    uint16_t h;
+    unsigned k;
+    if (f->group != g || f->bit != bit) {
+      continue;
+    }
+    switch (f->kind) {
+      case ENC_U8:
+        put_u8(w, *p);
+        break;
+      case ENC_U16:
+        memcpy(&h, p, sizeof h);
+        put_le(w, h, 2u);
+        break;
+      case ENC_F32:
+      case ENC_F64:
+      case ENC_QUAT:
+        memcpy(d, p, f->count * sizeof d[0]);
+        for (k = 0u; f->kind != ENC_QUAT && k < f->count; ++k) {
+          if (f->kind == ENC_F32) {
+            put_f32(w, d[k]);
+          } else {
+            put_f64(w, d[k]);
+          }
+        }
+        if (f->kind == ENC_QUAT) {
+          put_quaternion(w, d);
+        }
+        break;
+      default: /* the 64-bit times */
+        memcpy(&u, p, sizeof u);
+        /* 2^64 ns are 30,500 weeks: the week always fits its 16 bits. */
+        put_le(w,
+               f->kind == ENC_GPS_TOW    ? u % NS_PER_WEEK
+               : f->kind == ENC_GPS_WEEK ? u / NS_PER_WEEK
+                                         : u,
+               f->kind == ENC_GPS_WEEK ? 2u : 8u);
+        break;
+    }
+    return 1;
   }
+  return 0;
 }
 
 size_t vn_encode_solution_size(void) { return sizeof(VnSolution); }
