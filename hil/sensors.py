@@ -2,7 +2,9 @@
 
 - VN-200 port 2 (the HP's `vn200` node): a pty that answers the node's ASCII configuration as the
   sensor does and streams the binary output the node writes (Binary Output 2, register 76),
-  with vn200_driver/scripts/vn200_emulation.py, the fake sensor's own packet and register code.
+  with vn200_driver/scripts/vn200_emulation.py, the fake sensor's own register code; the packets
+  are built by the C99 encoder (vn200_driver/encode, one call each through vn200_encode.py),
+  whose bytes are the fake sensor's Python encoder's (vn200_driver/test/test_vn200_encode.py).
 - VN-200 port 1 (the HA): Binary Output 1 as configured once on the bench and saved to the
   sensor's flash (arduino_ha/README.md, "VN-200"): Common YPR, angular rate, position, velocity
   and INS status, and GPS fix, at 100 Hz, 115200 baud.
@@ -26,7 +28,8 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 from hil import ptys  # noqa: E402
 from hil.units import FT_PER_M, G_MPS2  # noqa: E402
 from vn200_emulation import (INS_STATUS_TRACKING_FIX, NS_PER_WEEK, Registers, Solution,  # noqa: E402
-                             binary_packet, packet_length)
+                             packet_length)
+from vn200_encode import PacketEncoder  # noqa: E402
 
 WGS84_A = 6378137.0
 WGS84_E2 = 6.69437999014e-3
@@ -54,10 +57,14 @@ class GaussMarkov:
     def __init__(self, rng, sigma, tau_s):
         self.rng, self.sigma, self.tau_s = rng, sigma, tau_s
         self.x = rng.gauss(0.0, sigma)
+        self.dt_s = None  # the step the coefficients below are for: every caller keeps one
 
     def step(self, dt_s):
-        a = math.exp(-dt_s / self.tau_s)
-        self.x = a * self.x + self.sigma * math.sqrt(1.0 - a * a) * self.rng.gauss(0.0, 1.0)
+        if dt_s != self.dt_s:
+            self.dt_s = dt_s
+            self.a = math.exp(-dt_s / self.tau_s)
+            self.k = self.sigma * math.sqrt(1.0 - self.a * self.a)
+        self.x = self.a * self.x + self.k * self.rng.gauss(0.0, 1.0)
         return self.x
 
 
@@ -191,6 +198,7 @@ class Vn200Port:
         self.packets = 0
         self.log = []
         self.on_written = None  # on_written(index of the first packet, count) after each write
+        self.encoder = None  # PacketEncoder of the stream (groups, masks) it was made for
         self.solution_filter = None  # solution_filter(sensor_t_s, solution) -> solution (faults)
 
     def service_commands(self):
@@ -231,16 +239,19 @@ class Vn200Port:
             self.errors = Vn200Errors(self.seed, "port%d/%d/%d" % (self.registers.port, divisor, groups), rate,
                                       self.solution_errors)
             self.next_index = int(math.floor(t_s * rate + 1e-9))
+        if self.encoder is None or self.encoder_stream != (groups, tuple(masks)):
+            self.encoder, self.encoder_stream = PacketEncoder(groups, masks), (groups, tuple(masks))
+            self.encoder_latency_s = self.latency_s()
         out = bytearray()
         n = 0
-        lat = self.latency_s()
+        lat = self.encoder_latency_s
         first = self.packets
         while self.next_index / rate <= t_s + 1e-9:
             ts = self.next_index / rate
             sol = self.errors.solution(truth_at(ts - lat), ts, 1.0 / rate)
             if self.solution_filter is not None:
                 sol = self.solution_filter(ts, sol)
-            out += binary_packet(groups, masks, sol)
+            out += self.encoder.packet(sol)
             self.next_index += 1
             n += 1
         if out:

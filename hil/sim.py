@@ -429,13 +429,15 @@ class Simulation:
         self.history.append((t_s, self.fdm.truth()))
 
     def truth_at(self, t_s):
-        best = self.history[0][1]
-        for ts, tr in self.history:
+        """The newest recorded truth at or before t_s (the oldest kept if none is). The history
+        is in time order and the sensors ask for the last few entries: searched from the newest
+        end, since walking all 400 from the oldest was the simulator's largest cost per step."""
+        h = self.history
+        for i in range(len(h) - 1, -1, -1):
+            ts, tr = h[i]
             if ts <= t_s + 1e-9:
-                best = tr
-            else:
-                break
-        return best
+                return tr
+        return h[0][1]
 
     def truth_since(self, t_s):
         """(t_s, HilTruth) of every step from t_s on."""
@@ -761,6 +763,7 @@ class Simulation:
         self.home = (home_lat, home_lon, parked.alt_msl_m)
         self.preflight()
         wall0 = time.monotonic()
+        cpu0 = time.process_time()  # this process's CPU, its rospy threads included
         self.timer.t = time.perf_counter()
         steps = int(round(self.duration_s * self.rate_hz))
         ground_steps = int(round(self.ground_s * self.rate_hz))
@@ -814,6 +817,7 @@ class Simulation:
                     diag = (now, k, self.late_steps)
         finally:
             self.wall_s = time.monotonic() - wall0
+            self.cpu_s = time.process_time() - cpu0
             self.write_progress(k * self.period_us * 1e-6)
 
     def publish_diagnostics(self, k, now, since):

@@ -11,6 +11,8 @@ each step's wall time goes, from the simulator's own phase timers:
   truth           /hil/truth built and published
   fdm             JSBSim advanced by one period (2 steps of 5 ms at 100 Hz)
   restart         time held while the supervisor restarted the controller
+and the simulator's own CPU time per step (its process, rospy's threads included): its share of
+the work, which on a loaded machine the wall time hides.
 
 One flight per rate, SECONDS of simulated time with the HP crash at a third of it and no bag.
 Then one flight of REALTIME_SECONDS in real time (no crash) for the latency through the whole
@@ -57,6 +59,7 @@ def main():
         steps_per_s = s["x_real_time"] * rate
         print("hil_lockstep_speed_%dhz: %.2f x_realtime" % (rate, s["x_real_time"]))
         print("hil_lockstep_steps_%dhz: %.0f steps/s" % (rate, steps_per_s))
+        print("hil_sim_cpu_per_step_%dhz: %.3f ms" % (rate, s["sim_cpu_ms_per_step"]))
         total = sum(s["step_time_ms"].values())
         for phase, ms in sorted(s["step_time_ms"].items(), key=lambda kv: -kv[1]):
             print("hil_step_%dhz_%s: %.3f ms (%.0f %%)" % (rate, phase, ms, 100.0 * ms / total if total else 0.0))
