@@ -151,7 +151,6 @@ TEST(HaBumpless, PilotsStickReversalsPassUnlimited) {
   EXPECT_EQ(lagging, 0);
 }
 
-
 // HiL campaign seed 27 #5: the HA took over from an HP at idle, so its throttle eased up at 0.5 a
 // second while the elevator held the pull it inherited; a gust put 1.9 g on the wing at 59 ft/s
 // and stalled it. The HA flies pitch from the period it takes over, not once the slowest servo
