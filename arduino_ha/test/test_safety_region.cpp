@@ -84,6 +84,23 @@ TEST(HaSafetyRegion, ARowEndPastTheTermTableStopsAtItsEnd) {
   EXPECT_NEAR(ha_state_region_max(&poly, x), HA_SX_MAX_TERMS / 60.0f, 1e-4f);
 }
 
+// ... and a row with no terms, or one that begins where the table has run out, reads 0: inside,
+// never garbage from beyond the table.
+TEST(HaSafetyRegion, RowsWithoutTermsReadZero) {
+  HaAircraftConfig poly = cfg;
+  std::memset(poly.x0, 0, sizeof poly.x0);
+  for (auto& term : poly.sx) term = {HA_X_ROLL_DEG, 1.0f / 60.0f};
+  poly.sx_rows = 3u;
+  poly.sx_row_end[0] = 0u;    // no terms
+  poly.sx_row_end[1] = 255u;  // the whole table
+  poly.sx_row_end[2] = 255u;  // begins past the table
+  float x[HA_X_DIM] = {};
+  x[HA_X_ROLL_DEG] = 1.0f;
+  EXPECT_NEAR(ha_state_region_max(&poly, x), HA_SX_MAX_TERMS / 60.0f, 1e-4f);
+  x[HA_X_ROLL_DEG] = -1.0f;  // the full row negative: the empty rows' 0 is the most
+  EXPECT_EQ(ha_state_region_max(&poly, x), 0.0f);
+}
+
 TEST(HaSafetyRegion, HugeValuesAreOutsideNotOverflowed) {
   float u[HA_U_DIM] = {3e38f, -3e38f, 3e38f, -3e38f};
   const float m = ha_actuator_region_max(&cfg, u);
