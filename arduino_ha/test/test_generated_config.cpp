@@ -61,6 +61,28 @@ TEST(HaGeneratedConfig, CarriesTheYamlLimits) {
   EXPECT_FLOAT_EQ(c.rc_throttle_per_us * span_us, c.throttle_max - c.throttle_min);
 }
 
+// The safety controller's configuration-only values are the generator's (ha_config.h), said to be
+// what ha_safety_ctrl.c computed every period, to the bit. Each is recomputed here from its
+// sources as that code did in float arithmetic: a generator that drifts from its sources, or a
+// source edited in the header alone, fails here rather than in a flight.
+TEST(HaGeneratedConfig, DerivedSafetyControllerValuesAreTheirSourcesToTheBit) {
+  const HaAircraftConfig& c = ha_aircraft_config;
+  const float auth = c.sc_integrator_authority;
+  const float half = 0.5f * (c.throttle_max - c.throttle_min);
+  const float mid = c.throttle_min + half;
+  EXPECT_EQ(c.sc_target_ftps, c.stall_speed_ftps * c.sc_cruise_margin);
+  EXPECT_EQ(c.sc_speed_floor_ftps, c.stall_speed_ftps * c.sc_stall_margin);
+  EXPECT_EQ(c.sc_alt_mid_ft, 0.5f * (c.sc_alt_min_ft + c.sc_alt_max_ft));
+  EXPECT_EQ(c.sc_throttle_half, half);
+  EXPECT_EQ(c.sc_throttle_mid, mid);
+  EXPECT_EQ(c.sc_throttle_trim_offset, c.sc_throttle_trim - mid);
+  EXPECT_EQ(c.sc_power_throttle_max, c.throttle_max - c.sc_throttle_trim);
+  EXPECT_EQ(c.sc_aileron_integ_limit, auth * c.aileron_limit_deg);
+  EXPECT_EQ(c.sc_elevator_integ_limit, auth * c.elevator_limit_deg);
+  EXPECT_EQ(c.sc_throttle_integ_limit, auth * half);
+  EXPECT_EQ(c.sc_blind_fade_auth_per_s, c.sc_blind_fade_per_s * auth);
+}
+
 // The generator's exit status for limits.yaml with one key's value replaced.
 int GenerateWith(const std::string& key, const std::string& value) {
   const std::string yaml = Slurp(HA_LIMITS_YAML);
