@@ -71,12 +71,19 @@ TEST(HaSafetyRegion, APolytopeRowCouplingTwoStatesAboutAnOffCentreIsJudgedOnThei
   EXPECT_GT(ha_state_region_max(&poly, x), 1.0f);  // neither alone is past its edge
 }
 
-// A hand-made configuration whose row claims terms past the table reads no further than the
-// table: the row is judged on the terms there are.
-TEST(HaSafetyRegion, ARowEndPastTheTermTableStopsAtItsEnd) {
+// A hand-made S_x whose whole term table is 1/60 of the roll, centred on 0: its rows are set by
+// row_end alone.
+HaAircraftConfig EveryTermRollOverSixty() {
   HaAircraftConfig poly = cfg;
   std::memset(poly.x0, 0, sizeof poly.x0);
   for (auto& term : poly.sx) term = {HA_X_ROLL_DEG, 1.0f / 60.0f};
+  return poly;
+}
+
+// A hand-made configuration whose row claims terms past the table reads no further than the
+// table: the row is judged on the terms there are.
+TEST(HaSafetyRegion, ARowEndPastTheTermTableStopsAtItsEnd) {
+  HaAircraftConfig poly = EveryTermRollOverSixty();
   poly.sx_rows = 1u;
   poly.sx_row_end[0] = 255u;  // past HA_SX_MAX_TERMS
   float x[HA_X_DIM] = {};
@@ -87,9 +94,7 @@ TEST(HaSafetyRegion, ARowEndPastTheTermTableStopsAtItsEnd) {
 // ... and a row with no terms, or one that begins where the table has run out, reads 0: inside,
 // never garbage from beyond the table.
 TEST(HaSafetyRegion, RowsWithoutTermsReadZero) {
-  HaAircraftConfig poly = cfg;
-  std::memset(poly.x0, 0, sizeof poly.x0);
-  for (auto& term : poly.sx) term = {HA_X_ROLL_DEG, 1.0f / 60.0f};
+  HaAircraftConfig poly = EveryTermRollOverSixty();
   poly.sx_rows = 3u;
   poly.sx_row_end[0] = 0u;    // no terms
   poly.sx_row_end[1] = 255u;  // the whole table
