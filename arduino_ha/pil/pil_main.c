@@ -184,6 +184,9 @@ static size_t uart_read(int n, uint8_t *bytes, size_t max_len) {
   const uint32_t head = r->head;
   uint32_t tail = r->tail;
   size_t got = 0u;
+  /* The bytes are not volatile: no read of them may be moved above the read of the head that
+   * says they are there (the handler, which runs to its end, has stored them by then). */
+  __asm volatile("" ::: "memory");
   while (got < max_len && tail != head) {
     bytes[got++] = r->bytes[tail % RX_RING_LEN];
     tail++;
