@@ -16,6 +16,12 @@ from gs_harness import mavlink  # noqa: E402
 @pytest.fixture(scope="module")
 def gs():
     system = gh.GsSystem()
+    # The node learns home from the latched /home a moment after it connects, and says so with an
+    # unasked HOME_POSITION; a request before that is rightly TEMPORARILY_REJECTED (a ground
+    # station retries it). The stories below start from a node that knows home.
+    if system.conn.recv_match(type="HOME_POSITION", blocking=True, timeout=30) is None:
+        system.stop()
+        raise RuntimeError("microhard_gs never sent the home the probe published on /home")
     yield system
     system.stop()
 
