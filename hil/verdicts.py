@@ -53,8 +53,14 @@ class Regions:
         w = math.sqrt(1.0 - WGS84_E2 * s * s)
         rm, rn = WGS84_A * (1.0 - WGS84_E2) / w ** 3, WGS84_A / w
         n = math.radians(lat_deg - home[0]) * rm
-        e = math.radians(lon_deg - home[1]) * rn * math.cos(math.radians(home[0]))
+        e = math.radians(dlon_deg(lon_deg, home[1])) * rn * math.cos(math.radians(home[0]))
         return n * FT_PER_M, e * FT_PER_M
+
+
+def dlon_deg(lon_deg, home_lon_deg):
+    """lon - home's, the short way round across the antimeridian, as geo_dlon_deg (geo_wgs84.c)."""
+    d = lon_deg - home_lon_deg
+    return d - 360.0 if d > 180.0 else d + 360.0 if d < -180.0 else d
 
 
 def reason_names(mask):

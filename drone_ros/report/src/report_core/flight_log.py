@@ -226,7 +226,10 @@ def ned_from_home(lat_deg, lon_deg, home_lat_deg, home_lon_deg):
     r_meridian_m = _WGS84_A_M * (1.0 - _WGS84_E2) / s ** 1.5
     r_normal_m = _WGS84_A_M / math.sqrt(s)
     north = np.radians(np.asarray(lat_deg) - home_lat_deg) * r_meridian_m * FT_PER_M
-    east = np.radians(np.asarray(lon_deg) - home_lon_deg) * r_normal_m * math.cos(phi) * FT_PER_M
+    # The short way round across the antimeridian, as geo_dlon_deg (geo_wgs84.c).
+    dlon = np.asarray(lon_deg) - home_lon_deg
+    dlon = np.where(dlon > 180.0, dlon - 360.0, np.where(dlon < -180.0, dlon + 360.0, dlon))
+    east = np.radians(dlon) * r_normal_m * math.cos(phi) * FT_PER_M
     return north, east
 
 
