@@ -1,4 +1,5 @@
-// Bumpless switching both ways: at a switch no surface moves faster than the configured rate.
+// Bumpless switching both ways: at a switch no surface moves faster than the configured rate (the
+// elevator easing a push or a pull back towards neutral: the release rate).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,11 +10,18 @@
 
 namespace {
 
-// Largest per-period change of any servo over the recorded writes, as a rate.
+// Largest per-period change of any servo over the recorded writes, as a rate. The elevator easing
+// a push or a pull towards neutral, not past it, is a release: it has a rate of its own.
 struct Rates {
   float surface_deg_per_s = 0.0f;
+  float release_deg_per_s = 0.0f;
   float throttle_per_s = 0.0f;
 };
+
+bool IsRelease(float before_deg, float after_deg) {
+  return (before_deg > 0.0f && after_deg >= 0.0f && after_deg < before_deg) ||
+         (before_deg < 0.0f && after_deg <= 0.0f && after_deg > before_deg);
+}
 
 Rates MaxRates(const Timeline& t, size_t from) {
   Rates r;
@@ -21,9 +29,12 @@ Rates MaxRates(const Timeline& t, size_t from) {
   for (size_t i = from + 1; i < t.board.servo_writes.size(); ++i) {
     const HaSurfaces& a = t.board.servo_writes[i - 1];
     const HaSurfaces& b = t.board.servo_writes[i];
+    const float elevator_rate = std::fabs(b.elevator_deg - a.elevator_deg) / dt;
+    float& elevator_slot =
+        IsRelease(a.elevator_deg, b.elevator_deg) ? r.release_deg_per_s : r.surface_deg_per_s;
+    elevator_slot = std::max(elevator_slot, elevator_rate);
     r.surface_deg_per_s =
-        std::max({r.surface_deg_per_s, std::fabs(b.elevator_deg - a.elevator_deg) / dt,
-                  std::fabs(b.aileron_deg - a.aileron_deg) / dt,
+        std::max({r.surface_deg_per_s, std::fabs(b.aileron_deg - a.aileron_deg) / dt,
                   std::fabs(b.rudder_deg - a.rudder_deg) / dt});
     r.throttle_per_s = std::max(r.throttle_per_s, std::fabs(b.throttle - a.throttle) / dt);
   }
@@ -33,6 +44,7 @@ Rates MaxRates(const Timeline& t, size_t from) {
 void ExpectWithinRate(const Timeline& t, size_t from) {
   const Rates r = MaxRates(t, from);
   EXPECT_LE(r.surface_deg_per_s, t.cfg.surface_rate_limit_deg_per_s * 1.001f);
+  EXPECT_LE(r.release_deg_per_s, t.cfg.surface_release_rate_deg_per_s * 1.001f);
   EXPECT_LE(r.throttle_per_s, t.cfg.throttle_rate_limit_per_s * 1.001f);
 }
 
@@ -173,6 +185,44 @@ TEST(HaBumpless, WhileTheThrottleStillEasesUpTheHaAlreadyPushesAgainstAGust) {
       << "the story needs the throttle still easing";
   EXPECT_GT(t.servos().elevator_deg - calm_elevator_deg, 3.0f)
       << "trailing edge down against the gust within 0.1 s (the rate allows 6 deg)";
+}
+
+// HiL campaign seed 27 #111: the HA took over a stall and pushed the elevator 18 deg trailing edge
+// down; within 0.25 s its command had come back to a 2.5 deg pull, but the servo came back from
+// the push at the bumpless 60 deg/s and still pushed 11 deg: -0.8 g and the nose 9 deg past the
+// -10 deg the HA asked. A push being eased back goes at the release rate, as a pull does.
+TEST(HaBumpless, ThePushThatUnloadedAStallIsTakenOffAsFastAsItWasPutOn) {
+  Timeline t;
+  t.Cruise(200.0f, 60.0f);
+  ASSERT_GT(t.ReachHp(), 0);
+  t.Cruise(200.0f, 40.0f);  // below the stall switch speed: STALL, the HA unloads
+  for (int i = 0; i < 8; ++i) t.StepWithGood(0.0f, -0.5f);
+  // The HA flies (RECOVERING once the HP's command passes again).
+  ASSERT_NE(t.controller(), HA_CONTROLLER_HP);
+  const float pushed_deg = t.servos().elevator_deg;
+  ASSERT_GT(pushed_deg, 8.0f) << "the story needs a large push on the servo";
+  // Flown out, at the band's middle: the push is no longer asked for.
+  t.Cruise(t.cfg.sc_alt_mid_ft, 70.0f);
+  const float dt = t.cfg.period_us * 1e-6f;
+  const float bumpless_step = t.cfg.surface_rate_limit_deg_per_s * dt;
+  t.StepWithGood(0.0f, -0.5f);
+  ASSERT_LT(t.out().ha_command.elevator_deg, pushed_deg - 5.0f)
+      << "the story needs the command far back from the push at once";
+  float prev = t.servos().elevator_deg;
+  int periods = 1;
+  while (t.servos().elevator_deg > std::max(t.out().ha_command.elevator_deg, 0.0f) + 1e-3f &&
+         periods < 100) {
+    t.StepWithGood(0.0f, -0.5f);
+    ++periods;
+    const float now = t.servos().elevator_deg;
+    EXPECT_LE(prev - now, t.cfg.surface_release_rate_deg_per_s * dt * 1.001f);
+    prev = now;
+  }
+  EXPECT_LE(
+      periods,
+      static_cast<int>(std::ceil(pushed_deg / (t.cfg.surface_release_rate_deg_per_s * dt))) + 2)
+      << "taken off at the release rate (" << pushed_deg << " deg; the bumpless rate would take "
+      << std::ceil(pushed_deg / bumpless_step) << " periods)";
 }
 
 }  // namespace

@@ -88,14 +88,17 @@ bool WithinRateLimit(const HaAircraftConfig& cfg, const HaSurfaces& before, cons
   const double dt_s = dt_us * 1e-6;
   const double surface_step = cfg.surface_rate_limit_deg_per_s * dt_s + 1e-4;
   const double throttle_step = cfg.throttle_rate_limit_per_s * dt_s + 1e-6;
-  // A pull (elevator negative) may be eased towards neutral at the release rate, not past it;
-  // the HA unloading a stall moves nose down at the release rate all the way.
+  // A pull (elevator negative) or a push (positive) may be eased towards neutral at the release
+  // rate, not past it; the HA unloading a stall moves nose down at the release rate all the way.
   const double release_step = cfg.surface_release_rate_deg_per_s * dt_s + 1e-4;
   const double released = ha_unloading_a_stall ? before.elevator_deg + release_step
                                                : std::min(0.0, before.elevator_deg + release_step);
   const double elevator_up_to = std::max(double{before.elevator_deg} + surface_step, released);
+  const double push_released = std::max(0.0, before.elevator_deg - release_step);
+  const double elevator_down_to =
+      std::min(double{before.elevator_deg} - surface_step, push_released);
   return double{after.elevator_deg} <= elevator_up_to &&
-         double{after.elevator_deg} >= before.elevator_deg - surface_step &&
+         double{after.elevator_deg} >= elevator_down_to &&
          std::fabs(double{after.aileron_deg} - before.aileron_deg) <= surface_step &&
          std::fabs(double{after.rudder_deg} - before.rudder_deg) <= surface_step &&
          std::fabs(double{after.throttle} - before.throttle) <= throttle_step;
@@ -267,8 +270,9 @@ TEST(HaProperties, ServosAlwaysFiniteInsideSuAndOutsideCommandsNeverReachThem) {
   EXPECT_GT(handovers[manual][ha] + handovers[manual][hp], 100u);
   const int self_test = static_cast<int>(Source::kSelfTest);
   // Every self-test period is a slew. Fewer than before issue 13: one hostile sample that looks
-  // like flight now latches airborne (no self-test) until landed_confirm_s of parked.
-  EXPECT_GT(handovers[self_test][self_test], 2000u);
+  // like flight now latches airborne (no self-test) until landed_confirm_s of parked; fewer again
+  // since a push is eased back at the release rate too (1,923 at this seed).
+  EXPECT_GT(handovers[self_test][self_test], 1500u);
 }
 
 TEST(HaProperties, BitComparisonsGiveTheFloatComparisonsVerdicts) {

@@ -55,6 +55,17 @@ static float elevator_towards(const HaAircraftConfig *cfg, float prev, float tar
                                             cfg->surface_release_rate_deg_per_s * dt_s, &released);
     return ha_greater(released_deg, bumpless) ? released_deg : bumpless;
   }
+  /* A push (trailing edge down) being eased back, as far as neutral, at the release rate too: it
+   * went on at that rate to unload a stall, and taken off at the bumpless rate it outlived the
+   * command that asked for it by a quarter second (HiL campaign seed 27 #111: an 18 deg push
+   * whose command was a 2.5 deg pull 0.25 s later still pushed 11 deg on the servo; -0.8 g and
+   * the nose 9 deg past the -10 deg the HA asked for). */
+  if (ha_greater(prev, 0.0f) && ha_greater(bumpless, target)) {
+    int released = 1;
+    const float released_deg = step_towards(prev, ha_greater(target, 0.0f) ? target : 0.0f,
+                                            cfg->surface_release_rate_deg_per_s * dt_s, &released);
+    return ha_greater(bumpless, released_deg) ? released_deg : bumpless;
+  }
   return bumpless;
 }
 
