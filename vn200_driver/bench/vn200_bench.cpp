@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "output_config.h"
+#include "vn_binary.h"
 #include "vn_framer.h"
 #include "vn_packet_builder.h"
 
@@ -61,6 +62,45 @@ std::vector<uint8_t> imuPacket(uint64_t t_ns) {
   return b.finish();
 }
 
+// Packets per CPU second through vn_bin_decode alone (no framer), the decoder's own cost.
+double decodeRate(const std::vector<std::vector<uint8_t>>& packets, int repeats) {
+  size_t ok = 0;
+  volatile float sink = 0;
+  const double t0 = cpuSeconds();
+  for (int r = 0; r < repeats; ++r) {
+    for (const std::vector<uint8_t>& p : packets) {
+      VnBinaryData d;
+      if (vn_bin_decode(p.data(), p.size(), &d) == VN_BIN_OK) {
+        ++ok;
+        sink = sink + d.ypr_deg[0];
+      }
+    }
+  }
+  const double dt = cpuSeconds() - t0;
+  if (ok != packets.size() * static_cast<size_t>(repeats)) return 0.0;
+  return static_cast<double>(ok) / dt;
+}
+
+// Every documented field of every group: the longest packet, where skipped fields dominate.
+std::vector<uint8_t> everyFieldPacket(uint8_t seed) {
+  std::vector<uint16_t> masks;
+  size_t payload = 0;
+  for (unsigned g = 0; g < VN_BIN_GROUP_COUNT; ++g) {
+    uint16_t m = 0;
+    for (unsigned b = 0; b < 16; ++b) {
+      if (vn_bin_field_size(g, b) != 0) {
+        m = static_cast<uint16_t>(m | (1u << b));
+        payload += vn_bin_field_size(g, b);
+      }
+    }
+    masks.push_back(m);
+  }
+  VnPacketBuilder b(static_cast<uint8_t>(VN_GROUPS_VALID), masks);
+  // Bytes below 0x40 keep every float exponent finite.
+  for (size_t i = 0; i < payload; ++i) b.u8(static_cast<uint8_t>((i * 13 + seed) & 0x3F));
+  return b.finish();
+}
+
 std::string machine() {
   std::string model = "unknown cpu";
   std::ifstream in("/proc/cpuinfo");
@@ -95,6 +135,17 @@ int main() {
     std::fprintf(stderr, "bench: lost frames (%zu, %zu)\n", node_big.frames, imu_big.frames);
     return 1;
   }
+  std::vector<std::vector<uint8_t>> node_packets, every_field_packets;
+  for (int i = 0; i < 1000; ++i) {
+    node_packets.push_back(makeNodePacket(static_cast<float>(i % 360), 1000000ull * i));
+    every_field_packets.push_back(everyFieldPacket(static_cast<uint8_t>(i)));
+  }
+  const double node_decode_rate = decodeRate(node_packets, 400);
+  const double every_field_decode_rate = decodeRate(every_field_packets, 100);
+  if (node_decode_rate == 0.0 || every_field_decode_rate == 0.0) {
+    std::fprintf(stderr, "bench: a packet did not decode\n");
+    return 1;
+  }
   // Sensor's maximum: 800 Hz binary packets; at 921600 baud (10 bits/byte) the link carries
   // 92160 B/s, so 800 Hz fits packets of up to 115 bytes.
   const double imu_800hz_Bps = 800.0 * static_cast<double>(imu_len);
@@ -104,6 +155,8 @@ int main() {
   std::printf("vn200_parse_throughput_imu_packets_4k_reads: %.1f MB/s\n", imu_big.mb_per_s);
   std::printf("vn200_parse_time_per_node_packet: %.0f ns\n",
               1e9 * static_cast<double>(node_len) / (node_big.mb_per_s * 1e6));
+  std::printf("vn200_decode_node_packets: %.0f packets/s\n", node_decode_rate);
+  std::printf("vn200_decode_every_field_packets: %.0f packets/s\n", every_field_decode_rate);
   std::printf("vn200_node_packet_size: %zu bytes\n", node_len);
   std::printf("vn200_imu_packet_size: %zu bytes\n", imu_len);
   std::printf("vn200_cpu_share_800hz_imu_packets: %.4f %%\n",

@@ -4,33 +4,131 @@
 
 #include "vn_checksum.h"
 
-/* Field sizes in bytes, per group, per mask bit: VN-200 User Manual, binary group tables
- * (Common, Time, IMU, GPS, Attitude, INS). 0 = reserved / not defined for the VN-200. */
-static const uint8_t k_field_size[VN_BIN_GROUP_COUNT][16] = {
-    /* Common: TimeStartup, TimeGps, TimeSyncIn, YPR, Quaternion, AngularRate, Position(LLA),
-     * Velocity(NED), Accel, Imu, MagPres, DeltaTheta, InsStatus, SyncInCnt, TimeGpsPps */
-    {8, 8, 8, 12, 16, 12, 24, 12, 12, 24, 20, 28, 2, 4, 8, 0},
-    /* Time: TimeStartup, TimeGps, GpsTow, GpsWeek, TimeSyncIn, TimeGpsPps, TimeUTC, SyncInCnt,
-     * SyncOutCnt, TimeStatus */
-    {8, 8, 8, 2, 8, 8, 8, 4, 4, 1, 0, 0, 0, 0, 0, 0},
-    /* IMU: ImuStatus, UncompMag, UncompAccel, UncompGyro, Temp, Pres, DeltaTheta, DeltaVel, Mag,
-     * Accel, AngularRate */
-    {2, 12, 12, 12, 4, 4, 16, 12, 12, 12, 12, 0, 0, 0, 0, 0},
-    /* GPS: UTC, Tow, Week, NumSats, Fix, PosLla, PosEcef, VelNed, VelEcef, PosU, VelU, TimeU */
-    {8, 8, 2, 1, 1, 24, 24, 12, 12, 12, 4, 4, 0, 0, 0, 0},
-    /* Attitude: VpeStatus, YPR, Quaternion, DCM, MagNed, AccelNed, LinearAccelBody,
-     * LinearAccelNed, YprU */
-    {2, 12, 16, 36, 12, 12, 12, 12, 12, 0, 0, 0, 0, 0, 0, 0},
-    /* INS: InsStatus, PosLla, PosEcef, VelBody, VelNed, VelEcef, MagEcef, AccelEcef,
-     * LinearAccelEcef, PosU, VelU */
-    {2, 24, 24, 12, 12, 12, 12, 12, 12, 4, 4, 0, 0, 0, 0, 0},
+/* How a field's bytes are stored: elements of one type, little endian on the wire. */
+enum { VN_KIND_SKIP = 0, VN_KIND_U8, VN_KIND_U16, VN_KIND_U64, VN_KIND_F32, VN_KIND_F64 };
+
+/* One (group, bit) field: its size on the wire and, for a field the driver keeps, where it goes.
+ * A kept field is stored whole, size / element size elements from `offset` on, and sets `has`. */
+typedef struct {
+  uint8_t size; /* bytes; 0 = reserved / not defined for the VN-200, so the packet is refused */
+  uint8_t kind;
+  uint16_t offset; /* offsetof(VnBinaryData, first member written) */
+  uint32_t has;
+} VnFieldSpec;
+
+#define SKIP(size) \
+  { (size), VN_KIND_SKIP, 0u, 0u }
+#define KEEP(size, kind, member, has) \
+  { (size), (kind), (uint16_t)offsetof(VnBinaryData, member), (has) }
+
+/* The fields, per group, per mask bit: VN-200 User Manual, binary group tables (Common, Time,
+ * IMU, GPS, Attitude, INS). Bits not listed are reserved. Where two groups carry the same
+ * quantity, the later group's field is decoded last and wins. */
+static const VnFieldSpec k_fields[VN_BIN_GROUP_COUNT][16] = {
+    {
+        /* Common */
+        KEEP(8, VN_KIND_U64, time_startup_ns, VN_HAS_TIME_STARTUP),     /* TimeStartup */
+        KEEP(8, VN_KIND_U64, time_gps_ns, VN_HAS_TIME_GPS),             /* TimeGps */
+        SKIP(8),                                                        /* TimeSyncIn */
+        KEEP(12, VN_KIND_F32, ypr_deg, VN_HAS_YPR),                     /* YawPitchRoll */
+        KEEP(16, VN_KIND_F32, quat_xyzw, VN_HAS_QUATERNION),            /* Quaternion */
+        KEEP(12, VN_KIND_F32, angular_rate_radps, VN_HAS_ANGULAR_RATE), /* AngularRate */
+        KEEP(24, VN_KIND_F64, lat_deg, VN_HAS_POSITION_LLA), /* Position: lat, lon, alt */
+        KEEP(12, VN_KIND_F32, vel_ned_mps, VN_HAS_VEL_NED),  /* Velocity (NED) */
+        KEEP(12, VN_KIND_F32, accel_mps2, VN_HAS_ACCEL),     /* Accel */
+        SKIP(24),                                            /* Imu (uncompensated) */
+        KEEP(20, VN_KIND_F32, mag_gauss, VN_HAS_MAG | VN_HAS_TEMP | VN_HAS_PRESSURE), /* MagPres */
+        SKIP(28),                                            /* DeltaTheta */
+        KEEP(2, VN_KIND_U16, ins_status, VN_HAS_INS_STATUS), /* InsStatus */
+        SKIP(4),                                             /* SyncInCnt */
+        SKIP(8),                                             /* TimeGpsPps */
+    },
+    {
+        /* Time */
+        KEEP(8, VN_KIND_U64, time_startup_ns, VN_HAS_TIME_STARTUP), /* TimeStartup */
+        KEEP(8, VN_KIND_U64, time_gps_ns, VN_HAS_TIME_GPS),         /* TimeGps */
+        KEEP(8, VN_KIND_U64, gps_tow_ns, VN_HAS_GPS_TOW),           /* GpsTow */
+        KEEP(2, VN_KIND_U16, gps_week, VN_HAS_GPS_WEEK),            /* GpsWeek */
+        SKIP(8),                                                    /* TimeSyncIn */
+        SKIP(8),                                                    /* TimeGpsPps */
+        SKIP(8),                                                    /* TimeUTC */
+        SKIP(4),                                                    /* SyncInCnt */
+        SKIP(4),                                                    /* SyncOutCnt */
+        SKIP(1),                                                    /* TimeStatus */
+    },
+    {
+        /* IMU (compensated values kept) */
+        SKIP(2),                                                        /* ImuStatus */
+        SKIP(12),                                                       /* UncompMag */
+        SKIP(12),                                                       /* UncompAccel */
+        SKIP(12),                                                       /* UncompGyro */
+        KEEP(4, VN_KIND_F32, temp_c, VN_HAS_TEMP),                      /* Temp */
+        KEEP(4, VN_KIND_F32, pressure_kpa, VN_HAS_PRESSURE),            /* Pres */
+        SKIP(16),                                                       /* DeltaTheta */
+        SKIP(12),                                                       /* DeltaVel */
+        KEEP(12, VN_KIND_F32, mag_gauss, VN_HAS_MAG),                   /* Mag */
+        KEEP(12, VN_KIND_F32, accel_mps2, VN_HAS_ACCEL),                /* Accel */
+        KEEP(12, VN_KIND_F32, angular_rate_radps, VN_HAS_ANGULAR_RATE), /* AngularRate */
+    },
+    {
+        /* GPS */
+        SKIP(8),                                                      /* UTC */
+        KEEP(8, VN_KIND_U64, gps_tow_ns, VN_HAS_GPS_TOW),             /* Tow */
+        KEEP(2, VN_KIND_U16, gps_week, VN_HAS_GPS_WEEK),              /* Week */
+        KEEP(1, VN_KIND_U8, num_sats, VN_HAS_NUM_SATS),               /* NumSats */
+        KEEP(1, VN_KIND_U8, gps_fix, VN_HAS_GPS_FIX),                 /* Fix */
+        KEEP(24, VN_KIND_F64, gps_lat_deg, VN_HAS_GPS_LLA),           /* PosLla: lat, lon, alt */
+        SKIP(24),                                                     /* PosEcef */
+        KEEP(12, VN_KIND_F32, gps_vel_ned_mps, VN_HAS_GPS_VEL_NED),   /* VelNed */
+        SKIP(12),                                                     /* VelEcef */
+        KEEP(12, VN_KIND_F32, gps_pos_unc_ned_m, VN_HAS_GPS_POS_UNC), /* PosU */
+        KEEP(4, VN_KIND_F32, gps_vel_unc_mps, VN_HAS_GPS_VEL_UNC),    /* VelU */
+        SKIP(4),                                                      /* TimeU */
+    },
+    {
+        /* Attitude */
+        SKIP(2),                                             /* VpeStatus */
+        KEEP(12, VN_KIND_F32, ypr_deg, VN_HAS_YPR),          /* YawPitchRoll */
+        KEEP(16, VN_KIND_F32, quat_xyzw, VN_HAS_QUATERNION), /* Quaternion */
+        SKIP(36),                                            /* DCM */
+        SKIP(12),                                            /* MagNed */
+        SKIP(12),                                            /* AccelNed */
+        SKIP(12),                                            /* LinearAccelBody */
+        SKIP(12),                                            /* LinearAccelNed */
+        KEEP(12, VN_KIND_F32, ypr_unc_deg, VN_HAS_YPR_UNC),  /* YprU */
+    },
+    {
+        /* INS */
+        KEEP(2, VN_KIND_U16, ins_status, VN_HAS_INS_STATUS),       /* InsStatus */
+        KEEP(24, VN_KIND_F64, lat_deg, VN_HAS_POSITION_LLA),       /* PosLla: lat, lon, alt */
+        SKIP(24),                                                  /* PosEcef */
+        SKIP(12),                                                  /* VelBody */
+        KEEP(12, VN_KIND_F32, vel_ned_mps, VN_HAS_VEL_NED),        /* VelNed */
+        SKIP(12),                                                  /* VelEcef */
+        SKIP(12),                                                  /* MagEcef */
+        SKIP(12),                                                  /* AccelEcef */
+        SKIP(12),                                                  /* LinearAccelEcef */
+        KEEP(4, VN_KIND_F32, ins_pos_unc_m, VN_HAS_INS_POS_UNC),   /* PosU */
+        KEEP(4, VN_KIND_F32, ins_vel_unc_mps, VN_HAS_INS_VEL_UNC), /* VelU */
+    },
 };
+
+/* A field stored across several members needs them back to back. C99 has no static_assert: a
+ * negative array size stops the build. */
+#define VN_FOLLOWS(a, b, gap) (offsetof(VnBinaryData, b) == offsetof(VnBinaryData, a) + (gap))
+#define VN_BUILD_CHECK(name, cond) typedef char name[(cond) ? 1 : -1]
+VN_BUILD_CHECK(vn_lla_back_to_back,
+               VN_FOLLOWS(lat_deg, lon_deg, 8u) && VN_FOLLOWS(lon_deg, alt_m, 8u));
+VN_BUILD_CHECK(vn_gps_lla_back_to_back,
+               VN_FOLLOWS(gps_lat_deg, gps_lon_deg, 8u) && VN_FOLLOWS(gps_lon_deg, gps_alt_m, 8u));
+VN_BUILD_CHECK(vn_mag_pres_back_to_back,
+               VN_FOLLOWS(mag_gauss, temp_c, 12u) && VN_FOLLOWS(temp_c, pressure_kpa, 4u));
 
 uint8_t vn_bin_field_size(unsigned group, unsigned bit) {
   if (group >= VN_BIN_GROUP_COUNT || bit >= 16u) {
     return 0u;
   }
-  return k_field_size[group][bit];
+  return k_fields[group][bit].size;
 }
 
 size_t vn_bin_packet_len(uint8_t groups, const uint16_t *masks, size_t mask_count) {
@@ -51,7 +149,7 @@ size_t vn_bin_packet_len(uint8_t groups, const uint16_t *masks, size_t mask_coun
     len += 2u;
     for (b = 0u; b < 16u; ++b) {
       if ((masks[used] & (1u << b)) != 0u) {
-        uint8_t sz = k_field_size[g][b];
+        uint8_t sz = k_fields[g][b].size;
         if (sz == 0u) {
           return 0u;
         }
@@ -70,7 +168,7 @@ size_t vn_bin_max_packet_len(void) {
     unsigned b;
     masks[g] = 0u;
     for (b = 0u; b < 16u; ++b) {
-      if (k_field_size[g][b] != 0u) {
+      if (k_fields[g][b].size != 0u) {
         masks[g] = (uint16_t)(masks[g] | (1u << b));
       }
     }
@@ -119,203 +217,44 @@ static double rd_f64(const uint8_t *p) {
   return d;
 }
 
-static void rd_f32_n(const uint8_t *p, float *dst, unsigned n) {
+/* Stores field `f` from the packet bytes at `p` into `d`, one element at a time through
+ * memcpy: a char offset into the struct, so no pointer steps past the end of a member array
+ * (MagPres and the positions span several members) and no member is read through another type. */
+static void store_field(const VnFieldSpec *f, const uint8_t *p, VnBinaryData *d) {
+  unsigned char *dst = (unsigned char *)d + f->offset;
   unsigned i;
-  for (i = 0u; i < n; ++i) {
-    dst[i] = rd_f32(p + 4u * i);
+  switch (f->kind) {
+    case VN_KIND_U8:
+      memcpy(dst, p, f->size);
+      break;
+    case VN_KIND_U16:
+      for (i = 0u; i < f->size; i += 2u) {
+        uint16_t v = rd_u16(p + i);
+        memcpy(dst + i, &v, sizeof v);
+      }
+      break;
+    case VN_KIND_U64:
+      for (i = 0u; i < f->size; i += 8u) {
+        uint64_t v = rd_u64(p + i);
+        memcpy(dst + i, &v, sizeof v);
+      }
+      break;
+    case VN_KIND_F32:
+      for (i = 0u; i < f->size; i += 4u) {
+        float v = rd_f32(p + i);
+        memcpy(dst + i, &v, sizeof v);
+      }
+      break;
+    case VN_KIND_F64:
+      for (i = 0u; i < f->size; i += 8u) {
+        double v = rd_f64(p + i);
+        memcpy(dst + i, &v, sizeof v);
+      }
+      break;
+    default: /* a field the driver does not use: skipped by its size */
+      return;
   }
-}
-
-/* Stores one field the driver uses; every other documented field is skipped by its size. */
-static void store_field(unsigned g, unsigned b, const uint8_t *p, VnBinaryData *d) {
-  switch (g) {
-    case 0u: /* Common */
-      switch (b) {
-        case 0u:
-          d->time_startup_ns = rd_u64(p);
-          d->has |= VN_HAS_TIME_STARTUP;
-          break;
-        case 1u:
-          d->time_gps_ns = rd_u64(p);
-          d->has |= VN_HAS_TIME_GPS;
-          break;
-        case 3u:
-          rd_f32_n(p, d->ypr_deg, 3u);
-          d->has |= VN_HAS_YPR;
-          break;
-        case 4u:
-          rd_f32_n(p, d->quat_xyzw, 4u);
-          d->has |= VN_HAS_QUATERNION;
-          break;
-        case 5u:
-          rd_f32_n(p, d->angular_rate_radps, 3u);
-          d->has |= VN_HAS_ANGULAR_RATE;
-          break;
-        case 6u:
-          d->lat_deg = rd_f64(p);
-          d->lon_deg = rd_f64(p + 8);
-          d->alt_m = rd_f64(p + 16);
-          d->has |= VN_HAS_POSITION_LLA;
-          break;
-        case 7u:
-          rd_f32_n(p, d->vel_ned_mps, 3u);
-          d->has |= VN_HAS_VEL_NED;
-          break;
-        case 8u:
-          rd_f32_n(p, d->accel_mps2, 3u);
-          d->has |= VN_HAS_ACCEL;
-          break;
-        case 10u: /* MagPres: mag[3] gauss, temperature C, pressure kPa */
-          rd_f32_n(p, d->mag_gauss, 3u);
-          d->temp_c = rd_f32(p + 12);
-          d->pressure_kpa = rd_f32(p + 16);
-          d->has |= VN_HAS_MAG | VN_HAS_TEMP | VN_HAS_PRESSURE;
-          break;
-        case 12u:
-          d->ins_status = rd_u16(p);
-          d->has |= VN_HAS_INS_STATUS;
-          break;
-        default:
-          break;
-      }
-      break;
-    case 1u: /* Time */
-      switch (b) {
-        case 0u:
-          d->time_startup_ns = rd_u64(p);
-          d->has |= VN_HAS_TIME_STARTUP;
-          break;
-        case 1u:
-          d->time_gps_ns = rd_u64(p);
-          d->has |= VN_HAS_TIME_GPS;
-          break;
-        case 2u:
-          d->gps_tow_ns = rd_u64(p);
-          d->has |= VN_HAS_GPS_TOW;
-          break;
-        case 3u:
-          d->gps_week = rd_u16(p);
-          d->has |= VN_HAS_GPS_WEEK;
-          break;
-        default:
-          break;
-      }
-      break;
-    case 2u: /* IMU (compensated values) */
-      switch (b) {
-        case 4u:
-          d->temp_c = rd_f32(p);
-          d->has |= VN_HAS_TEMP;
-          break;
-        case 5u:
-          d->pressure_kpa = rd_f32(p);
-          d->has |= VN_HAS_PRESSURE;
-          break;
-        case 8u:
-          rd_f32_n(p, d->mag_gauss, 3u);
-          d->has |= VN_HAS_MAG;
-          break;
-        case 9u:
-          rd_f32_n(p, d->accel_mps2, 3u);
-          d->has |= VN_HAS_ACCEL;
-          break;
-        case 10u:
-          rd_f32_n(p, d->angular_rate_radps, 3u);
-          d->has |= VN_HAS_ANGULAR_RATE;
-          break;
-        default:
-          break;
-      }
-      break;
-    case 3u: /* GPS */
-      switch (b) {
-        case 1u:
-          d->gps_tow_ns = rd_u64(p);
-          d->has |= VN_HAS_GPS_TOW;
-          break;
-        case 2u:
-          d->gps_week = rd_u16(p);
-          d->has |= VN_HAS_GPS_WEEK;
-          break;
-        case 3u:
-          d->num_sats = p[0];
-          d->has |= VN_HAS_NUM_SATS;
-          break;
-        case 4u:
-          d->gps_fix = p[0];
-          d->has |= VN_HAS_GPS_FIX;
-          break;
-        case 5u:
-          d->gps_lat_deg = rd_f64(p);
-          d->gps_lon_deg = rd_f64(p + 8);
-          d->gps_alt_m = rd_f64(p + 16);
-          d->has |= VN_HAS_GPS_LLA;
-          break;
-        case 7u:
-          rd_f32_n(p, d->gps_vel_ned_mps, 3u);
-          d->has |= VN_HAS_GPS_VEL_NED;
-          break;
-        case 9u:
-          rd_f32_n(p, d->gps_pos_unc_ned_m, 3u);
-          d->has |= VN_HAS_GPS_POS_UNC;
-          break;
-        case 10u:
-          d->gps_vel_unc_mps = rd_f32(p);
-          d->has |= VN_HAS_GPS_VEL_UNC;
-          break;
-        default:
-          break;
-      }
-      break;
-    case 4u: /* Attitude */
-      switch (b) {
-        case 1u:
-          rd_f32_n(p, d->ypr_deg, 3u);
-          d->has |= VN_HAS_YPR;
-          break;
-        case 2u:
-          rd_f32_n(p, d->quat_xyzw, 4u);
-          d->has |= VN_HAS_QUATERNION;
-          break;
-        case 8u:
-          rd_f32_n(p, d->ypr_unc_deg, 3u);
-          d->has |= VN_HAS_YPR_UNC;
-          break;
-        default:
-          break;
-      }
-      break;
-    case 5u: /* INS */
-      switch (b) {
-        case 0u:
-          d->ins_status = rd_u16(p);
-          d->has |= VN_HAS_INS_STATUS;
-          break;
-        case 1u:
-          d->lat_deg = rd_f64(p);
-          d->lon_deg = rd_f64(p + 8);
-          d->alt_m = rd_f64(p + 16);
-          d->has |= VN_HAS_POSITION_LLA;
-          break;
-        case 4u:
-          rd_f32_n(p, d->vel_ned_mps, 3u);
-          d->has |= VN_HAS_VEL_NED;
-          break;
-        case 9u:
-          d->ins_pos_unc_m = rd_f32(p);
-          d->has |= VN_HAS_INS_POS_UNC;
-          break;
-        case 10u:
-          d->ins_vel_unc_mps = rd_f32(p);
-          d->has |= VN_HAS_INS_VEL_UNC;
-          break;
-        default:
-          break;
-      }
-      break;
-    default:
-      break;
-  }
+  d->has |= f->has;
 }
 
 VnBinResult vn_bin_decode(const uint8_t *pkt, size_t len, VnBinaryData *out) {
@@ -373,8 +312,8 @@ VnBinResult vn_bin_decode(const uint8_t *pkt, size_t len, VnBinaryData *out) {
     for (b = 0u; b < 16u; ++b) {
       if ((masks[mask_count] & (1u << b)) != 0u) {
         /* pos + size <= len - 2 holds: the total was checked against the table above. */
-        store_field(g, b, pkt + pos, out);
-        pos += k_field_size[g][b];
+        store_field(&k_fields[g][b], pkt + pos, out);
+        pos += k_fields[g][b].size;
       }
     }
     ++mask_count;
