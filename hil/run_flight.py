@@ -133,6 +133,9 @@ def raise_priority_for_realtime():
 
 
 def main(argv=None):
+    # Wall-clock marks of this run's phases (run_flight_times.json; hil/bench/bench_flight_overhead.py
+    # puts them beside the simulator's sim_times.json): what every flight pays besides its steps.
+    marks = [("start", time.time())]
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--aircraft", default="DG808")
     ap.add_argument("--seed", type=int, default=1)
@@ -234,6 +237,7 @@ def main(argv=None):
         deadline = time.monotonic() + 60.0
         while not stop["now"]:
             if master_has_run_id(master_uri):
+                marks.append(("roscore_up", time.time()))
                 break
             if time.monotonic() > deadline:
                 raise RuntimeError("roscore did not come up on port %d" % port)
@@ -266,6 +270,7 @@ def main(argv=None):
         if args.temperature_c is not None:
             launch.append("temperature_c:=%r" % args.temperature_c)
         launcher = procs.start("launch", launch)
+        marks.append(("launch_started", time.time()))
         t0 = time.monotonic()
         done = os.path.join(out, "done")
         while not stop["now"]:
@@ -287,6 +292,7 @@ def main(argv=None):
             time.sleep(0.05)
         if not args.quiet:
             sys.stderr.write("\n")
+        marks.append(("done_seen", time.time()))
         if stop["now"]:
             print("run_flight: interrupted; stopping everything", file=sys.stderr)
             return 130
@@ -304,6 +310,9 @@ def main(argv=None):
             except ProcessLookupError:
                 pass
         shutil.rmtree(run_dir, ignore_errors=True)
+        marks.append(("stopped", time.time()))
+        with open(os.path.join(out, "run_flight_times.json"), "w") as f:
+            json.dump(dict(marks), f)
     summary = os.path.join(out, "summary.json")
     if code != 0 or not os.path.exists(summary):
         # The flight did not finish: say so in the summary, never leave it missing.
