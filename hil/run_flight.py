@@ -60,17 +60,22 @@ class Processes:
         return p
 
     def stop_all(self):
+        # Every one told at once, then each waited for: roslaunch, rosbag and roscore each take
+        # about a second to close (3.3 s a flight one after another, at load 4). Nothing needs
+        # the master by now: a node's goodbye to it is refused at once, not waited out.
         for name, p, log in reversed(self.procs):
             if p.poll() is None:
                 try:
                     os.killpg(p.pid, signal.SIGINT)  # roslaunch and rosbag close cleanly on SIGINT
                 except ProcessLookupError:
                     pass
-                try:
-                    p.wait(timeout=20)
-                except subprocess.TimeoutExpired:
-                    os.killpg(p.pid, signal.SIGKILL)
-                    p.wait()
+        deadline = time.monotonic() + 20.0
+        for name, p, log in reversed(self.procs):
+            try:
+                p.wait(timeout=max(0.0, deadline - time.monotonic()))
+            except subprocess.TimeoutExpired:
+                os.killpg(p.pid, signal.SIGKILL)
+                p.wait()
             log.close()
         self.procs = []
 
