@@ -12,6 +12,8 @@ import os
 import signal
 import tempfile
 
+import pytest
+
 # Each test file's measured seconds (setup, call and teardown of all its tests) and test count:
 # make test hands the longest work to the two workers first (tools/test_durations.py writes it).
 DURATIONS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "tools", "test_durations.json")
@@ -58,6 +60,7 @@ def pytest_collection_modifyitems(config, items):
     os.replace(path + ".tmp", path)
 
 
+@pytest.hookimpl(optionalhook=True)  # a hook of xdist's, which -p no:xdist leaves out
 def pytest_xdist_make_scheduler(config, log):
     """--dist loadgroup: the tests of a module sharing a module fixture are one unit of work, every
     other test a unit of its own; a free worker takes the unit with the most measured seconds left

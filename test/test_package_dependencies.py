@@ -25,7 +25,7 @@ PYTHON_MODULES = {
     "std_msgs": "std_msgs", "sensor_msgs": "sensor_msgs", "geometry_msgs": "geometry_msgs",
     "diagnostic_msgs": "diagnostic_msgs", "rosgraph_msgs": "rosgraph_msgs", "tf2_msgs": "tf2_msgs",
     "visualization_msgs": "visualization_msgs", "nav_msgs": "nav_msgs",
-    "pymavlink": "pypi:pymavlink", "jsbsim": "pypi:jsbsim",
+    "pymavlink": "pypi:pymavlink", "jsbsim": "pypi:jsbsim", "xdist": "pypi:pytest-xdist",
 }
 # C++ include (first path component, or the file name) -> rosdep key; None: this package's own.
 CPP_INCLUDES = {
