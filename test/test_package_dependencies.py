@@ -42,8 +42,8 @@ CPP_INCLUDES = {
 CMAKE_PACKAGES = {"Eigen3": "eigen", "yaml-cpp": "yaml-cpp", "Threads": None, "catkin": "catkin"}
 # ROS command-line tools the code runs -> the package that installs them.
 ROS_TOOLS = {"roscore": "roslaunch", "roslaunch": "roslaunch", "rosparam": "rosparam", "rosbag": "rosbag",
-             "rostopic": "rostopic", "rosservice": "rosservice", "rosnode": "rosnode", "rosrun": "rosbash",
-             "mavproxy.py": "pypi:MAVProxy"}
+             "rosmaster": "rosmaster", "rostopic": "rostopic", "rosservice": "rosservice", "rosnode": "rosnode",
+             "rosrun": "rosbash", "mavproxy.py": "pypi:MAVProxy"}
 # Build-time Python: the generators CMake runs, and what they import from the tree. check_config also
 # runs at launch (launch/check_config.launch), so its imports are run-time ones too.
 BUILD_ONLY = re.compile(r"^(tools/gen_[a-z_]+\.py|tools/generated_file\.py|arduino_ha/tools/[a-z_]+\.py|arduino_ha/link/gen/[a-z_0-9]+\.py)$")

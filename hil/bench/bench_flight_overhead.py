@@ -2,7 +2,7 @@
 """make bench-flight-overhead: what one lockstep flight costs besides its steps, phase by phase.
 
 Every flight of the test suite (some 75 of them in make test) pays it: run_flight.py's start and
-roscore, roslaunch starting every node, the simulator's start-up (rospy, its model of the
+the master, roslaunch starting every node, the simulator's start-up (rospy, its model of the
 aircraft, ptys), the preflight (until every node is connected), the verdict and summary, and the
 teardown. The flights are the shortest that still fly (SIM_S of simulated time: 2 s parked, the
 mission upload, the airborne start), no fault, no bag; the figures are the median of RUNS flights,
@@ -25,7 +25,7 @@ from bench_machine import machine  # noqa: E402
 RUNS = int(os.environ.get("BENCH_FLIGHT_RUNS", "3"))
 SIM_S = 3.0
 # (metric, from mark, to mark): consecutive, so the phases add up to the whole flight.
-PHASES = [("run_flight_start_to_roscore_up", "start", "roscore_up"),
+PHASES = [("run_flight_start_to_master_up", "start", "master_up"),
           ("roslaunch_to_simulator_process", "launch_started", "sim_started"),
           ("simulator_imports", "sim_started", "sim_imported"),
           ("simulator_node_registration", "sim_imported", "node_up"),
@@ -55,8 +55,8 @@ def fly():
         with open(os.path.join(folder, name)) as f:
             marks.update(json.load(f))
     marks["end"] = end
-    # The launch starts once roscore is up; from the process's start to roscore is run_flight's.
-    marks["launch_started"] = marks.get("launch_started", marks["roscore_up"])
+    # The launch starts once the master is up; from the process's start to that is run_flight's.
+    marks["launch_started"] = marks.get("launch_started", marks["master_up"])
     phases = {name: marks[b] - marks[a] for name, a, b in PHASES}
     phases["whole_flight"] = end - t0
     cpu = (cpu1.ru_utime - cpu0.ru_utime) + (cpu1.ru_stime - cpu0.ru_stime)
