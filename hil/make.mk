@@ -20,3 +20,11 @@ bench-hil: build
 .PHONY: campaign
 campaign: build
 	@$(ROSENV) $(VENV)/bin/python $(HIL_DIR)/campaign.py $(ARGS)
+
+#   make bench-flight-overhead   what one lockstep flight costs besides its steps, phase by phase
+#                                (hil/bench/bench_flight_overhead.py; BENCH_FLIGHT_RUNS=N flights)
+.PHONY: bench-flight-overhead
+BENCH_TARGETS += bench-flight-overhead
+
+bench-flight-overhead: build
+	@$(ROSENV) $(VENV)/bin/python $(HIL_DIR)/bench/bench_flight_overhead.py

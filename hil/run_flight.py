@@ -31,6 +31,7 @@ import subprocess
 import sys
 import tempfile
 import time
+import uuid
 import xmlrpc.client
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -60,30 +61,58 @@ class Processes:
         return p
 
     def stop_all(self):
+        # Every one told at once, then each waited for: roslaunch, rosbag and the master each take
+        # about a second to close (3.3 s a flight one after another, at load 4). Nothing needs
+        # the master by now: a node's goodbye to it is refused at once, not waited out.
         for name, p, log in reversed(self.procs):
             if p.poll() is None:
                 try:
                     os.killpg(p.pid, signal.SIGINT)  # roslaunch and rosbag close cleanly on SIGINT
                 except ProcessLookupError:
                     pass
-                try:
-                    p.wait(timeout=20)
-                except subprocess.TimeoutExpired:
-                    os.killpg(p.pid, signal.SIGKILL)
-                    p.wait()
+        deadline = time.monotonic() + 20.0
+        for name, p, log in reversed(self.procs):
+            try:
+                p.wait(timeout=max(0.0, deadline - time.monotonic()))
+            except subprocess.TimeoutExpired:
+                os.killpg(p.pid, signal.SIGKILL)
+                p.wait()
             log.close()
         self.procs = []
 
 
-def master_has_run_id(master_uri):
-    """roscore is up: its master answers and its roslaunch has set /run_id. Asked over the
-    master's own XML-RPC in this process; a `rosparam get` per poll started a Python process
-    each time (about 0.3 s of CPU, five or more per flight on a loaded machine)."""
+def master_answers(master_uri):
+    """The master is up: it answers over its own XML-RPC, asked in this process (a `rosparam
+    get` per poll started a Python process each time, about 0.3 s of CPU)."""
     try:
-        code, _, _ = xmlrpc.client.ServerProxy(master_uri).getParam("/run_flight", "/run_id")
+        code, _, _ = xmlrpc.client.ServerProxy(master_uri).getPid("/run_flight")
     except (OSError, xmlrpc.client.Error):
         return False
     return code == 1
+
+
+def start_master(procs, port, master_uri, stop):
+    """The flight's own master, what roscore would make of it without roscore's own roslaunch:
+    rosmaster with roscore's command line, /run_id (which every roslaunch checks and logs under)
+    and /rosdistro set as roscore sets them, and the rosout node (/rosout_agg, in the bag).
+    roscore's roslaunch and its two `rosversion` processes were 1.2 s of CPU a flight, and
+    closing it took a second. Returns once the master has /run_id, or raises RuntimeError."""
+    procs.start("rosmaster", ["rosmaster", "--core", "-p", str(port), "-w", "3"])
+    deadline = time.monotonic() + 60.0
+    while not master_answers(master_uri):
+        if stop["now"]:
+            return
+        if time.monotonic() > deadline:
+            raise RuntimeError("rosmaster did not come up on port %d" % port)
+        time.sleep(0.05)
+    master = xmlrpc.client.ServerProxy(master_uri)
+    master.setParam("/run_flight", "/rosdistro", os.environ.get("ROS_DISTRO", "") + "\n")
+    master.setParam("/run_flight", "/run_id", str(uuid.uuid1()))
+    from roslib.packages import find_node
+    rosout = find_node("rosout", "rosout")
+    if not rosout:
+        raise RuntimeError("the rosout node is not installed (package rosout)")
+    procs.start("rosout", [rosout[0], "__name:=rosout"])
 
 
 def leftovers(master_uri):
@@ -133,6 +162,9 @@ def raise_priority_for_realtime():
 
 
 def main(argv=None):
+    # Wall-clock marks of this run's phases (run_flight_times.json; hil/bench/bench_flight_overhead.py
+    # puts them beside the simulator's sim_times.json): what every flight pays besides its steps.
+    marks = [("start", time.time())]
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--aircraft", default="DG808")
     ap.add_argument("--seed", type=int, default=1)
@@ -230,14 +262,8 @@ def main(argv=None):
     status = "died"
     error = None
     try:
-        procs.start("roscore", ["roscore", "-p", str(port)])
-        deadline = time.monotonic() + 60.0
-        while not stop["now"]:
-            if master_has_run_id(master_uri):
-                break
-            if time.monotonic() > deadline:
-                raise RuntimeError("roscore did not come up on port %d" % port)
-            time.sleep(0.05)
+        start_master(procs, port, master_uri, stop)
+        marks.append(("master_up", time.time()))
         if not args.no_bag:
             procs.start("rosbag", ["rosbag", "record", "-O", os.path.join(out, "flight.bag"),
                                    "__name:=flight_recorder"] + BAG_TOPICS)
@@ -266,6 +292,7 @@ def main(argv=None):
         if args.temperature_c is not None:
             launch.append("temperature_c:=%r" % args.temperature_c)
         launcher = procs.start("launch", launch)
+        marks.append(("launch_started", time.time()))
         t0 = time.monotonic()
         done = os.path.join(out, "done")
         while not stop["now"]:
@@ -287,6 +314,7 @@ def main(argv=None):
             time.sleep(0.05)
         if not args.quiet:
             sys.stderr.write("\n")
+        marks.append(("done_seen", time.time()))
         if stop["now"]:
             print("run_flight: interrupted; stopping everything", file=sys.stderr)
             return 130
@@ -304,6 +332,9 @@ def main(argv=None):
             except ProcessLookupError:
                 pass
         shutil.rmtree(run_dir, ignore_errors=True)
+        marks.append(("stopped", time.time()))
+        with open(os.path.join(out, "run_flight_times.json"), "w") as f:
+            json.dump(dict(marks), f)
     summary = os.path.join(out, "summary.json")
     if code != 0 or not os.path.exists(summary):
         # The flight did not finish: say so in the summary, never leave it missing.

@@ -763,6 +763,7 @@ class Simulation:
         self.home = (home_lat, home_lon, parked.alt_msl_m)
         self.preflight()
         wall0 = time.monotonic()
+        self.wall0_epoch = time.time()
         cpu0 = time.process_time()  # this process's CPU, its rospy threads included
         self.timer.t = time.perf_counter()
         steps = int(round(self.duration_s * self.rate_hz))
@@ -878,19 +879,38 @@ class Simulation:
         self.fdm.close()
 
 
+def process_start_time():
+    """When this process started (wall clock): its start in clock ticks after boot, from /proc."""
+    with open("/proc/self/stat") as f:
+        ticks = int(f.read().rsplit(")", 1)[1].split()[19])
+    with open("/proc/stat") as f:
+        boot = next(int(line.split()[1]) for line in f if line.startswith("btime "))
+    return boot + ticks / os.sysconf("SC_CLK_TCK")
+
+
 def main():
     # rospy's receive threads and this stepping thread share the GIL: a thread waiting on a
     # condition another thread has just set waits for the switch interval (5 ms by default).
     sys.setswitchinterval(1e-4)
+    # Wall-clock marks of the simulator's phases (sim_times.json): run_flight.py's own
+    # (run_flight_times.json) and these make the fixed cost of a flight that
+    # hil/bench/bench_flight_overhead.py breaks down.
+    marks = [("sim_started", process_start_time()), ("sim_imported", time.time())]
     rospy.init_node("hil_sim")
+    marks.append(("node_up", time.time()))
     sim = Simulation()
+    marks.append(("sim_set_up", time.time()))
     code = 0
     try:
         sim.run()
+        marks += [("preflight_done", sim.wall0_epoch), ("flight_done", time.time())]
         summary = sim.summary()
         path = os.path.join(sim.out_dir, "summary.json")
         with open(path, "w") as f:
             json.dump(summary, f, indent=2)
+        marks.append(("summary_written", time.time()))
+        with open(os.path.join(sim.out_dir, "sim_times.json"), "w") as f:
+            json.dump(dict(marks), f)
         rospy.loginfo("hil_sim: summary in %s", path)
     except (RuntimeError, ConnectionError, socket.timeout) as e:
         rospy.logfatal("hil_sim: %s", e)

@@ -25,7 +25,7 @@ PYTHON_MODULES = {
     "std_msgs": "std_msgs", "sensor_msgs": "sensor_msgs", "geometry_msgs": "geometry_msgs",
     "diagnostic_msgs": "diagnostic_msgs", "rosgraph_msgs": "rosgraph_msgs", "tf2_msgs": "tf2_msgs",
     "visualization_msgs": "visualization_msgs", "nav_msgs": "nav_msgs",
-    "pymavlink": "pypi:pymavlink", "jsbsim": "pypi:jsbsim",
+    "pymavlink": "pypi:pymavlink", "jsbsim": "pypi:jsbsim", "xdist": "pypi:pytest-xdist",
 }
 # C++ include (first path component, or the file name) -> rosdep key; None: this package's own.
 CPP_INCLUDES = {
@@ -42,8 +42,8 @@ CPP_INCLUDES = {
 CMAKE_PACKAGES = {"Eigen3": "eigen", "yaml-cpp": "yaml-cpp", "Threads": None, "catkin": "catkin"}
 # ROS command-line tools the code runs -> the package that installs them.
 ROS_TOOLS = {"roscore": "roslaunch", "roslaunch": "roslaunch", "rosparam": "rosparam", "rosbag": "rosbag",
-             "rostopic": "rostopic", "rosservice": "rosservice", "rosnode": "rosnode", "rosrun": "rosbash",
-             "mavproxy.py": "pypi:MAVProxy"}
+             "rosmaster": "rosmaster", "rostopic": "rostopic", "rosservice": "rosservice", "rosnode": "rosnode",
+             "rosrun": "rosbash", "mavproxy.py": "pypi:MAVProxy"}
 # Build-time Python: the generators CMake runs, and what they import from the tree. check_config also
 # runs at launch (launch/check_config.launch), so its imports are run-time ones too.
 BUILD_ONLY = re.compile(r"^(tools/gen_[a-z_]+\.py|tools/generated_file\.py|arduino_ha/tools/[a-z_]+\.py|arduino_ha/link/gen/[a-z_0-9]+\.py)$")

@@ -105,3 +105,20 @@ def test_roll_damping_past_the_stall_autorotates_at_low_rates_and_damps_at_high_
     assert af.roll_damping_phat(alpha_deg, 0.02) < 0.0     # the down-going wing loses lift
     assert af.roll_damping_phat(alpha_deg, 0.3) > 0.0      # its tip is past the break: damped again
     assert af.roll_damping_phat(alpha_deg, -0.3) == pytest.approx(-af.roll_damping_phat(alpha_deg, 0.3))
+
+
+def test_the_models_roll_damping_table_is_the_strip_integral_at_its_breakpoints():
+    """The JSBSim table is computed for the whole grid at once: each breakpoint must be the strip
+    integral itself, to the bit (a flight's truth is compared byte for byte), on every row around
+    both stalls, where the table bends, and on every third row elsewhere."""
+    af = Airframe(AIRCRAFT)
+    alphas, phats, rows = af.roll_damping_grid()
+    stalls = (math.degrees(af.alpha_stall_rad), math.degrees(af.alpha_stall_neg_rad))
+    checked = 0
+    for i, alpha_deg in enumerate(alphas):
+        if i % 3 and min(abs(alpha_deg - s) for s in stalls) > af.stall_drop_deg + 2.0:
+            continue
+        for j, phat in enumerate(phats):
+            assert rows[i][j] == af.roll_damping_phat(alpha_deg, phat), (alpha_deg, phat)
+            checked += 1
+    assert checked >= len(alphas) * len(phats) // 3

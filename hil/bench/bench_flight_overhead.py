@@ -1,0 +1,77 @@
+#!/usr/bin/env python3
+"""make bench-flight-overhead: what one lockstep flight costs besides its steps, phase by phase.
+
+Every flight of the test suite (some 75 of them in make test) pays it: run_flight.py's start and
+the master, roslaunch starting every node, the simulator's start-up (rospy, its model of the
+aircraft, ptys), the preflight (until every node is connected), the verdict and summary, and the
+teardown. The flights are the shortest that still fly (SIM_S of simulated time: 2 s parked, the
+mission upload, the airborne start), no fault, no bag; the figures are the median of RUNS flights,
+from run_flight_times.json and sim_times.json (wall-clock marks both write in the flight's
+folder), plus the CPU time of the flight's whole process tree. Wall time on a shared machine
+measures the neighbours too. Prints `metric: value unit` lines, then `machine: ...`."""
+import json
+import os
+import resource
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "tools"))
+from bench_machine import machine  # noqa: E402
+
+RUNS = int(os.environ.get("BENCH_FLIGHT_RUNS", "3"))
+SIM_S = 3.0
+# (metric, from mark, to mark): consecutive, so the phases add up to the whole flight.
+PHASES = [("run_flight_start_to_master_up", "start", "master_up"),
+          ("roslaunch_to_simulator_process", "launch_started", "sim_started"),
+          ("simulator_imports", "sim_started", "sim_imported"),
+          ("simulator_node_registration", "sim_imported", "node_up"),
+          ("simulator_set_up", "node_up", "sim_set_up"),
+          ("preflight_until_every_node_connected", "sim_set_up", "preflight_done"),
+          ("flight_steps_incl_mission_upload", "preflight_done", "flight_done"),
+          ("verdict_and_summary", "flight_done", "summary_written"),
+          ("done_seen_by_run_flight", "summary_written", "done_seen"),
+          ("teardown", "done_seen", "stopped"),
+          ("run_flight_exit", "stopped", "end")]
+
+
+def fly():
+    folder = os.path.join(tempfile.mkdtemp(prefix="bench_overhead_"), "flight")
+    cpu0 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.time()
+    r = subprocess.run([sys.executable, os.path.join(HERE, "..", "run_flight.py"), "--quiet", "--no-bag",
+                        "--fault", "none", "--duration", "%g" % SIM_S, "--folder", folder],
+                       stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
+    end = time.time()
+    cpu1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    if r.returncode != 0:
+        sys.stdout.write(r.stdout.decode(errors="replace")[-2000:])
+        raise SystemExit("bench-flight-overhead: the flight failed")
+    marks = {}
+    for name in ("run_flight_times.json", "sim_times.json"):
+        with open(os.path.join(folder, name)) as f:
+            marks.update(json.load(f))
+    marks["end"] = end
+    # The launch starts once the master is up; from the process's start to that is run_flight's.
+    marks["launch_started"] = marks.get("launch_started", marks["master_up"])
+    phases = {name: marks[b] - marks[a] for name, a, b in PHASES}
+    phases["whole_flight"] = end - t0
+    cpu = (cpu1.ru_utime - cpu0.ru_utime) + (cpu1.ru_stime - cpu0.ru_stime)
+    return phases, cpu
+
+
+def main():
+    header = machine("%d flights of %g s simulated, lockstep 100 Hz, no bag" % (RUNS, SIM_S))
+    runs = [fly() for _ in range(RUNS)]
+    for name in [p[0] for p in PHASES] + ["whole_flight"]:
+        print("flight_overhead_%s: %.2f s" % (name, statistics.median(r[0][name] for r in runs)))
+    print("flight_overhead_cpu_whole_flight: %.2f s (every process of the flight)" %
+          statistics.median(r[1] for r in runs))
+    print("machine: %s" % header)
+
+
+if __name__ == "__main__":
+    main()
