@@ -9,7 +9,6 @@ import json
 import os
 import subprocess
 import sys
-import tempfile
 import time
 
 import pytest
@@ -145,7 +144,7 @@ def test_every_flight_of_every_class_flies_its_own_wind_up_to_beyond_the_has_lim
     assert "--wind-mps" not in plan_mod.command(plan[0], "/tmp/f", AGREED)
 
 
-def test_a_campaign_with_ha_qemu_flies_every_flight_with_the_ha_in_qemu_and_the_same_plan_otherwise():
+def test_a_campaign_with_ha_qemu_flies_every_flight_with_the_ha_in_qemu_and_the_same_plan_otherwise(tmp_path):
     """campaign.py --ha qemu: each flight's command (the one flown and the replay) takes --ha qemu,
     and the flights are those of the SIL campaign with the same seed."""
     argv = [sys.executable, os.path.join(ROOT, "hil", "campaign.py"), "--flights", "6", "--seed", "5",
@@ -156,7 +155,7 @@ def test_a_campaign_with_ha_qemu_flies_every_flight_with_the_ha_in_qemu_and_the_
     assert not any("--ha" in line for line in sil)
     assert [line.replace(" --ha qemu", "") for line in qemu] == sil
     fl = plan_mod.make_plan(1, 5, ("quick",), ha="qemu", interface=AGREED)[0]
-    folder = tempfile.mkdtemp(prefix="campaign_qemu_test_")
+    folder = str(tmp_path)
     row = flight_mod.run(fl, plan_mod.command(fl, folder, AGREED, run_flight=FAKE), folder, 60.0)
     assert row["status"] == "ok" and row["ha"] == "qemu" and " --ha qemu " in row["command"]
 
@@ -167,8 +166,8 @@ def test_the_classes_come_from_this_checkouts_run_flight():
     assert iface.fault_at_flag in ("--fault-at", "--crash-at")
 
 
-def test_a_flight_past_its_wall_limit_is_killed_whole_and_reported_as_timed_out():
-    folder = tempfile.mkdtemp(prefix="campaign_stuck_")
+def test_a_flight_past_its_wall_limit_is_killed_whole_and_reported_as_timed_out(tmp_path):
+    folder = str(tmp_path)
     fl = plan_mod.Flight(0, "stuck", 5, 10.0, 1.0, (), 40.0)
     argv = plan_mod.command(fl, folder, AGREED, run_flight=FAKE)
     row = flight_mod.run(fl, argv, folder, wall_limit_s=15.0, term_grace_s=1.0)
@@ -185,10 +184,10 @@ def test_a_flight_past_its_wall_limit_is_killed_whole_and_reported_as_timed_out(
     assert row["broke_property"] is False
 
 
-def test_a_test_flight_past_its_timeout_raises_and_leaves_no_process_behind():
+def test_a_test_flight_past_its_timeout_raises_and_leaves_no_process_behind(tmp_path):
     """What the HiL tests run their flights with (run_completed): subprocess.run's own timeout
     would SIGKILL run_flight.py alone and leave its master and nodes flying."""
-    folder = tempfile.mkdtemp(prefix="campaign_stuck_test_")
+    folder = str(tmp_path)
     fl = plan_mod.Flight(0, "stuck", 5, 10.0, 1.0, (), 40.0)
     argv = plan_mod.command(fl, folder, AGREED, run_flight=FAKE)
     # Its run_flight.py ignores SIGTERM: a grace of 1 s, not a real flight's 30 s, before the
@@ -202,16 +201,16 @@ def test_a_test_flight_past_its_timeout_raises_and_leaves_no_process_behind():
         wait_for(lambda: gone(pid), "process %d of the timed-out flight gone" % pid, bound_s=30.0)
 
 
-def test_a_test_flight_that_ends_gives_its_exit_code_and_output():
-    folder = tempfile.mkdtemp(prefix="campaign_quick_test_")
+def test_a_test_flight_that_ends_gives_its_exit_code_and_output(tmp_path):
+    folder = str(tmp_path)
     fl = plan_mod.Flight(0, "die", 5, 10.0, 1.0, (), 40.0)
     r = flight_mod.run_completed(plan_mod.command(fl, folder, AGREED, run_flight=FAKE), timeout=60.0)
     assert r.returncode == 3
     assert isinstance(r.stdout, bytes)
 
 
-def test_a_flight_that_dies_is_reported_as_died_with_its_reason():
-    folder = tempfile.mkdtemp(prefix="campaign_die_")
+def test_a_flight_that_dies_is_reported_as_died_with_its_reason(tmp_path):
+    folder = str(tmp_path)
     fl = plan_mod.Flight(3, "die", 9, 10.0, 1.0, (("bits", "2"),), 40.0)
     row = flight_mod.run(fl, plan_mod.command(fl, folder, AGREED, run_flight=FAKE), folder, wall_limit_s=300.0)
     assert row["status"] == "died"
@@ -222,18 +221,18 @@ def test_a_flight_that_dies_is_reported_as_died_with_its_reason():
     assert row["beyond_design_wind"] == "", "a calm flight's death is inside the design wind"
 
 
-def test_a_flight_that_dies_in_a_wind_past_the_design_wind_is_counted_beyond_it():
+def test_a_flight_that_dies_in_a_wind_past_the_design_wind_is_counted_beyond_it(tmp_path):
     # Campaign seed 26 #70: parked in 10.8 m/s the pitot is doubted, home never latches and the
     # mission is refused; with no summary world it was counted inside the design wind.
-    folder = tempfile.mkdtemp(prefix="campaign_die_wind_")
+    folder = str(tmp_path)
     fl = plan_mod.Flight(4, "die", 9, 10.0, 1.0, (), 40.0, wind_mps=10.8, wind_from_deg=51.7)
     row = flight_mod.run(fl, plan_mod.command(fl, folder, AGREED, run_flight=FAKE), folder, wall_limit_s=300.0)
     assert row["status"] == "died"
     assert row["beyond_design_wind"].startswith("steady 35.4 ft/s"), row["beyond_design_wind"]
 
 
-def test_a_real_flight_whose_launch_fails_is_reported_as_died_with_run_flights_reason():
-    folder = os.path.join(tempfile.mkdtemp(prefix="campaign_real_die_"), "flight")
+def test_a_real_flight_whose_launch_fails_is_reported_as_died_with_run_flights_reason(tmp_path):
+    folder = os.path.join(str(tmp_path), "flight")
     iface = plan_mod.discover()
     fl = plan_mod.make_plan(1, 3, ("crash",), duration_s=20.0, interface=iface)[0]
     # An aircraft with no launch file: roscore comes up, roslaunch ends at once.
@@ -245,8 +244,8 @@ def test_a_real_flight_whose_launch_fails_is_reported_as_died_with_run_flights_r
     assert row["leftovers_killed"] == 0  # run_flight.py stopped its roscore itself
 
 
-def test_rows_reach_the_table_as_flights_finish_and_none_is_dropped(monkeypatch):
-    out = tempfile.mkdtemp(prefix="campaign_stream_")
+def test_rows_reach_the_table_as_flights_finish_and_none_is_dropped(monkeypatch, tmp_path):
+    out = str(tmp_path)
     release = os.path.join(out, "release")
     monkeypatch.setenv("CAMPAIGN_TEST_RELEASE", release)
     plan = [plan_mod.Flight(0, "quick", 11, 10.0, 1.0, (), 40.0),
@@ -280,9 +279,9 @@ def test_rows_reach_the_table_as_flights_finish_and_none_is_dropped(monkeypatch)
     wait_for(lambda: not my_children(), "the Dask workers stopped", bound_s=60.0)
 
 
-def test_the_same_campaign_runs_on_a_scheduler_given_by_its_address():
+def test_the_same_campaign_runs_on_a_scheduler_given_by_its_address(tmp_path):
     from distributed import LocalCluster
-    out = tempfile.mkdtemp(prefix="campaign_sched_")
+    out = str(tmp_path)
     plan = [plan_mod.Flight(i, "quick", 20 + i, 10.0, 1.0, (), 40.0) for i in range(3)]
     # A cluster that is already there, as a lab's would be: the campaign only knows its address.
     with LocalCluster(n_workers=1, threads_per_worker=1, processes=True, host="127.0.0.1",
@@ -297,8 +296,8 @@ def test_the_same_campaign_runs_on_a_scheduler_given_by_its_address():
     wait_for(lambda: not my_children(), "the test's cluster stopped", bound_s=60.0)
 
 
-def test_the_report_gives_nearest_rank_percentiles_and_lists_the_flights_that_broke_the_property():
-    out = tempfile.mkdtemp(prefix="campaign_report_")
+def test_the_report_gives_nearest_rank_percentiles_and_lists_the_flights_that_broke_the_property(tmp_path):
+    out = str(tmp_path)
     rows = []
     for i in range(101):
         rows.append({c: None for c in flight_mod.COLUMNS})
@@ -327,8 +326,8 @@ def test_the_report_gives_nearest_rank_percentiles_and_lists_the_flights_that_br
     assert "replay 70" in page and "<img src='takeover_latency.png'>" in page
 
 
-def test_a_small_real_campaign_on_two_workers_gives_the_table_and_the_report():
-    out = tempfile.mkdtemp(prefix="campaign_real_")
+def test_a_small_real_campaign_on_two_workers_gives_the_table_and_the_report(tmp_path):
+    out = str(tmp_path)
     iface = plan_mod.discover()
     plan = plan_mod.make_plan(3, 5, ("crash", "hang"), duration_s=20.0, fault_window_s=(8.0, 10.0),
                               interface=iface)
