@@ -96,7 +96,9 @@ def start_master(procs, port, master_uri, stop):
     rosmaster with roscore's command line, /run_id (which every roslaunch checks and logs under)
     and /rosdistro set as roscore sets them, and the rosout node (/rosout_agg, in the bag).
     roscore's roslaunch and its two `rosversion` processes were 1.2 s of CPU a flight, and
-    closing it took a second. Returns once the master has /run_id, or raises RuntimeError."""
+    closing it took a second. Returns once the master answers and this has set /run_id and
+    started rosout (or at once when the run is being stopped); raises RuntimeError if the master
+    does not answer within 60 s or rosout is not installed."""
     procs.start("rosmaster", ["rosmaster", "--core", "-p", str(port), "-w", "3"])
     deadline = time.monotonic() + 60.0
     while not master_answers(master_uri):
