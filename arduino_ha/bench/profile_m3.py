@@ -44,6 +44,10 @@ def main(elf, log):
     block = None
     steps = []
     current = None
+    # The same instructions with each run-time library routine (soft float, libc: names that
+    # begin "__") charged to the core function that called it: which code to change.
+    by_caller = []
+    caller = None
     with open(log, errors="replace") as f:
         for line in f:
             if line.startswith("Trace"):
@@ -52,10 +56,14 @@ def main(elf, log):
                 if pc == step_entry:
                     current = collections.Counter()
                     steps.append(current)
+                    by_caller.append(collections.Counter())
                 elif name in harness:
                     current = None
                 if current is not None:
                     current[name] += tb_size.get(pc, 0)
+                    if not name.startswith("__"):
+                        caller = name
+                    by_caller[-1][caller] += tb_size.get(pc, 0)
             elif line.startswith("IN:"):
                 block = []
             elif block is not None and line.startswith("0x"):
@@ -73,6 +81,9 @@ def main(elf, log):
           % (len(steps), sorted(totals)[len(totals) // 2], totals[worst], worst))
     print("worst step by function:")
     for name, count in steps[worst].most_common(25):
+        print("  %6d  %s" % (count, name))
+    print("worst step, library routines charged to their caller:")
+    for name, count in by_caller[worst].most_common(25):
         print("  %6d  %s" % (count, name))
     mean = collections.Counter()
     for c in steps:
