@@ -32,11 +32,15 @@ verify-ha: verify-ha-eva verify-ha-m3 verify-ha-board
 # the negative control must be flagged and every core function reached. HA_CORE_DIR: try a
 # patched copy of the core (verify/ALARMS.md).
 HA_CORE_DIR ?= $(HA_DIR)/src/core
+# The functions EVA takes by their contract instead of their body: each is proved by make
+# prove-ha (WP_ha's --fct), so EVA rests on a proof, not on trust (src/core/README.md "Proofs").
+HA_BY_CONTRACT := ha_clampf
 EVA_COMPONENTS += ha
 EVA_ha_SOURCES = $(sort $(wildcard $(HA_CORE_DIR)/*.c)) $(HA_DIR)/verify/eva_main.c
 EVA_ha_ARGS = -I $(HA_CORE_DIR) --negative $(HA_DIR)/verify/eva_negative_control.c --reach $(HA_CORE_DIR) \
   --case finite-any-periods:main:1:non-finite:-DHA_EVA_STEPS=0 \
-  --case any-bits-any-periods:main:1:none:-DHA_EVA_ANY_BITS,-DHA_EVA_STEPS=0
+  --case any-bits-any-periods:main:1:none:-DHA_EVA_ANY_BITS,-DHA_EVA_STEPS=0 \
+  --use-spec $(HA_BY_CONTRACT)
 EVA_ha_DEPS = deps
 
 # EVA over the firmware loop (src/firmware) with all it runs: the core, the link and its reports,
@@ -49,7 +53,7 @@ EVA_ha-fw_SOURCES = $(HA_DIR)/verify/eva_firmware_main.c $(HA_DIR)/src/firmware/
   $(sort $(wildcard $(HA_CORE_DIR)/*.c))
 EVA_ha-fw_ARGS = -I $(HA_CORE_DIR) -I $(HA_DIR)/src/link -I $(HA_DIR)/src/firmware -I $(HA_DIR)/src/vn200 \
   -I $(ROOT)/vn200_driver/core -D 'HA_LINK_GENERATED_HEADER="$(LINK_GEN_DIR)/ha_msgs.h"' \
-  --reach $(HA_DIR)/src/firmware --case any-board:main:1:none
+  --reach $(HA_DIR)/src/firmware --case any-board:main:1:none --use-spec $(HA_BY_CONTRACT)
 EVA_ha-fw_DEPS = deps $(LINK_GEN_DIR)/ha_msgs.c
 verify-ha-eva: verify-ha-fw-eva
 
@@ -109,10 +113,18 @@ coverage-ha: deps
 # the restart history, the saturation into S_u. verify/wp_negative_control.c must stay unproved.
 WP_COMPONENTS += ha
 VERIFY_TARGETS += prove-ha
-WP_ha_SOURCES = $(addprefix $(HA_CORE_DIR)/,ha_policy.c ha_surfaces.c ha_core.c)
+WP_ha_SOURCES = $(addprefix $(HA_CORE_DIR)/,ha_policy.c ha_surfaces.c ha_core.c ha_num.c)
 # 60 s a goal: the saturation's take Z3 5 s on an idle core, and other work shares the cores.
 WP_ha_ARGS = -I $(HA_CORE_DIR) -D HA_WP --driver $(HA_DIR)/verify/ha_wp.driver --timeout 60 \
-  --fct ha_policy_decide,ha_policy_restart,ha_surfaces_saturate,ha_clampf_final,prune_restarts,request_restart,ha_elapsed_us \
+  --fct ha_policy_decide,ha_policy_restart,ha_surfaces_saturate,$(HA_BY_CONTRACT),prune_restarts,request_restart,ha_elapsed_us \
   --negative $(HA_DIR)/verify/wp_negative_control.c \
-  --negative-fct clamp_lets_nan_through,handback_forgetting_state,record_forgetting
-WP_ha_DEPS = deps
+  --negative-fct clamp_lets_nan_through,keyed_clamp_forgetting_nan,handback_forgetting_state,record_forgetting
+WP_ha_DEPS = deps order-key-check
+
+# The axioms WP takes about ha_order_key, checked for all 2^32 floats (about 20 s).
+.PHONY: order-key-check
+order-key-check:
+	@mkdir -p $(HA_VERIFY_OUT)
+	@gcc -O2 -std=c99 -Wall -Wextra -Werror -I$(HA_CORE_DIR) $(HA_DIR)/verify/order_key_check.c -lm \
+	  -o $(HA_VERIFY_OUT)/order_key_check
+	@$(HA_VERIFY_OUT)/order_key_check

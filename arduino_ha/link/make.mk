@@ -55,9 +55,11 @@ EVA_COMPONENTS += link
 EVA_link_SOURCES = $(LINK_DIR)/verify/eva_link_main.c $(ROOT)/arduino_ha/src/link/ha_link.c \
   $(ROOT)/arduino_ha/src/link/ha_link_frame.c $(ROOT)/arduino_ha/src/link/ha_link_report.c \
   $(LINK_GEN_DIR)/ha_msgs.c $(ROOT)/arduino_ha/src/core/hp_command.c \
-  $(ROOT)/arduino_ha/src/core/ha_surfaces.c $(ROOT)/arduino_ha/src/core/ha_aircraft.c
+  $(ROOT)/arduino_ha/src/core/ha_surfaces.c $(ROOT)/arduino_ha/src/core/ha_num.c \
+  $(ROOT)/arduino_ha/src/core/ha_aircraft.c
 EVA_link_ARGS = -I $(ROOT)/arduino_ha/src/link -I $(ROOT)/arduino_ha/src/core \
-  -D 'HA_LINK_GENERATED_HEADER="$(LINK_GEN_DIR)/ha_msgs.h"' --case any-bytes:main:1:none
+  -D 'HA_LINK_GENERATED_HEADER="$(LINK_GEN_DIR)/ha_msgs.h"' --case any-bytes:main:1:none \
+  --use-spec $(HA_BY_CONTRACT)
 EVA_link_DEPS = $(LINK_GEN_DIR)/ha_msgs.c
 
 LINK_M3_OUT ?= $(ROOT)/.build/link_m3

@@ -3,6 +3,8 @@
  * broken setup (contracts not read, a driver that makes everything true, goals never sent to a
  * prover) cannot pass silently. Each planted_* contract is false:
  *  - a clamp written with comparisons that NaN slips through (the float model must see NaN);
+ *  - a clamp on the order keys that forgets NaN's keys lie past both ends (the keys' axioms
+ *    must not prove what the keys do not give);
  *  - a hand-back to the HP that forgets the state reasons (the bit reasoning must be real);
  *  - a history that forgets the restart it was asked to record (the frame must be real). */
 #include <stdint.h>
@@ -16,6 +18,17 @@
   @ */
 float clamp_lets_nan_through(float v, float lo, float hi) {
   return v > hi ? hi : (v < lo ? lo : v);
+}
+
+/*@ requires \is_finite(lo) && \is_finite(hi) && \le_float(lo, hi);
+  @ assigns \nothing;
+  @ ensures planted_keyed_nan_to_zero: \is_NaN(v) &&
+  @   \le_float(lo, (float)0.0) && \le_float((float)0.0, hi) ==> \eq_float(\result, (float)0.0);
+  @ */
+float keyed_clamp_forgetting_nan(float v, float lo, float hi) {
+  const int32_t key = ha_order_key(v);
+  if (key < ha_order_key(lo)) return lo;
+  return key > ha_order_key(hi) ? hi : v;
 }
 
 /*@ assigns \nothing;

@@ -23,7 +23,25 @@ HA_BITS_INLINE int ha_finite(float v) {
 }
 
 /* The IEEE-754 bits as an integer that orders like the value: -0 and +0 meet at 0, infinities
- * lie beyond every finite value and NaNs beyond the infinities. */
+ * lie beyond every finite value and NaNs beyond the infinities. WP takes that as three axioms
+ * (make prove-ha cannot follow memcpy into the bits); verify/order_key_check.c checks them for
+ * every one of the 2^32 floats before each proof, which also shows they are consistent. */
+#define HA_KEY_INF 0x7F800000 /* the key of +inf; -HA_KEY_INF is -inf's */
+#ifdef HA_WP
+/*@ axiomatic HaOrderKey {
+  @   logic integer ha_key(float v);
+  @   axiom key_orders: \forall float a, b; !\is_NaN(a) && !\is_NaN(b) ==>
+  @     (ha_key(a) <= ha_key(b) <==> \le_float(a, b));
+  @   axiom key_finite: \forall float a;
+  @     \is_finite(a) <==> -0x7F800000 < ha_key(a) < 0x7F800000;
+  @   axiom key_nan: \forall float a;
+  @     \is_NaN(a) <==> (ha_key(a) > 0x7F800000 || ha_key(a) < -0x7F800000);
+  @ }
+  @ */
+/*@ assigns \nothing;
+  @ ensures order_key: \result == ha_key(v);
+  @ */
+#endif
 HA_BITS_INLINE int32_t ha_order_key(float v) {
   uint32_t bits;
   memcpy(&bits, &v, sizeof bits);
@@ -54,70 +72,36 @@ HA_BITS_INLINE int ha_within_span(float v, float span) {
   return (v_bits & 0x7FFFFFFFu) <= (span_bits & 0x7FFFFFFFu);
 }
 
-/* Into [lo, hi]; NaN becomes the in-range value nearest zero, +/-inf the nearer bound. The value
- * in range, the common case, costs two compares (each a library call of some 30 instructions on
- * the FPU-less Due), and NaN fails both. A leading v != v cost a third per call: 2,961 of the
- * worst step's 16,280 instructions. Frama-C EVA follows these compares for finite values but not
- * through a NaN, so what leaves the core (ha_surfaces.c) goes through ha_clampf_final. Never
- * build this with -ffast-math. */
-static inline float ha_clampf(float v, float lo, float hi) {
-  if (v >= lo && v <= hi) {
-    return v;
-  }
-  if (v < lo) {
-    return lo;
-  }
-  if (v > hi) {
-    return hi;
-  }
-  return lo > 0.0f ? lo : (hi < 0.0f ? hi : 0.0f); /* NaN */
-}
-
-/* Contracts for make prove-ha (Frama-C WP, src/core/README.md "Proofs"), compiled only there:
- * EVA would try to decide them too, and relational properties are WP's to prove, not EVA's. */
+/* Frama-C's view (EVA and WP alike, src/core/README.md "Proofs"). */
+#ifdef __FRAMAC__
+/*@ predicate ha_within(float v, float lo, float hi) =
+  @   \is_finite(v) && \le_float(lo, v) && \le_float(v, hi);
+  @ */
+#endif
 #ifdef HA_WP
 /*@ axiomatic HaFloat {
   @   // IEEE-754 negation (exact): verify/ha_wp.driver maps it onto WP's own, so a float bound
   @   // can be negated without leaving the float model for the reals.
   @   logic float ha_neg(float x);
   @ }
-  @ predicate ha_within(float v, float lo, float hi) =
-  @   \is_finite(v) && \le_float(lo, v) && \le_float(v, hi);
   @ */
 #endif
 
-/* The same result as ha_clampf, in a form EVA proves finite whatever bits v holds (it follows
- * v == v through a NaN): for the values that reach a servo. One compare more. */
-#ifdef HA_WP
+/* Into [lo, hi]; NaN becomes the in-range value nearest zero, +/-inf the nearer bound. Decided
+ * on the order keys: integer compares, where each float compare is a library call of some 35
+ * instructions on the FPU-less Due (two a call, 31 calls: 2,600 of the worst step's 14,720).
+ * WP proves the contract from the keys' axioms (ha_num.c); EVA takes the proved contract in
+ * place of the body (-eva-use-spec), which gives it the bound whatever bits v holds. */
+#ifdef __FRAMAC__
 /*@ requires bounds: \is_finite(lo) && \is_finite(hi) && \le_float(lo, hi);
-  @ assigns \nothing;
+  @ assigns \result \from v, lo, hi;
   @ ensures clamp_in_bounds: ha_within(\result, lo, hi);
   @ ensures clamp_keeps_in_range: ha_within(v, lo, hi) ==> \eq_float(\result, v);
   @ ensures clamp_nan_nearest_zero: \is_NaN(v) &&
   @   \le_float(lo, (float)0.0) && \le_float((float)0.0, hi) ==> \eq_float(\result, (float)0.0);
   @ */
 #endif
-static inline float ha_clampf_final(float v, float lo, float hi) {
-  if (v < lo) {
-    return lo;
-  }
-  if (v > hi) {
-    return hi;
-  }
-  if (v == v) {
-    return v;
-  }
-  return lo > 0.0f ? lo : (hi < 0.0f ? hi : 0.0f); /* NaN */
-}
-
-/* Into [lo, hi] decided on the bits (integer compares), for a value already known finite and
- * bounded, where only the verdict matters: static analysis does not narrow v through it. */
-HA_BITS_INLINE float ha_limitf(float v, float lo, float hi) {
-  if (ha_greater(lo, v)) {
-    return lo;
-  }
-  return ha_greater(v, hi) ? hi : v;
-}
+float ha_clampf(float v, float lo, float hi);
 
 /* Microseconds from then to now on the wrapping 32-bit clock. */
 #ifdef HA_WP

@@ -48,7 +48,7 @@ static float bank_command_deg(const HaAircraftConfig *cfg, const HaStateView *s)
     return 0.0f; /* without a position: wings level */
   }
   /* Finite: north and east are clamped to +/-1e6 ft by ha_state_view. */
-  tan_corr = ha_limitf(cfg->sc_radial_tan_per_ft2 * (n * n + e * e - cfg->sc_circle_radius_sq_ft2),
+  tan_corr = ha_clampf(cfg->sc_radial_tan_per_ft2 * (n * n + e * e - cfg->sc_circle_radius_sq_ft2),
                        -cfg->sc_radial_tan_max, cfg->sc_radial_tan_max);
   /* dir is +/-1: a sign, not a multiplication */
   course_n = (ha_greater(dir, 0.0f) ? -e : e) - tan_corr * n;
@@ -71,7 +71,7 @@ static float bank_command_deg(const HaAircraftConfig *cfg, const HaStateView *s)
   limit_deg = (s->altitude_ok && ha_greater(cfg->sc_alt_min_ft, s->x[HA_X_ALT_AGL_FT]))
                   ? cfg->sc_circle_bank_ff_deg
                   : cfg->sc_bank_limit_deg;
-  return ha_limitf(bank_deg, -limit_deg, limit_deg); /* finite */
+  return ha_clampf(bank_deg, -limit_deg, limit_deg); /* finite */
 }
 
 /* Outer longitudinal loop: the altitude band, but slow beats low. The nose may rise only as far
@@ -133,7 +133,7 @@ void ha_safety_ctrl_step(HaSafetyCtrlState *st, const HaAircraftConfig *cfg, con
      * limit below the horizon while the check holds (the pid's pull is dropped below). */
     const float pitch_cmd_deg =
         s->stalling ? -cfg->sc_pitch_cmd_limit_deg : pitch_command_deg(cfg, s);
-    const float pitch_err = ha_limitf(pitch_cmd_deg - s->x[HA_X_PITCH_DEG],
+    const float pitch_err = ha_clampf(pitch_cmd_deg - s->x[HA_X_PITCH_DEG],
                                       -cfg->sc_pitch_error_max_deg, cfg->sc_pitch_error_max_deg);
     roll_pd = cfg->sc_roll_kp * roll_err - cfg->sc_roll_kd * s->x[HA_X_P_DEG_S];
     roll_step = cfg->sc_roll_ki * roll_err * dt_s;

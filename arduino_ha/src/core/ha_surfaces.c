@@ -14,11 +14,10 @@
   @ */
 #endif
 void ha_surfaces_saturate(const HaAircraftConfig *cfg, HaSurfaces *s) {
-  s->elevator_deg =
-      ha_clampf_final(s->elevator_deg, -cfg->elevator_limit_deg, cfg->elevator_limit_deg);
-  s->aileron_deg = ha_clampf_final(s->aileron_deg, -cfg->aileron_limit_deg, cfg->aileron_limit_deg);
-  s->rudder_deg = ha_clampf_final(s->rudder_deg, -cfg->rudder_limit_deg, cfg->rudder_limit_deg);
-  s->throttle = ha_clampf_final(s->throttle, cfg->throttle_min, cfg->throttle_max);
+  s->elevator_deg = ha_clampf(s->elevator_deg, -cfg->elevator_limit_deg, cfg->elevator_limit_deg);
+  s->aileron_deg = ha_clampf(s->aileron_deg, -cfg->aileron_limit_deg, cfg->aileron_limit_deg);
+  s->rudder_deg = ha_clampf(s->rudder_deg, -cfg->rudder_limit_deg, cfg->rudder_limit_deg);
+  s->throttle = ha_clampf(s->throttle, cfg->throttle_min, cfg->throttle_max);
 }
 
 static float step_towards(float prev, float target, float max_step, int *reached) {
@@ -116,7 +115,7 @@ void ha_surfaces_from_cmd(const HaHpCommand *cmd, HaSurfaces *out) {
 static uint16_t to_pulse(const HaAircraftConfig *cfg, float value, float lo, float hi) {
   const float span_us = (float)(cfg->servo_pulse_max_us - cfg->servo_pulse_min_us);
   /* Clamp the value first: a NaN then maps to neutral (or idle), not to a full deflection. */
-  const float f = (ha_clampf_final(value, lo, hi) - lo) / (hi - lo);
+  const float f = (ha_clampf(value, lo, hi) - lo) / (hi - lo);
   /* + 0.5 rounds to nearest; f in [0, 1] keeps the result inside the configured pulse range. */
   return (uint16_t)((float)cfg->servo_pulse_min_us + f * span_us + 0.5f);
 }
