@@ -9,11 +9,13 @@ bench-fdm: deps
 	@$(VENV)/bin/python $(HIL_DIR)/bench/bench_fdm.py
 
 #   make bench-hil   the whole HiL stack in lockstep: x real time at 100 Hz and 20 Hz, per-phase step cost,
-#                    then a seeded campaign of 150 fault flights on Dask (BENCH_HIL_FLIGHTS=N for another size)
+#                    then a seeded campaign of 150 fault flights on Dask (BENCH_HIL_FLIGHTS=N for another size);
+#                    after the HA as Cortex-M3 machine code in the loop (make bench-pil, issue 23, first):
+#                    the PIL loop's speed and the firmware's instructions per period against the 16,800 budget
 .PHONY: bench-hil
 BENCH_TARGETS += bench-hil
 
-bench-hil: build
+bench-hil: build bench-pil
 	@$(ROSENV) $(VENV)/bin/python $(HIL_DIR)/bench/bench_hil.py
 
 #   make campaign ARGS="--flights 200 --seed 7"   a seeded fault campaign on Dask (hil/campaign.py)
