@@ -143,3 +143,17 @@ def test_replies_no_host_reads_are_counted_as_dropped(runner):
     assert len(closed) == 4 and len(answered) == 1 and len(r.replies) == 1
     assert r.replies[0][0].t_us == answered[0]["t_us"]
     assert r.replies[0][1][2] == len(closed) * frame_len
+
+
+def test_a_reset_record_restarts_the_firmware_at_once_on_the_inputs_it_had(runner):
+    """As a watchdog reset would: the schedule starts afresh (the first period at the next pass,
+    not on the old 10 ms grid), and the pins still read what the simulator last sent."""
+    reset = ha_channel.STEP.pack(ha_channel.MAGIC_RESET, ha_channel.VERSION, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+                                 0.0, 0.0)
+    r = run(runner, [usb(ha_qemu.frame(record(CIC, airspeed_ftps=55.0))), "run 25",
+                     usb(ha_qemu.frame(reset)), "run 12"])
+    before, after = r.of_run(0), r.of_run(1)
+    assert [p["t_us"] - before[0]["t_us"] for p in before] == [0, 9000, 19000]
+    assert [p["t_us"] - before[-1]["t_us"] for p in after] == [6000, 16000]
+    assert all(p["airspeed"] == pytest.approx(55.0) for p in after)
+    assert len(r.replies) == 5 and r.dropped() == 0
