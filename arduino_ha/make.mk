@@ -84,6 +84,14 @@ VERIFY_TARGETS += due-image
 due-image: deps
 	@JOBS=$(JOBS) DUE_EXTRA_FLAGS='$(DUE_EXTRA_FLAGS)' bash $(HA_DIR)/tools/build_due_image.sh $(ROOT)/.build/due_image
 
+# The Due's HIL build (src/board_due/due_hil_board.h: the pins' inputs from the simulator's step
+# records on the native USB port, the outputs back in reply records) against the same real core:
+# the same script with HA_DUE_HIL=1, into .build/due_hil_image. README.md, "The Due in the loop".
+VERIFY_TARGETS += due-hil-image
+.PHONY: due-hil-image
+due-hil-image: deps
+	@JOBS=$(JOBS) DUE_EXTRA_FLAGS='-DHA_DUE_HIL=1 $(DUE_EXTRA_FLAGS)' bash $(HA_DIR)/tools/build_due_image.sh $(ROOT)/.build/due_hil_image
+
 # Processor in the loop: the firmware loop as Cortex-M3 machine code for QEMU's mps2-an385
 # (pil/pil_main.c: the HP link, the VN-200 and the simulator's control records on three UARTs),
 # which `hil/run_flight.py --ha qemu` flies (hil/ha_qemu.py). README.md, "Processor in the loop".

@@ -1,4 +1,4 @@
-"""The simulator's end of the control channel to the HA in the loop (arduino_ha/sil/ha_sil_channel.h
+"""The simulator's end of the control channel to the HA in the loop (arduino_ha/src/hil/ha_sil_channel.h
 states the records; the struct formats below are the same layouts, checked by
 hil/test/test_ha_channel.py against a running ha_sil)."""
 import os

@@ -25,8 +25,7 @@ m3_cflags=(-mcpu=cortex-m3 -mthumb -Os -std=c99 -ffunction-sections -fdata-secti
   -Wall -Wextra -Werror -pedantic -I"$ha/src/core" -I"$ha/src/link" -I"$ha/src/vn200"
   -I"$root/vn200_driver/core" -I"$ha/bench" -DHA_LINK_GENERATED_HEADER="\"$gen/ha_msgs.h\"" ${PIL_CFLAGS:-})
 sources=("$ha"/src/core/*.c "$ha"/src/firmware/*.c "$ha"/src/link/*.c "$gen"/*.c
-  "$ha"/src/vn200/*.c "$root"/vn200_driver/core/*.c "$ha"/sil/ha_sil_records.c
-  "$ha"/sil/ha_sil_pins.c "$here"/*.c
+  "$ha"/src/vn200/*.c "$root"/vn200_driver/core/*.c "$ha"/src/hil/*.c "$here"/*.c
   "$ha/bench/startup_m3.c" "$ha/bench/semihost.c" "$ha/bench/insn_timer.c")
 # shellcheck source=../verify/m3_lib.sh
 source "$ha/verify/m3_lib.sh"

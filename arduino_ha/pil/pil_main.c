@@ -3,7 +3,7 @@
  * The same firmware loop the Due runs (src/firmware/ha_firmware.h) over a Board of this machine:
  *   UART0 (serial0)  the rosserial link to the HP, where the `arduino` node opens its pty;
  *   UART1 (serial1)  the VN-200's port 1, the simulator's sensor pty, as the Due's Serial1;
- *   UART2 (serial2)  the simulator's control records (../sil/ha_sil_channel.h) framed with a
+ *   UART2 (serial2)  the simulator's control records (../src/hil/ha_sil_channel.h) framed with a
  *                    length and a CRC-32 (pil_frame.h): what the Due reads from its pins comes in
  *                    (time, RC incl. the PIC/CIC channel, airspeed, battery), what it drives goes
  *                    back (servos, HP reset line, decision, the safety controller's own command).
@@ -19,11 +19,11 @@
 #include <string.h>
 
 #include "../bench/insn_timer.h"
-#include "../sil/ha_sil_pins.h"
-#include "../sil/ha_sil_records.h"
 #include "../src/core/ha_aircraft.h"
 #include "../src/firmware/ha_firmware.h"
-#include "pil_frame.h"
+#include "../src/hil/ha_sil_pins.h"
+#include "../src/hil/ha_sil_records.h"
+#include "../src/hil/pil_frame.h"
 
 /* ---- CMSDK APB UART (ARM CMSDK technical reference; mps2-an385: UART n at 0x40004000 + n 4 KiB)
  */
@@ -269,38 +269,23 @@ static const HaFirmwareOptions k_options = {.link_up_text = "HA QEMU link up",
 
 /* ---- the control records ---- */
 
-/* What a counted drop of the control channel is: a frame out of length, failing its CRC, or
- * checked but holding no step, poll or reset record. */
-typedef struct {
-  uint32_t records_dropped;
-  uint32_t period_insn_ticks; /* timer ticks of the period's ha_firmware_period (40 instr each
-                                 under -icount shift=0) */
-  uint32_t tx_dropped;        /* bytes a UART's host side did not take in time */
-  uint32_t rx_dropped;        /* bytes that came to a full receive ring */
-} PilReplyTrailer;
-#define PIL_TRAILER_LEN 16u
-
+/* The trailer's period_ticks here: timer ticks of the period's ha_firmware_period (40
+ * instructions each under -icount shift=0). */
 static void send_reply(PilBoard *b, uint16_t flags, uint64_t t_us, uint32_t wait_us) {
-  uint8_t rec[HA_SIL_REPLY_RECORD_LEN + PIL_TRAILER_LEN];
-  uint8_t frame[sizeof rec + PIL_FRAME_OVERHEAD];
-  size_t at = HA_SIL_REPLY_RECORD_LEN;
+  uint8_t frame[PIL_REPLY_FRAME_LEN];
   const HaSilReplyBoard rb = {.flags = flags,
                               .t_us = t_us,
                               .commands = b->commands,
                               .vn_bytes = b->vn_bytes,
                               .hp_reset = b->pins.hp_reset,
                               .wait_us = wait_us};
-  PilReplyTrailer tr;
-  ha_sil_encode_reply(&b->fw, &rb, rec);
-  tr.records_dropped = b->control.bad_length + b->control.bad_crc + b->records_undecodable;
-  tr.period_insn_ticks = b->period_ticks;
-  tr.tx_dropped = g_tx_dropped;
-  tr.rx_dropped = rx_dropped();
-  ha_sil_put_u32(rec, &at, tr.records_dropped);
-  ha_sil_put_u32(rec, &at, tr.period_insn_ticks);
-  ha_sil_put_u32(rec, &at, tr.tx_dropped);
-  ha_sil_put_u32(rec, &at, tr.rx_dropped);
-  uart_write(UART_CONTROL, frame, pil_frame_encode(rec, sizeof rec, frame, sizeof frame));
+  const PilReplyTrailer tr = {
+      .records_dropped = b->control.bad_length + b->control.bad_crc + b->records_undecodable,
+      .period_ticks = b->period_ticks,
+      .tx_dropped = g_tx_dropped,
+      .rx_dropped = rx_dropped()};
+  pil_reply_frame(&b->fw, &rb, &tr, frame);
+  uart_write(UART_CONTROL, frame, sizeof frame);
 }
 
 /* Reads the HP link and the VN-200 port until they have delivered what the simulator says it

@@ -39,9 +39,9 @@
 
 #include "../src/core/ha_aircraft.h"
 #include "../src/firmware/ha_firmware.h"
+#include "../src/hil/ha_sil_channel.h"
+#include "../src/hil/ha_sil_records.h"
 #include "ha_sil_board.h"
-#include "ha_sil_channel.h"
-#include "ha_sil_records.h"
 
 static volatile sig_atomic_t g_stop = 0;
 static volatile sig_atomic_t g_unplug = 0;

@@ -9,8 +9,8 @@
 #include <stdint.h>
 
 #include "../src/core/ha_board.h"
-#include "ha_sil_channel.h"
-#include "ha_sil_pins.h"
+#include "../src/hil/ha_sil_channel.h"
+#include "../src/hil/ha_sil_pins.h"
 
 typedef struct {
   HaSilPins pins; /* first: the pins' Board functions take this board's ctx (ha_sil_pins.h) */

@@ -26,11 +26,23 @@ PLATFORM_SYMBOLS = ("main", "Reset_Handler", "pmc_enable_periph_clk", "_ZN7TwoWi
                     "_ZN5Servo6attachEiii", "_ZN9UARTClass5beginEm")
 
 
+# The HIL build's own (src/board_due/due_hil_board.h): the loop that takes the records, the frame
+# decoder and the record decoder the QEMU board uses too (src/hil/), the reply's encoder.
+HIL_SYMBOLS = ("_Z26due_hil_board_take_recordsP11DueHilBoard", "pil_frame_rx_byte",
+               "ha_sil_decode_step", "pil_reply_frame")
+
+
+def build(out, extra_flags=None):
+    env = dict(os.environ, DUE_EXTRA_FLAGS=extra_flags) if extra_flags else None
+    done = subprocess.run(["bash", str(BUILD), str(out)], capture_output=True, text=True, env=env)
+    assert done.returncode == 0, "build_due_image.sh failed:\n%s\n%s" % (done.stdout, done.stderr)
+    return done
+
+
 @pytest.fixture(scope="module")
 def image(tmp_path_factory):
     out = tmp_path_factory.mktemp("due_image")
-    done = subprocess.run(["bash", str(BUILD), str(out)], capture_output=True, text=True)
-    assert done.returncode == 0, "build_due_image.sh failed:\n%s\n%s" % (done.stdout, done.stderr)
+    done = build(out)
     metrics = dict(re.findall(r"^metric: (\S+) (\S+)", done.stdout, re.M))
     sam = re.search(r"^sources: SAM core (\S+),", done.stdout, re.M).group(1)
     return {"out": out, "elf": out / "arduino_ha.ino.elf", "bin": out / "arduino_ha.ino.bin",
@@ -159,17 +171,56 @@ def test_an_image_without_the_sketch_fails_the_symbol_checks(image, tmp_path):
 def test_the_native_usb_link_build_is_a_whole_image_too(tmp_path):
     """The HP link on the native USB port (DUE_HP_LINK_PORT=2, due_config.h), the build README.md
     offers besides the default, links against the real core and starts the same way."""
-    env = dict(os.environ, DUE_EXTRA_FLAGS="-DDUE_HP_LINK_PORT=2")
-    done = subprocess.run(["bash", str(BUILD), str(tmp_path)], capture_output=True, text=True, env=env)
-    assert done.returncode == 0, "build_due_image.sh failed:\n%s\n%s" % (done.stdout, done.stderr)
+    build(tmp_path, "-DDUE_HP_LINK_PORT=2")
     elf = tmp_path / "arduino_ha.ino.elf"
     assert reset_faults(elf, (tmp_path / "arduino_ha.ino.bin").read_bytes()[:8]) == []
     assert missing_symbols(elf, SKETCH_SYMBOLS) == []
     assert undefined(elf) == []
-    assert "SerialUSB" in undefined(tmp_path / "build" / "sketch" / "src" / "board_due" / "due_board.cpp.o")
+    assert "SerialUSB" in undefined(tmp_path / "build" / "sketch" / "src" / "board_due" / "due_common.cpp.o")
 
 
 def test_the_default_build_links_the_hp_over_the_programming_port(image):
     """Serial, the UART behind the 16U2 that the programming port flashes through (README.md)."""
-    link = undefined(image["out"] / "build" / "sketch" / "src" / "board_due" / "due_board.cpp.o")
+    link = undefined(image["out"] / "build" / "sketch" / "src" / "board_due" / "due_common.cpp.o")
     assert "Serial" in link and "SerialUSB" not in link
+
+
+def test_the_flight_image_holds_no_record_decoder(image):
+    """Only the HIL build can be driven by the simulator's records: in the flight build nothing
+    reads them (the linker's --gc-sections leaves the shared code out)."""
+    assert set(missing_symbols(image["elf"], HIL_SYMBOLS)) == set(HIL_SYMBOLS)
+
+
+@pytest.fixture(scope="module")
+def hil_image(tmp_path_factory):
+    out = tmp_path_factory.mktemp("due_hil_image")
+    done = build(out, "-DHA_DUE_HIL=1")
+    return {"out": out, "elf": out / "arduino_ha.ino.elf", "bin": out / "arduino_ha.ino.bin",
+            "metrics": dict(re.findall(r"^metric: (\S+) (\S+)", done.stdout, re.M))}
+
+
+def test_the_hil_image_resets_into_flash_and_holds_the_sketch_and_the_record_decoder(hil_image):
+    assert reset_faults(hil_image["elf"], hil_image["bin"].read_bytes()[:8]) == []
+    assert missing_symbols(hil_image["elf"], SKETCH_SYMBOLS + HIL_SYMBOLS) == []
+    assert missing_symbols(hil_image["elf"], PLATFORM_SYMBOLS[:3]) == []  # the SAM core, libsam
+    assert undefined(hil_image["elf"]) == []
+
+
+def test_the_hil_image_fits_the_sam3x8e_flash_and_ram(hil_image):
+    found = sections(hil_image["elf"])
+    flash = sum(found.get(n, (0, 0))[0] for n in (".text", ".ARM.exidx", ".relocate"))
+    ram = found.get(".relocate", (0, 0))[0] + found.get(".bss", (0, 0))[0]
+    assert hil_image["bin"].stat().st_size == flash
+    assert flash <= FLASH_BYTES and ram <= RAM_BYTES, (flash, ram)
+    assert hil_image["metrics"]["due_image_flash"] == str(flash)
+    assert hil_image["metrics"]["due_image_ram"] == str(ram)
+
+
+def test_the_hil_image_takes_its_records_on_the_native_usb_port_and_drives_no_servo(hil_image):
+    """The records on SerialUSB, the HP link still on Serial (the programming port) and the VN-200
+    on Serial1 as in flight; the servos are the simulator's to move (due_hil_board.h)."""
+    objs = hil_image["out"] / "build" / "sketch" / "src" / "board_due"
+    assert "SerialUSB" in undefined(objs / "due_hil_board.cpp.o")
+    ports = undefined(objs / "due_common.cpp.o")
+    assert "Serial" in ports and "Serial1" in ports and "SerialUSB" not in ports
+    assert not [s for s in symbols(hil_image["elf"]) if s.startswith("_ZN5Servo")]

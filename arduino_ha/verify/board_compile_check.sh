@@ -8,7 +8,9 @@
 #     -Wextra -Werror on the board layer, linked with a fake Arduino (arduino_shim/: stand-in
 #     headers with the SAM core's, Servo's and Wire's signatures, and fake_arduino.cpp, which
 #     records pins, servos, I2C and the watchdog) and run through a scripted timeline
-#     (board_host_test.cpp).
+#     (board_host_test.cpp);
+#  3. the HIL build of the sketch (HA_DUE_HIL=1) linked the same way with a fake native USB port, a
+#     program test/test_due_hil_board.py drives with the simulator's own record encoders.
 # The compiles of the board layer and of every other sketch source for the Cortex-M3 against the
 # shim that used to be here are gone: the real image compiles the same files for the same CPU,
 # strictly, against the real headers. Not checked here or there: timing, the hardware itself
@@ -44,17 +46,31 @@ gcc -std=c99 -Wall -Wextra -Werror -I"$ha/src/board_due" "$here/ams5812_check.c"
 #    that records pins, servos, I2C, the watchdog) and run through a scripted timeline:
 #    board_host_test.cpp.
 mkdir -p "$out/sil"
-sil_objs=()
+c_objs=()
 for src in "${other_c[@]}" "${board_c[@]}"; do
   rel=${src#"$ha/src/"}
   obj=$out/sil/${rel//\//_}.o
   gcc -std=gnu11 -O1 -c "$src" -o "$obj"
-  sil_objs+=("$obj")
+  c_objs+=("$obj")
 done
-for src in "${board_cpp[@]}" "$here/arduino_shim/fake_arduino.cpp" "$here/board_host_test.cpp"; do
-  obj=$out/sil/$(basename "${src%.*}").o
-  g++ -std=gnu++11 "${strict[@]}" -O1 -c "$src" -o "$obj"
-  sil_objs+=("$obj")
-done
-g++ "${sil_objs[@]}" -lm -o "$out/board_host_test"
+# host_sketch <obj dir> <binary> <main.cpp> [flags]: the C++ half of the sketch with the shim and
+# a main, linked with the C half above.
+host_sketch() {
+  local dir=$1 bin=$2 main=$3 src obj objs=("${c_objs[@]}")
+  shift 3
+  mkdir -p "$dir"
+  for src in "${board_cpp[@]}" "$here/arduino_shim/fake_arduino.cpp" "$main"; do
+    obj=$dir/$(basename "${src%.*}").o
+    g++ -std=gnu++11 "${strict[@]}" "$@" -O1 -c "$src" -o "$obj"
+    objs+=("$obj")
+  done
+  g++ "${objs[@]}" -lm -o "$bin"
+}
+host_sketch "$out/sil" "$out/board_host_test" "$here/board_host_test.cpp"
 "$out/board_host_test"
+
+# 3. The HIL build (HA_DUE_HIL=1, src/board_due/due_hil_board.h) of the same sketch with a fake
+#    native USB port, as a program the simulator's record encoders drive: test/test_due_hil_board.py
+#    runs it (the frames come from hil/ha_channel.py and hil/ha_qemu.py, not from C).
+host_sketch "$out/hil" "$out/due_hil_host_run" "$here/due_hil_host_run.cpp" -DHA_DUE_HIL=1
+echo "board_compile_check: HIL build linked on the host: $out/due_hil_host_run"

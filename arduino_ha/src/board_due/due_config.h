@@ -65,14 +65,23 @@
  *    and the flight launch (arduino_baud 250000) assume this port. 250000 is exact on both chips
  *    (84 MHz / (16 x 21), 16 MHz / (8 x 8)); 115200 cannot carry the HA's two status messages at
  *    100 Hz.
- *  - DUE_HP_LINK_PORT_NATIVE: `SerialUSB`, the SAM3X's own full-speed USB (CDC); no UART in
- *    between, so the baud rate is ignored on both ends. */
+ *  - DUE_HP_LINK_PORT_NATIVE: `SerialUSB`, the SAM3X's own USB (CDC; libsam's UDD_Init leaves
+ *    it high-speed capable); no UART in between, so the baud rate is ignored on both ends. */
 #define DUE_HP_LINK_PORT_PROGRAMMING 1
 #define DUE_HP_LINK_PORT_NATIVE 2
 #ifndef DUE_HP_LINK_PORT
 #define DUE_HP_LINK_PORT DUE_HP_LINK_PORT_PROGRAMMING
 #endif
 #define DUE_HP_LINK_BAUD 250000u
+
+/* The build: 0 flies the aircraft (due_board.cpp: the pins); 1 is the HIL build
+ * (due_hil_board.cpp): the pins' inputs come from the simulator's step records on the native USB
+ * port and the outputs go back in reply records, the HP link and the VN-200 stay where they are.
+ * arduino-cli: --build-property "compiler.cpp.extra_flags=-DHA_DUE_HIL=1"
+ * "compiler.c.extra_flags=-DHA_DUE_HIL=1"; make due-hil-image. */
+#ifndef HA_DUE_HIL
+#define HA_DUE_HIL 0
+#endif
 
 /* Hardware watchdog: reset if the loop has not completed a period for this long. The SAM3X
  * watchdog mode register can be written once per reset, so it is set in watchdogSetup(). */

@@ -11,17 +11,27 @@
 namespace fake {
 State state;
 void reset() { state = State(); }
-int serial1_feed(const uint8_t *bytes, size_t len) {
-  const size_t unread = state.serial1_len - state.serial1_pos;
-  memmove(state.serial1_rx, state.serial1_rx + state.serial1_pos, unread);
-  state.serial1_pos = 0u;
-  state.serial1_len = unread;
-  if (len > sizeof state.serial1_rx - unread) {
+namespace {
+int feed(uint8_t *ring, size_t cap, size_t *ring_len, size_t *pos, const uint8_t *bytes,
+         size_t len) {
+  const size_t unread = *ring_len - *pos;
+  memmove(ring, ring + *pos, unread);
+  *pos = 0u;
+  *ring_len = unread;
+  if (len > cap - unread) {
     return 0;
   }
-  memcpy(state.serial1_rx + unread, bytes, len);
-  state.serial1_len += len;
+  memcpy(ring + unread, bytes, len);
+  *ring_len += len;
   return 1;
+}
+}  // namespace
+int serial1_feed(const uint8_t *bytes, size_t len) {
+  return feed(state.serial1_rx, sizeof state.serial1_rx, &state.serial1_len, &state.serial1_pos,
+              bytes, len);
+}
+int usb_feed(const uint8_t *bytes, size_t len) {
+  return feed(state.usb_rx, sizeof state.usb_rx, &state.usb_len, &state.usb_pos, bytes, len);
 }
 void set_pin(uint32_t pin, int level) {
   state.pin_level[pin] = level;
@@ -61,8 +71,8 @@ void watchdogReset(void) { fake::state.watchdog_kicks++; }
  * domain; tests clear it themselves for a power-up. */
 Gpbr fake_gpbr = {};
 
-/* Serial1 (the VN-200) delivers what fake::serial1_feed() queued; every other port carries
- * nothing in these tests (the HP link sees silence). */
+/* Serial1 (the VN-200) delivers what fake::serial1_feed() queued, SerialUSB what
+ * fake::usb_feed() queued; the HP link on Serial sees silence in these tests. */
 void UARTClass::begin(unsigned long baud) { (void)baud; }
 int UARTClass::available(void) {
   return this == &Serial1 ? static_cast<int>(fake::state.serial1_len - fake::state.serial1_pos) : 0;
@@ -82,14 +92,20 @@ size_t UARTClass::write(const uint8_t *buffer, size_t size) {
   return size;
 }
 void Serial_::begin(unsigned long baud) { (void)baud; }
-int Serial_::available(void) { return 0; }
-int Serial_::read(void) { return -1; }
-size_t Serial_::write(uint8_t c) {
-  (void)c;
-  return 1u;
+int Serial_::available(void) { return static_cast<int>(fake::state.usb_len - fake::state.usb_pos); }
+int Serial_::read(void) {
+  if (fake::state.usb_pos >= fake::state.usb_len) {
+    return -1;
+  }
+  return fake::state.usb_rx[fake::state.usb_pos++];
 }
+size_t Serial_::write(uint8_t c) { return write(&c, 1u); }
 size_t Serial_::write(const uint8_t *buffer, size_t size) {
-  (void)buffer;
+  if (!fake::state.usb_open || size > sizeof fake::state.usb_tx - fake::state.usb_tx_len) {
+    return 0u;
+  }
+  memcpy(fake::state.usb_tx + fake::state.usb_tx_len, buffer, size);
+  fake::state.usb_tx_len += size;
   return size;
 }
 UARTClass Serial;

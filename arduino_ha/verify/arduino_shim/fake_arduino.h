@@ -40,6 +40,15 @@ struct State {
   uint8_t serial1_rx[4096] = {};
   size_t serial1_len = 0u;
   size_t serial1_pos = 0u;
+  /* The native USB port (SerialUSB): bytes the host sent, read from usb_pos on; what the sketch
+   * wrote while the host had the port open (usb_open, the CDC line state), else dropped as the
+   * SAM core's Serial_::write drops them. */
+  uint8_t usb_rx[4096] = {};
+  size_t usb_len = 0u;
+  size_t usb_pos = 0u;
+  int usb_open = 1;
+  uint8_t usb_tx[65536] = {};
+  size_t usb_tx_len = 0u;
 };
 
 extern State state;
@@ -50,6 +59,8 @@ void set_pin(uint32_t pin, int level);
 /* Queues bytes on Serial1's receive side, as the VN-200 sends them; returns 0 if they do not fit
  * (the unread bytes are kept at the front first). */
 int serial1_feed(const uint8_t *bytes, size_t len);
+/* The same for the native USB port. */
+int usb_feed(const uint8_t *bytes, size_t len);
 
 }  // namespace fake
 

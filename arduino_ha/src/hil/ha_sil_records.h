@@ -8,8 +8,12 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "../src/firmware/ha_firmware.h"
+#include "../firmware/ha_firmware.h"
 #include "ha_sil_channel.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
 
 #define HA_SIL_STEP_RECORD_LEN 52u
 #define HA_SIL_REPLY_RECORD_LEN 100u
@@ -35,5 +39,9 @@ void ha_sil_encode_reply(const HaFirmware *fw, const HaSilReplyBoard *board,
 /* Little-endian field access, for a board that frames the records further. */
 void ha_sil_put_u32(uint8_t *b, size_t *at, uint32_t v);
 uint32_t ha_sil_get_u32(const uint8_t *b, size_t *at);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* HA_SIL_RECORDS_H */

@@ -8,8 +8,12 @@
 
 #include <stdint.h>
 
-#include "../src/core/ha_board.h"
+#include "../core/ha_board.h"
 #include "ha_sil_channel.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
 
 typedef struct {
   HaSilStep in; /* the latest step record */
@@ -25,5 +29,9 @@ typedef struct {
 /* Fills every Board function but micros() and the two byte ports. The board's ctx must point to
  * a struct whose first member is the HaSilPins (C's first-member rule makes the cast exact). */
 void ha_sil_pins_board(HaBoard *board);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* HA_SIL_PINS_H */

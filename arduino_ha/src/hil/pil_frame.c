@@ -2,8 +2,7 @@
 
 #include <string.h>
 
-#include "../sil/ha_sil_records.h"
-#include "../src/core/hp_command.h"
+#include "../core/hp_command.h"
 
 void pil_frame_rx_init(PilFrameRx *rx) { memset(rx, 0, sizeof *rx); }
 
@@ -64,4 +63,16 @@ size_t pil_frame_encode(const uint8_t *payload, size_t len, uint8_t *out, size_t
   memcpy(&out[4], payload, len);
   ha_sil_put_u32(out, &crc_at, ha_crc32(&out[2], len + 2u));
   return len + PIL_FRAME_OVERHEAD;
+}
+
+void pil_reply_frame(const HaFirmware *fw, const HaSilReplyBoard *board, const PilReplyTrailer *tr,
+                     uint8_t out[PIL_REPLY_FRAME_LEN]) {
+  uint8_t rec[HA_SIL_REPLY_RECORD_LEN + PIL_TRAILER_LEN];
+  size_t at = HA_SIL_REPLY_RECORD_LEN;
+  ha_sil_encode_reply(fw, board, rec);
+  ha_sil_put_u32(rec, &at, tr->records_dropped);
+  ha_sil_put_u32(rec, &at, tr->period_ticks);
+  ha_sil_put_u32(rec, &at, tr->tx_dropped);
+  ha_sil_put_u32(rec, &at, tr->rx_dropped);
+  (void)pil_frame_encode(rec, sizeof rec, out, PIL_REPLY_FRAME_LEN);
 }
