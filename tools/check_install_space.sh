@@ -78,12 +78,13 @@ for launch in DG808_flight.launch check_config.launch DG808_hil.launch; do
   done
   echo "check-install: $launch resolves from the install: $n files, $k nodes ($(echo $nodes | tr '\n' ' '))"
 done
-# The simulator DG808_hil.launch starts imports its package from the install (hil_sim.py finds it
-# through the package path), with the ROS messages of the install; under the venv (jsbsim).
-in_install "DRONE_ROS_VENV='${mavgen_python%/bin/python}' '$mavgen_python' -c \"import rospkg, sys; \
-sys.path.insert(0, rospkg.RosPack().get_path('drone_ros')); import hil.sim, drone_ros.msg; \
-assert hil.sim.__file__.startswith('$share/'), hil.sim.__file__; \
-assert drone_ros.msg.__file__.startswith('$ws/install/'), drone_ros.msg.__file__\"" \
-  || fail "hil_sim.py's package (hil.sim) does not import from the install space"
+# setup.py's packages import from the install's dist-packages with / as the folder, with the
+# install's ROS messages, under the venv (the simulator's jsbsim); their data is share/drone_ros.
+in_install "cd / && '$mavgen_python' -c \"import hil.sim, drone_ros.msg, report_core.flight_log, \
+supervisor_core.node_query, vn200_sim.vn200_encode, stack_tools.paths as paths; \
+assert hil.sim.__file__.startswith('$ws/install/lib/'), hil.sim.__file__; \
+assert drone_ros.msg.__file__.startswith('$ws/install/'), drone_ros.msg.__file__; \
+assert paths.ROOT == '$share', paths.ROOT\"" \
+  || fail "setup.py's packages (hil.sim, report_core, ...) do not import from the install space"
 [ $failed -eq 0 ] || exit 1
 echo "check-install: $(cat "$ws/check_config.out"); catkin_make install ${build_s} s"

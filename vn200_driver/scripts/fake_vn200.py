@@ -27,8 +27,7 @@ import tty
 
 # The packet and configuration code is shared with the HiL simulator; catkin's devel-space relay
 # runs this file from elsewhere, so its own folder goes on the path.
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from vn200_emulation import (BAUD_CONSTANTS, Registers, Solution, binary_packet,  # noqa: E402
+from vn200_sim.vn200_emulation import (BAUD_CONSTANTS, Registers, Solution, binary_packet,  # noqa: E402
                              sentence)
 
 NS_PER_WEEK = 604800 * 10**9

@@ -15,6 +15,7 @@ import signal
 import socket
 import struct
 import subprocess
+import sys
 import threading
 import time
 
@@ -24,11 +25,13 @@ import rosparam
 os.environ.setdefault("MAVLINK20", "1")
 from pymavlink import mavutil  # noqa: E402  (MAVLINK20 must be set first)
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-AIRCRAFT_DIR = os.path.join(HERE, "..", "..", "aircraft", "DG808")
+from stack_tools.paths import ROOT  # noqa: E402
+
+HERE = os.path.join(ROOT, "microhard_gs", "test")  # gs_ros_probe.py
+AIRCRAFT_DIR = os.path.join(ROOT, "aircraft", "DG808")
 CONTROLLER_NS = "/controller_DG808"
 HOME = (40.1100, -88.2200, 220.0)  # where the probe says the aircraft is: becomes home
-ROS_PYTHON = "/usr/bin/python3"
+ROS_PYTHON = sys.executable  # the test's own Python (cmake/python.cmake)
 FT_PER_M = 1.0 / 0.3048
 DIAGNOSTIC_PERIOD_S = 0.1
 
