@@ -6,7 +6,8 @@
 # moved aside, install/setup.bash alone is sourced, and the flight launch must resolve from the
 # install: `roslaunch --files` (which also runs check_config.launch's checker) lists only files
 # under install/, every node of `roslaunch --nodes` starts an executable under install/, and the
-# installed check_config.py accepts the installed aircraft. Leaves nothing behind unless KEEP=1.
+# installed check_config.py (with install/setup.bash sourced) accepts the installed aircraft.
+# Leaves nothing behind unless KEEP=1.
 # usage: check_install_space.sh [WORKSPACE_DIR]   (default: a new folder under /tmp)
 # JOBS (default 2) is catkin_make's -j. mavgen (a build step, not needed at run time) runs with
 # this checkout's .venv Python when it has one, else `make deps` makes the clone's.
@@ -48,7 +49,7 @@ fail() { echo "check-install: $*"; failed=1; }
 pkg=$(in_install "rospack find drone_ros")
 [ "$pkg" = "$share" ] || fail "rospack finds drone_ros at $pkg, not in the install space ($share)"
 
-"$share/tools/check_config.py" "$share/aircraft/DG808" > "$ws/check_config.out" \
+in_install "'$share/tools/check_config.py' '$share/aircraft/DG808'" > "$ws/check_config.out" \
   || fail "the installed check_config.py refuses the installed DG808 ($(cat "$ws/check_config.out"))"
 
 for launch in DG808_flight.launch check_config.launch DG808_hil.launch; do

@@ -401,23 +401,23 @@ def command_long(conn, command, *params):
     conn.mav.command_long_send(1, 1, command, 0, *p)
 
 
-def wait_command_ack(conn, command, timeout_s=5.0):
+def wait_for_message(conn, kind, matches, timeout_s=5.0):
+    """The next message of kind for which matches(message) holds, or None after timeout_s."""
     deadline = time.time() + timeout_s
     while time.time() < deadline:
-        ack = conn.recv_match(type="COMMAND_ACK", blocking=True, timeout=0.2)
-        if ack is not None and ack.command == command:
-            return ack
+        m = conn.recv_match(type=kind, blocking=True, timeout=0.2)
+        if m is not None and matches(m):
+            return m
     return None
+
+
+def wait_command_ack(conn, command, timeout_s=5.0):
+    return wait_for_message(conn, "COMMAND_ACK", lambda m: m.command == command, timeout_s)
 
 
 def wait_param_value(conn, param_id, timeout_s=5.0):
     """The next PARAM_VALUE for param_id (the echo of a PARAM_SET), decoded byte-wise if INT32."""
-    deadline = time.time() + timeout_s
-    while time.time() < deadline:
-        m = conn.recv_match(type="PARAM_VALUE", blocking=True, timeout=0.2)
-        if m is not None and m.param_id == param_id:
-            return m
-    return None
+    return wait_for_message(conn, "PARAM_VALUE", lambda m: m.param_id == param_id, timeout_s)
 
 
 def param_value(m):

@@ -14,6 +14,7 @@ import sys
 
 from stack_tools import gen_limits_ranges  # the one table of ranges every component checks with
 from stack_tools import check_config  # aircraft/schema/limits.schema.json: no unknown, missing or mistyped key
+from stack_tools.generated_file import run_generator
 from stack_tools.paths import ROOT
 
 # Order of the state and actuator vectors: must match HA_X_* and HA_U_* in src/core/ha_config.h.
@@ -554,33 +555,35 @@ def render(c, source):
     return "\n".join(lines)
 
 
-def main(argv):
-    if len(argv) != 3:
-        sys.stderr.write(__doc__)
-        return 2
+def generate(limits_path):
+    """The header for limits_path; an error names the file (check_config's do already)."""
     try:
-        doc = check_config.load(argv[1], "limits")
+        doc = check_config.load(limits_path, "limits")
         # Name the source by aircraft, not by absolute path, so every checkout generates the same
         # bytes.
         source = "aircraft/%s/limits.yaml" % doc["aircraft"]
-        path = airframe_path(argv[1], doc["aircraft"])
+        path = airframe_path(limits_path, doc["aircraft"])
         if not os.path.exists(path):
             raise ConfigError("no airframe.yaml for aircraft %s (looked for %s): the stall speed "
                               "and alpha limit cannot be checked" % (doc["aircraft"], path))
         airframe = check_config.load(path, "airframe")
-        text = render(build(doc, airframe), source)
-    except check_config.ConfigError as err:  # names the file itself
-        sys.stderr.write("gen_aircraft_config: %s\n" % err)
-        return 1
+        return render(build(doc, airframe), source)
     except (ConfigError, KeyError, TypeError) as err:
-        sys.stderr.write("gen_aircraft_config: %s: %s\n" % (argv[1], err))
-        return 1
-    if argv[2] == "-":
+        raise ConfigError("%s: %s" % (limits_path, err)) from err
+
+
+def write_header(path, text):
+    """'-' is stdout; a file is written whole each time, so its date follows its inputs'."""
+    if path == "-":
         sys.stdout.write(text)
     else:
-        with open(argv[2], "w") as f:
+        with open(path, "w") as f:
             f.write(text)
-    return 0
+
+
+def main(argv):
+    return run_generator(argv, __doc__, "gen_aircraft_config", generate,
+                         (ConfigError, check_config.ConfigError), write_header)
 
 
 if __name__ == "__main__":

@@ -13,7 +13,7 @@ import os
 import sys
 
 from stack_tools import check_config
-from stack_tools.generated_file import write_if_changed
+from stack_tools.generated_file import run_generator
 from stack_tools.paths import ROOT
 
 DEFAULT_TABLE = os.path.join(ROOT, "aircraft", "limits_ranges.yaml")
@@ -73,16 +73,8 @@ def header(table):
 
 
 def main(argv):
-    if len(argv) != 3:
-        sys.stderr.write(__doc__)
-        return 2
-    try:
-        text = header(ranges(argv[1]))
-    except (RangeError, OSError) as e:
-        sys.stderr.write("gen_limits_ranges: %s\n" % e)
-        return 1
-    write_if_changed(argv[2], text)
-    return 0
+    return run_generator(argv, __doc__, "gen_limits_ranges", lambda path: header(ranges(path)),
+                         (RangeError, OSError))
 
 
 if __name__ == "__main__":

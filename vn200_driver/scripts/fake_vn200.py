@@ -12,8 +12,8 @@ With --baud the fake also has a serial speed: it reads the driver's port speed f
 termios and neither hears nor answers a driver at another speed (real bytes at the wrong baud
 are noise), until register 5 switches it; a power cycle restores --baud.
 --capture FILE --packets N writes N binary packets to FILE instead (a replay capture).
-Standard library only, so it runs with /usr/bin/python3 anywhere. The packets and the register
-conversation are vn200_emulation.py's, shared with the HiL simulator (hil/).
+Standard library only, so it runs under ROS's Python as well as the venv's. The packets and the register
+conversation are vn200_sim.vn200_emulation's, shared with the HiL simulator (hil/).
 """
 import argparse
 import math
