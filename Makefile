@@ -6,8 +6,8 @@ SHELL := /bin/bash
 ROOT := $(abspath $(dir $(lastword $(MAKEFILE_LIST))))
 WS := $(ROOT)/.build/ws
 VENV := $(ROOT)/.venv
-# catkin's PYTHON_EXECUTABLE: ROS's Python, which runs every generator (cmake/python.cmake). The
-# venv's Python (PyPI packages over Debian's) runs tests, benchmarks and mavgen.
+# Which Python runs what: cmake/python.cmake. PYTHON is catkin's PYTHON_EXECUTABLE (ROS's Python);
+# ROSENV puts the venv first on PATH, so `python3` in a target is the venv's.
 PYTHON := /usr/bin/python3
 JOBS ?= 2
 # The one aircraft (aircraft/<name>/) a build is for: catkin's drone_ros_AIRCRAFT and the kit's.

@@ -1,4 +1,18 @@
-# Which Python the build runs, decided here and nowhere else.
+# Which Python runs what, decided here and nowhere else. The rule:
+#  1. ROS's Python, /usr/bin/python3 on Debian 12, is catkin's PYTHON_EXECUTABLE: it runs every
+#     build step below and is the interpreter catkin_install_python writes into the nodes it
+#     installs. Whoever runs catkin_make passes it (-DPYTHON_EXECUTABLE=/usr/bin/python3: the
+#     Makefile's PYTHON, tools/check_install_space.sh, tools/check_user_workspace.sh,
+#     arduino_ha/tools/coverage_ha.sh).
+#  2. Everything else runs `python3` from PATH: scripts start with `#!/usr/bin/env python3`, shell
+#     scripts call `python3`, a Python process starts its children with sys.executable. The
+#     Makefile's targets source the workspace and put the venv (.venv, made by `make deps` from
+#     /usr/bin/python3 with --system-site-packages, so ROS's modules stay visible) first on PATH:
+#     there `python3` is the venv's, which adds the PyPI packages (jsbsim, pymavlink, pytest-xdist).
+#  3. One node needs a PyPI package while catkin gives it ROS's Python: hil/scripts/hil_sim.py
+#     (jsbsim) re-runs itself under $DRONE_ROS_VENV, else the package's .venv.
+# The stack's own modules are packages (setup.py, catkin_python_setup): with the workspace sourced
+# every interpreter above imports them by name; nothing edits sys.path.
 #
 # Every generator (tools/gen_*.py, arduino_ha's config and message generators) needs only the
 # standard library, PyYAML and jsonschema (Debian python3-yaml, python3-jsonschema: the aircraft's
@@ -23,7 +37,10 @@ if(NOT _generator_modules_rc EQUAL 0)
 endif()
 # What a generator reading an aircraft's YAML depends on besides the file: the checker and schemas.
 set(${PROJECT_NAME}_CONFIG_CHECK_DEPENDS
-  ${PROJECT_SOURCE_DIR}/tools/check_config.py
+  ${PROJECT_SOURCE_DIR}/tools/stack_tools/check_config.py
+  ${PROJECT_SOURCE_DIR}/tools/stack_tools/gen_limits_ranges.py
+  ${PROJECT_SOURCE_DIR}/tools/stack_tools/generated_file.py
+  ${PROJECT_SOURCE_DIR}/tools/stack_tools/paths.py
   ${PROJECT_SOURCE_DIR}/aircraft/schema/airframe.schema.json
   ${PROJECT_SOURCE_DIR}/aircraft/schema/controller_param.schema.json
   ${PROJECT_SOURCE_DIR}/aircraft/schema/ground_station.schema.json

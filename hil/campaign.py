@@ -17,9 +17,7 @@ import datetime
 import os
 import sys
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-if ROOT not in sys.path:
-    sys.path.insert(0, ROOT)
+from stack_tools.paths import ROOT  # noqa: E402  (aircraft/ of the source tree or the install)
 from hil.campaigns import plan as plan_mod  # noqa: E402
 from hil.campaigns import report as report_mod  # noqa: E402
 

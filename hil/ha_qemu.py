@@ -33,7 +33,6 @@ import zlib
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
-sys.path.insert(0, ROOT)  # run as a script (hil/ha_qemu.py) too
 from hil import ptys  # noqa: E402
 DEFAULT_IMAGE = os.path.join(ROOT, ".build", "pil", "ha_pil.elf")
 SYNC = b"\xa5\x5a"

@@ -5,4 +5,4 @@
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 shift || true  # the workspace path tools/run_main.sh passes
-exec "$here/../.venv/bin/python" "$here/run_flight.py" ${ARGS:-} "$@"
+exec python3 "$here/run_flight.py" ${ARGS:-} "$@"  # the venv first on PATH (cmake/python.cmake)

@@ -2,7 +2,7 @@
 
 - VN-200 port 2 (the HP's `vn200` node): a pty that answers the node's ASCII configuration as the
   sensor does and streams the binary output the node writes (Binary Output 2, register 76),
-  with vn200_driver/scripts/vn200_emulation.py, the fake sensor's own register code; the packets
+  with vn200_driver/src/vn200_sim/vn200_emulation.py, the fake sensor's own register code; the packets
   are built by the C99 encoder (vn200_driver/encode, one call each through vn200_encode.py),
   whose bytes are the fake sensor's Python encoder's (vn200_driver/test/test_vn200_encode.py).
 - VN-200 port 1 (the HA): Binary Output 1 as configured once on the bench and saved to the
@@ -21,15 +21,12 @@ its sensor time minus the time its bytes take on the wire.
 import math
 import os
 import random
-import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "vn200_driver",
-                                "scripts"))
 from hil import ptys  # noqa: E402
 from hil.units import FT_PER_M, G_MPS2  # noqa: E402
-from vn200_emulation import (INS_STATUS_TRACKING_FIX, NS_PER_WEEK, Registers, Solution,  # noqa: E402
+from vn200_sim.vn200_emulation import (INS_STATUS_TRACKING_FIX, NS_PER_WEEK, Registers, Solution,  # noqa: E402
                              packet_length)
-from vn200_encode import PacketEncoder  # noqa: E402
+from vn200_sim.vn200_encode import PacketEncoder  # noqa: E402
 
 WGS84_A = 6378137.0
 WGS84_E2 = 6.69437999014e-3

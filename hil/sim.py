@@ -40,10 +40,8 @@ from drone_ros.msg import DecisionStatus, HilTruth, LockstepStep, ServoCommand, 
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import Temperature
 
-ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-sys.path.insert(0, ROOT)
-sys.path.insert(0, os.path.join(ROOT, "drone_ros", "supervisor", "scripts"))
-import node_query  # noqa: E402  (the supervisor's node queries: the same PID lookup)
+from stack_tools.paths import ROOT  # noqa: E402  (aircraft/ of the source tree or the install)
+from supervisor_core import node_query  # noqa: E402  (the supervisor's node queries: the same PID lookup)
 from hil import faults, gs_monitor, ha_channel, link_relay, mission, sensors, verdicts  # noqa: E402
 from hil.faults.base import RC_NEUTRAL, Board  # noqa: E402
 from hil.design_wind import DesignWind  # noqa: E402

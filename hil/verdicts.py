@@ -1,14 +1,10 @@
 """Verdicts of a HiL flight from the simulator's truth: the safety regions S_x and S_u built from
 limits.yaml by the same generator the HA's configuration comes from
-(arduino_ha/tools/gen_aircraft_config.py), and the flight's summary.json."""
+(tools/stack_tools/gen_aircraft_config.py), and the flight's summary.json."""
 import bisect
 import math
-import os
-import sys
 
-ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-sys.path.insert(0, os.path.join(ROOT, "arduino_ha", "tools"))
-import gen_aircraft_config  # noqa: E402
+from stack_tools import gen_aircraft_config  # noqa: E402
 
 from hil.units import FT_PER_M  # noqa: E402
 

@@ -23,7 +23,6 @@ import sys
 from concurrent.futures import ThreadPoolExecutor
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.dirname(HERE))
 from hil.campaigns.flight import run_completed  # noqa: E402
 
 GROUND_S = 2.0  # hil/sim.py's ground_s: parked at home this long, then airborne

@@ -19,6 +19,7 @@ PYTHON_MODULES = {
     "yaml": "python3-yaml", "jsonschema": "python3-jsonschema", "numpy": "python3-numpy",
     "scipy": "python3-scipy", "matplotlib": "python3-matplotlib", "distributed": "python3-distributed",
     "cloudpickle": "python3-cloudpickle", "pytest": "python3-pytest", "catkin_pkg": "python3-catkin-pkg",
+    "setuptools": "python3-setuptools",
     "rospkg": "python3-rospkg", "rospy": "rospy", "rosbag": "rosbag", "rosgraph": "rosgraph",
     "rosparam": "rosparam", "roslib": "roslib", "rostest": "rostest", "genpy": "genpy", "genmsg": "genmsg",
     "roscpp": "roscpp",
@@ -46,8 +47,9 @@ ROS_TOOLS = {"roscore": "roslaunch", "roslaunch": "roslaunch", "rosparam": "rosp
              "rosrun": "rosbash", "mavproxy.py": "pypi:MAVProxy"}
 # Build-time Python: the generators CMake runs, and what they import from the tree. check_config also
 # runs at launch (launch/check_config.launch), so its imports are run-time ones too.
-BUILD_ONLY = re.compile(r"^(tools/gen_[a-z_]+\.py|tools/generated_file\.py|arduino_ha/tools/[a-z_]+\.py|arduino_ha/link/gen/[a-z_0-9]+\.py)$")
-BUILD_AND_RUN = {"tools/check_config.py"}
+BUILD_ONLY = re.compile(r"^(tools/gen_[a-z_]+\.py|tools/stack_tools/(gen_[a-z_]+|generated_file)\.py|setup\.py|"
+                        r"arduino_ha/tools/[a-z_]+\.py|arduino_ha/link/gen/[a-z_0-9]+\.py)$")
+BUILD_AND_RUN = {"tools/check_config.py", "tools/stack_tools/check_config.py"}
 # Declarations that serve each time.
 KINDS = {"build": ("depend", "build_depend", "buildtool_depend"), "run": ("depend", "exec_depend"),
          "test": ("depend", "exec_depend", "test_depend"),

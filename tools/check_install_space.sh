@@ -6,7 +6,8 @@
 # moved aside, install/setup.bash alone is sourced, and the flight launch must resolve from the
 # install: `roslaunch --files` (which also runs check_config.launch's checker) lists only files
 # under install/, every node of `roslaunch --nodes` starts an executable under install/, and the
-# installed check_config.py accepts the installed aircraft. Leaves nothing behind unless KEEP=1.
+# installed check_config.py (with install/setup.bash sourced) accepts the installed aircraft.
+# Leaves nothing behind unless KEEP=1.
 # usage: check_install_space.sh [WORKSPACE_DIR]   (default: a new folder under /tmp)
 # JOBS (default 2) is catkin_make's -j. mavgen (a build step, not needed at run time) runs with
 # this checkout's .venv Python when it has one, else `make deps` makes the clone's.
@@ -48,7 +49,7 @@ fail() { echo "check-install: $*"; failed=1; }
 pkg=$(in_install "rospack find drone_ros")
 [ "$pkg" = "$share" ] || fail "rospack finds drone_ros at $pkg, not in the install space ($share)"
 
-"$share/tools/check_config.py" "$share/aircraft/DG808" > "$ws/check_config.out" \
+in_install "'$share/tools/check_config.py' '$share/aircraft/DG808'" > "$ws/check_config.out" \
   || fail "the installed check_config.py refuses the installed DG808 ($(cat "$ws/check_config.out"))"
 
 for launch in DG808_flight.launch check_config.launch DG808_hil.launch; do
@@ -78,12 +79,13 @@ for launch in DG808_flight.launch check_config.launch DG808_hil.launch; do
   done
   echo "check-install: $launch resolves from the install: $n files, $k nodes ($(echo $nodes | tr '\n' ' '))"
 done
-# The simulator DG808_hil.launch starts imports its package from the install (hil_sim.py finds it
-# through the package path), with the ROS messages of the install; under the venv (jsbsim).
-in_install "DRONE_ROS_VENV='${mavgen_python%/bin/python}' '$mavgen_python' -c \"import rospkg, sys; \
-sys.path.insert(0, rospkg.RosPack().get_path('drone_ros')); import hil.sim, drone_ros.msg; \
-assert hil.sim.__file__.startswith('$share/'), hil.sim.__file__; \
-assert drone_ros.msg.__file__.startswith('$ws/install/'), drone_ros.msg.__file__\"" \
-  || fail "hil_sim.py's package (hil.sim) does not import from the install space"
+# setup.py's packages import from the install's dist-packages with / as the folder, with the
+# install's ROS messages, under the venv (the simulator's jsbsim); their data is share/drone_ros.
+in_install "cd / && '$mavgen_python' -c \"import hil.sim, drone_ros.msg, report_core.flight_log, \
+supervisor_core.node_query, vn200_sim.vn200_encode, stack_tools.paths as paths; \
+assert hil.sim.__file__.startswith('$ws/install/lib/'), hil.sim.__file__; \
+assert drone_ros.msg.__file__.startswith('$ws/install/'), drone_ros.msg.__file__; \
+assert paths.ROOT == '$share', paths.ROOT\"" \
+  || fail "setup.py's packages (hil.sim, report_core, ...) do not import from the install space"
 [ $failed -eq 0 ] || exit 1
 echo "check-install: $(cat "$ws/check_config.out"); catkin_make install ${build_s} s"

@@ -16,7 +16,7 @@ usage: gen_decision_status.py --c|--cpp DECISION_STATUS_MSG OUTPUT
 import re
 import sys
 
-from generated_file import write_if_changed
+from stack_tools.generated_file import write_if_changed
 
 CONSTANT = re.compile(r"^\s*(uint8|uint32)\s+(CONTROLLER|REASON)_([A-Z0-9_]+)\s*=\s*(\d+)\s*(?:#.*)?$")
 

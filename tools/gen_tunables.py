@@ -9,7 +9,7 @@ usage: gen_tunables.py TUNABLES_YAML CONTROLLER_PARAM_YAML OUTPUT_HEADER
 import os
 import sys
 
-import check_config
+from stack_tools import check_config
 
 APPLY = {"live": "kLive", "gnc_restart": "kGncRestart", "fixed": "kFixed"}
 TYPES = {"real": "false", "integer": "true"}

@@ -1,4 +1,4 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 """Instructions per function inside each ha_core_step, from a QEMU `-d in_asm,exec,nochain` log.
 
 Used by profile_m3.sh. Each executed translation block is charged with its instruction count to

@@ -10,7 +10,7 @@ import sys
 import yaml
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
-GENERATOR = ROOT / "arduino_ha" / "tools" / "gen_aircraft_config.py"
+GENERATOR = ROOT / "tools" / "gen_aircraft_config.py"
 LIMITS = ROOT / "aircraft" / "DG808" / "limits.yaml"
 
 

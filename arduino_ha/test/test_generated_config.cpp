@@ -40,7 +40,7 @@ TEST(HaGeneratedConfig, GeneratedConfigMatchesCheckedInCopy) {
   ASSERT_EQ(status, 0);
   ASSERT_FALSE(fresh.empty());
   EXPECT_EQ(fresh, Slurp(HA_CHECKED_IN_CONFIG))
-      << "run: arduino_ha/tools/gen_aircraft_config.py aircraft/DG808/limits.yaml "
+      << "run: tools/stack_tools/gen_aircraft_config.py aircraft/DG808/limits.yaml "
          "arduino_ha/src/generated/aircraft_config.h";
 }
 

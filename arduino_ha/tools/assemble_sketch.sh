@@ -33,7 +33,7 @@ if [ -e "$gen" ]; then
   echo "assemble_sketch: arduino_ha/src/link/generated/ would hide the generated message code" >&2
   exit 1
 fi
-/usr/bin/python3 "$ha/link/gen/make_c99_msgs.py" "$gen" drone_ros="$root/msg" std_msgs=/usr/share/std_msgs/msg \
+python3 "$ha/link/gen/make_c99_msgs.py" "$gen" drone_ros="$root/msg" std_msgs=/usr/share/std_msgs/msg \
   geometry_msgs=/usr/share/geometry_msgs/msg rosserial_msgs="$ha/link/gen/rosserial_msgs/msg" \
   -- $(cat "$ha/link/gen/device_types.txt") >/dev/null
 echo "$sketch"

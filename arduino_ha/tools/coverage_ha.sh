@@ -37,5 +37,5 @@ out=$ws/gcov
 rm -rf "$out" && mkdir -p "$out"
 mapfile -t gcda < <(find "$ws/build" -name '*.gcda' -path '*src/core/*')
 (cd "$out" && gcov --branch-probabilities --json-format --preserve-paths "${gcda[@]}" > gcov.log 2>&1)
-/usr/bin/python3 "$root/arduino_ha/tools/coverage_report.py" --core "$root/arduino_ha/src/core" \
+python3 "$root/arduino_ha/tools/coverage_report.py" --core "$root/arduino_ha/src/core" \
   "$@" "$out"/*.gcov.json.gz

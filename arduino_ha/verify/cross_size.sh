@@ -39,7 +39,7 @@ elf=$out/ha_core_m3.elf
 read -r text data bss < <(m3_sizes "$elf")
 # The core's own share: its input sections kept in the image (the map lists them after the
 # garbage collection; the "Discarded input sections" part before it is skipped).
-core_code=$(/usr/bin/python3 - "$out/ha_core_m3.map" "$out/core/" <<'PY'
+core_code=$(python3 - "$out/ha_core_m3.map" "$out/core/" <<'PY'
 import re, sys
 text = open(sys.argv[1], encoding="utf-8").read()
 text = text[text.index("Linker script and memory map"):]
@@ -53,5 +53,5 @@ echo "metric: m3_image_flash $((text + data)) bytes"
 echo "metric: m3_image_ram $((data + bss)) bytes"
 echo "metric: m3_core_code_and_const ${core_code} bytes"
 echo "metric: core_source_lines ${lines} lines"
-/usr/bin/python3 "$here/stack_report.py" "$out/core" ha_app_period ha_core_step
+python3 "$here/stack_report.py" "$out/core" ha_app_period ha_core_step
 echo "cross_size: ok ($elf; flash = text+data of the linked image incl. startup and libgcc soft-float)"

@@ -1,4 +1,4 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 """Stack figures for the HA core from GCC's -fstack-usage (.su) and -fcallgraph-info=su (.ci).
 
 Prints the largest single frame and, for each entry point, the deepest call chain (sum of the

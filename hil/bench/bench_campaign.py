@@ -25,7 +25,6 @@ import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
-sys.path.insert(0, ROOT)
 from hil.campaigns import plan as plan_mod  # noqa: E402
 from hil.campaigns import report as report_mod  # noqa: E402
 from hil.campaigns import runner  # noqa: E402
@@ -101,5 +100,4 @@ def main():
 
 
 if __name__ == "__main__":
-    sys.path.insert(0, HERE)
     main()

@@ -15,9 +15,7 @@ import sys
 import time
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-sys.path.insert(0, ROOT)
-sys.path.insert(0, os.path.join(ROOT, "tools"))
-from bench_machine import machine  # noqa: E402
+from stack_tools.bench_machine import machine  # noqa: E402
 from hil.fdm import Fdm, Wind  # noqa: E402
 
 AIRCRAFT = os.path.join(ROOT, "aircraft", "DG808")

@@ -19,8 +19,7 @@ import tempfile
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "..", "tools"))
-from bench_machine import machine  # noqa: E402
+from stack_tools.bench_machine import machine  # noqa: E402
 
 RUNS = int(os.environ.get("BENCH_FLIGHT_RUNS", "3"))
 SIM_S = 3.0

@@ -29,7 +29,6 @@ import sys
 import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
 from bench_fdm import machine  # noqa: E402
 import bench_campaign  # noqa: E402
 

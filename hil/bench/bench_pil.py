@@ -23,10 +23,8 @@ import tempfile
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "test"))
-sys.path.insert(0, os.path.join(HERE, "..", "..", "tools"))
-from bench_machine import machine  # noqa: E402
-from ha_in_loop import HP, PIC, PilRig, build_pil_image, frame, negotiate, servo_command  # noqa: E402
+from stack_tools.bench_machine import machine  # noqa: E402
+from stack_testing.ha_in_loop import HP, PIC, PilRig, build_pil_image, frame, negotiate, servo_command  # noqa: E402
 
 INSN_PER_TICK = 40
 BUDGET = 16800

@@ -19,8 +19,9 @@ import sys
 
 import yaml
 
-HIL = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-ROOT = os.path.dirname(HIL)
+from stack_tools.paths import ROOT  # noqa: E402  (aircraft/ of the source tree or the install)
+
+HIL = os.path.join(ROOT, "hil")
 RUN_FLIGHT = os.path.join(HIL, "run_flight.py")
 FALLBACK_CLASSES = ("crash", "hang")
 
@@ -67,8 +68,6 @@ def _help_text(run_flight):
 
 def _faults_package():
     """hil.faults when this checkout has it (None otherwise)."""
-    if ROOT not in sys.path:
-        sys.path.insert(0, ROOT)
     try:
         return importlib.import_module("hil.faults")
     except ImportError:
@@ -156,8 +155,7 @@ def _duration(fault_class, rng, window):
 
 def _limits():
     """aircraft/DG808/limits.yaml, checked against its schema."""
-    sys.path.insert(0, os.path.join(ROOT, "tools"))
-    import check_config
+    from stack_tools import check_config
     return check_config.load(os.path.join(ROOT, "aircraft", "DG808", "limits.yaml"))
 
 

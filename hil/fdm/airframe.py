@@ -6,13 +6,11 @@ trim and the tests read one set of numbers. SI units in the attribute names.
 import bisect
 import math
 import os
-import sys
 from dataclasses import dataclass
 
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
-import check_config  # noqa: E402  (aircraft/schema/: no unknown, missing or mistyped key)
+from stack_tools import check_config  # noqa: E402  (aircraft/schema/: no unknown, missing or mistyped key)
 
 LBF_PER_N = 0.2248089430997105
 

@@ -1,13 +1,11 @@
 #!/usr/bin/env python3
 """The HA as Cortex-M3 machine code in QEMU, in ha_sil's place (hil/ha_qemu.py); started by
-launch/DG808_hil.launch with ha:=qemu. It finds the hil package through the package path, as
-hil_sim.py does; it needs nothing but the standard library and qemu-system-arm."""
+launch/DG808_hil.launch with ha:=qemu. The hil package is on PYTHONPATH once the workspace is
+sourced; it needs nothing but the standard library and qemu-system-arm."""
 import sys
 
-import rospkg
 
-sys.path.insert(0, rospkg.RosPack().get_path("drone_ros"))
-from hil.ha_qemu import main  # noqa: E402
+from hil.ha_qemu import main
 
 if __name__ == "__main__":
     sys.exit(main())

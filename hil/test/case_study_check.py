@@ -8,7 +8,6 @@
 - control goes back to the HP only after the stable window, and it does go back;
 - the mission: every one of the 32 waypoints is passed within the controller's reach distance."""
 import os
-import sys
 import threading
 import time
 import unittest
@@ -19,7 +18,6 @@ import yaml
 from drone_ros.msg import DecisionStatus, HilTruth
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", ".."))
-sys.path.insert(0, ROOT)
 from hil import verdicts  # noqa: E402
 
 HP = DecisionStatus.CONTROLLER_HP

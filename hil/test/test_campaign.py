@@ -14,7 +14,6 @@ import time
 import pytest
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-sys.path.insert(0, ROOT)
 from hil.campaigns import flight as flight_mod  # noqa: E402
 from hil.campaigns import plan as plan_mod  # noqa: E402
 from hil.campaigns import report as report_mod  # noqa: E402

@@ -5,13 +5,11 @@ the rest keep the whole property."""
 import copy
 import math
 import os
-import sys
 
 import pytest
 import yaml
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-sys.path.insert(0, ROOT)
 from hil.campaigns import flight as flight_mod  # noqa: E402
 from hil.campaigns import report as report_mod  # noqa: E402
 from hil.design_wind import DesignWind, DesignWindError  # noqa: E402

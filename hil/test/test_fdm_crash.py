@@ -2,13 +2,10 @@
 with FdmCrash and a reason, never with NaNs."""
 import math
 import os
-import sys
 
 import pytest
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-if ROOT not in sys.path:
-    sys.path.insert(0, ROOT)
 from hil.fdm import Fdm, FdmCrash, Surfaces  # noqa: E402
 
 AIRCRAFT = os.path.join(ROOT, "aircraft", "DG808")

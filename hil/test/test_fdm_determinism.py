@@ -2,11 +2,8 @@
 import dataclasses
 import math
 import os
-import sys
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-if ROOT not in sys.path:
-    sys.path.insert(0, ROOT)
 from hil.fdm import Fdm, Wind  # noqa: E402
 
 AIRCRAFT = os.path.join(ROOT, "aircraft", "DG808")

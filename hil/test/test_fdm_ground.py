@@ -2,13 +2,10 @@
 heading, the rudder steers the nose wheel, and it can take off."""
 import math
 import os
-import sys
 
 import pytest
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-if ROOT not in sys.path:
-    sys.path.insert(0, ROOT)
 from hil.fdm import Fdm, Surfaces, Wind  # noqa: E402
 
 AIRCRAFT = os.path.join(ROOT, "aircraft", "DG808")

@@ -3,13 +3,10 @@ model delays, rate-limits and clips what it is told."""
 import dataclasses
 import math
 import os
-import sys
 
 import pytest
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-if ROOT not in sys.path:
-    sys.path.insert(0, ROOT)
 from hil.fdm import Fdm  # noqa: E402
 
 AIRCRAFT = os.path.join(ROOT, "aircraft", "DG808")

@@ -4,14 +4,11 @@ import dataclasses
 import math
 import os
 import statistics
-import sys
 
 import pytest
 import yaml
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-if ROOT not in sys.path:
-    sys.path.insert(0, ROOT)
 from hil.fdm import Fdm  # noqa: E402
 from hil.fdm.airframe import Airframe  # noqa: E402
 

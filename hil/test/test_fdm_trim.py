@@ -2,14 +2,11 @@
 import math
 import os
 import re
-import sys
 
 import pytest
 import yaml
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-if ROOT not in sys.path:
-    sys.path.insert(0, ROOT)
 from hil.fdm import Fdm, TrimError  # noqa: E402
 
 AIRCRAFT = os.path.join(ROOT, "aircraft", "DG808")

@@ -2,13 +2,10 @@
 import math
 import os
 import statistics
-import sys
 
 import pytest
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-if ROOT not in sys.path:
-    sys.path.insert(0, ROOT)
 from hil.fdm import Fdm, Wind  # noqa: E402
 
 AIRCRAFT = os.path.join(ROOT, "aircraft", "DG808")

@@ -12,14 +12,12 @@ import tempfile
 import threading
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-sys.path.insert(0, ROOT)
 os.environ.setdefault("MAVLINK20", "1")
 from pymavlink import mavutil  # noqa: E402  (MAVLINK20 must be set first)
 
 from hil.campaigns.flight import run_completed  # noqa: E402
 
-sys.path.insert(0, os.path.join(ROOT, "microhard_gs", "test"))
-from mavproxy_gcs import MavProxy, read_qgc_wpl  # noqa: E402
+from stack_testing.mavproxy_gcs import MavProxy, read_qgc_wpl  # noqa: E402
 
 GCS_HOST = "127.0.0.2"
 

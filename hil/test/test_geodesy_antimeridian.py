@@ -3,17 +3,11 @@ short way round, as geo_wgs84.c does: an aircraft that crosses the antimeridian 
 Taveuni at 180 deg) is feet from it, not the Earth's circumference. Judged against the exact local
 east/north of the WGS84 ellipsoid (ECEF to ENU), an independent method."""
 import math
-import os
-import sys
 
 import pytest
 
-ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-for path in (ROOT, os.path.join(ROOT, "drone_ros", "report", "src")):
-    if path not in sys.path:
-        sys.path.insert(0, path)
-from hil.verdicts import Regions  # noqa: E402
-from report_core.flight_log import ned_from_home  # noqa: E402
+from hil.verdicts import Regions
+from report_core.flight_log import ned_from_home
 
 A_M, E2, FT_PER_M = 6378137.0, 6.69437999014e-3, 1.0 / 0.3048
 

@@ -12,10 +12,8 @@ import time
 import pytest
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-sys.path.insert(0, ROOT)
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from hil import ha_channel, sensors  # noqa: E402
-from ha_in_loop import Parked, build_pil_image  # noqa: E402
+from stack_testing.ha_in_loop import Parked, build_pil_image  # noqa: E402
 
 
 def ha_sil_path():

@@ -12,7 +12,6 @@ import pytest
 import yaml
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-sys.path.insert(0, ROOT)
 from hil import mission  # noqa: E402
 from hil.campaigns.flight import run_completed  # noqa: E402  (a flight that runs out of time, killed whole)
 

@@ -7,13 +7,11 @@ import io
 import os
 import shutil
 import subprocess
-import sys
 import zlib
 
 import pytest
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-sys.path.insert(0, ROOT)
 from hil.faults.base import fields_crc32  # noqa: E402
 from drone_ros.msg import OperatorCommand, ServoCommand  # noqa: E402
 

@@ -10,7 +10,6 @@ import sys
 import tempfile
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-sys.path.insert(0, ROOT)
 from hil.campaigns.flight import run_completed  # noqa: E402  (a flight that runs out of time, killed whole)
 
 DURATION_S, CRASH_AT_S = 60, 30

@@ -4,17 +4,13 @@ records on its third UART, the simulator's VN-200 bytes on its second, rosserial
 host on its first (the HP link), stepped on simulation time. Only ptys and QEMU's unix sockets;
 QEMU is stopped after each story. test_ha_channel.py runs the SIL's stories on this board too."""
 import os
-import sys
 
 import pytest
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-sys.path.insert(0, ROOT)
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "drone_ros", "arduino_link", "test"))
 from hil import ha_channel, ha_qemu  # noqa: E402
-from wire_tap import frame  # noqa: E402
-from ha_in_loop import (HA, HP, MANUAL, PIC, PilRig, build_pil_image, negotiate,  # noqa: E402
+from stack_testing.wire_tap import frame  # noqa: E402
+from stack_testing.ha_in_loop import (HA, HP, MANUAL, PIC, PilRig, build_pil_image, negotiate,  # noqa: E402
                         servo_command)
 
 

@@ -5,13 +5,10 @@ the wind can change in flight."""
 import dataclasses
 import math
 import os
-import sys
 
 import pytest
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-if ROOT not in sys.path:
-    sys.path.insert(0, ROOT)
 from hil import sensors  # noqa: E402
 from hil.fdm import Fdm, Wind  # noqa: E402
 

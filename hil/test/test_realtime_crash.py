@@ -10,7 +10,6 @@ import sys
 import tempfile
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-sys.path.insert(0, ROOT)
 from hil.campaigns.flight import run_completed  # noqa: E402  (a flight that runs out of time, killed whole)
 
 CRASH_AT_S = 8.0  # the HP has the servos from 5 s (the airborne start at 2 s, 1 s, the stable window)

@@ -3,12 +3,10 @@ one wait, not one per step for the rest of the flight. Under heavy load one HA r
 before the simulator's subscription was live; the count stayed one short and every later step
 waited out the full timeout (a 35 s flight that never ended)."""
 import os
-import sys
 import threading
 import time
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-sys.path.insert(0, ROOT)
 from hil.sim import Waiter  # noqa: E402
 
 

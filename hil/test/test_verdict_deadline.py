@@ -5,12 +5,9 @@ plus the tolerated periods; in real time the HP's timer, the kill and the HA's t
 phase to each other, and the simulator sees a tick only at its next step. Synthetic timelines,
 the first from the flight of issue 24 (hil/README.md, "Deadline semantics")."""
 import os
-import sys
 from collections import namedtuple
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-if ROOT not in sys.path:
-    sys.path.insert(0, ROOT)
 from hil import verdicts  # noqa: E402
 from hil.faults.crash import Crash  # noqa: E402
 

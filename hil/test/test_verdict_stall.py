@@ -2,12 +2,9 @@
 attack past the airframe's stall while the HA flies, and the height a recovery cost, from a
 takeover to the lowest point before the aircraft climbs again."""
 import os
-import sys
 from collections import namedtuple
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-if ROOT not in sys.path:
-    sys.path.insert(0, ROOT)
 from hil import verdicts  # noqa: E402
 from hil.fdm.airframe import Airframe  # noqa: E402
 

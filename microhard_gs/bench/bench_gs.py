@@ -9,10 +9,8 @@ import os
 import sys
 import time
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "test"))
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
-import gs_harness as gh  # noqa: E402
-from bench_machine import machine  # noqa: E402
+from stack_testing import gs_harness as gh  # noqa: E402
+from stack_tools.bench_machine import machine  # noqa: E402
 
 WINDOW_S = 10.0
 CLK_TCK = os.sysconf("SC_CLK_TCK")

@@ -2,15 +2,12 @@
 home the HA publishes on /home (the probe plays the `arduino` node), GET_HOME_POSITION and
 REQUEST_MESSAGE answer it, and MAV_CMD_DO_SET_HOME reaches the HA on the ground and is refused in
 flight with the reason."""
-import os
-import sys
 import time
 
 import pytest
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import gs_harness as gh  # noqa: E402
-from gs_harness import mavlink  # noqa: E402
+from stack_testing import gs_harness as gh  # noqa: E402
+from stack_testing.gs_harness import mavlink  # noqa: E402
 
 
 @pytest.fixture(scope="module")

@@ -1,13 +1,10 @@
 """A mission upload over a link that loses 20% of the datagrams each way still completes,
 through the protocol's timeouts and retries on both sides."""
-import os
-import sys
 
 import pytest
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import gs_harness as gh  # noqa: E402
-from gs_harness import mavlink  # noqa: E402
+from stack_testing import gs_harness as gh  # noqa: E402
+from stack_testing.gs_harness import mavlink  # noqa: E402
 
 
 @pytest.fixture(scope="module")

@@ -2,14 +2,12 @@
 file as its users write them (`QGC WPL 110`, home in row 0, waypoints in frame 3), lists the
 mission back, has a mission above the ceiling refused, names who flies, and sees no fence breach."""
 import os
-import sys
 
 import pytest
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import gs_harness as gh  # noqa: E402
-from gs_harness import mavlink  # noqa: E402
-from mavproxy_gcs import MavProxy, read_qgc_wpl, write_qgc_wpl  # noqa: E402
+from stack_testing import gs_harness as gh  # noqa: E402
+from stack_testing.gs_harness import mavlink  # noqa: E402
+from stack_testing.mavproxy_gcs import MavProxy, read_qgc_wpl, write_qgc_wpl  # noqa: E402
 
 NAV_WAYPOINT = mavlink.MAV_CMD_NAV_WAYPOINT
 GOOD = [(300.0, 0.0, 200.0), (600.0, 250.0, 250.0), (300.0, 500.0, 300.0)]  # north, east, height ft

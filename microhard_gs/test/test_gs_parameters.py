@@ -3,15 +3,13 @@ microhard_gs and its ~set_tunable: the echo is the value the controller flies wi
 value is echoed back as the old one with a STATUSTEXT saying why."""
 import os
 import struct
-import sys
 import time
 
 import pytest
 import yaml
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import gs_harness as gh  # noqa: E402
-from gs_harness import mavlink  # noqa: E402
+from stack_testing import gs_harness as gh  # noqa: E402
+from stack_testing.gs_harness import mavlink  # noqa: E402
 
 HP, HA = 0, 1
 

@@ -4,16 +4,14 @@ vehicle to a ground station as over UDP, and a modem missing at start or unplugg
 an outage the node waits out, never its end."""
 import os
 import select
-import sys
 import tempfile
 import time
 import tty
 
 import pytest
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import gs_harness as gh  # noqa: E402
-from gs_harness import mavlink  # noqa: E402
+from stack_testing import gs_harness as gh  # noqa: E402
+from stack_testing.gs_harness import mavlink  # noqa: E402
 
 
 class Sink:

@@ -1,13 +1,10 @@
 """With a MAVLink 2 signing key configured, only correctly signed messages change anything:
 unsigned and badly signed ones are refused and counted, while read-only requests still work."""
-import os
-import sys
 
 import pytest
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import gs_harness as gh  # noqa: E402
-from gs_harness import mavlink  # noqa: E402
+from stack_testing import gs_harness as gh  # noqa: E402
+from stack_testing.gs_harness import mavlink  # noqa: E402
 
 KEY = bytes(range(1, 33))
 WRONG_KEY = bytes(range(101, 133))

@@ -5,14 +5,12 @@ on. (A whole HiL flight's tlog: drone_ros/report/test/test_report_of_a_hil_fault
 import glob
 import os
 import re
-import sys
 import time
 
 import pytest
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import gs_harness as gh  # noqa: E402
-from gs_harness import mavlink, mavutil  # noqa: E402
+from stack_testing import gs_harness as gh  # noqa: E402
+from stack_testing.gs_harness import mavlink, mavutil  # noqa: E402
 
 
 @pytest.fixture(scope="module")

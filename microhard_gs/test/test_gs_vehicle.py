@@ -2,15 +2,13 @@
 its parameters, missions (good and bad), operator commands and decision-logic announcements."""
 import json
 import os
-import sys
 import time
 
 import pytest
 import yaml
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import gs_harness as gh  # noqa: E402
-from gs_harness import mavlink  # noqa: E402
+from stack_testing import gs_harness as gh  # noqa: E402
+from stack_testing.gs_harness import mavlink  # noqa: E402
 
 TEN = [(100.0 * i, 80.0 * (i % 3), 150.0 + 10.0 * i) for i in range(10)]
 

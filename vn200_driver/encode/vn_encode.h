@@ -1,5 +1,5 @@
 /* VN-200 binary output packets built from a navigation solution: the sensor's side of
- * vn_binary.h, for the HiL simulator (hil/sensors.py, through vn200_driver/scripts/vn200_encode.py)
+ * vn_binary.h, for the HiL simulator (hil/sensors.py, through vn200_sim/vn200_encode.py)
  * and tests. Host only: it needs libm for the quaternion, and the Due never builds packets, so
  * it lives outside core/ (which the HA firmware is assembled from).
  *

@@ -12,8 +12,8 @@ With --baud the fake also has a serial speed: it reads the driver's port speed f
 termios and neither hears nor answers a driver at another speed (real bytes at the wrong baud
 are noise), until register 5 switches it; a power cycle restores --baud.
 --capture FILE --packets N writes N binary packets to FILE instead (a replay capture).
-Standard library only, so it runs with /usr/bin/python3 anywhere. The packets and the register
-conversation are vn200_emulation.py's, shared with the HiL simulator (hil/).
+Standard library only, so it runs under ROS's Python as well as the venv's. The packets and the register
+conversation are vn200_sim.vn200_emulation's, shared with the HiL simulator (hil/).
 """
 import argparse
 import math
@@ -27,8 +27,7 @@ import tty
 
 # The packet and configuration code is shared with the HiL simulator; catkin's devel-space relay
 # runs this file from elsewhere, so its own folder goes on the path.
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from vn200_emulation import (BAUD_CONSTANTS, Registers, Solution, binary_packet,  # noqa: E402
+from vn200_sim.vn200_emulation import (BAUD_CONSTANTS, Registers, Solution, binary_packet,  # noqa: E402
                              sentence)
 
 NS_PER_WEEK = 604800 * 10**9

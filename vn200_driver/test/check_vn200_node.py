@@ -1,4 +1,4 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 """rostest checks for the vn200 node (not named test_*.py: pytest must not collect it).
 
 live:   against fake_vn200.py on a pty that unplugs itself 4 s after each connect.

@@ -6,16 +6,13 @@ signed zeros, subnormals, floats' limits and values no float holds, integers ove
 whole range. Where the Python encoder refuses a solution, so does the C one. Needs libvn200_encode.so of the catkin build on
 LD_LIBRARY_PATH (the workspace's devel/setup.bash)."""
 import math
-import os
 import random
 import struct
-import sys
 
 import pytest
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scripts"))
-import vn200_emulation as ref  # noqa: E402
-import vn200_encode  # noqa: E402
+from vn200_sim import vn200_emulation as ref  # noqa: E402
+from vn200_sim import vn200_encode  # noqa: E402
 
 HP_OUTPUT = (0x39, [0x0001 | 0x0002 | 0x0008 | 0x0010 | 0x0020 | 0x0040 | 0x0080 | 0x0100 | 0x0400 | 0x1000,
                     0, 0, 0x0008 | 0x0010 | 0x0200 | 0x0400, 0x0100, 0x0200 | 0x0400])  # output_config.cpp

@@ -5,13 +5,10 @@ from the same data (through the generated header), so the gains are designed on 
 are tested against.
 """
 import math
-import os
-import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "tools"))
-import check_config  # noqa: E402  (aircraft/schema/: no unknown, missing or mistyped key)
+from stack_tools import check_config  # noqa: E402  (aircraft/schema/: no unknown, missing or mistyped key)
 
 FT_PER_M = 1.0 / 0.3048
 

@@ -21,7 +21,6 @@ import scipy.optimize
 sys.dont_write_bytecode = True  # no __pycache__ in the source tree
 HERE = os.path.dirname(os.path.abspath(__file__))
 AIRCRAFT_DIR = os.path.dirname(HERE)
-sys.path.insert(0, HERE)
 from airframe_model import Airframe, FT_PER_M, check_config, load_airframe  # noqa: E402
 
 # Bryson's rule: the largest deviation we accept of each state and input. The LQR weight of a

@@ -6,7 +6,7 @@ so a message change cannot desync the two sides.
 
 Usage: make_c99_msgs.py OUT_DIR PKG=DIR [PKG=DIR ...] -- TYPE [TYPE ...]
 TYPE is pkg/Name for a message or pkg/Name.srv for a service (its Request and Response halves).
-Writes OUT_DIR/ha_msgs.h, OUT_DIR/ha_msgs.c and the runtime they need, OUT_DIR/ha_msg_runtime.h. Run with /usr/bin/python3 (ROS's Python).
+Writes OUT_DIR/ha_msgs.h, OUT_DIR/ha_msgs.c and the runtime they need, OUT_DIR/ha_msg_runtime.h. Needs genmsg (ROS's Python, or the venv over it: cmake/python.cmake).
 """
 import os
 import sys

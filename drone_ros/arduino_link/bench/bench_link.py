@@ -22,8 +22,7 @@ from std_msgs.msg import Time
 
 from drone_ros.msg import DecisionStatus, ServoCommand, pwm
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "tools"))
-from bench_machine import machine  # noqa: E402
+from stack_tools.bench_machine import machine  # noqa: E402
 
 RATE_HZ = 100
 STEADY_S = 6.0

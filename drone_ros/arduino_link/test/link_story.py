@@ -8,7 +8,6 @@ import shutil
 import signal
 import struct
 import subprocess
-import sys
 import tempfile
 import threading
 import time
@@ -21,20 +20,12 @@ from diagnostic_msgs.msg import DiagnosticArray
 from rosgraph_msgs.msg import Log
 from std_msgs.msg import String
 
-try:
-    from drone_ros.msg import DecisionStatus, ServoCommand, pwm
-except ImportError:
-    # catkin caches the environment at the first configure, before devel/lib/python3 existed, so
-    # in a fresh workspace `run_tests` starts us without it: find the package's messages there.
-    for prefix in os.environ.get("CMAKE_PREFIX_PATH", "").split(":"):
-        candidate = os.path.join(prefix, "lib", "python3", "dist-packages")
-        if os.path.isdir(os.path.join(candidate, "drone_ros", "msg")):
-            sys.path.insert(0, candidate)
-    from drone_ros.msg import DecisionStatus, ServoCommand, pwm
+# catkin_python_setup() makes devel/lib/python3 at the first configure and refreshes the cached
+# environment, so even a fresh workspace's `run_tests` finds the messages.
+from drone_ros.msg import DecisionStatus, ServoCommand, pwm
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from story_wait import wait_for  # noqa: E402
-from wire_tap import WireTap, frame, topic_info  # noqa: E402
+from stack_testing.wire_tap import WireTap, frame, topic_info  # noqa: E402
 
 WS = os.environ.get("DRONE_ROS_WS", "")
 

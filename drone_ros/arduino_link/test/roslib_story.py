@@ -2,9 +2,7 @@
 """Wire compatibility with a stock rosserial_arduino sketch: the real `arduino` node against
 roslib_device.py (ros_lib's NodeHandle restated from the protocol, nothing shared with our own
 device code) on a pseudo-terminal. Run by roslib_compat.test."""
-import os
 import struct
-import sys
 import threading
 import unittest
 
@@ -15,7 +13,6 @@ from rosgraph_msgs.msg import Log
 from roscpp.srv import SetLoggerLevel
 from std_msgs.msg import Bool, Float32, Int32, String
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from roslib_device import RoslibDevice, Sketch, ser_string  # noqa: E402
 from story_wait import wait_for  # noqa: E402
 

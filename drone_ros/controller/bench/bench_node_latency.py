@@ -18,7 +18,6 @@ import time
 sys.dont_write_bytecode = True  # no __pycache__ in the source tree
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.abspath(os.path.join(HERE, "..", "..", ".."))
-sys.path.insert(0, os.path.join(HERE, "..", "test"))
 
 FEED_HZ = 100.0
 MEASURE_S = 8.0
@@ -58,7 +57,7 @@ def run_client(dt_s):
     # Imported here: rospy reads ROS_MASTER_URI when the node starts.
     import rospy
     from drone_ros.msg import ServoCommand
-    from controller_sensor_feeder import SensorFeeder
+    from stack_testing.sensor_feeder import SensorFeeder
 
     deadline = time.monotonic() + 30.0
     while True:

@@ -22,8 +22,7 @@ from rosgraph_msgs.msg import Log
 
 from drone_ros.msg import DecisionStatus, HilTruth, ServoCommand, data, hil_data, ins, pwm
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "tools"))
-from bench_machine import machine  # noqa: E402
+from stack_tools.bench_machine import machine  # noqa: E402
 
 SECONDS = 60.0
 CHUNK_BYTES = 768 * 1024  # rosbag record's default --chunksize

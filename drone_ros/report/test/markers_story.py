@@ -1,4 +1,4 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 """rostest story for flight_markers (not named test_*.py: pytest must not collect it): the node
 from launch/view.launch is fed a mission, the HP flying east, a crash (the HA takes over with
 REASON_NO_COMMAND) and the HA flying north; the markers must show it, in map, and the node must

@@ -1,11 +1,8 @@
 """What the figures draw of a long log: thinned to the figure's resolution without losing a spike,
 and broken where messages stopped."""
-import os
-import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "src"))
 
 from report_core import figures  # noqa: E402
 

@@ -5,13 +5,10 @@ import csv
 import os
 import struct
 import subprocess
-import sys
 from html.parser import HTMLParser
 
 import pytest
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "src"))
 
 import scripted_flight  # noqa: E402
 from drone_ros.msg import DecisionStatus  # noqa: E402
@@ -197,8 +194,7 @@ def test_the_flight_log_records_the_stacks_home():
     root = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
     args = ET.parse(os.path.join(root, "launch", "record.launch")).getroot().find("node").get("args")
     assert "home" in args.split()  # relative: /home from the root namespace, /uav1/home in uav1
-    sys.path.insert(0, os.path.join(root, "hil"))
-    import run_flight
+    from hil import run_flight
     assert "/home" in run_flight.BAG_TOPICS
 
 

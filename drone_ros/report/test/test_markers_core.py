@@ -2,11 +2,9 @@
 and colours, the decision text."""
 import math
 import os
-import sys
 
 import pytest
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "src"))
 
 from report_core import markers  # noqa: E402
 

@@ -5,7 +5,6 @@ import os
 import signal
 import socket
 import subprocess
-import sys
 import time
 
 import pytest
@@ -13,8 +12,6 @@ import rosbag
 import rosgraph
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
-sys.path.insert(0, os.path.join(HERE, "..", "src"))
 
 import scripted_flight  # noqa: E402
 from report_core import flight_name  # noqa: E402

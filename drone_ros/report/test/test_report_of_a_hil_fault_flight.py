@@ -5,20 +5,16 @@ page's switch list is the flight's switches as the simulator saw them on the ser
 same flight's ground-link log (flight.tlog, written by microhard_gs beside the bag) read as
 MAVExplorer reads it."""
 import os
-import sys
 
 import pytest
 
 os.environ.setdefault("MAVLINK20", "1")
 from pymavlink import mavutil  # noqa: E402  (MAVLINK20 first: the link is MAVLink 2)
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from test_flight_report import FIGURES, page, png_size  # noqa: E402
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
-sys.path.insert(0, os.path.join(ROOT, "hil", "faults", "test"))
-from flight import fly  # noqa: E402  (the fault tests' flights, each flown once per test run)
-sys.path.insert(0, ROOT)
+from stack_testing.fault_flight import fly  # noqa: E402  (the fault tests' flights, each flown once per test run)
 from hil import mission  # noqa: E402  (the mission the HiL uploads, as a ground station holds it)
 # The page's controller labels (report_core figures.CONTROLLER_LABELS) for the summary's names.
 LABELS = {"HP": "HP", "HA": "HA", "RECOVERING": "recovering", "HA_LATCHED": "latched", "MANUAL": "pilot"}

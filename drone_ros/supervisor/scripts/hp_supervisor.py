@@ -22,7 +22,6 @@ import os
 import signal
 import socket
 import subprocess
-import sys
 import threading
 import time
 from urllib.parse import urlparse
@@ -34,8 +33,7 @@ from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 from drone_ros.msg import DecisionStatus
 
 # node_query.py lies beside this file (the devel space runs it from the source folder).
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from node_query import ask_pid, node_uri  # noqa: E402
+from supervisor_core.node_query import ask_pid, node_uri  # noqa: E402
 
 
 def local(uri):

@@ -8,7 +8,7 @@ wing never stalls, whoever flies. What it took (seed 11, 0.5 to 1.8 s stalled un
 way): the load factor from the gyros (V q / g on top of cos(bank): the pull shows before the
 alpha), a pull released at the servo's rate on the takeover, and the HA's own pitch loop held
 below 0.7 of the wing's maximum lift."""
-from flight import assert_property, fly
+from stack_testing.fault_flight import assert_property, fly
 
 
 def test_an_hp_pulling_into_an_accelerated_stall_in_a_banked_turn_is_taken_over_before_the_wing_stalls():

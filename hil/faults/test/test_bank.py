@@ -6,7 +6,7 @@ in from the HP's aileron stays inside too, so no takeover ever falls due on the 
 the inset, seed 11 peaked at 62.4 deg under the HA, 0.8 s outside S_x over three takeovers.)
 The HA may take it for the stall first: at 54 deg of bank a level turn pulls 1.7 g, the stall
 speed rises by sqrt(1.7), and the HA judges the stall by the load factor (issue 22 F1)."""
-from flight import assert_property, fly
+from stack_testing.fault_flight import assert_property, fly
 
 
 def test_an_hp_banking_past_the_roll_limit_is_taken_over_before_the_limit():

@@ -2,7 +2,7 @@
 switch margin below the ceiling (limits.yaml switch_region_fraction), so neither its INS's
 height error nor the climb during the takeover carries the aircraft through 400 ft, and it keeps
 it inside S_x. (Before the margin, seed 11's INS read ~2 ft low and the truth reached 402 ft.)"""
-from flight import assert_property, fly
+from stack_testing.fault_flight import assert_property, fly
 
 
 def test_an_hp_climbing_through_the_ceiling_is_taken_over_before_it_passes():

@@ -6,7 +6,7 @@ import os
 
 import yaml
 
-from flight import ROOT, assert_property, fly, truth_series
+from stack_testing.fault_flight import ROOT, assert_property, fly, truth_series
 
 with open(os.path.join(ROOT, "aircraft", "DG808", "limits.yaml")) as _f:
     THROTTLE_MIN = float(yaml.safe_load(_f)["actuators"]["throttle_min"])

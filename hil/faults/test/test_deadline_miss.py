@@ -1,6 +1,6 @@
 """Deadline misses: one late period is tolerated (limits.yaml late_periods_tolerated), a hiccup of
 two or more is not; repeated hiccups of 3 periods are taken over within one period."""
-from flight import assert_property, fly
+from stack_testing.fault_flight import assert_property, fly
 
 
 def test_one_command_half_a_period_late_is_tolerated_and_the_hp_keeps_flying():

@@ -1,6 +1,6 @@
 """Estimator divergence: alpha/beta estimates running away are taken over the period they pass
 their limit."""
-from flight import assert_property, fly
+from stack_testing.fault_flight import assert_property, fly
 
 
 def test_runaway_alpha_beta_estimates_hand_the_servos_to_the_ha():

@@ -1,5 +1,5 @@
 """A frozen HP (the same command, same sequence number, over and over) is taken over."""
-from flight import assert_property, fly
+from stack_testing.fault_flight import assert_property, fly
 
 
 def test_a_frozen_command_is_taken_over_within_one_period():

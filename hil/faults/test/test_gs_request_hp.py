@@ -1,6 +1,6 @@
 """A ground station asks for the HP (MAVLink DO_SET_MODE through microhard_gs) while the HP is
 failing (NaN aileron): the HA keeps the failing HP off the servos."""
-from flight import assert_property, fly, segments_between
+from stack_testing.fault_flight import assert_property, fly, segments_between
 
 
 def test_a_ground_station_asking_for_a_failing_hp_does_not_get_it():

@@ -1,7 +1,7 @@
 """Issue 22, F5: the HA reset in flight (a watchdog or brown-out reset: its RAM afresh, its board's
 retained words kept). It comes back with its home and its airborne latch, has a valid state again
 at once (home cannot latch in flight), and hands the servos back to the healthy HP."""
-from flight import assert_property, fly
+from stack_testing.fault_flight import assert_property, fly
 
 
 def test_an_ha_reset_in_flight_keeps_home_and_hands_back_to_the_hp():

@@ -1,6 +1,6 @@
 """VN-200 loss on the HA side: the HA cannot judge the state, so it takes the servos within one
 period of its state going stale, and flies inside S_x."""
-from flight import assert_property, fly
+from stack_testing.fault_flight import assert_property, fly
 
 
 def test_losing_the_has_own_vn200_hands_it_the_servos():
@@ -17,7 +17,7 @@ def test_blind_while_the_hp_banks_the_ha_fades_the_aileron_and_the_aircraft_does
     when the aileron reaches trim, then a slow creep to -45 deg; see the 30 s story below)."""
     import os
     import yaml
-    from flight import ROOT, truth_series
+    from stack_testing.fault_flight import ROOT, truth_series
     with open(os.path.join(ROOT, "aircraft", "DG808", "limits.yaml")) as f:
         fade_s = yaml.safe_load(f)["safety_controller"]["blind_fade_s"]
     # At 8.5 s the HP is rolling into its first turn, towards the mission's first waypoint (it gets

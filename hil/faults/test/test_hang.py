@@ -1,6 +1,6 @@
 """HP controller hang (SIGSTOP, never continued): the HA flies, hp_supervisor kills the hung
 process and starts a new one, the HA hands control back."""
-from flight import assert_property, fly
+from stack_testing.fault_flight import assert_property, fly
 
 
 def test_a_hung_controller_never_continued_is_replaced_by_the_ha_and_restarted():

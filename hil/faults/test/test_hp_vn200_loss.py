@@ -1,6 +1,6 @@
 """VN-200 link loss on the HP side: the HP reports its sensor link down and the HA takes over
 within one period of that command."""
-from flight import assert_property, fly
+from stack_testing.fault_flight import assert_property, fly
 
 
 def test_losing_the_hps_vn200_hands_the_servos_to_the_ha():

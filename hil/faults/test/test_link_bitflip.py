@@ -1,7 +1,7 @@
 """Bit flips on the HP-HA link (in the bytes on the pty between the arduino node and the HA, the
 frame's own checksum made to match): the HA's CRC-32 check catches them, the corrupted command
 never reaches a servo, and the HA has the servos the period the first one arrives."""
-from flight import assert_property, fly
+from stack_testing.fault_flight import assert_property, fly
 
 
 def test_bit_flips_in_the_command_payload_are_caught_by_the_crc():

@@ -11,7 +11,7 @@ import os
 import re
 
 import yaml
-from flight import ROOT, assert_property, fly, segments_between
+from stack_testing.fault_flight import ROOT, assert_property, fly, segments_between
 
 with open(os.path.join(ROOT, "aircraft", "DG808", "limits.yaml")) as _f:
     _STATE = yaml.safe_load(_f)["state"]

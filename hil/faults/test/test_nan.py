@@ -1,6 +1,6 @@
 """A NaN in one surface with a valid CRC never reaches a servo: the HA drives its own command from
 the period the NaN arrives."""
-from flight import assert_property, fly
+from stack_testing.fault_flight import assert_property, fly
 
 
 def test_a_nan_aileron_never_reaches_the_servos():

@@ -1,5 +1,5 @@
 """An elevator beyond its limit (outside S_u) never reaches the servo."""
-from flight import assert_property, fly
+from stack_testing.fault_flight import assert_property, fly
 
 
 def test_an_elevator_past_its_limit_never_reaches_the_servo():

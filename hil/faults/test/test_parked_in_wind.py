@@ -1,5 +1,5 @@
 """The parked glider in a wind past its limit, before the launch: held as a crew holds one."""
-from flight import fly
+from stack_testing.fault_flight import fly
 
 
 def test_a_glider_parked_in_a_wind_past_its_limit_is_held_until_its_airborne_start():

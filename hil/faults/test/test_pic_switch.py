@@ -1,6 +1,6 @@
 """The pilot's PIC switch mid-fault: the HP crashes, the HA takes over, the pilot switches to
 manual one second later and has the servos that period, and hands back to the computer."""
-from flight import HA_PERIOD_S, assert_property, fly, segments_between
+from stack_testing.fault_flight import HA_PERIOD_S, assert_property, fly, segments_between
 
 
 def test_the_pilots_switch_wins_during_an_hp_crash_and_gives_back_to_the_computer():

@@ -1,6 +1,6 @@
 """A dead, zeroed or low pitot on the HA: once the held reading runs out the HA lacks state and
 takes over, and flies without the stall it could not see."""
-from flight import assert_property, fly
+from stack_testing.fault_flight import assert_property, fly
 
 
 def test_a_dead_pitot_hands_the_servos_to_the_ha():

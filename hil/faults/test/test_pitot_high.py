@@ -3,7 +3,7 @@ than any wind the HA allows, from one period to the next. The HA must reject it 
 sensors.airspeed_timeout_s, as a failed read (the class's due), and fly the aircraft itself; the HP, flying on the same pitot, would
 slow to a true 20 ft/s. On 0da675b (one-sided lying check) seed 11 kept the HP on the servos: the
 wing stalled for 6.9 s and the aircraft fell to 37 ft."""
-from flight import assert_property, fly
+from stack_testing.fault_flight import assert_property, fly
 
 
 def test_a_pitot_reading_40_ftps_high_is_rejected_as_a_failed_read_and_the_wing_never_stalls():

@@ -8,7 +8,7 @@ aircraft hit the ground. With the two-sided test alone the HA took the servos fo
 them back to the HP, which flew on the stuck pitot into three more STALL takeovers and 1.0 s of
 stalled wing under the HA; a reading repeated to the bit for sensors.pitot_stuck_s is now a stuck
 sensor, and the HA keeps the servos."""
-from flight import assert_property, fly
+from stack_testing.fault_flight import assert_property, fly
 
 
 def test_a_pitot_iced_at_85_ftps_in_still_air_is_rejected_before_the_hp_slows_into_the_stall():

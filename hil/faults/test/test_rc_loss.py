@@ -1,6 +1,6 @@
 """RC loss with the receiver's PIC channel reading "pilot": the lost receiver never gets the
 servos (no MANUAL), the computer stays in command."""
-from flight import assert_property, fly, segments_between
+from stack_testing.fault_flight import assert_property, fly, segments_between
 
 
 def test_a_lost_receiver_reading_pilot_never_takes_the_servos():

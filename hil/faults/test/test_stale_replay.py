@@ -1,5 +1,5 @@
 """A stale replay of an old valid command (its own good CRC) is taken over."""
-from flight import assert_property, fly
+from stack_testing.fault_flight import assert_property, fly
 
 
 def test_a_replayed_second_old_command_is_taken_over_within_one_period():

@@ -5,7 +5,7 @@ stall_speed_ftps x stall_switch_multiple (limits.yaml) and lowers the nose while
 flies; the truth's calibrated airspeed never reaches the stall speed. The HP, restarted and given
 control back, pulls up again until the restart cap latches it out. (Before the switch speed,
 seed 11 departed: 1.34 s outside S_x under the HA, roll rate -563 deg/s in a snap roll.)"""
-from flight import assert_property, fly
+from stack_testing.fault_flight import assert_property, fly
 
 
 def test_an_hp_flying_into_a_stall_is_taken_over_before_the_stall():

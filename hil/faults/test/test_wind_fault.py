@@ -4,7 +4,7 @@ The airspeed falls by the wind faster than the aircraft can gain it back: the HA
 for the stall at its switch speed and recover without the wing stalling (the verdict's
 stalled_under_ha_s) and without a deep dive. (Named test_wind_fault.py: hil/test/test_wind.py
 is the whole stack's wind test.)"""
-from flight import assert_property, fly
+from stack_testing.fault_flight import assert_property, fly
 
 
 def test_a_tailwind_gust_front_is_taken_over_for_the_stall_and_recovered_with_the_wing_flying():

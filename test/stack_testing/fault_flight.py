@@ -7,8 +7,7 @@ import sys
 
 import yaml
 
-ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
-sys.path.insert(0, ROOT)
+from stack_tools.paths import ROOT  # noqa: E402
 from hil.campaigns.flight import run_once_per_test_run  # noqa: E402  (killed whole if out of time; shared)
 with open(os.path.join(ROOT, "aircraft", "DG808", "limits.yaml")) as _f:
     HA_PERIOD_S = 1.0 / float(yaml.safe_load(_f)["decision"]["rate_hz"])

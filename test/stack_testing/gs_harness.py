@@ -15,6 +15,7 @@ import signal
 import socket
 import struct
 import subprocess
+import sys
 import threading
 import time
 
@@ -24,11 +25,13 @@ import rosparam
 os.environ.setdefault("MAVLINK20", "1")
 from pymavlink import mavutil  # noqa: E402  (MAVLINK20 must be set first)
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-AIRCRAFT_DIR = os.path.join(HERE, "..", "..", "aircraft", "DG808")
+from stack_tools.paths import ROOT  # noqa: E402
+
+HERE = os.path.join(ROOT, "microhard_gs", "test")  # gs_ros_probe.py
+AIRCRAFT_DIR = os.path.join(ROOT, "aircraft", "DG808")
 CONTROLLER_NS = "/controller_DG808"
 HOME = (40.1100, -88.2200, 220.0)  # where the probe says the aircraft is: becomes home
-ROS_PYTHON = "/usr/bin/python3"
+ROS_PYTHON = sys.executable  # the test's own Python (cmake/python.cmake)
 FT_PER_M = 1.0 / 0.3048
 DIAGNOSTIC_PERIOD_S = 0.1
 
@@ -398,23 +401,23 @@ def command_long(conn, command, *params):
     conn.mav.command_long_send(1, 1, command, 0, *p)
 
 
-def wait_command_ack(conn, command, timeout_s=5.0):
+def wait_for_message(conn, kind, matches, timeout_s=5.0):
+    """The next message of kind for which matches(message) holds, or None after timeout_s."""
     deadline = time.time() + timeout_s
     while time.time() < deadline:
-        ack = conn.recv_match(type="COMMAND_ACK", blocking=True, timeout=0.2)
-        if ack is not None and ack.command == command:
-            return ack
+        m = conn.recv_match(type=kind, blocking=True, timeout=0.2)
+        if m is not None and matches(m):
+            return m
     return None
+
+
+def wait_command_ack(conn, command, timeout_s=5.0):
+    return wait_for_message(conn, "COMMAND_ACK", lambda m: m.command == command, timeout_s)
 
 
 def wait_param_value(conn, param_id, timeout_s=5.0):
     """The next PARAM_VALUE for param_id (the echo of a PARAM_SET), decoded byte-wise if INT32."""
-    deadline = time.time() + timeout_s
-    while time.time() < deadline:
-        m = conn.recv_match(type="PARAM_VALUE", blocking=True, timeout=0.2)
-        if m is not None and m.param_id == param_id:
-            return m
-    return None
+    return wait_for_message(conn, "PARAM_VALUE", lambda m: m.param_id == param_id, timeout_s)
 
 
 def param_value(m):

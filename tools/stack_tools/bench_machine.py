@@ -1,6 +1,6 @@
 """The `machine:` line every benchmark prints after its figures (CONTRIBUTING.md, Benchmarks):
 host, cores, CPU model, OS, and the load average when the benchmark started, since the machines
-these figures come from are shared. Benchmarks import it with tools/ on sys.path."""
+these figures come from are shared. Benchmarks import it as stack_tools.bench_machine."""
 import os
 import platform
 

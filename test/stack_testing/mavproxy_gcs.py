@@ -18,8 +18,9 @@ import tempfile
 import threading
 import time
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-MODE_MAP = os.path.join(HERE, "..", "gcs", "pymavlink_custom_mode_map.json")
+from stack_tools.paths import ROOT
+
+MODE_MAP = os.path.join(ROOT, "microhard_gs", "gcs", "pymavlink_custom_mode_map.json")
 # MAVProxy's default modules less the terrain one (it fetches elevation tiles from the internet
 # when asked for terrain; tests stay on loopback).
 MODULES = "log,signing,wp,rally,fence,ftp,param,relay,tuneopt,arm,mode,calibration,rc,auxopt,misc,cmdlong,battery,output,adsb,layout"

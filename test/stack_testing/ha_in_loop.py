@@ -5,15 +5,12 @@ hil/bench/bench_pil.py)."""
 import os
 import struct
 import subprocess
-import sys
 import tempfile
 import zlib
 
-ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-sys.path.insert(0, ROOT)
-sys.path.insert(0, os.path.join(ROOT, "drone_ros", "arduino_link", "test"))
+from stack_tools.paths import ROOT  # noqa: E402
 from hil import ha_channel, ha_qemu, sensors  # noqa: E402
-from wire_tap import frame, split_frames  # noqa: E402
+from stack_testing.wire_tap import frame, split_frames  # noqa: E402
 
 HP, HA, MANUAL = 0, 1, 4  # DecisionStatus.CONTROLLER_*
 CIC, PIC = (1100, 1500, 1500, 1500, 1000), (1100, 1800, 1500, 1500, 2000)
