@@ -8,13 +8,12 @@ frame failing its CRC or its length must be counted and dropped, and the good re
 still applied."""
 import pathlib
 import subprocess
-import sys
 
 import pytest
 
+from hil import ha_channel, ha_qemu
+
 ROOT = pathlib.Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT))
-from hil import ha_channel, ha_qemu  # noqa: E402
 
 CIC = (1100, 1500, 1500, 1500, 1000)  # computer in command, sticks centred
 PIC = (1300, 1900, 1200, 1600, 2000)  # the pilot's switch up, sticks away from centre
