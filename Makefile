@@ -14,6 +14,11 @@ JOBS ?= 2
 AIRCRAFT ?= DG808
 # Every ROS-aware command runs with the workspace sourced and the venv's Python first on PATH.
 ROSENV := source $(WS)/devel/setup.bash && export PATH=$(VENV)/bin:$$PATH &&
+# Every other recipe too has the venv first on PATH, so the scripts' `python3` is the venv's
+# (Debian's Python and its ROS modules, plus PyPI's) and never a python3 that happens to be first
+# on a user's PATH (a pyenv build without genmsg stopped make due-image, coverage-ha and
+# verify-ha-m3). Before make deps makes the venv, the entry names nothing and PATH is as it was.
+export PATH := $(VENV)/bin:$(PATH)
 
 VERIFY_TARGETS :=
 BENCH_TARGETS :=
