@@ -33,9 +33,9 @@ HA_BITS_INLINE int ha_finite(float v) {
   @   axiom key_orders: \forall float a, b; !\is_NaN(a) && !\is_NaN(b) ==>
   @     (ha_key(a) <= ha_key(b) <==> \le_float(a, b));
   @   axiom key_finite: \forall float a;
-  @     \is_finite(a) <==> -0x7F800000 < ha_key(a) < 0x7F800000;
+  @     \is_finite(a) <==> -HA_KEY_INF < ha_key(a) < HA_KEY_INF;
   @   axiom key_nan: \forall float a;
-  @     \is_NaN(a) <==> (ha_key(a) > 0x7F800000 || ha_key(a) < -0x7F800000);
+  @     \is_NaN(a) <==> (ha_key(a) > HA_KEY_INF || ha_key(a) < -HA_KEY_INF);
   @ }
   @ */
 /*@ assigns \nothing;
