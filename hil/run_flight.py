@@ -195,7 +195,7 @@ def main(argv=None):
                     help="the day's temperature at the field (default: ISA there)")
     ap.add_argument("--ha", choices=("sil", "qemu", "due"), default="sil",
                     help="the HA in the loop: its host build (ha_sil), its Cortex-M3 machine code "
-                         "on QEMU mps2-an385 (built into the flight's folder; lockstep only), or a "
+                         "on QEMU mps2-an385 (built into the flight's folder), or a "
                          "real Due flashed with make due-hil-image (--realtime only; the three "
                          "--due-*-port devices)")
     ap.add_argument("--due-port", default="/dev/ttyACM0",
@@ -240,8 +240,6 @@ def main(argv=None):
             ap.error("--%s must be in 1..65535" % name.replace("_", "-"))
     # A ground station of the user's (QGroundControl) rather than the simulator's own monitor.
     external_gcs = args.realtime or args.gcs_host != "127.0.0.1" or args.gcs_port is not None
-    if args.ha == "qemu" and args.realtime:
-        ap.error("--ha qemu runs in lockstep only (its clock is the simulator's step)")
     if args.ha == "due" and not args.realtime:
         ap.error("--ha due needs --realtime: a Due keeps its own clock")
     if args.ha == "due" and link_relay:
@@ -306,7 +304,7 @@ def main(argv=None):
                   # The vehicle side of the ground link, beside the bag (microhard_gs/README.md).
                   "gs_tlog_path:=" + ("" if args.no_bag else os.path.join(os.path.abspath(out), "flight.tlog"))]
         if args.ha == "qemu":
-            launch += ["ha:=qemu", "ha_image:=" + build_pil_image(os.path.join(out, "pil"))]
+            launch += ["ha:=qemu", "ha_image:=" + build_pil_image(os.path.join(out, "pil"), args.realtime)]
         elif args.ha == "due":
             launch += ["ha:=due", "due_port:=" + args.due_port, "due_native_port:=" + args.due_native_port,
                        "due_ins_port:=" + args.due_ins_port]
@@ -381,11 +379,14 @@ def main(argv=None):
     return code
 
 
-def build_pil_image(folder):
+def build_pil_image(folder, realtime=False):
     """The firmware for QEMU's mps2-an385 (make pil-image's script), built for this flight so the
-    flight's folder holds the very image that flew."""
+    flight's folder holds the very image that flew; realtime: the board that keeps its own clock
+    (pil_main.c, PIL_REALTIME)."""
     script = os.path.join(HERE, "..", "arduino_ha", "pil", "build_pil_image.sh")
-    r = subprocess.run(["bash", script, folder], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    env = dict(os.environ, PIL_CFLAGS="-DPIL_REALTIME=1") if realtime else None
+    r = subprocess.run(["bash", script, folder], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                       env=env)
     if r.returncode != 0:
         raise RuntimeError("the PIL image did not build: %s" % r.stdout.strip()[-2000:])
     return os.path.join(folder, "ha_pil.elf")

@@ -18,6 +18,7 @@ import time
 import pytest
 
 from hil.campaigns.flight import run_completed  # a flight that runs out of time, killed whole
+from stack_testing.gs_harness import free_port
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 CRASH_AT_S = 8.0  # as test_realtime_crash: the HP has the servos from 5 s
@@ -68,7 +69,9 @@ def fly(binary, folder):
         r = run_completed([sys.executable, str(ROOT / "hil" / "run_flight.py"), "--realtime", "--ha", "due",
                            "--due-port", due.ports["ttyACM0"], "--due-native-port", due.ports["ttyACM1"],
                            "--due-ins-port", due.ports["ttyUSB0"], "--duration", str(DURATION_S),
-                           "--crash-at", str(CRASH_AT_S), "--no-bag", "--folder", str(flight), "--quiet"],
+                           "--crash-at", str(CRASH_AT_S), "--no-bag", "--folder", str(flight), "--quiet",
+                           # free ground-link ports: real time's default is QGroundControl's 14550/14555
+                           "--vehicle-port", str(free_port()), "--gcs-port", str(free_port())],
                           timeout=600)
     assert r.returncode == 0, r.stdout.decode(errors="replace")[-3000:]
     assert not any(os.path.exists(p) for p in due.ports.values()), "the emulated Due left its ports behind"
@@ -104,9 +107,11 @@ def test_a_crash_with_the_due_in_the_loop_is_taken_over_in_the_period_the_deadli
     # length of them; a host stalled past a period restarts the schedule, so a few may be
     # missing), dropped no record, could send every reply once the simulator had its port open
     # (the count is since power-up, when nobody read the port), and no VN-200 byte was lost on
-    # the way to RX1. Each line: the period on the Due's clock and on the host's, records
-    # dropped, loop pass us, reply bytes not sent, VN-200 bytes not passed on.
+    # the way to RX1. Each line (record_bridge.RecordBridge): the period on the Due's clock and on
+    # the host's, records dropped, loop pass us, reply bytes not sent, bytes lost on receive (none
+    # with USB's flow control), VN-200 bytes not passed on.
     assert len(rows) >= DURATION_S * 100 * 0.9, len(rows)
-    for col in (0, 1):
-        assert all(b[col] > a[col] for a, b in zip(rows, rows[1:])), "a reply out of order or twice"
-    assert all(row[2] == 0 and row[4] == rows[0][4] and row[5] == 0 for row in rows)
+    for col in (0, 1):  # each clock's microseconds wrap at 2^32 (71 min)
+        assert all(0 < (b[col] - a[col]) % 2 ** 32 < 2 ** 31 for a, b in zip(rows, rows[1:])), \
+            "a reply out of order or twice"
+    assert all(row[2] == 0 and row[4] == rows[0][4] and row[5] == 0 and row[6] == 0 for row in rows)

@@ -10,13 +10,13 @@ import socket
 import threading
 import time
 
-from hil import ha_channel, ha_due, ha_qemu, ptys
+from hil import ha_channel, ha_due, ptys, record_bridge
 
 
 def test_the_due_clock_dates_ticks_within_the_least_latency_through_drift_and_wrap():
     rng = random.Random(7)
     for drift_ppm in (-60.0, 0.0, 60.0):
-        clock = ha_due.DueClock()
+        clock = record_bridge.HaClock()
         host0_us = 2 ** 32 - 5_000_000  # the host's clock wraps 5 s in; the Due's at 20 s
         due0_us = 2 ** 32 - 20_000_000
         last = None
@@ -30,6 +30,14 @@ def test_the_due_clock_dates_ticks_within_the_least_latency_through_drift_and_wr
                 assert 0 <= error_us <= 3_100, (drift_ppm, k, error_us)
                 assert ((dated - last) & 0xFFFFFFFF) < 2 ** 31, "dated ticks went backwards"
             last = dated
+
+
+def test_replies_that_came_late_for_a_while_never_date_the_next_on_time_one_before_them():
+    clock = record_bridge.HaClock()
+    dated = [clock.to_host(k * 10_000, k * 10_000 + 30_000) for k in range(5)]  # the bridge starved
+    dated += [clock.to_host(k * 10_000, k * 10_000 + 500) for k in range(5, 10)]  # on time again
+    assert all(0 < b - a for a, b in zip(dated, dated[1:])), dated
+    assert dated[-1] == 90_500  # and dated by the on-time latency from then on
 
 
 class Rig:
@@ -47,7 +55,7 @@ class Rig:
         ins = ha_due.open_serial(os.ttyname(ins_s), os.O_WRONLY)
         vn = ha_due.open_serial(os.ttyname(vn_s), os.O_RDONLY)
         self.fds += [native, ins, vn]
-        self.bridge = ha_due.DueBridge(chan, native, ins, vn)
+        self.bridge = record_bridge.RecordBridge(chan, native, ins, vn)
         self.stop = {"now": False}
         self.code = None
         self.thread = threading.Thread(target=self._run, daemon=True)
@@ -78,7 +86,7 @@ class Rig:
 def reply_frame(t_us, controller=2):
     body = ha_channel.REPLY.pack(ha_channel.MAGIC_REPLY, ha_channel.VERSION, ha_channel.R_STEPPED, t_us,
                                  *([0.0] * 8), controller, 0, 0, 0, 0, 0, 0, 0.0, 0.0, 0.0, 0, 0, 0, 0, 0)
-    return ha_qemu.frame(body + ha_qemu.TRAILER.pack(0, 0, 0, 0))
+    return record_bridge.frame(body + record_bridge.TRAILER.pack(0, 0, 0, 0))
 
 
 def test_a_record_reaches_the_due_framed_and_its_reply_comes_back_on_the_hosts_clock():
@@ -87,7 +95,7 @@ def test_a_record_reaches_the_due_framed_and_its_reply_comes_back_on_the_hosts_c
         record = ha_channel.STEP.pack(ha_channel.MAGIC_STEP, ha_channel.VERSION, ha_channel.RC_VALID, 0, 0, 0, 0,
                                       1100, 1500, 1500, 1500, 1000, 0, 50.0, 12.4)
         rig.sim.send(record)
-        framed = ha_qemu.frame(record)
+        framed = record_bridge.frame(record)
         assert rig.read(rig.native_m, len(framed)) == framed
         rig.sim.settimeout(5.0)
         before_us = int(time.monotonic() * 1e6) & 0xFFFFFFFF
