@@ -13,8 +13,14 @@ the simulator's pty (--vn200) itself. UART2 carries the simulator's control reco
 does and carries each record to the board and its reply back, without the reply's trailer (the
 board's count of dropped records, the period's instruction ticks and the bytes its UARTs
 dropped, the bytes that came to a full receive ring), which --record-log writes one line a reply
-("t_us dropped ticks tx_dropped host_dropped rx_dropped"). Lockstep
-only: real time (--realtime) is not built.
+("t_us dropped ticks tx_dropped host_dropped rx_dropped").
+
+--realtime flies an image built with PIL_CFLAGS=-DPIL_REALTIME=1 (run_flight.py --ha qemu
+--realtime builds it into the flight's folder; the default image is the lockstep one and is
+refused): the board keeps its own clock (QEMU's virtual clock, which follows the host's), a step
+record only brings its inputs, and each period it ran comes back as a reply, as a real Due's HIL
+build does; record_bridge.RecordBridge carries the records and replies and puts the board's
+ticks on the host's clock, and --record-log then writes its line a reply.
 --icount runs QEMU with -icount shift=0, so a timer tick is 40 instructions (bench/insn_timer.h).
 SIGINT/SIGTERM, or the simulator closing the socket, stop QEMU and remove the symlink."""
 import argparse
@@ -29,51 +35,12 @@ import sys
 import tempfile
 import threading
 import time
-import zlib
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
-from hil import ptys  # noqa: E402
+from hil import ptys, record_bridge  # noqa: E402
+from hil.record_bridge import REPLY_LEN, TRAILER, FrameReader, connect, frame, wait_for  # noqa: E402
 DEFAULT_IMAGE = os.path.join(ROOT, ".build", "pil", "ha_pil.elf")
-SYNC = b"\xa5\x5a"
-REPLY_LEN = 100
-TRAILER = struct.Struct("<IIII")
-
-
-def frame(payload):
-    """A control record as the board's UART2 takes it (pil_frame.h)."""
-    head = struct.pack("<H", len(payload))
-    return SYNC + head + bytes(payload) + struct.pack("<I", zlib.crc32(head + bytes(payload)))
-
-
-class FrameReader:
-    """Whole, checked frames out of the board's byte stream (the board sends nothing else)."""
-
-    def __init__(self):
-        self.buf = bytearray()
-        self.bad = 0
-
-    def feed(self, data):
-        self.buf += data
-        out = []
-        while True:
-            start = self.buf.find(SYNC)
-            if start < 0:
-                del self.buf[:-1]
-                return out
-            del self.buf[:start]
-            if len(self.buf) < 4:
-                return out
-            n = self.buf[2] | self.buf[3] << 8
-            if len(self.buf) < n + 8:
-                return out
-            body = bytes(self.buf[2:4 + n])
-            if struct.unpack_from("<I", self.buf, 4 + n)[0] == zlib.crc32(body):
-                out.append(body[2:])
-                del self.buf[:n + 8]
-            else:
-                self.bad += 1
-                del self.buf[:1]
 
 
 class QemuBoard:
@@ -250,28 +217,6 @@ def whole_frames(held):
     return bytes(out)
 
 
-def wait_for(path, stop, timeout_s=30.0):
-    deadline = time.monotonic() + timeout_s
-    while not os.path.exists(path):
-        if stop["now"] or time.monotonic() > deadline:
-            return False
-        time.sleep(0.1)
-    return True
-
-
-def connect(path, stop, timeout_s=30.0):
-    deadline = time.monotonic() + timeout_s
-    while not stop["now"] and time.monotonic() < deadline:
-        s = socket.socket(socket.AF_UNIX, socket.SOCK_SEQPACKET)
-        try:
-            s.connect(path)
-            return s
-        except OSError:
-            s.close()
-            time.sleep(0.1)
-    return None
-
-
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--port", required=True)
@@ -285,8 +230,10 @@ def main(argv=None):
     args, _ = ap.parse_known_args(argv)  # roslaunch's __name:= and __log:=
     if args.image == "default":  # what the launch file passes without ha_image
         args.image = DEFAULT_IMAGE
-    if args.realtime:
-        print("ha_qemu: real time is not built: the PIL board runs in lockstep only", file=sys.stderr)
+    if args.realtime and os.path.realpath(args.image) == os.path.realpath(DEFAULT_IMAGE):
+        print("ha_qemu: --realtime needs the real-time image (build_pil_image.sh with "
+              "PIL_CFLAGS=-DPIL_REALTIME=1, as run_flight.py --ha qemu --realtime does), not %s" % args.image,
+              file=sys.stderr)
         return 2
     if abs(args.rate_hz - 100.0) > 1e-6:
         print("ha_qemu: the image runs the aircraft's period; --rate-hz %g is not it" % args.rate_hz,
@@ -310,8 +257,15 @@ def main(argv=None):
     replies = 0
     try:
         ptys.publish(board.hp_pty, args.port)
-        print("ha_qemu: up on %s (%s), lockstep with %s" % (args.port, board.hp_pty, args.lockstep),
+        print("ha_qemu: up on %s (%s), %s with %s" % (args.port, board.hp_pty,
+                                                      "real time" if args.realtime else "lockstep", args.lockstep),
               file=sys.stderr)
+        if args.realtime:
+            bridge = record_bridge.RecordBridge(chan, board.ctl.fileno(), log=log)
+            board.ctl.setblocking(False)
+            code = bridge.run(stop)
+            replies, board.reader = bridge.replies, bridge.reader
+            return code
         while not stop["now"]:
             r, _, _ = select.select([chan], [], [], 0.2)
             if not r:

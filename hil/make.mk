@@ -30,3 +30,11 @@ BENCH_TARGETS += bench-flight-overhead
 
 bench-flight-overhead: build
 	@$(ROSENV) $(VENV)/bin/python $(HIL_DIR)/bench/bench_flight_overhead.py
+
+#   make test-pil   the thesis's case study (240 s, crash at 100 s) as the rostest hil/test/case_study.test,
+#                   with the HA as Cortex-M3 machine code in QEMU (ha:=qemu, the lockstep image of make
+#                   pil-image). Minutes of QEMU: not in make test, which flies 60 s of it
+#                   (hil/test/test_pil_flight.py) and the whole case study with the SIL.
+.PHONY: test-pil
+test-pil: build pil-image
+	@$(ROSENV) rostest drone_ros case_study.test ha:=qemu

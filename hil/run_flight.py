@@ -7,6 +7,7 @@ microhard_gs, HP crash by SIGKILL at t = 100 s, HA takeover, restart, hand-back)
                       [--fault CLASS --fault-at S --fault-duration S --fault-param KEY=VALUE ...]
                       [--folder DIR] [--quiet] [--timeout-s S]
                       [--wind-mps M --wind-from-deg D --turbulence {none,light,moderate}]
+                      [--ha {sil,qemu,due} [--due-port DEV --due-native-port DEV --due-ins-port DEV]]
 
 --fault names a class of hil/faults (crash by default, at --crash-at: the case study); the
 summary's "fault", "verdict" and "status" say whether it took effect and whether the Simplex
@@ -192,9 +193,17 @@ def main(argv=None):
                     help="the field's elevation above sea level (default: the mission's home)")
     ap.add_argument("--temperature-c", type=float, default=None,
                     help="the day's temperature at the field (default: ISA there)")
-    ap.add_argument("--ha", choices=("sil", "qemu"), default="sil",
-                    help="the HA in the loop: its host build (ha_sil) or its Cortex-M3 machine code "
-                         "on QEMU mps2-an385 (built into the flight's folder; lockstep only)")
+    ap.add_argument("--ha", choices=("sil", "qemu", "due"), default="sil",
+                    help="the HA in the loop: its host build (ha_sil), its Cortex-M3 machine code "
+                         "on QEMU mps2-an385 (built into the flight's folder), or a "
+                         "real Due flashed with make due-hil-image (--realtime only; the three "
+                         "--due-*-port devices)")
+    ap.add_argument("--due-port", default="/dev/ttyACM0",
+                    help="with --ha due: the Due's programming port, the HP link")
+    ap.add_argument("--due-native-port", default="/dev/ttyACM1",
+                    help="with --ha due: the Due's native USB port, the simulator's records")
+    ap.add_argument("--due-ins-port", default="/dev/ttyUSB0",
+                    help="with --ha due: the USB-serial adapter wired to the Due's RX1 (VN-200 port 1)")
     ap.add_argument("--gcs-host", default="127.0.0.1", metavar="IPV4",
                     help="where the ground station's telemetry goes: a QGroundControl on another "
                          "machine (the vehicle then listens on every interface; default: this one)")
@@ -231,8 +240,16 @@ def main(argv=None):
             ap.error("--%s must be in 1..65535" % name.replace("_", "-"))
     # A ground station of the user's (QGroundControl) rather than the simulator's own monitor.
     external_gcs = args.realtime or args.gcs_host != "127.0.0.1" or args.gcs_port is not None
-    if args.ha == "qemu" and args.realtime:
-        ap.error("--ha qemu runs in lockstep only (its clock is the simulator's step)")
+    if args.ha == "due" and not args.realtime:
+        ap.error("--ha due needs --realtime: a Due keeps its own clock")
+    if args.ha == "due" and link_relay:
+        ap.error("--fault %s corrupts the HP link's bytes between the node and the HA: with --ha due "
+                 "they go from the node straight to the Due's port" % args.fault)
+    if args.ha == "due":
+        missing = [p for p in (args.due_port, args.due_native_port, args.due_ins_port) if not os.path.exists(p)]
+        if missing:
+            ap.error("--ha due: no device at %s (is the Due plugged in, and the adapter on RX1?)" %
+                     ", ".join(missing))
     if args.realtime:
         raise_priority_for_realtime()
     stamp = datetime.datetime.utcnow().strftime("%Y-%m-%d_%H%M%S")
@@ -287,7 +304,10 @@ def main(argv=None):
                   # The vehicle side of the ground link, beside the bag (microhard_gs/README.md).
                   "gs_tlog_path:=" + ("" if args.no_bag else os.path.join(os.path.abspath(out), "flight.tlog"))]
         if args.ha == "qemu":
-            launch += ["ha:=qemu", "ha_image:=" + build_pil_image(os.path.join(out, "pil"))]
+            launch += ["ha:=qemu", "ha_image:=" + build_pil_image(os.path.join(out, "pil"), args.realtime)]
+        elif args.ha == "due":
+            launch += ["ha:=due", "due_port:=" + args.due_port, "due_native_port:=" + args.due_native_port,
+                       "due_ins_port:=" + args.due_ins_port]
         if args.field_elevation_ft is not None:
             launch.append("field_elevation_ft:=%r" % args.field_elevation_ft)
         if args.temperature_c is not None:
@@ -359,11 +379,14 @@ def main(argv=None):
     return code
 
 
-def build_pil_image(folder):
+def build_pil_image(folder, realtime=False):
     """The firmware for QEMU's mps2-an385 (make pil-image's script), built for this flight so the
-    flight's folder holds the very image that flew."""
+    flight's folder holds the very image that flew; realtime: the board that keeps its own clock
+    (pil_main.c, PIL_REALTIME)."""
     script = os.path.join(HERE, "..", "arduino_ha", "pil", "build_pil_image.sh")
-    r = subprocess.run(["bash", script, folder], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    env = dict(os.environ, PIL_CFLAGS="-DPIL_REALTIME=1") if realtime else None
+    r = subprocess.run(["bash", script, folder], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                       env=env)
     if r.returncode != 0:
         raise RuntimeError("the PIL image did not build: %s" % r.stdout.strip()[-2000:])
     return os.path.join(folder, "ha_pil.elf")

@@ -7,11 +7,19 @@
  *                    length and a CRC-32 (pil_frame.h): what the Due reads from its pins comes in
  *                    (time, RC incl. the PIC/CIC channel, airspeed, battery), what it drives goes
  *                    back (servos, HP reset line, decision, the safety controller's own command).
- * Lockstep only: the board's micros() is the time of the latest step record, never a free-running
- * clock. CMSDK APB timer 0 runs free only to bound the waits for a period's inputs (wait_ms, as the
- * SIL bounds them in wall time) and to count the period's instructions under -icount shift=0
- * (../bench/insn_timer.h: 40 instructions a tick); timer 1 wakes a bounded wait. The UARTs'
- * received bytes come by interrupt into rings, and the loop sleeps (WFI) while nothing comes.
+ * In lockstep (the default build) the board's micros() is the time of the latest step record, never
+ * a free-running clock. CMSDK APB timer 0 runs free only to bound the waits for a period's inputs
+ * (wait_ms, as the SIL bounds them in wall time) and to count the period's instructions under
+ * -icount shift=0 (../bench/insn_timer.h: 40 instructions a tick); timer 1 wakes a bounded wait.
+ * The UARTs' received bytes come by interrupt into rings, and the loop sleeps (WFI) while nothing
+ * comes.
+ *
+ * Built with PIL_REALTIME=1 (hil/ha_qemu.py --realtime) the board keeps its own clock, as the Due's
+ * HIL build does (../src/board_due/due_hil_board.h): micros() is timer 0's count of QEMU's virtual
+ * time (without -icount it follows the host's clock), the firmware loop runs its own schedule,
+ * a step record only brings the board inputs (its time, waits and counts unused), a poll record is
+ * not answered, and each period the firmware ran is answered with a reply. Timer 1 wakes the loop
+ * every RT_WAKE_TICKS, so a period starts on time while no byte comes.
  *
  * The reply frame is the SIL's reply record followed by a PilReplyTrailer (four u32 LE).
  * hil/ha_qemu.py starts QEMU and bridges the simulator's control socket to UART2. */
@@ -62,7 +70,16 @@
  * socket takes a few hundred one-byte writes before the relay must read, and at load 18 on the
  * 2 shared cores 50 ms lost 77 bytes of the topic negotiation's burst. In lockstep a wait costs
  * no simulated time. */
+#ifndef PIL_REALTIME
+#define PIL_REALTIME 0
+#endif
+#if PIL_REALTIME
+/* In real time a byte waited on is time off the schedule: a 2 ms wait, then it is dropped. */
+#define UART_TX_WAIT_TICKS (2u * TIMER_TICKS_PER_MS)
+#define RT_WAKE_TICKS (TIMER_TICKS_PER_MS / 4u)
+#else
 #define UART_TX_WAIT_TICKS (1000u * TIMER_TICKS_PER_MS)
+#endif
 #ifndef PIL_IDLE_SPINS
 #define PIL_IDLE_SPINS 200u
 #endif
@@ -235,7 +252,26 @@ static PilBoard g_pil;
 
 static PilBoard *as_pil(void *ctx) { return (PilBoard *)ctx; }
 
+#if PIL_REALTIME
+/* Timer 0's ticks since power-up, in microseconds: the ticks are summed at every read (the loop
+ * reads far more often than the 32-bit counter's 171 s wrap), so the microseconds wrap as the
+ * Due's micros() does, at 2^32. */
+static uint32_t board_micros(void *ctx) {
+  static uint32_t last_tick;
+  static uint64_t ticks;
+  static int started;
+  const uint32_t now = ha_insn_timer_read();
+  (void)ctx;
+  if (started) {
+    ticks += (uint32_t)(last_tick - now); /* a down counter */
+  }
+  started = 1;
+  last_tick = now;
+  return (uint32_t)(ticks / (TIMER_TICKS_PER_MS / 1000u));
+}
+#else
 static uint32_t board_micros(void *ctx) { return as_pil(ctx)->now_us; }
+#endif
 
 static size_t hp_read(void *ctx, uint8_t *bytes, size_t max_len) {
   (void)ctx;
@@ -365,6 +401,43 @@ static void on_record(PilBoard *b, const uint8_t *payload, size_t len) {
              waited_ticks / (TIMER_TICKS_PER_MS / 1000u));
 }
 
+#if PIL_REALTIME
+/* The control UART's records, as the Due's HIL board takes them (due_hil_board.cpp): a step
+ * record's inputs become the pins', a reset record restarts the firmware, a poll is ignored. */
+static void take_records_realtime(PilBoard *b) {
+  uint8_t byte;
+  while (uart_read(UART_CONTROL, &byte, 1u) == 1u) {
+    const uint8_t *payload = NULL;
+    const size_t len = pil_frame_rx_byte(&b->control, byte, &payload);
+    HaSilStep st;
+    if (len == 0u) {
+      continue;
+    }
+    if (!ha_sil_decode_step(payload, len, &st)) {
+      b->records_undecodable++;
+    } else if (st.magic == HA_SIL_MAGIC_STEP) {
+      b->pins.in = st;
+      b->pins.have_in = 1;
+    } else if (st.magic == HA_SIL_MAGIC_RESET) {
+      start_firmware(b);
+    }
+  }
+}
+
+static void run_realtime(PilBoard *b) {
+  wake_every(RT_WAKE_TICKS);
+  for (;;) {
+    const uint32_t t0 = ha_insn_timer_read();
+    take_records_realtime(b);
+    if (ha_firmware_loop(&b->fw)) {
+      b->period_ticks = t0 - ha_insn_timer_read();
+      send_reply(b, HA_SIL_R_STEPPED, b->fw.period_at_us, 0u);
+    }
+    sleep_until_bytes((1u << UART_HP) | (1u << UART_INS) | (1u << UART_CONTROL));
+  }
+}
+#endif
+
 int main(void) {
   PilBoard *b = &g_pil;
   int n;
@@ -380,6 +453,9 @@ int main(void) {
   b->iface.hp_link = (HaBytePort){.read = hp_read, .write = hp_write};
   b->iface.ins = (HaBytePort){.read = ins_read, .write = NULL}; /* the HA never writes to it */
   start_firmware(b); /* power-up: the retained words hold no record yet */
+#if PIL_REALTIME
+  run_realtime(b);
+#endif
   for (;;) {
     uint8_t byte;
     const uint8_t *payload = NULL;

@@ -11,7 +11,7 @@ import subprocess
 
 import pytest
 
-from hil import ha_channel, ha_qemu
+from hil import ha_channel, record_bridge
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 
@@ -55,11 +55,11 @@ class Run:
                                      "rc_valid": int(f[7]), "airspeed": float(f[8]), "battery": float(f[9])})
             elif f[0] == "usb_tx":
                 tx = bytes.fromhex(f[1]) if len(f) > 1 else b""
-        reader = ha_qemu.FrameReader()
+        reader = record_bridge.FrameReader()
         self.replies = []
         for body in reader.feed(tx):
-            reply = ha_channel.decode_reply(body[:ha_qemu.REPLY_LEN])
-            self.replies.append((reply, ha_qemu.TRAILER.unpack(body[ha_qemu.REPLY_LEN:])))
+            reply = ha_channel.decode_reply(body[:record_bridge.REPLY_LEN])
+            self.replies.append((reply, record_bridge.TRAILER.unpack(body[record_bridge.REPLY_LEN:])))
         assert reader.bad == 0 and not reader.buf, "the board wrote something that is no reply frame"
 
     def dropped(self):
@@ -82,8 +82,8 @@ def run(runner, script):
 
 
 def test_what_the_core_reads_each_period_is_the_latest_step_record(runner):
-    r = run(runner, [usb(ha_qemu.frame(record(PIC, airspeed_ftps=55.5, battery_v=11.8))), "run 50",
-                     usb(ha_qemu.frame(record(CIC, flags=ha_channel.BATTERY_OK, airspeed_ftps=70.0,
+    r = run(runner, [usb(record_bridge.frame(record(PIC, airspeed_ftps=55.5, battery_v=11.8))), "run 50",
+                     usb(record_bridge.frame(record(CIC, flags=ha_channel.BATTERY_OK, airspeed_ftps=70.0,
                                               battery_v=10.5))), "run 50"])
     first, second = r.of_run(0), r.of_run(1)
     assert len(first) == 6 and len(second) == 5  # the first period at once, then every 10 ms
@@ -96,8 +96,8 @@ def test_what_the_core_reads_each_period_is_the_latest_step_record(runner):
 
 
 def test_each_period_is_answered_with_its_time_and_its_outputs(runner):
-    r = run(runner, [usb(ha_qemu.frame(record(CIC))), "run 300",
-                     usb(ha_qemu.frame(record(PIC))), "run 300"])
+    r = run(runner, [usb(record_bridge.frame(record(CIC))), "run 300",
+                     usb(record_bridge.frame(record(PIC))), "run 300"])
     assert len(r.replies) == len(r.periods) == 61
     for (reply, _), period in zip(r.replies, r.periods):
         assert reply.t_us == period["t_us"] and reply.flags & ha_channel.R_STEPPED
@@ -112,10 +112,10 @@ def test_each_period_is_answered_with_its_time_and_its_outputs(runner):
 
 
 def test_a_frame_failing_its_crc_is_counted_and_dropped_and_the_good_record_behind_it_applied(runner):
-    bad = bytearray(ha_qemu.frame(record(PIC, airspeed_ftps=99.0)))
+    bad = bytearray(record_bridge.frame(record(PIC, airspeed_ftps=99.0)))
     bad[-2] ^= 0x10  # one bit of the CRC flipped on the way
-    good = ha_qemu.frame(record(CIC, airspeed_ftps=61.0))
-    r = run(runner, [usb(ha_qemu.frame(record(CIC))), "run 20", usb(bytes(bad) + good), "run 40"])
+    good = record_bridge.frame(record(CIC, airspeed_ftps=61.0))
+    r = run(runner, [usb(record_bridge.frame(record(CIC))), "run 20", usb(bytes(bad) + good), "run 40"])
     assert r.dropped() == 1
     assert all(p["rc"] == CIC and p["airspeed"] != pytest.approx(99.0) for p in r.periods)
     assert r.periods[-1]["airspeed"] == pytest.approx(61.0, abs=1e-3)
@@ -123,11 +123,11 @@ def test_a_frame_failing_its_crc_is_counted_and_dropped_and_the_good_record_behi
 
 
 def test_frames_of_a_wrong_length_are_counted_and_dropped_and_the_good_record_behind_them_applied(runner):
-    impossible = ha_qemu.SYNC + b"\xff\x7f" + bytes(10)  # longer than any record
-    short = ha_qemu.frame(record(PIC, airspeed_ftps=99.0)[:40])  # framed and checked, no record
-    good = ha_qemu.frame(record(CIC, airspeed_ftps=61.0))
-    r = run(runner, [usb(ha_qemu.frame(record(CIC))), "run 20", usb(impossible + good), "run 20",
-                     usb(short + ha_qemu.frame(record(CIC, airspeed_ftps=62.0))), "run 20"])
+    impossible = record_bridge.SYNC + b"\xff\x7f" + bytes(10)  # longer than any record
+    short = record_bridge.frame(record(PIC, airspeed_ftps=99.0)[:40])  # framed and checked, no record
+    good = record_bridge.frame(record(CIC, airspeed_ftps=61.0))
+    r = run(runner, [usb(record_bridge.frame(record(CIC))), "run 20", usb(impossible + good), "run 20",
+                     usb(short + record_bridge.frame(record(CIC, airspeed_ftps=62.0))), "run 20"])
     for k, (dropped, airspeed) in enumerate(((0, 50.0), (1, 61.0), (2, 62.0))):
         periods, replies = r.of_run(k), r.replies_of_run(k)
         assert [trailer[0] for _, trailer in replies] == [dropped] * len(replies)
@@ -136,8 +136,8 @@ def test_frames_of_a_wrong_length_are_counted_and_dropped_and_the_good_record_be
 
 def test_replies_no_host_reads_are_counted_as_dropped(runner):
     """A simulator that has the native port closed gets nothing; the next reply says how much."""
-    frame_len = ha_qemu.REPLY_LEN + ha_qemu.TRAILER.size + 8
-    r = run(runner, [usb(ha_qemu.frame(record(CIC))), "close", "run 30", "open", "run 10"])
+    frame_len = record_bridge.REPLY_LEN + record_bridge.TRAILER.size + 8
+    r = run(runner, [usb(record_bridge.frame(record(CIC))), "close", "run 30", "open", "run 10"])
     closed, answered = r.of_run(0), r.of_run(1)
     assert len(closed) == 4 and len(answered) == 1 and len(r.replies) == 1
     assert r.replies[0][0].t_us == answered[0]["t_us"]
@@ -149,8 +149,8 @@ def test_a_reset_record_restarts_the_firmware_at_once_on_the_inputs_it_had(runne
     not on the old 10 ms grid), and the pins still read what the simulator last sent."""
     reset = ha_channel.STEP.pack(ha_channel.MAGIC_RESET, ha_channel.VERSION, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
                                  0.0, 0.0)
-    r = run(runner, [usb(ha_qemu.frame(record(CIC, airspeed_ftps=55.0))), "run 25",
-                     usb(ha_qemu.frame(reset)), "run 12"])
+    r = run(runner, [usb(record_bridge.frame(record(CIC, airspeed_ftps=55.0))), "run 25",
+                     usb(record_bridge.frame(reset)), "run 12"])
     before, after = r.of_run(0), r.of_run(1)
     assert [p["t_us"] - before[0]["t_us"] for p in before] == [0, 9000, 19000]
     assert [p["t_us"] - before[-1]["t_us"] for p in after] == [6000, 16000]

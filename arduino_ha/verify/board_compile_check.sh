@@ -10,7 +10,9 @@
 #     records pins, servos, I2C and the watchdog) and run through a scripted timeline
 #     (board_host_test.cpp);
 #  3. the HIL build of the sketch (HA_DUE_HIL=1) linked the same way with a fake native USB port, a
-#     program test/test_due_hil_board.py drives with the simulator's own record encoders.
+#     program test/test_due_hil_board.py drives with the simulator's own record encoders;
+#  4. the same HIL build as a Due emulated at its ports (due_hil_on_ptys.cpp: three ptys, the host's
+#     clock), which hil/test/test_due_flight.py flies in real time through hil/ha_due.py.
 # The compiles of the board layer and of every other sketch source for the Cortex-M3 against the
 # shim that used to be here are gone: the real image compiles the same files for the same CPU,
 # strictly, against the real headers. Not checked here or there: timing, the hardware itself
@@ -74,3 +76,9 @@ host_sketch "$out/sil" "$out/board_host_test" "$here/board_host_test.cpp"
 #    runs it (the frames come from hil/ha_channel.py and hil/ha_qemu.py, not from C).
 host_sketch "$out/hil" "$out/due_hil_host_run" "$here/due_hil_host_run.cpp" -DHA_DUE_HIL=1
 echo "board_compile_check: HIL build linked on the host: $out/due_hil_host_run"
+
+# 4. The same objects with a main that puts the Due's three ports on ptys (due_hil_on_ptys.cpp).
+g++ -std=gnu++11 "${strict[@]}" -DHA_DUE_HIL=1 -O1 -c "$here/due_hil_on_ptys.cpp" -o "$out/due_hil_on_ptys.o"
+mapfile -t hil_objs < <(find "$out/hil" -name '*.o' -not -name 'due_hil_host_run.o' | LC_ALL=C sort)
+g++ "${c_objs[@]}" "${hil_objs[@]}" "$out/due_hil_on_ptys.o" -lutil -lm -o "$out/due_hil_on_ptys"
+echo "board_compile_check: the HIL build as a Due on ptys: $out/due_hil_on_ptys"

@@ -37,7 +37,7 @@ class CaseStudy(unittest.TestCase):
         rospy.Subscriber("/hil/truth", HilTruth, lambda m: cls._add(cls.truth, m), queue_size=100000)
         rospy.Subscriber("/decision_status", DecisionStatus, lambda m: cls._add(cls.status, m), queue_size=100000)
         done = os.path.join(cls.out_dir, "done")
-        deadline = time.monotonic() + 1400.0
+        deadline = time.monotonic() + float(rospy.get_param("~wait_s", 1400.0))
         while not os.path.exists(done) and time.monotonic() < deadline and not rospy.is_shutdown():
             time.sleep(0.5)
         time.sleep(1.0)  # the last messages

@@ -8,7 +8,7 @@ import os
 import pytest
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-from hil import ha_channel, ha_qemu  # noqa: E402
+from hil import ha_channel, record_bridge  # noqa: E402
 from stack_testing.wire_tap import frame  # noqa: E402
 from stack_testing.ha_in_loop import (HA, HP, MANUAL, PIC, PilRig, build_pil_image, negotiate,  # noqa: E402
                         servo_command)
@@ -58,7 +58,7 @@ def test_a_control_record_failing_its_crc_is_counted_and_dropped_never_applied(r
         r, dropped, _ = rig.step(k)
     assert r.controller == HA and dropped == 0
     # The pilot's switch in a record one bit of which the line flipped: never the pilot's servos.
-    bad = bytearray(ha_qemu.frame(rig.record(20, rc=PIC)))
+    bad = bytearray(record_bridge.frame(rig.record(20, rc=PIC)))
     bad[30] ^= 0x04
     rig.board.write_raw(bad)
     r, dropped, _ = rig.step(21)
@@ -73,6 +73,6 @@ def test_a_control_record_failing_its_crc_is_counted_and_dropped_never_applied(r
 
 def test_a_control_frame_of_impossible_length_is_counted_and_the_next_frame_still_found(rig):
     r, _, _ = rig.step(0)
-    rig.board.write_raw(ha_qemu.SYNC + b"\xff\x7f" + bytes(10))
+    rig.board.write_raw(record_bridge.SYNC + b"\xff\x7f" + bytes(10))
     r, dropped, _ = rig.step(1)
     assert dropped == 1 and r.t_us == 10000 and r.flags & ha_channel.R_STEPPED

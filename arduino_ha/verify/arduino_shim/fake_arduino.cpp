@@ -33,6 +33,20 @@ int serial1_feed(const uint8_t *bytes, size_t len) {
 int usb_feed(const uint8_t *bytes, size_t len) {
   return feed(state.usb_rx, sizeof state.usb_rx, &state.usb_len, &state.usb_pos, bytes, len);
 }
+int serial0_feed(const uint8_t *bytes, size_t len) {
+  return feed(state.serial0_rx, sizeof state.serial0_rx, &state.serial0_len, &state.serial0_pos,
+              bytes, len);
+}
+size_t room(Port port) {
+  switch (port) {
+    case kSerial:
+      return sizeof state.serial0_rx - (state.serial0_len - state.serial0_pos);
+    case kSerial1:
+      return sizeof state.serial1_rx - (state.serial1_len - state.serial1_pos);
+    default:
+      return sizeof state.usb_rx - (state.usb_len - state.usb_pos);
+  }
+}
 void set_pin(uint32_t pin, int level) {
   state.pin_level[pin] = level;
   if (state.isr[pin] != nullptr) {
@@ -71,24 +85,43 @@ void watchdogReset(void) { fake::state.watchdog_kicks++; }
  * domain; tests clear it themselves for a power-up. */
 Gpbr fake_gpbr = {};
 
-/* Serial1 (the VN-200) delivers what fake::serial1_feed() queued, SerialUSB what
- * fake::usb_feed() queued; the HP link on Serial sees silence in these tests. */
+/* Serial delivers what fake::serial0_feed() queued, Serial1 (the VN-200) what fake::serial1_feed()
+ * queued, SerialUSB what fake::usb_feed() queued; Serial2 and Serial3 see silence. */
+namespace {
+struct Ring {
+  uint8_t *bytes;
+  size_t *len;
+  size_t *pos;
+};
+bool uart_ring(const UARTClass *port, Ring *ring) {
+  if (port == &Serial) {
+    *ring = Ring{fake::state.serial0_rx, &fake::state.serial0_len, &fake::state.serial0_pos};
+    return true;
+  }
+  if (port == &Serial1) {
+    *ring = Ring{fake::state.serial1_rx, &fake::state.serial1_len, &fake::state.serial1_pos};
+    return true;
+  }
+  return false;
+}
+}  // namespace
 void UARTClass::begin(unsigned long baud) { (void)baud; }
 int UARTClass::available(void) {
-  return this == &Serial1 ? static_cast<int>(fake::state.serial1_len - fake::state.serial1_pos) : 0;
+  Ring r;
+  return uart_ring(this, &r) ? static_cast<int>(*r.len - *r.pos) : 0;
 }
 int UARTClass::read(void) {
-  if (this != &Serial1 || fake::state.serial1_pos >= fake::state.serial1_len) {
+  Ring r;
+  if (!uart_ring(this, &r) || *r.pos >= *r.len) {
     return -1;
   }
-  return fake::state.serial1_rx[fake::state.serial1_pos++];
+  return r.bytes[(*r.pos)++];
 }
-size_t UARTClass::write(uint8_t c) {
-  (void)c;
-  return 1u;
-}
+size_t UARTClass::write(uint8_t c) { return write(&c, 1u); }
 size_t UARTClass::write(const uint8_t *buffer, size_t size) {
-  (void)buffer;
+  if (fake::state.tx_sink != nullptr && (this == &Serial || this == &Serial1)) {
+    return fake::state.tx_sink(this == &Serial ? fake::kSerial : fake::kSerial1, buffer, size);
+  }
   return size;
 }
 void Serial_::begin(unsigned long baud) { (void)baud; }
@@ -101,6 +134,9 @@ int Serial_::read(void) {
 }
 size_t Serial_::write(uint8_t c) { return write(&c, 1u); }
 size_t Serial_::write(const uint8_t *buffer, size_t size) {
+  if (fake::state.tx_sink != nullptr) {
+    return fake::state.usb_open ? fake::state.tx_sink(fake::kSerialUsb, buffer, size) : 0u;
+  }
   if (!fake::state.usb_open || size > sizeof fake::state.usb_tx - fake::state.usb_tx_len) {
     return 0u;
   }

@@ -10,6 +10,9 @@ namespace fake {
 
 const uint32_t kPins = 70u;
 
+/* The sketch's serial ports, as tx_sink names them. */
+enum Port { kSerial = 0, kSerial1 = 1, kSerialUsb = 2 };
+
 struct ServoRecord {
   int pin = -1;
   int min_us = 0;
@@ -36,6 +39,10 @@ struct State {
   uint8_t i2c_pos = 0u;
   uint8_t i2c_last_address = 0u;
   uint32_t i2c_clock_hz = 0u;
+  /* Bytes waiting on Serial (the programming port: the HP link), read from serial0_pos on. */
+  uint8_t serial0_rx[4096] = {};
+  size_t serial0_len = 0u;
+  size_t serial0_pos = 0u;
   /* Bytes waiting on Serial1 (the VN-200's port), read from serial1_pos on. */
   uint8_t serial1_rx[4096] = {};
   size_t serial1_len = 0u;
@@ -49,6 +56,10 @@ struct State {
   int usb_open = 1;
   uint8_t usb_tx[65536] = {};
   size_t usb_tx_len = 0u;
+  /* Set, it takes what the sketch writes on any port and returns how much it took (a program that
+   * puts the ports on ptys: due_hil_on_ptys.cpp); unset, Serial's bytes vanish and SerialUSB's go
+   * to usb_tx. */
+  size_t (*tx_sink)(Port port, const uint8_t *bytes, size_t len) = nullptr;
 };
 
 extern State state;
@@ -59,8 +70,11 @@ void set_pin(uint32_t pin, int level);
 /* Queues bytes on Serial1's receive side, as the VN-200 sends them; returns 0 if they do not fit
  * (the unread bytes are kept at the front first). */
 int serial1_feed(const uint8_t *bytes, size_t len);
-/* The same for the native USB port. */
+/* The same for the native USB port, and for the programming port. */
 int usb_feed(const uint8_t *bytes, size_t len);
+int serial0_feed(const uint8_t *bytes, size_t len);
+/* Free room on a port's receive side (no more is taken: the bytes wait at the host). */
+size_t room(Port port);
 
 }  // namespace fake
 
