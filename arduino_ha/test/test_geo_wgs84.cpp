@@ -187,7 +187,7 @@ TEST(GeoWgs84, AReferenceOutOfRangeOrNotANumberIsRefusedAndTheOldOneKept) {
 // The judge itself against the table every node that takes /home is tested with
 // (test/home_vectors.h): what it refuses leaves the reference as it was.
 TEST(GeoWgs84, TheOneJudgeOfAHomeTakesTheTablesHomesAndRefusesTheRest) {
-  for (const HomeVector &v : kHomeVectors) {
+  for (const HomeVector& v : kHomeVectors) {
     GeoRef ref;
     ASSERT_EQ(geo_ref_init(&ref, 1.0, 2.0, 3.0), 1);
     EXPECT_EQ(geo_ref_init(&ref, v.lat_deg, v.lon_deg, v.alt_m), v.valid ? 1 : 0) << v.what;
