@@ -48,7 +48,7 @@ SLIPS = [
     ("limits.yaml", "stall_speed_ftps", "stall_sped_ftps", "state.stall_sped_ftps"),
     ("airframe.yaml", "ixz", "ixzz", "inertia_kg_m2.ixzz"),  # ixz silently defaulted to 0
     ("controller_param.yaml", "hmcmd", "hmcmdd", "hmcmdd"),
-    ("ground_station.yaml", "fixed", "fixd", "home.fixd"),  # home.fixed silently defaulted to false
+    ("ground_station.yaml", "max_retries", "max_retry", "mission.max_retry"),
     ("tunables.yaml", "tunables", "tunable", "tunable"),
     ("vn200_mount.yaml", "pitch_deg", "pich_deg", "pich_deg"),  # the mount silently level
 ]
@@ -154,6 +154,16 @@ def test_a_value_of_the_wrong_type_is_refused_naming_the_key(tmp_path):
         check_config.load(str(path))
 
 
+def test_a_ground_station_file_that_still_names_a_home_is_refused(tmp_path):
+    # The stack's one home is the HA's (/home); the old bench-only fixed home of the ground station
+    # was a second one, about which /way could have been built.
+    path = tmp_path / "ground_station.yaml"
+    path.write_text((DG808 / "ground_station.yaml").read_text() + "\nhome:\n  fixed: true\n  lat_deg: 40.0\n"
+                    "  lon_deg: -83.0\n  alt_m: 250.0\n")
+    with pytest.raises(check_config.ConfigError, match=r"home"):
+        check_config.load(str(path))
+
+
 def test_a_misnamed_file_in_an_aircraft_folder_is_refused_not_ignored(tmp_path):
     folder = aircraft_copy(tmp_path)
     shutil.copy(folder / "limits.yaml", folder / "limit.yaml")
@@ -218,7 +228,7 @@ def test_the_hil_launch_passes_and_records_what_it_checked(package_copy):
 
 @pytest.mark.parametrize("launch,name,key,typo,where", [
     ("DG808_hil.launch", "limits.yaml", "stall_speed_ftps", "stall_sped_ftps", "state.stall_sped_ftps"),
-    ("DG808_flight.launch", "ground_station.yaml", "fixed", "fixd", "home.fixd"),
+    ("DG808_flight.launch", "ground_station.yaml", "max_retries", "max_retry", "mission.max_retry"),
     ("DG808_flight.launch", "controller_param.yaml", "max_bank_deg", "max_bank_degs", "max_bank_degs"),
     ("DG808_flight.launch", "vn200_mount.yaml", "pitch_deg", "pich_deg", "pich_deg"),
 ])

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "geo_wgs84.h"
+#include "home_vectors.h"
 
 namespace {
 
@@ -181,4 +182,17 @@ TEST(GeoWgs84, AReferenceOutOfRangeOrNotANumberIsRefusedAndTheOldOneKept) {
   EXPECT_EQ(r.lat_deg, 45.0);
   EXPECT_EQ(r.lon_deg, 7.0);
   EXPECT_EQ(r.alt_m, 100.0);
+}
+
+// The judge itself against the table every node that takes /home is tested with
+// (test/home_vectors.h): what it refuses leaves the reference as it was.
+TEST(GeoWgs84, TheOneJudgeOfAHomeTakesTheTablesHomesAndRefusesTheRest) {
+  for (const HomeVector& v : kHomeVectors) {
+    GeoRef ref;
+    ASSERT_EQ(geo_ref_init(&ref, 1.0, 2.0, 3.0), 1);
+    EXPECT_EQ(geo_ref_init(&ref, v.lat_deg, v.lon_deg, v.alt_m), v.valid ? 1 : 0) << v.what;
+    if (!v.valid) {
+      EXPECT_EQ(ref.lat_deg, 1.0) << v.what;
+    }
+  }
 }

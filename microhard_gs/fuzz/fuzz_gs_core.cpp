@@ -37,8 +37,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   size -= 2;
 
   GsConfig c = test::gs_config(50.0);
-  c.home_fixed = (mode & 2) != 0;
-  c.home = GeoPoint{40.11, -88.22, 220.0};
   c.mission_item_timeout_ms = 50;
   c.mission_max_retries = 2;
   c.signing = (mode & 1) != 0;
@@ -49,6 +47,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   GsCore core(c, params);
   Clock now{1000, 1795000000ULL * 1000000ULL};
   core.tick(now);
+  if (mode & 2) {
+    core.set_home(GeoPoint{40.11, -88.22, 220.0});  // the HA's /home has come
+  }
   if (mode & 4) {
     Telemetry t;
     t.lat_deg = 40.11;

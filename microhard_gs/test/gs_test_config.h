@@ -18,7 +18,7 @@ inline MissionLimits mission_limits() {
   return l;
 }
 
-// Home is not fixed: a test that needs it sets home_fixed and home.
+// No home: a test that needs one gives the core the HA's (set_home, as /home does).
 inline GsConfig gs_config(double telemetry_rate_hz = 10.0) {
   GsConfig c;
   c.system_id = 1;

@@ -26,8 +26,6 @@ const GeoPoint kHome{40.11, -88.22, 220.0};
 
 GsConfig base_config() {
   GsConfig c = test::gs_config();
-  c.home_fixed = true;
-  c.home = kHome;
   c.mission_item_timeout_ms = 1500;
   c.mission_max_retries = 5;
   return c;
@@ -119,7 +117,14 @@ class Gcs {
 
 class Bench {
  public:
-  explicit Bench(const GsConfig& config = base_config()) : core(config, some_params()) {}
+  // with_home: the HA's /home has come (the one home of the stack), its news already taken.
+  explicit Bench(const GsConfig& config = base_config(), bool with_home = true)
+      : core(config, some_params()) {
+    if (with_home) {
+      EXPECT_TRUE(core.set_home(kHome));
+      (void)core.take_frames();
+    }
+  }
   Clock at(uint64_t ms) const { return Clock{ms, kUnixStartUs + ms * 1000}; }
   std::vector<mavlink_message_t> feed(const std::vector<uint8_t>& bytes) {
     core.handle_bytes(bytes.data(), bytes.size(), at(now_ms));
@@ -271,9 +276,7 @@ TEST(MissionUpload, CeilingViolationRejectsAndKeepsTheOldMission) {
 }
 
 TEST(MissionUpload, NoHomeMeansDenied) {
-  GsConfig c = base_config();
-  c.home_fixed = false;
-  Bench b(c);
+  Bench b(base_config(), false);
   Gcs gcs;
   b.feed(gcs.count(1));
   const auto acks = of_type(b.feed(gcs.item(0, 0, 0, 150)), MAVLINK_MSG_ID_MISSION_ACK);

@@ -9,6 +9,7 @@
 #include "gs_core.h"
 #include "gs_test_config.h"
 #include "gs_test_frames.h"
+#include "home_vectors.h"
 
 using namespace microhard_gs;
 
@@ -114,4 +115,23 @@ TEST(GsHome, SetHomeWithoutHaStatusOrToANonsensePositionIsRefused) {
   EXPECT_EQ(ack_result(out), MAV_RESULT_DENIED);
   EXPECT_EQ(test::statustexts(out), "Set home refused: not a valid position");
   EXPECT_TRUE(s.core.take_home_requests().empty());
+}
+
+// The ground station keeps a /home, and forwards a SET_HOME to the HA, exactly when the HA's own
+// judge (geo_ref_init) would take it: one judge, so it never refuses a home the HA flies about,
+// nor passes on one the HA would refuse.
+TEST(GsHome, KeepsAndForwardsAHomeExactlyWhenTheHasJudgeDoes) {
+  for (const HomeVector& v : kHomeVectors) {
+    Station s;
+    EXPECT_EQ(s.core.set_home(GeoPoint{v.lat_deg, v.lon_deg, v.alt_m}), v.valid) << v.what;
+    EXPECT_EQ(s.core.home_known(), v.valid) << v.what;
+    s.ha_says_agl_ft(0.0);  // parked: a SET_HOME is judged on its position alone
+    // As QGroundControl sends it: COMMAND_LONG's float parameters.
+    EXPECT_EQ(
+        ack_result(s.set_home_long(0.0f, static_cast<float>(v.lat_deg),
+                                   static_cast<float>(v.lon_deg), static_cast<float>(v.alt_m))),
+        v.valid ? MAV_RESULT_ACCEPTED : MAV_RESULT_DENIED)
+        << v.what;
+    EXPECT_EQ(s.core.take_home_requests().size(), v.valid ? 1u : 0u) << v.what;
+  }
 }

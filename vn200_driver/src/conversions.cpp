@@ -50,6 +50,11 @@ Vec3 frd_to_flu(const Vec3& v) { return {v[0], -v[1], -v[2]}; }
 
 Vec3 ned_to_enu(const Vec3& v) { return {v[1], v[0], -v[2]}; }
 
+bool is_valid_home(double lat_deg, double lon_deg, double alt_m) {
+  GeoRef ref{};
+  return geo_ref_init(&ref, lat_deg, lon_deg, alt_m) != 0;
+}
+
 Vec3 lla_to_local_enu(double lat_deg, double lon_deg, double alt_m, double ref_lat_deg,
                       double ref_lon_deg, double ref_alt_m) {
   // The stack's one flat earth (geo_wgs84.h), so the tf puts the aircraft where the HA, the

@@ -32,5 +32,8 @@ Vec3 ned_to_enu(const Vec3& v);
 // (adequate over the few kilometres of a research flight).
 Vec3 lla_to_local_enu(double lat_deg, double lon_deg, double alt_m, double ref_lat_deg,
                       double ref_lon_deg, double ref_alt_m);
+// A home the stack can take (/home): the HA's own test, geo_ref_init, so the odometry's origin is
+// never one the flat earth refuses (which would make every offset NaN).
+bool is_valid_home(double lat_deg, double lon_deg, double alt_m);
 
 }  // namespace vn200

@@ -330,9 +330,7 @@ void Vn200Node::diag_link(diagnostic_updater::DiagnosticStatusWrapper& stat) {
 }
 
 void Vn200Node::on_home(const drone_ros::HomePosition::ConstPtr& msg) {
-  if (!std::isfinite(msg->latitude) || !std::isfinite(msg->longitude) ||
-      !std::isfinite(msg->altitude) || std::fabs(msg->latitude) > 90.0 ||
-      std::fabs(msg->longitude) > 180.0) {
+  if (!is_valid_home(msg->latitude, msg->longitude, msg->altitude)) {
     ROS_WARN("vn200: home %u dropped: not a valid position", msg->seq);
     return;
   }

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "conversions.h"
+#include "home_vectors.h"
 
 namespace {
 
@@ -58,3 +59,16 @@ TEST(Conversions, VectorsAndPositions) {
 }
 
 }  // namespace
+
+// The odometry's origin: a home the HA's judge refuses would make every offset NaN.
+TEST(Conversions, AHomeIsValidExactlyWhenTheHasJudgeTakesIt) {
+  for (const HomeVector& v : kHomeVectors) {
+    EXPECT_EQ(vn200::is_valid_home(v.lat_deg, v.lon_deg, v.alt_m), v.valid) << v.what;
+    if (v.valid) {
+      const vn200::Vec3 enu =
+          vn200::lla_to_local_enu(v.lat_deg, v.lon_deg, v.alt_m, v.lat_deg, v.lon_deg, v.alt_m);
+      EXPECT_TRUE(std::isfinite(enu[0]) && std::isfinite(enu[1]) && std::isfinite(enu[2]))
+          << v.what;
+    }
+  }
+}

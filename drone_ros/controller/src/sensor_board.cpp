@@ -1,5 +1,7 @@
 #include "sensor_board.h"
 
+#include "geo_wgs84.h"
+
 #include <cmath>
 #include <initializer_list>
 
@@ -109,8 +111,8 @@ void SensorBoard::restamp_arrivals(double now_s) {
 }
 
 bool SensorBoard::on_home(double lat_deg, double lon_deg, double alt_m) {
-  if (!finite({lat_deg, lon_deg, alt_m}) || std::fabs(lat_deg) > 90.0 ||
-      std::fabs(lon_deg) > 180.0) {
+  GeoRef judged;  // the HA's own test of a home, so no node keeps one the HA would refuse
+  if (geo_ref_init(&judged, lat_deg, lon_deg, alt_m) == 0) {
     return drop();
   }
   home_valid_ = true;

@@ -9,6 +9,7 @@
 
 #include "command_builder.h"
 #include "controller_params.h"
+#include "home_vectors.h"
 #include "hp_command.h"
 #include "lockstep_gate.h"
 #include "sensor_board.h"
@@ -409,4 +410,16 @@ TEST(LockstepGate, LinkDownPwmBeforeTheFirstStepDoesNotStandInForALaterReport) {
 int main(int argc, char **argv) {
   testing::InitGoogleTest(&argc, argv);
   return RUN_ALL_TESTS();
+}
+
+// /home from the HA: the sensor board keeps what the HA's own judge (geo_ref_init) takes, and
+// drops (counted) what it refuses, an altitude the flat earth cannot use included.
+TEST(SensorBoard, TakesAHomeExactlyWhenTheHasJudgeDoes) {
+  const auto p = aircraft();
+  for (const HomeVector &v : kHomeVectors) {
+    controller::SensorBoard board(p);
+    EXPECT_EQ(board.on_home(v.lat_deg, v.lon_deg, v.alt_m), v.valid) << v.what;
+    EXPECT_EQ(board.home_valid(), v.valid) << v.what;
+    EXPECT_EQ(board.dropped_messages(), v.valid ? 0u : 1u) << v.what;
+  }
 }

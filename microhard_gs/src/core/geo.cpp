@@ -35,6 +35,11 @@ void north_east_ft_to_geodetic(const GeoPoint& home, const NorthEastFt& ne, doub
   geo_from_neu_ft(&r, neu_ft, lat_deg, lon_deg, &alt_m);
 }
 
+bool is_valid_home(const GeoPoint& home) {
+  GeoRef judged;
+  return geo_ref_init(&judged, home.lat_deg, home.lon_deg, home.alt_m) != 0;
+}
+
 bool is_valid_position(double lat_deg, double lon_deg) {
   return std::isfinite(lat_deg) && std::isfinite(lon_deg) && lat_deg >= -90.0 && lat_deg <= 90.0 &&
          lon_deg >= -180.0 && lon_deg <= 180.0 && !(lat_deg == 0.0 && lon_deg == 0.0);

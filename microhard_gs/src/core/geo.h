@@ -28,5 +28,9 @@ void north_east_ft_to_geodetic(const GeoPoint& home, const NorthEastFt& ne, doub
                                double* lon_deg);
 
 bool is_valid_position(double lat_deg, double lon_deg);
+// A home: the HA's own test of the home it latches (geo_ref_init), the one judge of the stack, so
+// the ground station neither keeps nor forwards a home the HA would refuse, nor refuses one it
+// would keep. Unlike is_valid_position, lat 0 lon 0 is a place here, as it is to the HA.
+bool is_valid_home(const GeoPoint& home);
 
 }  // namespace microhard_gs

@@ -16,10 +16,6 @@ constexpr uint64_t kHeartbeatPeriodMs = 1000;
 GsCore::GsCore(const GsConfig& config, const ParamTable& params)
     : config_(config), params_(params) {
   if (config_.signing) start_signing();
-  if (config_.home_fixed) {
-    home_ = config_.home;
-    home_known_ = true;
-  }
 }
 
 void GsCore::handle_bytes(const uint8_t* data, size_t len, const Clock& now) {

@@ -28,8 +28,6 @@ struct GsConfig {
   double telemetry_rate_hz = 0.0;
   MissionLimits limits;
   double airborne_agl_ft = 0.0;  // above this the vehicle reports itself armed/flying
-  bool home_fixed = false;
-  GeoPoint home;
   uint32_t mission_item_timeout_ms = 1500;
   uint32_t mission_max_retries = 5;
   // How long a PARAM_SET waits for the controller's answer before the GCS is told it failed;

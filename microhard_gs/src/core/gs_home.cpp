@@ -9,7 +9,7 @@
 namespace microhard_gs {
 
 bool GsCore::set_home(const GeoPoint& home) {
-  if (!is_valid_position(home.lat_deg, home.lon_deg) || !std::isfinite(home.alt_m)) {
+  if (!is_valid_home(home)) {
     return false;
   }
   const bool moved = !home_known_ || home.lat_deg != home_.lat_deg ||
@@ -41,7 +41,7 @@ uint8_t GsCore::set_home_command(float use_current, double lat_deg, double lon_d
   HomeRequest r;
   r.use_current = use_current == 1.0f;
   if (!r.use_current) {
-    if (use_current != 0.0f || !is_valid_position(lat_deg, lon_deg) || !std::isfinite(alt_m)) {
+    if (use_current != 0.0f || !is_valid_home(GeoPoint{lat_deg, lon_deg, alt_m})) {
       send_statustext(MAV_SEVERITY_WARNING, "Set home refused: not a valid position");
       return MAV_RESULT_DENIED;
     }

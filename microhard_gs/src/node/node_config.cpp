@@ -136,19 +136,13 @@ bool read_node_config(const ros::NodeHandle& nh, NodeConfig* c, std::string* err
   c->core.mission_item_timeout_ms = static_cast<uint32_t>(std::lround(timeout_s * 1000.0));
   c->core.mission_max_retries = static_cast<uint32_t>(std::lround(retries));
 
-  bool home_fixed = false;
-  nh.param("home/fixed", home_fixed, false);
-  c->core.home_fixed = home_fixed;
-  if (home_fixed) {
-    if (!need(nh, "home/lat_deg", &c->core.home.lat_deg, error) ||
-        !need(nh, "home/lon_deg", &c->core.home.lon_deg, error) ||
-        !need(nh, "home/alt_m", &c->core.home.alt_m, error)) {
-      return false;
-    }
-    if (!is_valid_position(c->core.home.lat_deg, c->core.home.lon_deg)) {
-      *error = "home/lat_deg, home/lon_deg not a valid position";
-      return false;
-    }
+  // A second home would build /way about a point the controller and the HA do not fly about:
+  // the one home is the HA's, on /home. A settings file that still names one is refused.
+  if (nh.hasParam("home")) {
+    *error =
+        "home/... is gone: the ground station takes the HA's home from /home (set it from "
+        "QGroundControl with MAV_CMD_DO_SET_HOME while parked)";
+    return false;
   }
 
   if (!c->signing_key_file.empty()) {
