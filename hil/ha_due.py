@@ -11,13 +11,13 @@ not here: the `arduino` node opens the Due's programming port itself.
     ha_due.py --native /dev/ttyACM1 --ins /dev/ttyUSB0 --vn200 PATH --lockstep SOCKET --realtime
               [--record-log FILE]
 
-The records travel framed as the QEMU board's UART2 takes them (ha_qemu.frame: A5 5A, length,
+The records travel framed as the QEMU board's UART2 takes them (record_bridge.frame: A5 5A, length,
 record, CRC-32); a reply frame that fails its CRC is counted and dropped here. Real time only: the
 Due keeps its own clock. The simulator dates each reply's period on its own clock (ha_sil's
 micros() is the host's CLOCK_MONOTONIC), so each tick of the Due is put on that clock before the
 reply goes on (record_bridge.HaClock). --record-log writes a line a reply (record_bridge.
-RecordBridge; the loop pass's time is in microseconds on the Due). SIGINT/SIGTERM, or the simulator closing the
-socket, end it."""
+RecordBridge; the loop pass's time is in microseconds on the Due). SIGINT/SIGTERM, or the
+simulator closing the socket, end it."""
 import argparse
 import os
 import signal

@@ -37,14 +37,9 @@ import xmlrpc.client
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 from hil import faults  # noqa: E402
+from stack_tools.ports import free_port  # noqa: E402  (below the ephemeral range: nothing autobinds there)
 BAG_TOPICS = ["/hil/truth", "/decision_status", "/servo_op", "/pwm", "/ins", "/data", "/to_hil",
               "/way", "/home", "/rosout_agg", "/diagnostics"]
-
-
-def free_port(kind=socket.SOCK_STREAM):
-    with socket.socket(socket.AF_INET, kind) as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
 
 
 class Processes:

@@ -9,12 +9,11 @@ import threading
 import time
 
 import pytest
+from stack_tools import ports
 
 
 def free_port():
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
+    return ports.free_port()
 
 
 @pytest.fixture(scope="module")

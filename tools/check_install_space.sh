@@ -52,9 +52,12 @@ pkg=$(in_install "rospack find drone_ros")
 in_install "'$share/tools/check_config.py' '$share/aircraft/DG808'" > "$ws/check_config.out" \
   || fail "the installed check_config.py refuses the installed DG808 ($(cat "$ws/check_config.out"))"
 
-for launch in DG808_flight.launch check_config.launch DG808_hil.launch; do
-  args=()
-  [ "$launch" = check_config.launch ] && args=(aircraft:=DG808)
+# Each launch with its arguments; the HiL's three HAs (the SIL, QEMU, a real Due) start different
+# programs, each of which must be installed.
+for run in "DG808_flight.launch" "check_config.launch aircraft:=DG808" "DG808_hil.launch" \
+  "DG808_hil.launch ha:=qemu" "DG808_hil.launch ha:=due mode:=realtime"; do
+  read -r launch argline <<< "$run"
+  read -r -a args <<< "${argline:-}"
   if ! files=$(in_install "roslaunch --files drone_ros $launch ${args[*]}" 2> "$ws/roslaunch.err"); then
     fail "roslaunch --files drone_ros $launch fails from the install: $(cat "$ws/roslaunch.err")"
     continue
@@ -77,7 +80,7 @@ for launch in DG808_flight.launch check_config.launch DG808_hil.launch; do
       *) fail "$launch: $node starts $exe, outside the install space" ;;
     esac
   done
-  echo "check-install: $launch resolves from the install: $n files, $k nodes ($(echo $nodes | tr '\n' ' '))"
+  echo "check-install: $launch ${args[*]} resolves from the install: $n files, $k nodes ($(echo $nodes | tr '\n' ' '))"
 done
 # setup.py's packages import from the install's dist-packages with / as the folder, with the
 # install's ROS messages, under the venv (the simulator's jsbsim); their data is share/drone_ros.

@@ -7,12 +7,11 @@ import subprocess
 import time
 
 import yaml
+from stack_tools import ports
 
 
 def free_port(kind=socket.SOCK_STREAM):
-    with socket.socket(socket.AF_INET, kind) as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
+    return ports.free_port(kind)
 
 
 def stop(procs):

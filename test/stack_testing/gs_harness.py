@@ -25,6 +25,7 @@ import rosparam
 os.environ.setdefault("MAVLINK20", "1")
 from pymavlink import mavutil  # noqa: E402  (MAVLINK20 must be set first)
 
+from stack_tools import ports  # noqa: E402
 from stack_tools.paths import ROOT  # noqa: E402
 
 HERE = os.path.join(ROOT, "microhard_gs", "test")  # gs_ros_probe.py
@@ -39,9 +40,7 @@ mavlink = mavutil.mavlink
 
 
 def free_port(kind=socket.SOCK_DGRAM):
-    with socket.socket(socket.AF_INET, kind) as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
+    return ports.free_port(kind)
 
 
 def stop_process_groups(procs):

@@ -11,12 +11,11 @@ import subprocess
 import time
 
 import pytest
+from stack_tools import ports
 
 
 def _free_port():
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
+    return ports.free_port()
 
 
 @pytest.fixture(scope="module")

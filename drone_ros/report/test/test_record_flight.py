@@ -3,7 +3,6 @@ fresh <date>-<aircraft>-<mode>.bag name, and the report tool makes the report fr
 import datetime
 import os
 import signal
-import socket
 import subprocess
 import time
 
@@ -16,6 +15,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 import scripted_flight  # noqa: E402
 from report_core import flight_name  # noqa: E402
 from test_flight_report import expected_switches, page, run  # noqa: E402
+from stack_tools import ports
 
 RECORDED = ("/hil/truth", "/decision_status", "/servo_op", "/pwm", "/ins", "/data", "/way")
 
@@ -40,9 +40,22 @@ def test_a_name_that_would_break_the_log_name_is_refused(tmp_path):
 
 
 def _free_port():
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
+    return ports.free_port()
+
+
+def _bytes_read_by(argument):
+    """rchar of /proc/PID/io summed over the processes whose command line holds argument."""
+    total = 0
+    for pid in filter(str.isdigit, os.listdir("/proc")):
+        try:
+            with open("/proc/%s/cmdline" % pid, "rb") as f:
+                if argument.encode() not in f.read().split(b"\0"):
+                    continue
+            with open("/proc/%s/io" % pid) as f:
+                total += int(next(line for line in f if line.startswith("rchar:")).split()[1])
+        except (OSError, StopIteration, ValueError):
+            continue
+    return total
 
 
 def _wait(predicate, timeout_s, what):
@@ -95,6 +108,17 @@ def test_record_launch_logs_a_flight_the_report_reads(tmp_path):
         # While it records: the name reserved, and rosbag's .active file it will become.
         assert len(logs) == 2 and logs[1] == logs[0] + ".active", logs
         name = logs[0]
+
+        # The flight is over when the recorder has taken in what it was sent: rosbag play returns
+        # once it has published, while on a loaded machine the last messages are still on their
+        # way to the recorder; Ctrl-C before it has read them loses them, as Ctrl-C during a
+        # flight would. Taken in: the recorder's bytes read (/proc/PID/io) still for a second.
+        reads = []
+
+        def recorder_read_everything():
+            reads.append(_bytes_read_by("__name:=recorder"))
+            return len(reads) > 20 and len(set(reads[-20:])) == 1
+        _wait(recorder_read_everything, 60, "the recorder to read what it was sent")
 
         # As a flight ends: roslaunch stopped with Ctrl-C, the recorder closes the bag.
         os.killpg(launch.pid, signal.SIGINT)
