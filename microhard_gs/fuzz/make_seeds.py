@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Writes the checked-in seed corpus of fuzz_gs_core (run once; seeds are small binary files).
-Byte 0 of each seed selects the harness mode (bit0 signing, bit1 fixed home, bit2 telemetry,
+Byte 0 of each seed selects the harness mode (bit0 signing, bit1 the HA's home given, bit2 telemetry,
 bit3 decision changes), byte 1 seeds the chunking; the rest is what the link delivers."""
 import os
 import sys
