@@ -261,8 +261,8 @@ def main(argv=None):
                                                       "real time" if args.realtime else "lockstep", args.lockstep),
               file=sys.stderr)
         if args.realtime:
+            board.ctl.setblocking(False)  # before the bridge drains what the board sent so far
             bridge = record_bridge.RecordBridge(chan, board.ctl.fileno(), log=log)
-            board.ctl.setblocking(False)
             code = bridge.run(stop)
             replies, board.reader = bridge.replies, bridge.reader
             return code

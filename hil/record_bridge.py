@@ -94,10 +94,10 @@ class HaClock:
 
 
 class RecordBridge:
-    """The records framed onto the board's stream (board_fd: the Due's native port, QEMU's
-    control UART) and its replies back to the simulator's socket (chan), each reply's period put
-    on the host's clock; with vn_fd and ins_fd, the VN-200's bytes copied from the simulator's
-    pty to the board's INS port as well. run() until stopped or the simulator closes. With log, a
+    """The records framed onto the board's stream (board_fd, non-blocking: the Due's native port,
+    QEMU's control UART) and its replies back to the simulator's socket (chan), each reply's
+    period put on the host's clock; with vn_fd and ins_fd, the VN-200's bytes copied from the
+    simulator's pty to the board's INS port as well. run() until stopped or the simulator closes. With log, a
     line a reply: "board_us host_us dropped ticks tx_dropped rx_dropped ins_dropped" (the period
     on the board's clock and on the host's; the trailer's records dropped, loop pass ticks, bytes
     the board could not send, bytes to its full receive ring; VN-200 bytes not passed on here)."""
@@ -110,6 +110,14 @@ class RecordBridge:
         self.records = self.replies = 0
         self.records_unsent = 0  # record bytes the native port could not take
         self.ins_dropped = 0  # VN-200 bytes the adapter could not take
+        # What the board sent before this bridge was made would be dated at its late arrival:
+        # gone, here and not in run(), so that nothing sent once the bridge exists is dropped
+        # however late its thread first runs.
+        try:
+            while os.read(self.native, 4096):
+                pass
+        except BlockingIOError:
+            pass
 
     def _write(self, fd, data):
         try:
@@ -118,12 +126,6 @@ class RecordBridge:
             return 0
 
     def run(self, stop):
-        # What the board sent before anyone forwarded it would be dated at its late arrival: gone.
-        try:
-            while os.read(self.native, 4096):
-                pass
-        except BlockingIOError:
-            pass
         while not stop["now"]:
             r, _, _ = select.select([f for f in (self.chan, self.native, self.vn) if f is not None], [], [], 0.2)
             if self.chan in r:
