@@ -23,9 +23,13 @@ mapfile -t pytest_dirs < <(cd "$root" && for d in test */test */*/test; do [ -d 
 workers=${TEST_WORKERS:-2}
 parallel=()
 [ "$workers" -gt 1 ] && parallel=(-n "$workers" --dist loadgroup)
+# Then the flights on the wall clock (the realtime mark, conftest.py), one at a time with nothing
+# else running: they judge deadlines, and a lockstep flight beside them takes both cores.
 if [ ${#pytest_dirs[@]} -gt 0 ]; then
-  "$venv/bin/python" -m pytest -q -p no:cacheprovider "${parallel[@]}" --durations=25 \
+  "$venv/bin/python" -m pytest -q -p no:cacheprovider "${parallel[@]}" --durations=25 -m "not realtime" \
     --junitxml="$results/drone_ros/pytest.xml" "${pytest_dirs[@]}" || status=1
+  "$venv/bin/python" -m pytest -q -p no:cacheprovider -p no:xdist --durations=5 -m realtime \
+    --junitxml="$results/drone_ros/pytest_realtime.xml" "${pytest_dirs[@]}" || status=1
 fi
 
 "$venv/bin/python" "$root/tools/summarize_results.py" "$results" || status=1

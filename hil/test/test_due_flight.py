@@ -21,6 +21,7 @@ from hil.campaigns.flight import run_completed  # a flight that runs out of time
 from stack_testing.gs_harness import free_port
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
+pytestmark = pytest.mark.realtime  # flown alone, after the rest (conftest.py)
 CRASH_AT_S = 8.0  # as test_realtime_crash: the HP has the servos from 5 s
 DURATION_S = 16
 FLIGHTS = 3
