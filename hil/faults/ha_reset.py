@@ -6,6 +6,7 @@ every solution for the rest of the flight, lock the healthy HP out and fly witho
 must take home and its airborne latch back, have a valid state again at once, and hand the servos
 back to the HP after the stable window. The reset itself puts the HA on the servos: no takeover is
 due by the class. Took effect when the HA stepped after the reset."""
+from drone_ros.msg import DecisionStatus
 from hil import ha_channel
 from hil.faults.base import Fault
 
@@ -44,7 +45,7 @@ class HaReset(Fault):
             self.valid_steps_after += 1
             if self.first_valid_s is None:
                 self.first_valid_s = t_s
-        if self.hp_back_s is None and reply.controller == 0:
+        if self.hp_back_s is None and reply.controller == DecisionStatus.CONTROLLER_HP:
             self.hp_back_s = t_s
             self.note(t_s, "the HP has the servos again, %.2f s after the reset" % (t_s - self.reset_t_s))
 
