@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 from drone_ros.msg import DecisionStatus, OperatorCommand
 from stack_common import crc, geo, units
-from stack_common._lib import constant
+from stack_common.native import constant
 
 from hil import verdicts
 from hil.faults.base import fields_crc32

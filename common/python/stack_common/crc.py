@@ -1,6 +1,6 @@
 """The CRC-32 that a ServoCommand or an OperatorCommand carries over the ROS serialization of its
 fields before crc32: ha_crc32 of hp_command.c, the function the HA checks it with."""
-from ._lib import library
+from .native import library
 
 
 def crc32(data):

@@ -7,7 +7,7 @@ import functools
 
 import numpy as np
 
-from ._lib import GeoRef, library
+from .native import GeoRef, library
 
 
 class Ref:

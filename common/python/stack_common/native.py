@@ -1,6 +1,6 @@
-"""libstack_common.so, loaded once, as the dynamic loader finds it: the devel or install space's
-lib/ is on LD_LIBRARY_PATH once its setup is sourced (as vn200_sim.vn200_encode finds its
-library)."""
+"""The build's C libraries for ctypes, found as the dynamic loader finds them: the devel or
+install space's lib/ is on LD_LIBRARY_PATH once its setup is sourced. libstack_common.so is
+loaded once, its functions declared."""
 import ctypes
 
 _lib = None
@@ -29,15 +29,21 @@ def _declare(lib):
         f.restype, f.argtypes = restype, argtypes
 
 
+def load(soname):
+    """A library of the build, as the dynamic loader finds it; OSError (with what to do) if it
+    was not built or the workspace is not sourced."""
+    try:
+        return ctypes.CDLL(soname)
+    except OSError as e:
+        raise OSError("%s not found (%s): `make build`, then source the workspace's devel/setup.bash"
+                      % (soname, e)) from None
+
+
 def library():
-    """The library with its functions declared; OSError (with what to do) if it was not built."""
+    """libstack_common.so with its functions declared."""
     global _lib
     if _lib is None:
-        try:
-            lib = ctypes.CDLL("libstack_common.so")
-        except OSError as e:
-            raise OSError("libstack_common.so not found (%s): `make build`, then source the "
-                          "workspace's devel/setup.bash" % e) from None
+        lib = load("libstack_common.so")
         _declare(lib)
         if lib.stack_common_geo_ref_size() != ctypes.sizeof(GeoRef):
             raise OSError("libstack_common.so's GeoRef is %d bytes, stack_common's %d: rebuild"
