@@ -75,6 +75,10 @@ class AcceleratedStall(SteeringFault):
         return "max alpha %.1f deg" % max(a) if a else ""
 
 
+# What a campaign draws for this class (hil/campaigns/plan.py says how).
+CAMPAIGN_DURATION = "long"
+
+
 def draw_params(rng):
     """Banks of 30-50 deg either way, 0-3 s of dive, pulls of 3-12 deg/s to 11-18 deg, throttle
     from idle to full."""

@@ -64,5 +64,9 @@ class HaReset(Fault):
                 "first_valid_s": self.first_valid_s, "hp_back_s": self.hp_back_s}
 
 
+# What a campaign draws for this class (hil/campaigns/plan.py says how).
+CAMPAIGN_DURATION = "none"
+
+
 def inject(ctx, at_s, duration_s, params):
     return HaReset(ctx, at_s, duration_s, params)
