@@ -11,7 +11,7 @@ give it back (HiL campaign seed 24: an 11.4 m/s headwind turned into a 12.8 m/s 
 """
 import math
 
-from hil.units import FT_PER_M, G_FTPS2
+from stack_common.units import FT_PER_M, G_FTPS2
 
 TURBULENCE = ("none", "light", "moderate")
 

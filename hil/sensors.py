@@ -23,13 +23,12 @@ import os
 import random
 
 from hil import ptys  # noqa: E402
-from hil.units import FT_PER_M, G_MPS2  # noqa: E402
+from stack_common import geo  # noqa: E402
+from stack_common.units import FT_PER_M, G_MPS2  # noqa: E402
 from vn200_sim.vn200_emulation import (INS_STATUS_TRACKING_FIX, NS_PER_WEEK, Registers, Solution,  # noqa: E402
                              packet_length)
 from vn200_sim.vn200_encode import PacketEncoder  # noqa: E402
 
-WGS84_A = 6378137.0
-WGS84_E2 = 6.69437999014e-3
 GPS_EPOCH_OFFSET_NS = 2390 * NS_PER_WEEK  # a GPS week of 2025; only its consistency matters
 SENSOR_STARTUP_S = 5.0  # the VN-200 was powered this long before simulation time 0
 
@@ -39,13 +38,6 @@ SENSOR_STARTUP_S = 5.0  # the VN-200 was powered this long before simulation tim
 HA_OUTPUT_1 = (1, 8, 0x09, [0x0008 | 0x0020 | 0x0040 | 0x0080 | 0x0100 | 0x1000, 0, 0, 0x0010, 0, 0])
 HA_VN200_BAUD = 115200  # DUE_VN200_BAUD
 HP_VN200_BAUD = 921600  # the flight launch's vn200_baud
-
-
-def radii_m(lat_deg):
-    """Meridian and prime-vertical radii of curvature of WGS84 at lat_deg."""
-    s = math.sin(math.radians(lat_deg))
-    w = math.sqrt(1.0 - WGS84_E2 * s * s)
-    return WGS84_A * (1.0 - WGS84_E2) / (w ** 3), WGS84_A / w
 
 
 class GaussMarkov:
@@ -114,9 +106,9 @@ class Vn200Errors:
     def solution(self, truth, sensor_t_s, dt_s):
         r = self.rng
         att, pos, vel = self.shared.at(sensor_t_s)
-        rm, rn = radii_m(truth.lat_deg)
-        lat = truth.lat_deg + math.degrees(pos[0] / rm)
-        lon = truth.lon_deg + math.degrees(pos[1] / (rn * math.cos(math.radians(truth.lat_deg))))
+        # The solution's position error placed about the truth by the stack's one flat earth
+        # (geo_wgs84.c), the longitude wrapped across the antimeridian as the VN-200 reports it.
+        lat, lon, _ = geo.Ref(truth.lat_deg, truth.lon_deg).from_neu_m(pos[0], pos[1])
         ypr = ((truth.heading_deg + att[0]) % 360.0, truth.pitch_deg + att[1], truth.roll_deg + att[2])
         if ypr[0] > 180.0:
             ypr = (ypr[0] - 360.0, ypr[1], ypr[2])  # the VN-200 reports yaw in -180..180

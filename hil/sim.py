@@ -46,9 +46,8 @@ from hil import faults, gs_monitor, ha_channel, link_relay, mission, sensors, ve
 from hil.faults.base import RC_NEUTRAL, Board  # noqa: E402
 from hil.design_wind import DesignWind  # noqa: E402
 from hil.fdm import Fdm, FdmCrash, Surfaces, Wind  # noqa: E402
-from hil.units import FT_PER_M  # noqa: E402
+from stack_common.units import FT_PER_M  # noqa: E402
 
-CONTROLLER_NAMES = {0: "HP", 1: "HA", 2: "RECOVERING", 3: "HA_LATCHED", 4: "MANUAL"}
 # What the controller subscribes to (drone_ros/controller/README.md): connected before a step.
 # Names relative to the flight's namespace, as every node of it uses them; resolved where the
 # master's graph is asked (it knows only full names).
@@ -161,7 +160,7 @@ class LatencyProbe:
             while self.commands and (self.commands[0][0] <= reply.last_seq or
                                      self.commands[0][0] > reply.last_seq + 100000):
                 seq, used = self.commands.popleft()
-                if (seq <= reply.last_seq and reply.controller == 0 and used in self.written and
+                if (seq <= reply.last_seq and reply.controller == DecisionStatus.CONTROLLER_HP and used in self.written and
                         (not self.samples or self.samples[-1][0] != used)):
                     self.samples.append((used, now - self.written[used]))
 

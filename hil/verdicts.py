@@ -4,14 +4,18 @@ limits.yaml by the same generator the HA's configuration comes from
 import bisect
 import math
 
-from stack_tools import gen_aircraft_config  # noqa: E402
+from drone_ros.msg import DecisionStatus
+from stack_common import geo
+from stack_common.units import FT_PER_M
+from stack_tools import gen_aircraft_config
 
-from hil.units import FT_PER_M  # noqa: E402
-
-WGS84_A = 6378137.0
-WGS84_E2 = 6.69437999014e-3
-CONTROLLERS = {0: "HP", 1: "HA", 2: "RECOVERING", 3: "HA_LATCHED", 4: "MANUAL"}
-HA_SIDE = (1, 2, 3)  # the HA safety controller drives the servos (incl. recovering, latched)
+# Who drives the servos: msg/DecisionStatus.msg's CONTROLLER_* (the HA core's header is generated
+# from the same lines), by value and by name.
+CONTROLLERS = {getattr(DecisionStatus, n): n[len("CONTROLLER_"):] for n in dir(DecisionStatus)
+               if n.startswith("CONTROLLER_")}
+HP, HA_LATCHED = DecisionStatus.CONTROLLER_HP, DecisionStatus.CONTROLLER_HA_LATCHED
+# The HA safety controller drives the servos (incl. recovering, latched).
+HA_SIDE = (DecisionStatus.CONTROLLER_HA, DecisionStatus.CONTROLLER_RECOVERING, HA_LATCHED)
 # A float32 surface value may sit a rounding step past a limit given in decimal.
 EPS = 1e-5
 
@@ -44,24 +48,13 @@ class Regions:
 
     @staticmethod
     def north_east_ft(home, lat_deg, lon_deg):
-        """The stack's one flat-earth conversion: WGS84 radii of curvature at home's latitude."""
-        s = math.sin(math.radians(home[0]))
-        w = math.sqrt(1.0 - WGS84_E2 * s * s)
-        rm, rn = WGS84_A * (1.0 - WGS84_E2) / w ** 3, WGS84_A / w
-        n = math.radians(lat_deg - home[0]) * rm
-        e = math.radians(dlon_deg(lon_deg, home[1])) * rn * math.cos(math.radians(home[0]))
-        return n * FT_PER_M, e * FT_PER_M
-
-
-def dlon_deg(lon_deg, home_lon_deg):
-    """lon - home's, the short way round across the antimeridian, as geo_dlon_deg (geo_wgs84.c)."""
-    d = lon_deg - home_lon_deg
-    return d - 360.0 if d > 180.0 else d + 360.0 if d < -180.0 else d
+        """North and east [ft] of a point from home: the stack's one flat-earth conversion
+        (geo_wgs84.c, through stack_common.geo)."""
+        return geo.north_east_ft(home, lat_deg, lon_deg)
 
 
 def reason_names(mask):
     """REASON_* names of msg/DecisionStatus.msg set in mask."""
-    from drone_ros.msg import DecisionStatus
     return [n[len("REASON_"):] for n in dir(DecisionStatus)
             if n.startswith("REASON_") and getattr(DecisionStatus, n) & mask]
 
@@ -77,7 +70,7 @@ def segments(records):
             out.append({"from_s": round(t, 3), "to_s": None,
                         "controller": CONTROLLERS.get(reply.controller, str(reply.controller)),
                         "reasons_at_switch": reply.reasons_at_switch,
-                        "why": reason_names(reply.reasons_at_switch if reply.controller != 0 else 0),
+                        "why": reason_names(reply.reasons_at_switch if reply.controller != HP else 0),
                         "reasons": reply.reasons,
                         "stable_for_s_at_switch": round(reply.stable_for_s, 3)})
     if out:
@@ -133,7 +126,7 @@ def mission_tracking(plan, home, records, regions, progress):
         if t0 is None or t1 is None or t1 <= t0:
             continue
         leg = [x for x in records if t0 - 1e-9 <= x[0] * 1e-6 <= t1 + 1e-9]
-        if not leg or any(x[2].controller != 0 for x in leg):
+        if not leg or any(x[2].controller != HP for x in leg):
             continue
         legs += 1
         near = [(wps[j], wps[j + 1]) for j in range(max(0, i - 1), min(len(wps) - 1, i + 2))]
@@ -222,7 +215,7 @@ def recovery_height_losses(recs, since_s, rebound_ft=2.0):
     while i < n:
         x = recs[i]
         prev = recs[i - 1][2].controller if i else None
-        if x[0] * 1e-6 < since_s - 1e-9 or prev != 0 or x[2].controller not in HA_SIDE or x[1].on_ground:
+        if x[0] * 1e-6 < since_s - 1e-9 or prev != HP or x[2].controller not in HA_SIDE or x[1].on_ground:
             i += 1
             continue
         h0 = low = x[1].height_above_home_ft
@@ -236,7 +229,7 @@ def recovery_height_losses(recs, since_s, rebound_ft=2.0):
                 break
             j += 1
         # Not sinking at the takeover, or handed back before it sank rebound_ft: recovered at once.
-        recovered = recovered or (j < n and recs[j][2].controller == 0)
+        recovered = recovered or (j < n and recs[j][2].controller == HP)
         out.append((x[0] * 1e-6, h0 - low, recovered))
         i = max(j, i + 1)
     return out
@@ -329,7 +322,7 @@ def fault_verdict(sim, progress):
         if out and (at is None or x[0] * 1e-6 >= at - 1e-9):
             outside_any += 1
         if out and not prev_out:
-            excursion_from_hp = x[2].controller == 0
+            excursion_from_hp = x[2].controller == HP
         if x[2].controller in HA_SIDE:
             if max_row is None or row > max_row:
                 max_row, worst = row, x
@@ -343,7 +336,7 @@ def fault_verdict(sim, progress):
         for x in recs:
             t = x[0] * 1e-6
             m = x[1]
-            if t < at - 1e-9 or x[2].controller != 0 or m.on_ground:
+            if t < at - 1e-9 or x[2].controller != HP or m.on_ground:
                 continue
             airborne = m.height_above_home_ft > r.airborne_ft
             if r.sx_max(m) > 1.0 or m.height_above_home_ft > r.ceiling_ft or (airborne and x[4] <= r.stall_ftps):
@@ -357,9 +350,9 @@ def fault_verdict(sim, progress):
         lat = None if took is None else round(took - due_s, 4) + 0.0
     off = back = None
     if at is not None:
-        off = next((x[0] * 1e-6 for x in recs if x[0] * 1e-6 >= at - 1e-9 and x[2].controller != 0), None)
+        off = next((x[0] * 1e-6 for x in recs if x[0] * 1e-6 >= at - 1e-9 and x[2].controller != HP), None)
         if off is not None:
-            back = next((x[0] * 1e-6 for x in recs if x[0] * 1e-6 > off and x[2].controller == 0), None)
+            back = next((x[0] * 1e-6 for x in recs if x[0] * 1e-6 > off and x[2].controller == HP), None)
     airborne = [x for x in recs if not x[1].on_ground]
     crashed = any("aircraft crashed" in e["event"] for e in sim.events)
     env_s = round(outside_ha * period, 4)
@@ -398,7 +391,7 @@ def fault_verdict(sim, progress):
         "takeover_within_one_period": takeover_ok,
         "hp_lost_control_s": None if off is None else round(off, 4),
         "recovery_s": None if back is None else round(back - at, 4),
-        "latched": any(x[2].controller == 3 for x in recs),
+        "latched": any(x[2].controller == HA_LATCHED for x in recs),
         "aircraft_crashed": crashed,
         "min_height_agl_ft": round(min(x[1].height_above_home_ft for x in airborne), 2) if airborne else None,
         "min_airspeed_margin_ftps": round(min(x[4] for x in airborne) - r.stall_ftps, 2) if airborne else None,
@@ -472,12 +465,12 @@ def summarize(sim):
         takeover = crash_takeover(ha_periods(sim), crash, r)
         t_ha = takeover["takeover_s"]
         t_back = None if t_ha is None else next(
-            (x[0] * 1e-6 for x in recs if x[0] * 1e-6 > t_ha and x[2].controller == 0), None)
+            (x[0] * 1e-6 for x in recs if x[0] * 1e-6 > t_ha and x[2].controller == HP), None)
         takeover["hand_back_s"] = None if t_back is None else round(t_back, 3)
     handbacks = []
     prev = None
     for t_us, m, reply, _, cal_ftps in recs:
-        if prev is not None and prev != 0 and reply.controller == 0:
+        if prev is not None and prev != HP and reply.controller == HP:
             handbacks.append({"t_s": round(t_us * 1e-6, 3), "stable_for_s": round(reply.stable_for_s, 3),
                               "after_stable_window": reply.stable_for_s + 1e-6 >= r.stable_window_s,
                               "calibrated_airspeed_ftps": round(cal_ftps, 2)})

@@ -12,7 +12,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 PACKAGES = ["stack_tools.check_config", "stack_tools.gen_aircraft_config", "hil.verdicts",
             "hil.campaigns.plan", "hil.faults.base", "report_core.flight_log",
             "supervisor_core.node_query", "vn200_sim.vn200_emulation", "vn200_sim.vn200_encode",
-            "stack_testing.wire_tap"]
+            "stack_testing.wire_tap", "stack_common.geo", "stack_common.crc"]
 EDIT = re.compile(r"sys\.path\s*(\.(insert|append|extend)\b|\[[^]]*\]\s*=|\+=|=)")
 
 

@@ -83,9 +83,12 @@ for run in "DG808_flight.launch" "check_config.launch aircraft:=DG808" "DG808_hi
   echo "check-install: $launch ${args[*]} resolves from the install: $n files, $k nodes ($(echo $nodes | tr '\n' ' '))"
 done
 # setup.py's packages import from the install's dist-packages with / as the folder, with the
-# install's ROS messages, under the venv (the simulator's jsbsim); their data is share/drone_ros.
+# install's ROS messages, under the venv (the simulator's jsbsim); their data is share/drone_ros;
+# stack_common's C is the install's lib/libstack_common.so.
 in_install "cd / && '$mavgen_python' -c \"import hil.sim, drone_ros.msg, report_core.flight_log, \
 supervisor_core.node_query, vn200_sim.vn200_encode, stack_tools.paths as paths; \
+from stack_common import geo; \
+assert 360.0 < geo.Ref(45.0, 7.0).north_east_ft(45.001, 7.0)[0] < 370.0; \
 assert hil.sim.__file__.startswith('$ws/install/lib/'), hil.sim.__file__; \
 assert drone_ros.msg.__file__.startswith('$ws/install/'), drone_ros.msg.__file__; \
 assert paths.ROOT == '$share', paths.ROOT\"" \

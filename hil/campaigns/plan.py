@@ -3,27 +3,26 @@ round-robin in a seeded order, so every class gets its share), the flight's own 
 fault starts, how long it lasts and its parameters. The same campaign seed, flight count, classes
 and flight length give the same plan, and each flight's command line reproduces that flight.
 
-The classes and their parameter spaces come from the faults package (hil/faults) when it is there,
-else from the `--fault` choices of hil/run_flight.py. Every flight, of every class, also draws its
-own wind (draw_wind: any direction, up to 1.5 x sensors.max_wind_ftps, light or moderate
-turbulence on some) when run_flight.py takes --wind-mps, --wind-from-deg and --turbulence."""
+The classes come from the faults package (hil/faults), each class's parameter space and duration
+from its own module (CAMPAIGN_PARAMS, CAMPAIGN_DURATION, or draw_params). Every flight, of every
+class, also draws its own wind (draw_wind: any direction, up to 1.5 x sensors.max_wind_ftps, light
+or moderate turbulence on some) when run_flight.py takes --wind-mps, --wind-from-deg and
+--turbulence."""
 import dataclasses
-import importlib
 import json
 import os
 import random
-import re
 import shlex
 import subprocess
 import sys
 
 import yaml
 
+from hil import faults
 from stack_tools.paths import ROOT  # noqa: E402  (aircraft/ of the source tree or the install)
 
 HIL = os.path.join(ROOT, "hil")
 RUN_FLIGHT = os.path.join(HIL, "run_flight.py")
-FALLBACK_CLASSES = ("crash", "hang")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -66,76 +65,36 @@ def _help_text(run_flight):
     return r.stdout.decode(errors="replace")
 
 
-def _faults_package():
-    """hil.faults when this checkout has it (None otherwise)."""
-    try:
-        return importlib.import_module("hil.faults")
-    except ImportError:
-        return None
-
-
-def _package_classes(pkg):
-    for attr in ("CLASSES", "FAULTS", "REGISTRY"):
-        v = getattr(pkg, attr, None)
-        if v:
-            return tuple(sorted(v))
-    for attr in ("classes", "names", "available"):
-        f = getattr(pkg, attr, None)
-        if callable(f):
-            return tuple(sorted(f()))
-    return ()
-
-
 def discover(run_flight=RUN_FLIGHT):
+    """This checkout's interface: the fault classes of hil.faults (each module holds its own
+    campaign metadata, CAMPAIGN_PARAMS and CAMPAIGN_DURATION), the flags from run_flight.py's help."""
     text = _help_text(run_flight)
-    classes = ()
-    pkg = _faults_package()
-    if pkg is not None:
-        classes = _package_classes(pkg)
-    if not classes:
-        m = re.search(r"--fault \{([^}]*)\}", text)
-        classes = tuple(sorted(m.group(1).split(","))) if m else FALLBACK_CLASSES
-    return Interface(classes=classes,
+    return Interface(classes=tuple(sorted(faults.CLASSES)),
                      fault_at_flag="--fault-at" if "--fault-at" in text else "--crash-at",
                      has_duration="--fault-duration" in text,
                      has_params="--fault-param" in text,
                      has_wind=all(f in text for f in ("--wind-mps", "--wind-from-deg", "--turbulence")))
 
 
-SURFACES = ("elevator", "aileron", "rudder", "throttle")
-# What a campaign varies per class, within what each injector documents (hil/faults/<class>.py);
-# a class not named here flies with its injector's defaults. ("u", lo, hi): uniform; a tuple of
-# values: one of them.
-PARAM_SPACE = {
-    "deadline_miss": {"delay_periods": ("u", 0.5, 3.0), "repeat_every_periods": (0, 0, 5, 20)},
-    "nan": {"surface": SURFACES},
-    "out_of_range": {"surface": SURFACES},
-    "gs_request_hp": {"surface": SURFACES},
-    "stale_replay": {"age_s": ("u", 0.2, 3.0)},
-    "divergence": {"rate_deg_s": ("u", 5.0, 40.0)},
-    "pic_switch": {"switch_after_s": ("u", 0.3, 3.0), "switch_s": ("u", 1.0, 5.0)},
-    "climb": {"pitch_deg": ("u", 8.0, 15.0)},
-    "link_bitflip": {"target": ("payload", "crc"), "every_n": (1, 1, 3, 10)},
-}
-# Faults that steer the aircraft need time to take it anywhere; a crash has no duration.
-LONG_FAULTS = ("climb", "stall", "bank", "divergence", "accelerated_stall", "wind")
-NO_DURATION = ("crash", "pic_switch", "ha_reset", "cold_start")
+def _class_module(fault_class):
+    """hil.faults.<fault_class>, or None for a class the package does not have (a test's fake)."""
+    try:
+        return faults.module(fault_class)
+    except ValueError:
+        return None
 
 
 def _class_params(fault_class, rng):
-    """The flight's parameters for its class: the faults package's own draw_params(rng) when a
-    class module has one, else PARAM_SPACE; sorted (key, value) string pairs."""
-    mod = None
-    if _faults_package() is not None:
-        try:
-            mod = importlib.import_module("hil.faults." + fault_class)
-        except ImportError:
-            mod = None
+    """The flight's parameters for its class, sorted (key, value) string pairs: the class
+    module's own draw_params(rng) when it has one, else a draw from its CAMPAIGN_PARAMS, each
+    parameter ("u", lo, hi): uniform, or a tuple of values: one of them. A class with neither
+    flies with its injector's defaults."""
+    mod = _class_module(fault_class)
     if mod is not None and callable(getattr(mod, "draw_params", None)):
         params = mod.draw_params(rng)
     else:
         params = {}
-        for key, space in sorted(PARAM_SPACE.get(fault_class, {}).items()):
+        for key, space in sorted(getattr(mod, "CAMPAIGN_PARAMS", {}).items()):
             if space and space[0] == "u":
                 params[key] = round(rng.uniform(space[1], space[2]), 2)
             else:
@@ -144,9 +103,13 @@ def _class_params(fault_class, rng):
 
 
 def _duration(fault_class, rng, window):
-    if fault_class in NO_DURATION:
+    """How long the fault lasts, by its module's CAMPAIGN_DURATION: "none" (a crash has no
+    duration), "long" (a steering fault needs time to take the aircraft anywhere: 8-20 s), else
+    the campaign's window, a fifth of them never ending by themselves."""
+    kind = getattr(_class_module(fault_class), "CAMPAIGN_DURATION", "window")
+    if kind == "none":
         return -1.0
-    if fault_class in LONG_FAULTS:
+    if kind == "long":
         return round(rng.uniform(8.0, 20.0), 2)
     if rng.random() < 0.2:
         return -1.0  # never ends by itself (a hang never resumed, a link never back)

@@ -3,7 +3,10 @@
 (hil/sim.py's Simulation). The simulator calls the Fault's hooks from its step loop (base.py says
 which and when); every class records what it did and checks, from what reached the HA or the
 process table, that it took effect: a flight whose fault never took effect ends with status
-fault_not_effective.
+fault_not_effective. A module also says what a campaign draws for its class
+(hil/campaigns/plan.py): CAMPAIGN_PARAMS (each parameter ("u", lo, hi) or a tuple of values) or
+its own draw_params(rng), and CAMPAIGN_DURATION ("long" for a steering fault, "none" for one
+without a duration); a new class is its module plus its name in CLASSES.
 
     from hil import faults
     faults.CLASSES                       # the class names, in a stable order

@@ -10,8 +10,9 @@ stall angle (airframe.yaml) while the HP flies: the HA must have the servos befo
 stalls."""
 import math
 
+from drone_ros.msg import DecisionStatus
 from hil.faults.steer import SteeringFault
-from hil.units import FT_PER_M
+from stack_common.units import FT_PER_M
 
 
 class AcceleratedStall(SteeringFault):
@@ -61,7 +62,7 @@ class AcceleratedStall(SteeringFault):
         if first:
             self.crossing = (t_s, tr.airspeed_cal_mps * FT_PER_M, -tr.accel_body_mps2[2] / 9.80665,
                              tr.roll_deg, reply.controller)
-        if reply.controller == 0 and self.due_s is None:  # the wing stalls with the HP flying
+        if reply.controller == DecisionStatus.CONTROLLER_HP and self.due_s is None:  # the wing stalls with the HP flying
             self.due_s = t_s
         elif not first:
             return
@@ -72,6 +73,10 @@ class AcceleratedStall(SteeringFault):
     def extreme(self):
         a = [m.alpha_deg for t, m in self.ctx.truth_since(self.at_s)]
         return "max alpha %.1f deg" % max(a) if a else ""
+
+
+# What a campaign draws for this class (hil/campaigns/plan.py says how).
+CAMPAIGN_DURATION = "long"
 
 
 def draw_params(rng):

@@ -11,5 +11,9 @@ class Bank(SteeringFault):
         return "max |roll| %.1f deg" % max(r) if r else ""
 
 
+# What a campaign draws for this class (hil/campaigns/plan.py says how).
+CAMPAIGN_DURATION = "long"
+
+
 def inject(ctx, at_s, duration_s, params):
     return Bank(ctx, at_s, duration_s, params)

@@ -18,8 +18,9 @@ Then, once at the end:
 """
 import io
 import math
-import zlib
 from collections import namedtuple
+
+from stack_common import crc
 
 Board = namedtuple("Board", "rc_pulses_us rc_valid airspeed_ftps airspeed_ok battery_v battery_ok")
 RC_NEUTRAL = (1100, 1500, 1500, 1500, 1000)  # throttle low, sticks centred, PIC switch: computer
@@ -28,13 +29,13 @@ SURFACES = ("elevator", "aileron", "rudder", "throttle")
 
 def fields_crc32(msg):
     """The crc32 a message ending in one must carry (msg/ServoCommand.msg, msg/OperatorCommand.msg):
-    zlib crc32 over its ROS serialization less that trailing uint32, so the layout is the .msg's
-    own, as the HA (ha_crc32 over the same bytes) checks it."""
+    the HA's own ha_crc32 (stack_common.crc) over its ROS serialization less that trailing uint32,
+    so the layout is the .msg's own and the function the one the HA checks it with."""
     if list(msg.__slots__[-1:]) != ["crc32"] or msg._slot_types[-1] != "uint32":
         raise ValueError("%s does not end in a uint32 crc32" % msg._type)
     raw = io.BytesIO()
     msg.serialize(raw)
-    return zlib.crc32(raw.getvalue()[:-4]) & 0xFFFFFFFF
+    return crc.crc32(raw.getvalue()[:-4])
 
 
 def copy_command(m):

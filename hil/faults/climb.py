@@ -12,5 +12,10 @@ class Climb(SteeringFault):
         return "max height %.0f ft above home" % max(h) if h else ""
 
 
+# What a campaign draws for this class (hil/campaigns/plan.py says how).
+CAMPAIGN_PARAMS = {"pitch_deg": ("u", 8.0, 15.0)}
+CAMPAIGN_DURATION = "long"
+
+
 def inject(ctx, at_s, duration_s, params):
     return Climb(ctx, at_s, duration_s, params)

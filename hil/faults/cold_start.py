@@ -61,5 +61,9 @@ class ColdStart(Fault):
                 "max_ground_throttle": self.max_ground_throttle, "home_s": self.home_s}
 
 
+# What a campaign draws for this class (hil/campaigns/plan.py says how).
+CAMPAIGN_DURATION = "none"
+
+
 def inject(ctx, at_s, duration_s, params):
     return ColdStart(ctx, at_s, duration_s, params)

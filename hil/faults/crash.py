@@ -69,5 +69,9 @@ def silent_hp_due_s(ctx):
     return miss[1] if miss is not None else ctx.crashed_at + r.late_periods_tolerated * r.period_s
 
 
+# What a campaign draws for this class (hil/campaigns/plan.py says how).
+CAMPAIGN_DURATION = "none"
+
+
 def inject(ctx, at_s, duration_s, params):
     return Crash(ctx, at_s, duration_s, params)

@@ -62,5 +62,9 @@ class DeadlineMiss(Fault):
             len(self.hiccups), len(self.missed), self.missed[0])
 
 
+# What a campaign draws for this class (hil/campaigns/plan.py says how).
+CAMPAIGN_PARAMS = {"delay_periods": ("u", 0.5, 3.0), "repeat_every_periods": (0, 0, 5, 20)}
+
+
 def inject(ctx, at_s, duration_s, params):
     return DeadlineMiss(ctx, at_s, duration_s, params)

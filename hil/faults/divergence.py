@@ -16,5 +16,10 @@ class Divergence(CommandFault):
         return abs(m.alpha_est_deg) > st["alpha_limit_deg"] or abs(m.beta_est_deg) > st["beta_limit_deg"]
 
 
+# What a campaign draws for this class (hil/campaigns/plan.py says how).
+CAMPAIGN_PARAMS = {"rate_deg_s": ("u", 5.0, 40.0)}
+CAMPAIGN_DURATION = "long"
+
+
 def inject(ctx, at_s, duration_s, params):
     return Divergence(ctx, at_s, duration_s, params)

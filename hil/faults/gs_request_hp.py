@@ -10,7 +10,7 @@ import time
 
 from pymavlink import mavutil
 
-from hil.faults.base import fields_crc32
+from hil.faults.base import SURFACES, fields_crc32
 from hil.faults.nan import Nan
 
 
@@ -63,6 +63,10 @@ class GsRequestHp(Nan):
         accepted = sum(1 for _, r in self.acks if r == "MAV_RESULT_ACCEPTED")
         return ok and accepted > 0 and self.forwarded > 0, "%s; %d requests for the HP, %d accepted, %d on /operator_command" % (
             why, len(self.acks), accepted, self.forwarded)
+
+
+# What a campaign draws for this class (hil/campaigns/plan.py says how).
+CAMPAIGN_PARAMS = {"surface": SURFACES}
 
 
 def inject(ctx, at_s, duration_s, params):

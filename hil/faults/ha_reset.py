@@ -6,6 +6,7 @@ every solution for the rest of the flight, lock the healthy HP out and fly witho
 must take home and its airborne latch back, have a valid state again at once, and hand the servos
 back to the HP after the stable window. The reset itself puts the HA on the servos: no takeover is
 due by the class. Took effect when the HA stepped after the reset."""
+from drone_ros.msg import DecisionStatus
 from hil import ha_channel
 from hil.faults.base import Fault
 
@@ -44,7 +45,7 @@ class HaReset(Fault):
             self.valid_steps_after += 1
             if self.first_valid_s is None:
                 self.first_valid_s = t_s
-        if self.hp_back_s is None and reply.controller == 0:
+        if self.hp_back_s is None and reply.controller == DecisionStatus.CONTROLLER_HP:
             self.hp_back_s = t_s
             self.note(t_s, "the HP has the servos again, %.2f s after the reset" % (t_s - self.reset_t_s))
 
@@ -61,6 +62,10 @@ class HaReset(Fault):
         return {"reset_s": self.reset_t_s, "home_before": self.home_before, "steps_after": self.steps_after,
                 "home_steps_after": self.home_steps_after, "valid_steps_after": self.valid_steps_after,
                 "first_valid_s": self.first_valid_s, "hp_back_s": self.hp_back_s}
+
+
+# What a campaign draws for this class (hil/campaigns/plan.py says how).
+CAMPAIGN_DURATION = "none"
 
 
 def inject(ctx, at_s, duration_s, params):

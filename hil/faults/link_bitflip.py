@@ -86,5 +86,9 @@ class LinkBitflip(Fault):
             len(self.flipped), len(self.received), "; ".join(self.notes))
 
 
+# What a campaign draws for this class (hil/campaigns/plan.py says how).
+CAMPAIGN_PARAMS = {"target": ("payload", "crc"), "every_n": (1, 1, 3, 10)}
+
+
 def inject(ctx, at_s, duration_s, params):
     return LinkBitflip(ctx, at_s, duration_s, params)

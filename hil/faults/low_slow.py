@@ -7,7 +7,7 @@ at that height, which the HA must take over and recover from without touching th
 beats low). Issue 13's HiL stories: a stall at 60 ft, a low pass at 25 ft, airspeed hovering at
 stall."""
 from hil.faults.steer import SteeringFault
-from hil.units import FT_PER_M
+from stack_common.units import FT_PER_M
 
 
 class LowSlow(SteeringFault):

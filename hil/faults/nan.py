@@ -12,5 +12,9 @@ class Nan(CommandFault):
         return m
 
 
+# What a campaign draws for this class (hil/campaigns/plan.py says how).
+CAMPAIGN_PARAMS = {"surface": SURFACES}
+
+
 def inject(ctx, at_s, duration_s, params):
     return Nan(ctx, at_s, duration_s, params)

@@ -14,5 +14,9 @@ class OutOfRange(CommandFault):
         return m
 
 
+# What a campaign draws for this class (hil/campaigns/plan.py says how).
+CAMPAIGN_PARAMS = {"surface": SURFACES}
+
+
 def inject(ctx, at_s, duration_s, params):
     return OutOfRange(ctx, at_s, duration_s, params)

@@ -39,5 +39,10 @@ class PicSwitch(Fault):
         return self.crash.takeover_due_s()
 
 
+# What a campaign draws for this class (hil/campaigns/plan.py says how).
+CAMPAIGN_PARAMS = {"switch_after_s": ("u", 0.3, 3.0), "switch_s": ("u", 1.0, 5.0)}
+CAMPAIGN_DURATION = "none"
+
+
 def inject(ctx, at_s, duration_s, params):
     return PicSwitch(ctx, at_s, duration_s, params)

@@ -17,7 +17,7 @@ deal them on their own)."""
 import math
 
 from hil.faults.base import Fault
-from hil.units import FT_PER_M
+from stack_common.units import FT_PER_M
 
 MODES = ("dead", "zero", "stuck", "high", "low")
 RHO0 = 1.225

@@ -31,5 +31,9 @@ class StaleReplay(CommandFault):
         return copy_command(self.replayed)
 
 
+# What a campaign draws for this class (hil/campaigns/plan.py says how).
+CAMPAIGN_PARAMS = {"age_s": ("u", 0.2, 3.0)}
+
+
 def inject(ctx, at_s, duration_s, params):
     return StaleReplay(ctx, at_s, duration_s, params)

@@ -12,5 +12,9 @@ class Stall(SteeringFault):
         return "min true airspeed %.1f ft/s" % min(v) if v else ""
 
 
+# What a campaign draws for this class (hil/campaigns/plan.py says how).
+CAMPAIGN_DURATION = "long"
+
+
 def inject(ctx, at_s, duration_s, params):
     return Stall(ctx, at_s, duration_s, params)

@@ -98,6 +98,10 @@ class WindShift(Fault):
             if low else "")
 
 
+# What a campaign draws for this class (hil/campaigns/plan.py says how).
+CAMPAIGN_DURATION = "long"
+
+
 def draw_params(rng):
     """A front from anywhere, half of them from behind (the tailwind turn), 2-14 m/s (up to 1.5x
     sensors.max_wind_ftps), sudden or over up to 10 s, a fifth veering, some with turbulence:

@@ -10,7 +10,7 @@ import tempfile
 import jsbsim
 import numpy as np
 
-from hil.units import FT_PER_M, M_PER_FT
+from stack_common.units import FT_PER_M, M_PER_FT
 
 from .airframe import Airframe
 from .model_xml import SURFACE_PROPERTIES, THROTTLE_PROPERTY, write_model

@@ -16,7 +16,7 @@ import os
 import sys
 from xml.sax.saxutils import escape
 
-from hil.units import FT_PER_M
+from stack_common.units import FT_PER_M
 
 from .airframe import LBF_PER_N, Airframe
 

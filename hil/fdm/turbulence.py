@@ -14,7 +14,7 @@ import math
 
 import numpy as np
 
-from hil.units import FT_PER_M
+from stack_common.units import FT_PER_M
 
 KT_TO_MPS = 0.514444
 # Wind speed at 20 ft, the low-altitude model's severity parameter (MIL-F-8785C 3.7.2.3).

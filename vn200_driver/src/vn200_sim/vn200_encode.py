@@ -6,6 +6,8 @@ finds it: the devel or install space's lib/ is on LD_LIBRARY_PATH once its setup
 import ctypes
 import struct
 
+from stack_common import native
+
 # VnSolution of vn_encode.h: the two times, 29 doubles, INS status, satellites, fix, padding.
 SOLUTION = struct.Struct("<QQ29dHBB4x")
 MAX_PACKET = 751  # VN_BIN_MAX_PACKET
@@ -16,11 +18,7 @@ def library():
     """libvn200_encode.so, loaded once; OSError (with what to do) if it was not built."""
     global _lib
     if _lib is None:
-        try:
-            lib = ctypes.CDLL("libvn200_encode.so")
-        except OSError as e:
-            raise OSError("libvn200_encode.so not found (%s): `make build`, then source the "
-                          "workspace's devel/setup.bash" % e) from None
+        lib = native.load("libvn200_encode.so")
         lib.vn_encode_solution_size.restype = ctypes.c_size_t
         lib.vn_encode_solution_size.argtypes = []
         lib.vn_bin_encode.restype = ctypes.c_size_t

@@ -9,9 +9,10 @@ the message's own stamp in ROS time (simulation time in a lockstep HiL flight)."
 import csv
 import os
 
+from stack_common.units import G_MPS2, M_PER_FT
+
 from . import definitions
-from .flight_log import (G_MPS2, M_PER_FT, TOPIC_DATA, TOPIC_DECISION, TOPIC_SERVO_OP,
-                         TOPIC_TRUTH, ReportError)
+from .flight_log import TOPIC_DATA, TOPIC_DECISION, TOPIC_SERVO_OP, TOPIC_TRUTH, ReportError
 
 _FT_S2_TO_MPS2 = M_PER_FT  # ft/s^2 -> m/s^2, the same foot
 _COUNT = "count"  # an integer field (a flag, an id, a bit set): written without a decimal point

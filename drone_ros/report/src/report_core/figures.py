@@ -10,7 +10,7 @@ import numpy as np  # noqa: E402
 from matplotlib.collections import LineCollection  # noqa: E402
 from matplotlib.patches import Patch  # noqa: E402
 
-from .flight_log import G_FTPS2, FT_PER_M  # noqa: E402
+from stack_common.units import FT_PER_M, G_FTPS2  # noqa: E402
 
 # Who flew, by the DecisionStatus constant's name (without CONTROLLER_).
 CONTROLLER_COLOURS = {"HP": "#1f77b4", "HA": "#d62728", "RECOVERING": "#ff7f0e",

@@ -8,6 +8,8 @@ import math
 from array import array
 
 import numpy as np
+from stack_common import geo
+from stack_common.units import FT_PER_M
 
 from . import definitions
 
@@ -21,16 +23,6 @@ TOPIC_WAY = "/way"
 TOPIC_HOME = "/home"  # the HA's latched home, the whole stack's one (drone_ros/HomePosition)
 TOPICS = (TOPIC_TRUTH, TOPIC_DECISION, TOPIC_SERVO_OP, TOPIC_PWM, TOPIC_INS, TOPIC_DATA, TOPIC_WAY,
           TOPIC_HOME)
-
-# The report's one set of unit conversions (export.py's SI columns too): the international foot
-# and standard gravity are exact by definition, so everything else follows from them.
-M_PER_FT = 0.3048
-FT_PER_M = 1.0 / M_PER_FT
-G_MPS2 = 9.80665
-G_FTPS2 = G_MPS2 * FT_PER_M
-# WGS84, for the flat-earth north/east of a real flight's fixes around home.
-_WGS84_A_M = 6378137.0
-_WGS84_E2 = 6.69437999014e-3
 
 
 class ReportError(Exception):
@@ -215,22 +207,17 @@ class FlightLog:
         else:
             home_lat, home_lon, home_alt = lat[0], lon[0], alt[0]
             source = "measured (VN-200 fixes on /data, home = first fix in the log: no /home recorded)"
-        north, east = ned_from_home(lat, lon, home_lat, home_lon)
+        try:
+            north, east = ned_from_home(lat, lon, home_lat, home_lon)
+        except ValueError:  # a first fix geo_ref_init refuses: no home to place the fixes around
+            return None
         return (t, north, east, (alt - home_alt) * FT_PER_M, source)
 
 
 def ned_from_home(lat_deg, lon_deg, home_lat_deg, home_lon_deg):
-    """North and east of home [ft], flat earth on the WGS84 radii at home."""
-    phi = math.radians(home_lat_deg)
-    s = 1.0 - _WGS84_E2 * math.sin(phi) ** 2
-    r_meridian_m = _WGS84_A_M * (1.0 - _WGS84_E2) / s ** 1.5
-    r_normal_m = _WGS84_A_M / math.sqrt(s)
-    north = np.radians(np.asarray(lat_deg) - home_lat_deg) * r_meridian_m * FT_PER_M
-    # The short way round across the antimeridian, as geo_dlon_deg (geo_wgs84.c).
-    dlon = np.asarray(lon_deg) - home_lon_deg
-    dlon = np.where(dlon > 180.0, dlon - 360.0, np.where(dlon < -180.0, dlon + 360.0, dlon))
-    east = np.radians(dlon) * r_normal_m * math.cos(phi) * FT_PER_M
-    return north, east
+    """North and east of home [ft] of arrays of fixes: the stack's one flat-earth conversion
+    (geo_wgs84.c, through stack_common.geo), the short way round across the antimeridian."""
+    return geo.ref(float(home_lat_deg), float(home_lon_deg)).north_east_ft_arrays(lat_deg, lon_deg)
 
 
 def _flight_plan(record):

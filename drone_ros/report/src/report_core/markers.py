@@ -5,9 +5,10 @@ import math
 from dataclasses import dataclass, field
 from typing import List, Tuple
 
+from stack_common.units import M_PER_FT
+
 from . import definitions
 from .figures import CONTROLLER_COLOURS, CONTROLLER_LABELS
-from .flight_log import M_PER_FT
 
 
 def hex_rgb(colour):
