@@ -158,10 +158,8 @@ def raise_priority_for_realtime():
               (os.nice(0), e.strerror), file=sys.stderr)
 
 
-def main(argv=None):
-    # Wall-clock marks of this run's phases (run_flight_times.json; hil/bench/bench_flight_overhead.py
-    # puts them beside the simulator's sim_times.json): what every flight pays besides its steps.
-    marks = [("start", time.time())]
+def argument_parser():
+    """run_flight.py's options."""
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--aircraft", default="DG808")
     ap.add_argument("--seed", type=int, default=1)
@@ -210,6 +208,13 @@ def main(argv=None):
                          "where a ground station expects it; a free one otherwise)")
     ap.add_argument("--no-bag", action="store_true")
     ap.add_argument("--quiet", action="store_true", help="no progress bar")
+    return ap
+
+
+def parse_args(argv):
+    """The command line, checked (argparse's error and exit status 2 on a bad one): the
+    arguments, and what follows from them for the launch."""
+    ap = argument_parser()
     args = ap.parse_args(argv)
     fault_at = args.crash_at if args.fault_at is None else args.fault_at
     try:
@@ -245,14 +250,105 @@ def main(argv=None):
         if missing:
             ap.error("--ha due: no device at %s (is the Due plugged in, and the adapter on RX1?)" %
                      ", ".join(missing))
-    if args.realtime:
-        raise_priority_for_realtime()
     stamp = datetime.datetime.utcnow().strftime("%Y-%m-%d_%H%M%S")
     out = args.folder or os.path.join(args.out, "%s-%s-%d" % (stamp, args.aircraft, args.seed))
     # A folder that already holds a flight is never flown over: its done file would end the new
     # flight at once with the old one's result.
     if any(os.path.exists(os.path.join(out, f)) for f in ("done", "summary.json", "flight.bag")):
         ap.error("%s already holds a flight: give another --folder (flights are never overwritten)" % out)
+    return args, argparse.Namespace(out=out, fault_at=fault_at, fault_params=fault_params, relay=relay,
+                                    link_relay=link_relay, gcs_is_local=gcs_is_local,
+                                    external_gcs=external_gcs)
+
+
+def launch_command(args, d, run_dir, out, gs_bind, gs_remote):
+    """The roslaunch of the flight's HiL launch file, with its arguments."""
+    controller_hz = args.controller_hz or args.rate_hz
+    launch = ["roslaunch", "--wait", "drone_ros", "%s_hil.launch" % args.aircraft,
+              "run_dir:=" + run_dir, "out_dir:=" + out, "seed:=%d" % args.seed,
+              "mode:=" + ("realtime" if args.realtime else "lockstep"),
+              "rate_hz:=%g" % args.rate_hz, "dt:=%g" % (1.0 / controller_hz),
+              "duration_s:=%g" % args.duration, "crash_at_s:=%g" % args.crash_at, "fault:=" + args.fault,
+              "fault_at_s:=%g" % d.fault_at, "fault_duration_s:=%g" % args.fault_duration,
+              "fault_params:=" + " ".join("%s=%s" % kv for kv in sorted(d.fault_params.items())),
+              "servo_relay:=%s" % ("true" if d.relay else "false"),
+              "link_relay:=%s" % ("true" if d.link_relay else "false"),
+              "wind_mps:=%g" % args.wind_mps, "wind_from_deg:=%g" % args.wind_from_deg,
+              "turbulence:=" + args.turbulence,
+              "gs_udp_bind_port:=%d" % gs_bind, "gs_udp_remote_port:=%d" % gs_remote,
+              "gs_udp_remote_address:=" + args.gcs_host,
+              "gs_udp_bind_address:=" + ("127.0.0.1" if d.gcs_is_local else "0.0.0.0"),
+              "gs_monitor:=%s" % ("false" if d.external_gcs else "true"),
+              "wait_for_recorder:=%s" % ("false" if args.no_bag else "true"),
+              # The vehicle side of the ground link, beside the bag (microhard_gs/README.md).
+              "gs_tlog_path:=" + ("" if args.no_bag else os.path.join(os.path.abspath(out), "flight.tlog"))]
+    if args.ha == "qemu":
+        launch += ["ha:=qemu", "ha_image:=" + build_pil_image(os.path.join(out, "pil"), args.realtime)]
+    elif args.ha == "due":
+        launch += ["ha:=due", "due_port:=" + args.due_port, "due_native_port:=" + args.due_native_port,
+                   "due_ins_port:=" + args.due_ins_port]
+    if args.field_elevation_ft is not None:
+        launch.append("field_elevation_ft:=%r" % args.field_elevation_ft)
+    if args.temperature_c is not None:
+        launch.append("temperature_c:=%r" % args.temperature_c)
+    return launch
+
+
+def write_failed_summary(summary, out, args, d, status, error, code):
+    """A flight that did not finish says so in its summary, never leaves it missing; returns
+    the exit status."""
+    if os.path.exists(os.path.join(out, "error.txt")):
+        with open(os.path.join(out, "error.txt")) as f:
+            error = "the simulator stopped: " + f.read().strip()
+    failed = {"aircraft": args.aircraft, "seed": args.seed, "status": status, "error": error,
+              "fault": {"class": args.fault, "at_s": d.fault_at, "duration_s": args.fault_duration,
+                        "params": d.fault_params, "took_effect": False, "evidence": "the flight did not finish"},
+              "verdict": None}
+    with open(summary, "w") as f:
+        json.dump(failed, f, indent=2)
+    if error:
+        print("run_flight: %s" % error, file=sys.stderr)
+    return code or 1
+
+
+class FlightTimeout(RuntimeError):
+    """The flight ran past its wall-clock limit (--timeout-s)."""
+
+
+def wait_for_done(args, launcher, out, stop):
+    """Waits for the simulator's done file, drawing the progress bar; RuntimeError when the launch
+    ends first, FlightTimeout past the wall-clock limit. Returns the done file's path."""
+    t0 = time.monotonic()
+    done = os.path.join(out, "done")
+    while not stop["now"]:
+        if os.path.exists(done):
+            break
+        if launcher.poll() is not None:
+            raise RuntimeError("the launch ended before the flight did: see %s/launch.log" % out)
+        if args.timeout_s is not None and time.monotonic() - t0 > args.timeout_s:
+            raise FlightTimeout("past the wall-clock limit of %.0f s: stopped" % args.timeout_s)
+        if not args.quiet:
+            try:
+                with open(os.path.join(out, "progress")) as f:
+                    t_s, total = (float(v) for v in f.read().split())
+                sys.stderr.write(progress_bar(t_s, total, time.monotonic() - t0))
+                sys.stderr.flush()
+            except (OSError, ValueError):
+                pass
+        time.sleep(0.05)
+    if not args.quiet:
+        sys.stderr.write("\n")
+    return done
+
+
+def main(argv=None):
+    # Wall-clock marks of this run's phases (run_flight_times.json; hil/bench/bench_flight_overhead.py
+    # puts them beside the simulator's sim_times.json): what every flight pays besides its steps.
+    marks = [("start", time.time())]
+    args, d = parse_args(argv)
+    if args.realtime:
+        raise_priority_for_realtime()
+    out = d.out
     os.makedirs(out, exist_ok=True)
     run_dir = tempfile.mkdtemp(prefix="hil-")  # short: the control socket path must fit sun_path
     port = free_port()
@@ -262,9 +358,8 @@ def main(argv=None):
                PYTHONUNBUFFERED="1")
     env.pop("ROS_NAMESPACE", None)
     procs = Processes(env, out)
-    controller_hz = args.controller_hz or args.rate_hz
-    gs_bind = args.vehicle_port or (14555 if external_gcs else free_port(socket.SOCK_DGRAM))
-    gs_remote = args.gcs_port or (14550 if external_gcs else free_port(socket.SOCK_DGRAM))
+    gs_bind = args.vehicle_port or (14555 if d.external_gcs else free_port(socket.SOCK_DGRAM))
+    gs_remote = args.gcs_port or (14550 if d.external_gcs else free_port(socket.SOCK_DGRAM))
     stop = {"now": False}
 
     def on_signal(sig, _frame):
@@ -280,56 +375,14 @@ def main(argv=None):
         if not args.no_bag:
             procs.start("rosbag", ["rosbag", "record", "-O", os.path.join(out, "flight.bag"),
                                    "__name:=flight_recorder"] + BAG_TOPICS)
-        launch = ["roslaunch", "--wait", "drone_ros", "%s_hil.launch" % args.aircraft,
-                  "run_dir:=" + run_dir, "out_dir:=" + out, "seed:=%d" % args.seed,
-                  "mode:=" + ("realtime" if args.realtime else "lockstep"),
-                  "rate_hz:=%g" % args.rate_hz, "dt:=%g" % (1.0 / controller_hz),
-                  "duration_s:=%g" % args.duration, "crash_at_s:=%g" % args.crash_at, "fault:=" + args.fault,
-                  "fault_at_s:=%g" % fault_at, "fault_duration_s:=%g" % args.fault_duration,
-                  "fault_params:=" + " ".join("%s=%s" % kv for kv in sorted(fault_params.items())),
-                  "servo_relay:=%s" % ("true" if relay else "false"),
-                  "link_relay:=%s" % ("true" if link_relay else "false"),
-                  "wind_mps:=%g" % args.wind_mps, "wind_from_deg:=%g" % args.wind_from_deg,
-                  "turbulence:=" + args.turbulence,
-                  "gs_udp_bind_port:=%d" % gs_bind, "gs_udp_remote_port:=%d" % gs_remote,
-                  "gs_udp_remote_address:=" + args.gcs_host,
-                  "gs_udp_bind_address:=" + ("127.0.0.1" if gcs_is_local else "0.0.0.0"),
-                  "gs_monitor:=%s" % ("false" if external_gcs else "true"),
-                  "wait_for_recorder:=%s" % ("false" if args.no_bag else "true"),
-                  # The vehicle side of the ground link, beside the bag (microhard_gs/README.md).
-                  "gs_tlog_path:=" + ("" if args.no_bag else os.path.join(os.path.abspath(out), "flight.tlog"))]
-        if args.ha == "qemu":
-            launch += ["ha:=qemu", "ha_image:=" + build_pil_image(os.path.join(out, "pil"), args.realtime)]
-        elif args.ha == "due":
-            launch += ["ha:=due", "due_port:=" + args.due_port, "due_native_port:=" + args.due_native_port,
-                       "due_ins_port:=" + args.due_ins_port]
-        if args.field_elevation_ft is not None:
-            launch.append("field_elevation_ft:=%r" % args.field_elevation_ft)
-        if args.temperature_c is not None:
-            launch.append("temperature_c:=%r" % args.temperature_c)
+        launch = launch_command(args, d, run_dir, out, gs_bind, gs_remote)
         launcher = procs.start("launch", launch)
         marks.append(("launch_started", time.time()))
-        t0 = time.monotonic()
-        done = os.path.join(out, "done")
-        while not stop["now"]:
-            if os.path.exists(done):
-                break
-            if launcher.poll() is not None:
-                raise RuntimeError("the launch ended before the flight did: see %s/launch.log" % out)
-            if args.timeout_s is not None and time.monotonic() - t0 > args.timeout_s:
-                status = "timeout"
-                raise RuntimeError("past the wall-clock limit of %.0f s: stopped" % args.timeout_s)
-            if not args.quiet:
-                try:
-                    with open(os.path.join(out, "progress")) as f:
-                        t_s, total = (float(v) for v in f.read().split())
-                    sys.stderr.write(progress_bar(t_s, total, time.monotonic() - t0))
-                    sys.stderr.flush()
-                except (OSError, ValueError):
-                    pass
-            time.sleep(0.05)
-        if not args.quiet:
-            sys.stderr.write("\n")
+        try:
+            done = wait_for_done(args, launcher, out, stop)
+        except FlightTimeout:
+            status = "timeout"
+            raise
         marks.append(("done_seen", time.time()))
         if stop["now"]:
             print("run_flight: interrupted; stopping everything", file=sys.stderr)
@@ -353,19 +406,7 @@ def main(argv=None):
             json.dump(dict(marks), f)
     summary = os.path.join(out, "summary.json")
     if code != 0 or not os.path.exists(summary):
-        # The flight did not finish: say so in the summary, never leave it missing.
-        if os.path.exists(os.path.join(out, "error.txt")):
-            with open(os.path.join(out, "error.txt")) as f:
-                error = "the simulator stopped: " + f.read().strip()
-        failed = {"aircraft": args.aircraft, "seed": args.seed, "status": status, "error": error,
-                  "fault": {"class": args.fault, "at_s": fault_at, "duration_s": args.fault_duration,
-                            "params": fault_params, "took_effect": False, "evidence": "the flight did not finish"},
-                  "verdict": None}
-        with open(summary, "w") as f:
-            json.dump(failed, f, indent=2)
-        if error:
-            print("run_flight: %s" % error, file=sys.stderr)
-        return code or 1
+        return write_failed_summary(summary, out, args, d, status, error, code)
     with open(summary) as f:
         s = json.load(f)
     report(s, out, bag=not args.no_bag)

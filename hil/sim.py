@@ -248,8 +248,27 @@ def publisher_connected(master, name, topic, publisher):
 
 
 class Simulation:
+    """One HiL flight: the flight dynamics and the sensors stepped against every HP node and the
+    HA, in lockstep or in real time, with one fault hosted. Made in four jobs, in this order:
+    its configuration (the node's private parameters), its world (the aircraft's limits and
+    airframe, the mission, the field's atmosphere), its ROS I/O (the publishers, the
+    subscriptions and the step's bookkeeping) and its plant (the sensor ports, the HA's channel,
+    the flight dynamics), then the fault it hosts."""
+
     def __init__(self):
-        p = lambda k, d: rospy.get_param("~" + k, d)  # noqa: E731
+        self._read_config()
+        self._load_world()
+        self._open_ros_io()
+        self._open_plant()
+        self._host_fault()
+
+    @staticmethod
+    def _param(key, default):
+        return rospy.get_param("~" + key, default)
+
+    def _read_config(self):
+        """The node's private parameters, checked."""
+        p = self._param
         self.aircraft = p("aircraft", "DG808")
         self.aircraft_dir = p("aircraft_dir", os.path.join(ROOT, "aircraft", self.aircraft))
         self.seed = int(p("seed", 1))
@@ -303,6 +322,10 @@ class Simulation:
         self.temperature_c = float(tc) if tc else None
         self.period_us = int(round(1e6 / self.rate_hz))
         self.controller_period_us = int(round(self.controller_dt_s * 1e6))
+
+    def _load_world(self):
+        """limits.yaml, the regions and the design wind of the aircraft, the mission, and the
+        field's elevation and temperature."""
         with open(os.path.join(self.aircraft_dir, "limits.yaml")) as f:
             self.limits = yaml.safe_load(f)
         self.regions = verdicts.Regions(self.limits)
@@ -317,6 +340,8 @@ class Simulation:
         if self.temperature_c is None:
             self.temperature_c = isa_c
 
+    def _open_ros_io(self):
+        """The publishers and subscriptions of the step loop, and its bookkeeping."""
         self.master = rosgraph.Master(rospy.get_name())
         self.waiter = Waiter()
         # queue_size None: published in this thread before publish() returns, which is what
@@ -354,6 +379,10 @@ class Simulation:
         self.waypoint_log = []  # (t_s, waypoint_index) on change
         self.sim_t_s = 0.0
 
+    def _open_plant(self):
+        """The VN-200 ports, the HA's channel, the pitot and the battery, the flight dynamics,
+        and the records the verdicts read."""
+        p = self._param
         ports = {k: p(k, "") for k in ("hp_vn200_port", "ha_vn200_port", "ha_channel")}
         for k, v in ports.items():
             if not v:
@@ -388,6 +417,11 @@ class Simulation:
         self.last_cmd_seq = None
         self.controller_index = -1
         self.progress_path = os.path.join(self.out_dir, "progress")
+
+    def _host_fault(self):
+        """The link relay and the ground-station monitor a fault or a flight needs, and the
+        fault itself."""
+        p = self._param
         # A man in the middle on the HP-HA link: the arduino node opens ~ha_link, ha_sil serves
         # ~ha_link_sil (DG808_hil.launch's link_relay).
         self.link_relay = None

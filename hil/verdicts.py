@@ -299,23 +299,14 @@ def unsafe(regions, applied):
     return not all(math.isfinite(v) for v in applied) or regions.su_max(applied) > 1.0 + EPS
 
 
-def fault_verdict(sim, progress):
-    """The Simplex property for this flight, from the simulator's truth: what the servos were
-    driven with (S_u), where the aircraft was while the HA flew (S_x), and when the HA took the
-    servos against when it had to (the fault class's own deadline, or the truth leaving S_x,
-    passing the ceiling or falling to the stall while the HP flew)."""
-    r = sim.regions
-    recs = [x for x in sim.records if x[0] * 1e-6 > sim.ground_s]
-    period = r.period_s
-    f = sim.fault
-    at = f.at_s if f is not None else None
-    unsafe_n = sum(1 for x in sim.records if unsafe(r, x[2].applied))
-    # Time outside S_x while the HA's safety controller drives the servos, split by whether the
-    # excursion began while the HP flew (the HA inherited it) or under the HA itself.
+def outside_s_x(r, recs, at):
+    """Periods outside S_x: (under the HA's safety controller, of those inherited from an
+    excursion that began while the HP flew, whoever flew from the fault at `at` on), and the
+    HA's worst S_x row with its record (None, None: the HA never flew)."""
     outside_ha = inherited = outside_any = 0
     excursion_from_hp = False
     prev_out = False
-    max_row = None
+    max_row = worst = None
     for x in recs:
         row = r.sx_max(x[1])
         out = row > 1.0
@@ -330,18 +321,39 @@ def fault_verdict(sim, progress):
                 outside_ha += 1
                 inherited += 1 if excursion_from_hp else 0
         prev_out = out
+    return outside_ha, inherited, outside_any, max_row, worst
+
+
+def truth_takeover_due_s(r, recs, at):
+    """When the truth itself made a takeover due after the fault at `at`: the first airborne
+    period the HP flew outside S_x, above the ceiling, or at or below the stall speed (None)."""
+    if at is None:
+        return None
+    for x in recs:
+        t = x[0] * 1e-6
+        m = x[1]
+        if t < at - 1e-9 or x[2].controller != HP or m.on_ground:
+            continue
+        airborne = m.height_above_home_ft > r.airborne_ft
+        if r.sx_max(m) > 1.0 or m.height_above_home_ft > r.ceiling_ft or (airborne and x[4] <= r.stall_ftps):
+            return t
+    return None
+
+
+def fault_verdict(sim, progress):
+    """The Simplex property for this flight, from the simulator's truth: what the servos were
+    driven with (S_u), where the aircraft was while the HA flew (S_x), and when the HA took the
+    servos against when it had to (the fault class's own deadline, or the truth leaving S_x,
+    passing the ceiling or falling to the stall while the HP flew)."""
+    r = sim.regions
+    recs = [x for x in sim.records if x[0] * 1e-6 > sim.ground_s]
+    period = r.period_s
+    f = sim.fault
+    at = f.at_s if f is not None else None
+    unsafe_n = sum(1 for x in sim.records if unsafe(r, x[2].applied))
+    outside_ha, inherited, outside_any, max_row, worst = outside_s_x(r, recs, at)
     due = f.takeover_due_s() if f is not None else None
-    truth_due = None
-    if at is not None:
-        for x in recs:
-            t = x[0] * 1e-6
-            m = x[1]
-            if t < at - 1e-9 or x[2].controller != HP or m.on_ground:
-                continue
-            airborne = m.height_above_home_ft > r.airborne_ft
-            if r.sx_max(m) > 1.0 or m.height_above_home_ft > r.ceiling_ft or (airborne and x[4] <= r.stall_ftps):
-                truth_due = t
-                break
+    truth_due = truth_takeover_due_s(r, recs, at)
     dues = [d for d in (due, truth_due) if d is not None]
     due_s = min(dues) if dues else None
     took = lat = None

@@ -191,23 +191,9 @@ def check_against_airframe(c, airframe):
                           % (c["elevator_pull_limit_deg"], hp, alpha_deg))
 
 
-def build(doc, airframe=None):
-    # Keys first: a misspelt key would otherwise leave the one it meant missing, or ignored.
-    try:
-        check_config.validate(doc, "limits", "limits.yaml")
-    except check_config.ConfigError as err:
-        raise ConfigError(str(err)) from None
-    act = doc["actuators"]
-    st = doc["state"]
-    dec = doc["decision"]
-    sen = doc["sensors"]
-    rc = doc["rc"]
-    servo = doc["servo"]
-    sc = doc["safety_controller"]
-    selft = doc["self_test"]
-    c = {}
-    c["aircraft"] = str(doc["aircraft"])
-
+def _surfaces_state_sensors(c, doc, airframe):
+    """The surfaces' and the state's limits, the sensors' bounds; (roll, pitch, body rate) limits."""
+    act, st, sen, sc = doc["actuators"], doc["state"], doc["sensors"], doc["safety_controller"]
     c["elevator_limit_deg"] = ranged(doc, "actuators/elevator_limit_deg")
     c["aileron_limit_deg"] = ranged(doc, "actuators/aileron_limit_deg")
     c["rudder_limit_deg"] = ranged(doc, "actuators/rudder_limit_deg")
@@ -258,7 +244,11 @@ def build(doc, airframe=None):
     c["airspeed_timeout_us"] = us(positive(sen, "airspeed_timeout_s"), "airspeed_timeout_s")
     if airframe is not None:
         check_against_airframe(c, airframe)
+    return roll, pitch, rate
 
+
+def _regions(c, roll, pitch, rate):
+    """S_x and S_u as region rows, within the core's table sizes."""
     # S_x (x - x0) <= 1: symmetric boxes on the angles and rates, and the ceiling on altitude
     # (the HA needs no lower altitude bound here: the stall and airborne checks cover it).
     limits = [("alpha_limit_deg", c["alpha_limit_deg"]), ("beta_limit_deg", c["beta_limit_deg"]),
@@ -287,6 +277,9 @@ def build(doc, airframe=None):
     if len(nonzero_terms(sx)[1]) > SX_MAX_TERMS or len(nonzero_terms(su)[1]) > SU_MAX_TERMS:
         raise ConfigError("too many nonzero region coefficients for HA_SX_MAX_TERMS/HA_SU_MAX_TERMS")
 
+
+def _decision(c, dec):
+    """The decision's period, timeouts and restart cap, each consistent with the others."""
     rate_hz = need(dec, "rate_hz", 1.0, 1000.0)
     c["period_us"] = us(1.0 / rate_hz, "rate_hz")
     c["late_periods_tolerated"] = whole(dec, "late_periods_tolerated", 0.0, 100.0)
@@ -324,6 +317,9 @@ def build(doc, airframe=None):
         if c[key] >= 2 ** 31:
             raise ConfigError("%s too long for a 32-bit microsecond clock" % key)
 
+
+def _pulses(c, rc, servo):
+    """The RC and servo pulse ranges, the PIC threshold and the sticks' slopes."""
     for prefix, sec in (("rc", rc), ("servo", servo)):
         lo = whole(sec, "pulse_min_us", 500.0, 2500.0)
         hi = whole(sec, "pulse_max_us", 500.0, 2500.0)
@@ -340,6 +336,9 @@ def build(doc, airframe=None):
         c["rc_%s_deg_per_us" % surface] = 2.0 * c["%s_limit_deg" % surface] / rc_span_us
     c["rc_throttle_per_us"] = (c["throttle_max"] - c["throttle_min"]) / rc_span_us
 
+
+def _safety_controller_loops(c, sc, roll, pitch):
+    """The safety controller's circle, gains, band and pitch limits."""
     c["sc_bank_limit_deg"] = need(sc, "bank_limit_deg", 1.0, roll * c["inner_region_fraction"])
     c["sc_circle_radius_ft"] = positive(sc, "circle_radius_ft")
     direction = need(sc, "circle_direction")
@@ -373,6 +372,10 @@ def build(doc, airframe=None):
     c["sc_lift_margin_per_ias_sq"] = (need(sc, "lift_margin", 0.3, 0.9)
                                       / c["stall_speed_ftps"] ** 2)
     c["sc_lift_push_deg_per_g"] = need(sc, "lift_push_deg_per_g", 0.0, 100.0)
+
+
+def _safety_controller_speeds(c, sc, st):
+    """The speeds the safety controller flies, hands back and switches at, and what derives from them."""
     # The throttle loop's target must lie above the pitch loop's floor, or the aircraft could
     # never climb at it (the nose may rise only with speed above stall x stall_margin).
     c["sc_cruise_margin"] = need(sc, "cruise_margin", c["sc_stall_margin"], 3.0)
@@ -412,6 +415,9 @@ def build(doc, airframe=None):
     c["sc_blind_fade_per_s"] = 1.0 / positive(sc, "blind_fade_s")
     derive_safety_ctrl(c)
 
+
+def _self_test(c, selft):
+    """The pre-flight self-test's step and its limits."""
     step_s = positive(selft, "step_s")
     c["self_test_throttle_max"] = need(selft, "throttle_max", c["throttle_min"],
                                        c["throttle_max"])
@@ -426,6 +432,27 @@ def build(doc, airframe=None):
     c["self_test_max_rate_deg_s"] = need(selft, "max_rate_deg_s", 0.0, 30.0)
     c["self_test_max_groundspeed_ftps"] = need(selft, "max_groundspeed_ftps", 0.0,
                                                c["stall_speed_ftps"])
+
+
+def build(doc, airframe=None):
+    """The HA's configuration from limits.yaml (and the airframe, when given, to check the limits
+    against): every value ranged and consistent with the others, in the order the sections
+    depend on each other; ConfigError names the first that is not."""
+    # Keys first: a misspelt key would otherwise leave the one it meant missing, or ignored.
+    try:
+        check_config.validate(doc, "limits", "limits.yaml")
+    except check_config.ConfigError as err:
+        raise ConfigError(str(err)) from None
+    sc = doc["safety_controller"]
+    c = {}
+    c["aircraft"] = str(doc["aircraft"])
+    roll, pitch, rate = _surfaces_state_sensors(c, doc, airframe)
+    _regions(c, roll, pitch, rate)
+    _decision(c, doc["decision"])
+    _pulses(c, doc["rc"], doc["servo"])
+    _safety_controller_loops(c, sc, roll, pitch)
+    _safety_controller_speeds(c, sc, doc["state"])
+    _self_test(c, doc["self_test"])
     build_airdata(c, doc)
     for key, value in c.items():
         if isinstance(value, float):

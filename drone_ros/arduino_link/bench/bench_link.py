@@ -49,6 +49,31 @@ def percentile(values, p):
     return values[k]
 
 
+def print_figures(steady, flood, steady_sensors, header):
+    """The metric lines: latency at 100 Hz, what the link sustains, bytes per period against
+    the two baud rates' budgets, then the machine."""
+    latencies_ms = [v / 1000.0 for v in steady]
+    up = wire_size(pwm()) + wire_size(DecisionStatus())
+    down = wire_size(ServoCommand())
+    sync = wire_size(Time()) * TIME_SYNC_PER_S / RATE_HZ  # per period, each way
+    up_period = up + sync
+    down_period = down + sync
+    print("link_latency_p50: %.3f ms" % percentile(latencies_ms, 50))
+    print("link_latency_p99: %.3f ms" % percentile(latencies_ms, 99))
+    print("link_latency_max: %.3f ms" % max(latencies_ms))
+    print("commands_received_at_100hz: %d of %d" % (len(steady), int(STEADY_S * RATE_HZ)))
+    print("commands_per_s_sustained: %.0f frames/s" % (len(flood) / FLOOD_S))
+    print("sensor_frames_per_s_at_100hz: %.1f frames/s" % (2 * steady_sensors / STEADY_S))
+    print("bytes_per_period_ha_to_hp: %.1f bytes" % up_period)
+    print("bytes_per_period_hp_to_ha: %.1f bytes" % down_period)
+    for baud in (115200, 250000):
+        budget = baud / 10.0 / RATE_HZ  # 8N1: 10 bits a byte
+        print("budget_%d_baud_ha_to_hp: %.0f %%" % (baud, 100.0 * up_period / budget))
+        print("budget_%d_baud_hp_to_ha: %.0f %%" % (baud, 100.0 * down_period / budget))
+    print("machine: %s" % header)
+
+
+
 def main():
     header = machine("ptys (no baud limit)")
     ws = sys.argv[1]
@@ -114,26 +139,7 @@ def main():
                 p.wait()
         shutil.rmtree(tmp, ignore_errors=True)
 
-    latencies_ms = [v / 1000.0 for v in steady]
-    up = wire_size(pwm()) + wire_size(DecisionStatus())
-    down = wire_size(ServoCommand())
-    sync = wire_size(Time()) * TIME_SYNC_PER_S / RATE_HZ  # per period, each way
-    up_period = up + sync
-    down_period = down + sync
-    print("link_latency_p50: %.3f ms" % percentile(latencies_ms, 50))
-    print("link_latency_p99: %.3f ms" % percentile(latencies_ms, 99))
-    print("link_latency_max: %.3f ms" % max(latencies_ms))
-    print("commands_received_at_100hz: %d of %d" % (len(steady), int(STEADY_S * RATE_HZ)))
-    print("commands_per_s_sustained: %.0f frames/s" % (len(flood) / FLOOD_S))
-    print("sensor_frames_per_s_at_100hz: %.1f frames/s" % (2 * steady_sensors / STEADY_S))
-    print("bytes_per_period_ha_to_hp: %.1f bytes" % up_period)
-    print("bytes_per_period_hp_to_ha: %.1f bytes" % down_period)
-    for baud in (115200, 250000):
-        budget = baud / 10.0 / RATE_HZ  # 8N1: 10 bits a byte
-        print("budget_%d_baud_ha_to_hp: %.0f %%" % (baud, 100.0 * up_period / budget))
-        print("budget_%d_baud_hp_to_ha: %.0f %%" % (baud, 100.0 * down_period / budget))
-    print("machine: %s" % header)
-
+    print_figures(steady, flood, steady_sensors, header)
 
 if __name__ == "__main__":
     main()
