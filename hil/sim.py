@@ -46,6 +46,7 @@ from hil import faults, gs_monitor, ha_channel, link_relay, mission, sensors, ve
 from hil.faults.base import RC_NEUTRAL, Board  # noqa: E402
 from hil.design_wind import DesignWind  # noqa: E402
 from hil.fdm import Fdm, FdmCrash, Surfaces, Wind  # noqa: E402
+from stack_common import geo  # noqa: E402
 from stack_common.units import FT_PER_M  # noqa: E402
 
 # What the controller subscribes to (drone_ros/controller/README.md): connected before a step.
@@ -717,7 +718,7 @@ class Simulation:
         m.header.stamp = rospy.Time(t_us // 1000000, (t_us % 1000000) * 1000)
         m.header.frame_id = "map"
         m.latitude_deg, m.longitude_deg, m.altitude_msl_m = tr.lat_deg, tr.lon_deg, tr.alt_msl_m
-        n_ft, e_ft = self.regions.north_east_ft(self.home, tr.lat_deg, tr.lon_deg)
+        n_ft, e_ft = self.home_ref.north_east_ft(tr.lat_deg, tr.lon_deg)
         m.north_ft, m.east_ft = n_ft, e_ft
         m.height_above_home_ft = (tr.alt_msl_m - self.home[2]) * FT_PER_M
         m.roll_deg, m.pitch_deg, m.heading_deg = tr.roll_deg, tr.pitch_deg, tr.heading_deg
@@ -792,6 +793,7 @@ class Simulation:
         self.record_truth(0.0)
         parked = self.fdm.truth()
         self.home = (home_lat, home_lon, parked.alt_msl_m)
+        self.home_ref = geo.Ref(home_lat, home_lon)  # the truth's north and east, every step
         self.preflight()
         wall0 = time.monotonic()
         self.wall0_epoch = time.time()

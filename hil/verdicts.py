@@ -46,12 +46,6 @@ class Regions:
              m.height_above_home_ft]
         return self._max_row(self.sx, x, self.x0)
 
-    @staticmethod
-    def north_east_ft(home, lat_deg, lon_deg):
-        """North and east [ft] of a point from home: the stack's one flat-earth conversion
-        (geo_wgs84.c, through stack_common.geo)."""
-        return geo.north_east_ft(home, lat_deg, lon_deg)
-
 
 def reason_names(mask):
     """REASON_* names of msg/DecisionStatus.msg set in mask."""
@@ -78,9 +72,9 @@ def segments(records):
     return out
 
 
-def waypoint_progress(plan, home, records, regions, reach_ft):
+def waypoint_progress(plan, home, records, reach_ft):
     """Closest approach of the true track to each waypoint, and which were reached."""
-    wps = [regions.north_east_ft(home, it.lat_deg, it.lon_deg) for it in plan.items]
+    wps = [geo.north_east_ft(home, it.lat_deg, it.lon_deg) for it in plan.items]
     best = [float("inf")] * len(wps)
     first = [None] * len(wps)
     for t_us, m, _, _, _ in records:
@@ -112,14 +106,14 @@ def segment_distance_ft(p, a, b):
     return math.hypot(p[0] - (a[0] + u * dn), p[1] - (a[1] + u * de))
 
 
-def mission_tracking(plan, home, records, regions, progress):
+def mission_tracking(plan, home, records, progress):
     """Cross-track error: the true track's distance from the mission's path (its legs, waypoint
     to waypoint) over the stretches the HP flew whole, from reaching one waypoint to reaching the
     next with the HP on the servos throughout (a takeover and the HP's return to the track are
     not tracking). The distance is to the nearest of the stretch's leg and its neighbours: the
     guidance turns for the next waypoint once within its reach distance of this one, so it cuts
     each corner on the path, not across it."""
-    wps = [regions.north_east_ft(home, it.lat_deg, it.lon_deg) for it in plan.items]
+    wps = [geo.north_east_ft(home, it.lat_deg, it.lon_deg) for it in plan.items]
     errors, legs = [], 0
     for i in range(len(wps) - 1):
         t0, t1 = progress[i]["first_reached_s"], progress[i + 1]["first_reached_s"]
@@ -144,7 +138,6 @@ def ground_station_view(sim, window_s=3.0):
     mon = getattr(sim, "gs_monitor", None)
     if mon is None:
         return None
-    r = sim.regions
     recs = [x for x in sim.records if not x[1].on_ground]
     times = [x[0] * 1e-6 for x in recs]
     horiz, vert = [], []
@@ -153,13 +146,13 @@ def ground_station_view(sim, window_s=3.0):
         hi = bisect.bisect_right(times, pos.t_s + 1e-9)
         if hi - lo < 1:
             continue
-        n, e = r.north_east_ft(sim.home, pos.lat_deg, pos.lon_deg)
+        n, e = geo.north_east_ft(sim.home, pos.lat_deg, pos.lon_deg)
         best = min(recs[lo:hi], key=lambda x: math.hypot(x[1].north_ft - n, x[1].east_ft - e))
         horiz.append(math.hypot(best[1].north_ft - n, best[1].east_ft - e))
         vert.append(abs(best[1].height_above_home_ft - pos.relative_alt_m * FT_PER_M))
     home = None
     if mon.home is not None:
-        n, e = r.north_east_ft(sim.home, mon.home.lat_deg, mon.home.lon_deg)
+        n, e = geo.north_east_ft(sim.home, mon.home.lat_deg, mon.home.lon_deg)
         home = {"horizontal_ft": round(math.hypot(n, e), 3),
                 "vertical_ft": round(abs(mon.home.alt_m - sim.home[2]) * FT_PER_M, 3)}
     return {"positions_received": len(mon.positions), "positions_in_flight": len(horiz),
@@ -490,7 +483,7 @@ def summarize(sim):
     heights = [x[1].height_above_home_ft for x in airborne]
     cal = [x[4] for x in airborne]
     reach_ft = sim.reach_ft  # the controller's own "waypoint reached" distance (dist2b)
-    progress = waypoint_progress(sim.plan, sim.home, recs, r, reach_ft)
+    progress = waypoint_progress(sim.plan, sim.home, recs, reach_ft)
     fault = fault_record(sim)
     verdict = fault_verdict(sim, progress)
     flown = len(recs) * sim.period_us * 1e-6
@@ -531,7 +524,7 @@ def summarize(sim):
                     "reached_within_ft": reach_ft,
                     "reached": sum(1 for p in progress if p["first_reached_s"] is not None),
                     "per_waypoint": progress,
-                    "tracking": mission_tracking(sim.plan, sim.home, recs, r, progress),
+                    "tracking": mission_tracking(sim.plan, sim.home, recs, progress),
                     "guidance_waypoint_index": sim.waypoint_log},
         "ground_station": ground_station_view(sim),
         "world": world(sim),

@@ -2,7 +2,7 @@
  * (common/python/stack_common): the geodesy (geo_wgs84) and the ServoCommand/OperatorCommand CRC
  * (hp_command) that the Due and the HP nodes run, so the HiL's verdicts, its sensor model and the
  * flight report compute with the same code, not with a Python copy of it. This file adds only
- * what ctypes cannot reach by itself: the constants behind the headers' macros, the struct's size
+ * what ctypes cannot reach by itself: the foot behind its macro, the struct's size
  * (to catch a layout that drifted from stack_common.geo), and an array form of the conversion for
  * numpy. */
 #include <stddef.h>
@@ -10,10 +10,9 @@
 #include "geo_wgs84.h"
 #include "hp_command.h"
 
-/* The macros' values as symbols ctypes can read. */
+/* The foot as a symbol ctypes can read: stack_common.units defines it in pure Python (the
+ * build's generators run before this library exists), and the test holds the two equal. */
 const double stack_common_ft_per_m = GEO_FT_PER_M;
-const double stack_common_wgs84_a_m = GEO_WGS84_A_M;
-const double stack_common_wgs84_e2 = GEO_WGS84_E2;
 
 size_t stack_common_geo_ref_size(void);
 void stack_common_to_ne_ft_n(const GeoRef *ref, size_t n, const double *lat_deg,

@@ -1,21 +1,16 @@
 """The HiL's CRC of a message ending in crc32 (hil/faults/base.py, fields_crc32) is the CRC the HA
-checks: zlib crc32 over the message's ROS serialization before crc32, equal to the C side's
-(arduino_ha/src/core/hp_command.c, built here into a library of its own and called through
-ctypes) for an OperatorCommand and for a ServoCommand."""
+checks: zlib's crc32 over the message's ROS serialization before crc32, equal to the C side's
+(arduino_ha/src/core/hp_command.c, as the build links it into libstack_common.so) for an
+OperatorCommand and for a ServoCommand packed by the C itself."""
 import ctypes
 import io
-import os
-import shutil
-import subprocess
 import zlib
 
 import pytest
+from drone_ros.msg import OperatorCommand, ServoCommand
+from stack_common import native
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from hil.faults.base import fields_crc32  # noqa: E402
-from drone_ros.msg import OperatorCommand, ServoCommand  # noqa: E402
-
-HP_COMMAND_C = os.path.join(ROOT, "arduino_ha", "src", "core", "hp_command.c")
+from hil.faults.base import fields_crc32
 
 
 class HaHpCommand(ctypes.Structure):
@@ -28,12 +23,8 @@ class HaHpCommand(ctypes.Structure):
 
 
 @pytest.fixture(scope="module")
-def c_side(tmp_path_factory):
-    cc = shutil.which("cc") or shutil.which("gcc")
-    assert cc, "a C compiler is needed to build the C side's CRC"
-    lib = str(tmp_path_factory.mktemp("c_side") / "libhp_command.so")
-    subprocess.run([cc, "-std=c99", "-shared", "-fPIC", "-O2", "-o", lib, HP_COMMAND_C], check=True)
-    so = ctypes.CDLL(lib)
+def c_side():
+    so = native.load("libstack_common.so")  # a handle of its own: the prototypes below are this test's
     so.ha_crc32.restype = ctypes.c_uint32
     so.ha_crc32.argtypes = [ctypes.c_char_p, ctypes.c_size_t]
     so.ha_hp_command_compute_crc.restype = ctypes.c_uint32

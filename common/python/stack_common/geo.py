@@ -21,18 +21,6 @@ class Ref:
             raise ValueError("not a reference point geo_ref_init takes: lat %r deg, lon %r deg, alt %r m"
                              % (lat_deg, lon_deg, alt_m))
 
-    @property
-    def lat_deg(self):
-        return self._ref.lat_deg
-
-    @property
-    def lon_deg(self):
-        return self._ref.lon_deg
-
-    def dlon_deg(self, lon_deg):
-        """lon - the reference's, the short way round across the antimeridian."""
-        return self._lib.geo_dlon_deg(ctypes.byref(self._ref), float(lon_deg))
-
     def neu_ft(self, lat_deg, lon_deg, alt_m):
         """North, east, up [ft] of a point from the reference."""
         out = (ctypes.c_double * 3)()
@@ -73,9 +61,3 @@ def north_east_ft(home, lat_deg, lon_deg):
     """North and east [ft] of a point from home = (lat, lon[, alt m])."""
     return ref(*(float(v) for v in home[:2])).north_east_ft(lat_deg, lon_deg)
 
-
-def radii_m(lat_deg):
-    """Meridian and prime-vertical radii of curvature [m] of WGS84 at lat_deg."""
-    m, n = ctypes.c_double(), ctypes.c_double()
-    library().geo_radii_m(float(lat_deg), ctypes.byref(m), ctypes.byref(n))
-    return m.value, n.value

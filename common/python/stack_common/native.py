@@ -17,9 +17,7 @@ def _declare(lib):
     d, dp, ref = ctypes.c_double, ctypes.POINTER(ctypes.c_double), ctypes.POINTER(GeoRef)
     for name, restype, argtypes in (
             ("stack_common_geo_ref_size", ctypes.c_size_t, []),
-            ("geo_radii_m", None, [d, dp, dp]),
             ("geo_ref_init", ctypes.c_int, [ref, d, d, d]),
-            ("geo_dlon_deg", d, [ref, d]),
             ("geo_to_neu_ft", None, [ref, d, d, d, dp]),
             ("geo_from_neu_m", None, [ref, dp, dp, dp, dp]),
             ("stack_common_to_ne_ft_n", None, [ref, ctypes.c_size_t, ctypes.c_void_p, ctypes.c_void_p,
@@ -53,5 +51,5 @@ def library():
 
 
 def constant(name):
-    """A double the library exports (stack_common.c: the headers' macros)."""
+    """A double the library exports (stack_common.c: the foot of geo_wgs84.h)."""
     return ctypes.c_double.in_dll(library(), name).value

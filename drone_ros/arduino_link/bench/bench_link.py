@@ -73,7 +73,6 @@ def print_figures(steady, flood, steady_sensors, header):
     print("machine: %s" % header)
 
 
-
 def main():
     header = machine("ptys (no baud limit)")
     ws = sys.argv[1]
@@ -140,6 +139,7 @@ def main():
         shutil.rmtree(tmp, ignore_errors=True)
 
     print_figures(steady, flood, steady_sensors, header)
+
 
 if __name__ == "__main__":
     main()
