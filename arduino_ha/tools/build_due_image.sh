@@ -37,10 +37,14 @@ for tool in arm-none-eabi-gcc arm-none-eabi-g++ arm-none-eabi-ar arm-none-eabi-o
   fi
 done
 
-# shared/vendor beside the clone; for a git worktree also beside the main checkout it belongs to.
+# shared/vendor beside the clone; for a git worktree also beside the main checkout it belongs to;
+# for a clone of a checkout on this machine (git clone . /tmp/x) also beside that checkout.
 vendor_dirs=("$root/../shared/vendor")
 if common=$(git -C "$root" rev-parse --path-format=absolute --git-common-dir 2> /dev/null); then
   vendor_dirs+=("$(dirname "$common")/../shared/vendor")
+fi
+if origin=$(git -C "$root" config --get remote.origin.url 2> /dev/null) && [ -d "$origin" ]; then
+  vendor_dirs+=("$origin/../shared/vendor")
 fi
 first_dir_with() {  # <file that must exist inside> <candidate dir>...
   local need=$1 dir
