@@ -32,12 +32,17 @@ verify-ha: verify-ha-eva verify-ha-m3 verify-ha-board
 # the negative control must be flagged and every core function reached. HA_CORE_DIR: try a
 # patched copy of the core (verify/ALARMS.md).
 HA_CORE_DIR ?= $(HA_DIR)/src/core
+# The ground floor the core runs on (common/src): the geodesy and the HP command's CRC, checked
+# with the core as part of the trusted code.
+HA_FLOOR_DIR := $(ROOT)/common/src
+HA_FLOOR_SRC := $(HA_FLOOR_DIR)/geo_wgs84.c $(HA_FLOOR_DIR)/hp_command.c
 # The functions EVA takes by their contract instead of their body: each is proved by make
 # prove-ha (WP_ha's --fct), so EVA rests on a proof, not on trust (src/core/README.md "Proofs").
 HA_BY_CONTRACT := ha_clampf
 EVA_COMPONENTS += ha
-EVA_ha_SOURCES = $(sort $(wildcard $(HA_CORE_DIR)/*.c)) $(HA_DIR)/verify/eva_main.c
-EVA_ha_ARGS = -I $(HA_CORE_DIR) --negative $(HA_DIR)/verify/eva_negative_control.c --reach $(HA_CORE_DIR) \
+EVA_ha_SOURCES = $(sort $(wildcard $(HA_CORE_DIR)/*.c)) $(HA_FLOOR_SRC) $(HA_DIR)/verify/eva_main.c
+EVA_ha_ARGS = -I $(HA_CORE_DIR) -I $(HA_FLOOR_DIR) --negative $(HA_DIR)/verify/eva_negative_control.c \
+  --reach $(HA_CORE_DIR) $(addprefix --reach ,$(HA_FLOOR_SRC)) \
   --case finite-any-periods:main:1:non-finite:-DHA_EVA_STEPS=0 \
   --case any-bits-any-periods:main:1:none:-DHA_EVA_ANY_BITS,-DHA_EVA_STEPS=0 \
   --use-spec $(HA_BY_CONTRACT)
@@ -48,11 +53,11 @@ EVA_ha_DEPS = deps
 # ports are anything (verify/eva_firmware_main.c); part of verify-ha-eva.
 EVA_COMPONENTS += ha-fw
 EVA_ha-fw_SOURCES = $(HA_DIR)/verify/eva_firmware_main.c $(HA_DIR)/src/firmware/ha_firmware.c \
-  $(HA_DIR)/src/vn200/ha_vn200_feed.c $(addprefix $(ROOT)/vn200_driver/core/,vn_framer.c vn_binary.c vn_checksum.c vn_ascii.c) \
+  $(HA_DIR)/src/vn200/ha_vn200_feed.c $(addprefix $(ROOT)/common/vn200/,vn_framer.c vn_binary.c vn_checksum.c vn_ascii.c) \
   $(addprefix $(HA_DIR)/src/link/,ha_link.c ha_link_frame.c ha_link_report.c) $(LINK_GEN_DIR)/ha_msgs.c \
-  $(sort $(wildcard $(HA_CORE_DIR)/*.c))
-EVA_ha-fw_ARGS = -I $(HA_CORE_DIR) -I $(HA_DIR)/src/link -I $(HA_DIR)/src/firmware -I $(HA_DIR)/src/vn200 \
-  -I $(ROOT)/vn200_driver/core -D 'HA_LINK_GENERATED_HEADER="$(LINK_GEN_DIR)/ha_msgs.h"' \
+  $(sort $(wildcard $(HA_CORE_DIR)/*.c)) $(HA_FLOOR_SRC)
+EVA_ha-fw_ARGS = -I $(HA_CORE_DIR) -I $(HA_FLOOR_DIR) -I $(HA_DIR)/src/link -I $(HA_DIR)/src/firmware -I $(HA_DIR)/src/vn200 \
+  -I $(ROOT)/common/vn200 -D 'HA_LINK_GENERATED_HEADER="$(LINK_GEN_DIR)/ha_msgs.h"' \
   --reach $(HA_DIR)/src/firmware --case any-board:main:1:none --use-spec $(HA_BY_CONTRACT)
 EVA_ha-fw_DEPS = deps $(LINK_GEN_DIR)/ha_msgs.c
 verify-ha-eva: verify-ha-fw-eva
@@ -67,8 +72,9 @@ bench-ha: deps
 	@bash $(HA_DIR)/bench/run_bench.sh $(ROOT)/.build/arduino_ha_bench
 
 # The sketch arduino-cli compiles and flashes, assembled under .build/sketch/arduino_ha: the
-# sketch with the VN-200 protocol core from vn200_driver/core in src/vn200/ (arduino-cli compiles
-# only inside the sketch folder; nothing is copied into the source tree). README.md, "Build and
+# sketch with the ground floor from common/: geodesy and the HP command's CRC in src/core/, the
+# VN-200 protocol in src/vn200/ (arduino-cli compiles only inside the sketch folder; nothing is
+# copied into the source tree). README.md, "Build and
 # flash the Due".
 HA_SKETCH_OUT := $(ROOT)/.build/sketch
 .PHONY: sketch-ha
@@ -123,7 +129,7 @@ WP_COMPONENTS += ha
 VERIFY_TARGETS += prove-ha
 WP_ha_SOURCES = $(addprefix $(HA_CORE_DIR)/,ha_policy.c ha_surfaces.c ha_core.c ha_num.c)
 # 60 s a goal: the saturation's take Z3 5 s on an idle core, and other work shares the cores.
-WP_ha_ARGS = -I $(HA_CORE_DIR) -D HA_WP --driver $(HA_DIR)/verify/ha_wp.driver --timeout 60 \
+WP_ha_ARGS = -I $(HA_CORE_DIR) -I $(HA_FLOOR_DIR) -D HA_WP --driver $(HA_DIR)/verify/ha_wp.driver --timeout 60 \
   --fct ha_policy_decide,ha_policy_restart,ha_surfaces_saturate,$(HA_BY_CONTRACT),prune_restarts,request_restart,ha_elapsed_us \
   --negative $(HA_DIR)/verify/wp_negative_control.c \
   --negative-fct clamp_lets_nan_through,keyed_clamp_forgetting_nan,handback_forgetting_state,record_forgetting
@@ -133,6 +139,6 @@ WP_ha_DEPS = deps order-key-check
 .PHONY: order-key-check
 order-key-check:
 	@mkdir -p $(HA_VERIFY_OUT)
-	@gcc -O2 -std=c99 -Wall -Wextra -Werror -I$(HA_CORE_DIR) $(HA_DIR)/verify/order_key_check.c -lm \
+	@gcc -O2 -std=c99 -Wall -Wextra -Werror -I$(HA_CORE_DIR) -I$(HA_FLOOR_DIR) $(HA_DIR)/verify/order_key_check.c -lm \
 	  -o $(HA_VERIFY_OUT)/order_key_check
 	@$(HA_VERIFY_OUT)/order_key_check

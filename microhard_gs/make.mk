@@ -4,9 +4,9 @@
 #   make bench-gs        telemetry rate held and CPU share of the node at 10 Hz and 50 Hz
 GS_DIR := $(ROOT)/microhard_gs
 GS_FUZZ_DIR := $(ROOT)/.build/fuzz/gs/gen
-# The stack's one lat/lon <-> north/east module (C99, in the HA core) comes along, compiled as C.
+# The stack's one lat/lon <-> north/east module (C99, common/src) comes along, compiled as C.
 GS_FUZZ_SOURCES := $(GS_DIR)/fuzz/fuzz_gs_core.cpp $(sort $(wildcard $(GS_DIR)/src/core/*.cpp)) \
-  $(ROOT)/arduino_ha/src/core/geo_wgs84.c
+  $(ROOT)/common/src/geo_wgs84.c
 
 .PHONY: bench-gs
 BENCH_TARGETS += bench-gs
@@ -15,7 +15,7 @@ FUZZ_COMPONENTS += gs
 FUZZ_gs_HARNESSES := gs_core
 FUZZ_gs_gs_core_SOURCES := $(GS_FUZZ_SOURCES)
 FUZZ_gs_gs_core_FLAGS := -I$(GS_DIR)/src/core -I$(GS_DIR)/test -I$(GS_FUZZ_DIR)/tunables -I$(GS_FUZZ_DIR)/generated \
-  -I$(ROOT)/drone_ros/common/include -I$(ROOT)/arduino_ha/src/core -isystem $(GS_FUZZ_DIR)/mavlink
+  -I$(ROOT)/drone_ros/common/include -I$(ROOT)/common/src -isystem $(GS_FUZZ_DIR)/mavlink
 FUZZ_gs_gs_core_SEEDS := $(GS_DIR)/fuzz/corpus
 FUZZ_gs_DEPS = $(wildcard $(GS_DIR)/src/core/*.h) $(GS_FUZZ_DIR)/mavlink/development/mavlink.h \
   $(GS_FUZZ_DIR)/tunables/tunables_table.h $(GS_FUZZ_DIR)/generated/decision_status_names.h

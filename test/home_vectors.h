@@ -1,5 +1,5 @@
 // The homes every node that takes /home must judge alike, since one function judges them all:
-// geo_ref_init (arduino_ha/src/core/geo_wgs84.h), the HA's own test of the home it latches. The
+// geo_ref_init (common/src/geo_wgs84.h), the HA's own test of the home it latches. The
 // controller's sensor board, the vn200 node and the ground station each test their home input
 // against this one table (issue 26: "geo_ref_init is the one judge of a valid home").
 #pragma once

@@ -11,7 +11,8 @@
 #                     SPECIAL_FLOAT is -warn-special-float (non-finite or none) (repeatable)
 #   --negative SRC    a deliberately wrong program that every case's settings must flag, so a
 #                     broken setup (nothing analysed, counters reading the wrong lines) fails
-#   --reach DIR       every function defined in DIR/*.c must be reached in every case
+#   --reach PATH      every function defined in PATH (a .c, or a folder's *.c) must be reached in
+#                     every case (repeatable)
 #   --use-spec F,...  functions analysed by their ACSL contract instead of their body
 #                     (-eva-use-spec): only functions whose contracts WP proves (make prove-<c>);
 #                     they count as reached, and EVA still checks their preconditions at each call
@@ -27,7 +28,7 @@ includes=()
 reach_defines=()
 cases=()
 negative=""
-reach=""
+reach=()
 use_spec=""
 while [ $# -gt 0 ]; do
   case $1 in
@@ -35,7 +36,7 @@ while [ $# -gt 0 ]; do
     -D) cpp_args+=("-D${2//\"/\\\"}"); reach_defines+=("-D$2"); shift 2 ;;  # frama-c hands these to cpp through a shell
     --case) cases+=("$2"); shift 2 ;;
     --negative) negative=$2; shift 2 ;;
-    --reach) reach=$2; shift 2 ;;
+    --reach) reach+=("$2"); shift 2 ;;
     --use-spec) use_spec=$2; shift 2 ;;
     --) shift; break ;;
     *) echo "eva.sh: unknown option $1" >&2; exit 2 ;;
@@ -113,12 +114,12 @@ for spec in "${cases[@]}"; do
   if [ "$((case_alarms + case_unproven))" -gt 0 ]; then show_alarms "$case_name"; fi
 done
 
-if [ -n "$reach" ]; then
+if [ "${#reach[@]}" -gt 0 ]; then
   # Every function defined there (static and inline ones included, from the objects' symbols)
   # must have been reached, or an alarm could hide in code no driver calls. EVA names per-file
   # copies of header inline functions name_N.
   mkdir -p "$out/nm"
-  mapfile -t reach_sources < <(find "$reach" -maxdepth 1 -name '*.c' | LC_ALL=C sort)
+  mapfile -t reach_sources < <(find "${reach[@]}" -maxdepth 1 -name '*.c' | LC_ALL=C sort)
   for src in "${reach_sources[@]}"; do
     gcc -std=c99 -O0 "${includes[@]}" "${reach_defines[@]}" -c "$src" -o "$out/nm/$(basename "$src").o"
   done

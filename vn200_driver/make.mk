@@ -3,13 +3,15 @@
 #                          command builders, FUZZ_SECONDS each (tools/kit.mk)
 #   make fuzz-smoke-vn200  the same, FUZZ_SMOKE_SECONDS each (CI)
 #   make bench-vn200       parse throughput and CPU share at the sensor's maximum output
-#   make verify-vn200      Frama-C EVA over vn200_driver/core (no alarms allowed), then the core
+#   make verify-vn200      Frama-C EVA over common/vn200 (no alarms allowed), then the core
 #                          cross-compiled for the Due's Cortex-M3 with -Werror (flash figures)
 # Tools (clang-14, libclang-rt-14-dev, frama-c-base) come from vn200_driver/apt-packages.txt.
 VN200_DIR := $(ROOT)/vn200_driver
 VN200_OUT := $(ROOT)/.build/vn200
-VN200_CORE_SRC := $(wildcard $(VN200_DIR)/core/*.c)
-VN200_CORE_HDR := $(wildcard $(VN200_DIR)/core/*.h)
+# The protocol core is the ground floor's (common/vn200); its checks stay with the driver.
+VN200_CORE_DIR := $(ROOT)/common/vn200
+VN200_CORE_SRC := $(wildcard $(VN200_CORE_DIR)/*.c)
+VN200_CORE_HDR := $(wildcard $(VN200_CORE_DIR)/*.h)
 VN200_FUZZERS := framer binary ascii command
 
 BENCH_TARGETS += bench-vn200
@@ -21,7 +23,7 @@ VERIFY_TARGETS += verify-vn200
 FUZZ_COMPONENTS += vn200
 FUZZ_vn200_HARNESSES := $(VN200_FUZZERS)
 $(foreach f,$(VN200_FUZZERS),$(eval FUZZ_vn200_$(f)_SOURCES := $(VN200_DIR)/fuzz/fuzz_$(f).c $(VN200_CORE_SRC)))
-$(foreach f,$(VN200_FUZZERS),$(eval FUZZ_vn200_$(f)_FLAGS := -I$(VN200_DIR)/core))
+$(foreach f,$(VN200_FUZZERS),$(eval FUZZ_vn200_$(f)_FLAGS := -I$(VN200_CORE_DIR)))
 $(foreach f,$(VN200_FUZZERS),$(eval FUZZ_vn200_$(f)_SEEDS := $(VN200_DIR)/fuzz/corpus/$(f)))
 $(foreach f,$(VN200_FUZZERS),$(eval FUZZ_vn200_$(f)_RUN_FLAGS := -max_len=2048))
 FUZZ_vn200_DEPS := $(VN200_CORE_HDR)
@@ -30,7 +32,7 @@ $(VN200_OUT)/vn200_bench: $(VN200_DIR)/bench/vn200_bench.cpp $(VN200_DIR)/src/ou
     $(VN200_DIR)/test/vn_packet_builder.h $(VN200_CORE_SRC) $(VN200_CORE_HDR)
 	@mkdir -p $(@D)/bench_obj
 	@cd $(@D)/bench_obj && gcc -std=c99 -O2 -Wall -Wextra -Werror -c $(VN200_CORE_SRC)
-	@g++ -std=c++17 -O2 -Wall -Wextra -Werror -I$(VN200_DIR)/core -I$(VN200_DIR)/src \
+	@g++ -std=c++17 -O2 -Wall -Wextra -Werror -I$(VN200_CORE_DIR) -I$(VN200_DIR)/src \
 	  -I$(VN200_DIR)/test $(VN200_DIR)/bench/vn200_bench.cpp $(VN200_DIR)/src/output_config.cpp \
 	  $(@D)/bench_obj/*.o -o $@
 
@@ -46,7 +48,7 @@ verify-vn200: verify-vn200-eva verify-vn200-m3
 # before any float exists (unit-tested), but EVA cannot see through the memcpy from bits to float.
 EVA_COMPONENTS += vn200
 EVA_vn200_SOURCES = $(VN200_DIR)/verify/eva_main.c $(sort $(VN200_CORE_SRC))
-EVA_vn200_ARGS = -I $(VN200_DIR)/core \
+EVA_vn200_ARGS = -I $(VN200_CORE_DIR) \
   --case main_commands:main_commands:3:non-finite \
   --case main_binary:main_binary:3:none \
   --case main_ascii:main_ascii:3:non-finite \

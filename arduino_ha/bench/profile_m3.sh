@@ -10,11 +10,13 @@ ha=$(cd "$here/.." && pwd)
 root=$(cd "$ha/.." && pwd)
 out=${1:-$root/.build/arduino_ha_profile}
 core=${HA_CORE_DIR:-$ha/src/core}
+floor=$root/common/src  # the ground floor the core runs on: geodesy, the HP command's CRC
 rm -rf "$out"
 mkdir -p "$out"
 mapfile -t core_sources < <(find "$core" -maxdepth 1 -name '*.c' | LC_ALL=C sort)
+core_sources+=("$floor/geo_wgs84.c" "$floor/hp_command.c")
 arm-none-eabi-gcc -mcpu=cortex-m3 -mthumb -Os -std=c99 -ffunction-sections -fdata-sections \
-  -Wall -Wextra -Werror -I"$core" -I"$here" -nostartfiles --specs=nano.specs -Wl,--gc-sections \
+  -Wall -Wextra -Werror -I"$core" -I"$floor" -I"$here" -nostartfiles --specs=nano.specs -Wl,--gc-sections \
   -T "$here/mps2_an385.ld" "$here/startup_m3.c" "$here/semihost.c" "$here/insn_timer.c" \
   "$here/bench_inputs.c" "$here/bench_m3.c" "${core_sources[@]}" -lm -lc -lgcc \
   -o "$out/bench_m3.elf"

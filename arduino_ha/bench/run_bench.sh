@@ -9,6 +9,7 @@ ha=$(cd "$here/.." && pwd)
 root=$(cd "$ha/.." && pwd)
 out=${1:-$root/.build/arduino_ha_bench}
 core=${HA_CORE_DIR:-$ha/src/core}  # override only to try a patched copy of the core
+floor=$root/common/src  # the ground floor the core runs on: geodesy, the HP command's CRC
 for tool in arm-none-eabi-gcc qemu-system-arm gcc; do
   if ! command -v "$tool" > /dev/null; then
     echo "run_bench: $tool not found; run 'make deps' (arduino_ha/apt-packages.txt)" >&2
@@ -18,9 +19,10 @@ done
 rm -rf "$out"
 mkdir -p "$out"
 mapfile -t core_sources < <(find "$core" -maxdepth 1 -name '*.c' | LC_ALL=C sort)
+core_sources+=("$floor/geo_wgs84.c" "$floor/hp_command.c")
 
 m3_flags=(-mcpu=cortex-m3 -mthumb -Os -std=c99 -ffunction-sections -fdata-sections
-  -Wall -Wextra -Werror -I"$core" -I"$here")
+  -Wall -Wextra -Werror -I"$core" -I"$floor" -I"$here")
 m3_link=(-nostartfiles --specs=nano.specs -Wl,--gc-sections -T "$here/mps2_an385.ld")
 qemu=(timeout 120 qemu-system-arm -M mps2-an385 -cpu cortex-m3 -nographic -monitor none
   -serial none -semihosting-config enable=on,target=native -icount shift=0,align=off,sleep=off)
@@ -44,7 +46,7 @@ if ! "${qemu[@]}" -kernel "$out/bench_m3.elf" > "$out/bench_m3.txt" 2>&1; then
 fi
 cat "$out/bench_m3.txt"
 
-gcc -O2 -std=c99 -Wall -Wextra -Werror -I"$core" -I"$here" "$here/bench_inputs.c" \
+gcc -O2 -std=c99 -Wall -Wextra -Werror -I"$core" -I"$floor" -I"$here" "$here/bench_inputs.c" \
   "$here/bench_host.c" "${core_sources[@]}" -lm -o "$out/bench_host"
 "$out/bench_host"
 

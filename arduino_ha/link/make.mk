@@ -36,8 +36,8 @@ FUZZ_COMPONENTS += link
 FUZZ_link_HARNESSES := device_link host_framer host_payloads
 FUZZ_link_DEPS := $(LINK_GEN_DIR)/ha_msgs.c
 FUZZ_link_device_link_SOURCES := $(LINK_DIR)/fuzz/fuzz_device_link.c $(ROOT)/arduino_ha/src/link/ha_link.c \
-  $(ROOT)/arduino_ha/src/link/ha_link_frame.c $(LINK_GEN_DIR)/ha_msgs.c $(ROOT)/arduino_ha/src/core/hp_command.c
-FUZZ_link_device_link_FLAGS := -I$(ROOT)/arduino_ha/src/link $(LINK_GEN_HEADER)
+  $(ROOT)/arduino_ha/src/link/ha_link_frame.c $(LINK_GEN_DIR)/ha_msgs.c $(ROOT)/common/src/hp_command.c
+FUZZ_link_device_link_FLAGS := -I$(ROOT)/arduino_ha/src/link -I$(ROOT)/common/src $(LINK_GEN_HEADER)
 FUZZ_link_device_link_SEEDS := $(LINK_DIR)/fuzz/corpus_device_link
 FUZZ_link_host_framer_SOURCES := $(ROOT)/drone_ros/arduino_link/fuzz/fuzz_host_framer.cpp \
   $(ROOT)/drone_ros/arduino_link/src/rosserial_framer.cpp
@@ -45,7 +45,7 @@ FUZZ_link_host_framer_FLAGS := -I$(ROOT)/drone_ros/arduino_link/src
 FUZZ_link_host_framer_SEEDS := $(ROOT)/drone_ros/arduino_link/fuzz/corpus_host_framer
 FUZZ_link_host_payloads_SOURCES := $(ROOT)/drone_ros/arduino_link/fuzz/fuzz_host_payloads.cpp \
   $(ROOT)/drone_ros/arduino_link/src/device_payloads.cpp $(LINK_GEN_DIR)/ha_msgs.c
-FUZZ_link_host_payloads_FLAGS := -I$(ROOT)/drone_ros/arduino_link/src -I$(ROOT)/arduino_ha/src/link $(LINK_GEN_HEADER)
+FUZZ_link_host_payloads_FLAGS := -I$(ROOT)/drone_ros/arduino_link/src -I$(ROOT)/arduino_ha/src/link -I$(ROOT)/common/src $(LINK_GEN_HEADER)
 FUZZ_link_host_payloads_SEEDS := $(ROOT)/drone_ros/arduino_link/fuzz/corpus_host_payloads
 
 verify-link: verify-link-m3 verify-link-eva
@@ -54,10 +54,10 @@ verify-link: verify-link-m3 verify-link-eva
 EVA_COMPONENTS += link
 EVA_link_SOURCES = $(LINK_DIR)/verify/eva_link_main.c $(ROOT)/arduino_ha/src/link/ha_link.c \
   $(ROOT)/arduino_ha/src/link/ha_link_frame.c $(ROOT)/arduino_ha/src/link/ha_link_report.c \
-  $(LINK_GEN_DIR)/ha_msgs.c $(ROOT)/arduino_ha/src/core/hp_command.c \
+  $(LINK_GEN_DIR)/ha_msgs.c $(ROOT)/common/src/hp_command.c \
   $(ROOT)/arduino_ha/src/core/ha_surfaces.c $(ROOT)/arduino_ha/src/core/ha_num.c \
   $(ROOT)/arduino_ha/src/core/ha_aircraft.c
-EVA_link_ARGS = -I $(ROOT)/arduino_ha/src/link -I $(ROOT)/arduino_ha/src/core \
+EVA_link_ARGS = -I $(ROOT)/arduino_ha/src/link -I $(ROOT)/arduino_ha/src/core -I $(ROOT)/common/src \
   -D 'HA_LINK_GENERATED_HEADER="$(LINK_GEN_DIR)/ha_msgs.h"' --case any-bytes:main:1:none \
   --use-spec $(HA_BY_CONTRACT)
 EVA_link_DEPS = $(LINK_GEN_DIR)/ha_msgs.c
@@ -70,10 +70,10 @@ verify-link-m3: $(LINK_GEN_DIR)/ha_msgs.c
 	@mkdir -p $(LINK_M3_OUT)
 	@for f in $(LINK_M3_SOURCES); do \
 	  arm-none-eabi-gcc -mcpu=cortex-m3 -mthumb -std=c99 -pedantic -Wall -Wextra -Werror -Wconversion \
-	    -Os -fstack-usage -I$(ROOT)/arduino_ha/src/link $(LINK_GEN_HEADER) \
+	    -Os -fstack-usage -I$(ROOT)/arduino_ha/src/link -I$(ROOT)/common/src $(LINK_GEN_HEADER) \
 	    -c $$f -o $(LINK_M3_OUT)/$$(basename $$f).o || exit 1; done
 	@printf '#include "ha_link.h"\nunsigned long ha_link_ram = sizeof(HaLink);\n' > $(LINK_M3_OUT)/ram.c
-	@arm-none-eabi-gcc -mcpu=cortex-m3 -mthumb -std=c99 -I$(ROOT)/arduino_ha/src/link \
+	@arm-none-eabi-gcc -mcpu=cortex-m3 -mthumb -std=c99 -I$(ROOT)/arduino_ha/src/link -I$(ROOT)/common/src \
 	  $(LINK_GEN_HEADER) -S $(LINK_M3_OUT)/ram.c -o $(LINK_M3_OUT)/ram.s
 	@echo "link_flash: $$(arm-none-eabi-size -t $(LINK_M3_OUT)/*.c.o | tail -1 | awk '{print $$1}') bytes"
 	@echo "link_ram_halink: $$(grep -A1 'ha_link_ram:' $(LINK_M3_OUT)/ram.s | grep -o '[0-9]\+$$') bytes"

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# make pil-image: the HA firmware (src/firmware, the core, the link, the VN-200 feed and protocol
-# core) on the QEMU mps2-an385 board of pil_main.c, as Cortex-M3 machine code: Debian's
-# arm-none-eabi-gcc, newlib-nano, -Wall -Wextra -Werror, the benchmark's startup and memory map
-# (../bench/startup_m3.c, mps2_an385.ld: written for this project, no vendor SDK). Prints flash,
-# RAM and the largest stack frame as metric lines.
+# make pil-image: the HA firmware (src/firmware, the core, the link, the VN-200 feed, and the ground
+# floor of common/: geodesy, the HP command's CRC, the VN-200 protocol) on the QEMU mps2-an385
+# board of pil_main.c, as Cortex-M3 machine code: Debian's arm-none-eabi-gcc, newlib-nano, -Wall
+# -Wextra -Werror, the benchmark's startup and memory map (../bench/startup_m3.c, mps2_an385.ld:
+# written for this project, no vendor SDK). Prints flash, RAM and the largest stack frame as
+# metric lines.
 # usage: build_pil_image.sh [out_dir]     (the image: <out_dir>/ha_pil.elf)
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -23,9 +24,10 @@ gen=$sketch/src/link/generated
 
 m3_cflags=(-mcpu=cortex-m3 -mthumb -Os -std=c99 -ffunction-sections -fdata-sections -fstack-usage
   -Wall -Wextra -Werror -pedantic -I"$ha/src/core" -I"$ha/src/link" -I"$ha/src/vn200"
-  -I"$root/vn200_driver/core" -I"$ha/bench" -DHA_LINK_GENERATED_HEADER="\"$gen/ha_msgs.h\"" ${PIL_CFLAGS:-})
+  -I"$root/common/src" -I"$root/common/vn200" -I"$ha/bench" -DHA_LINK_GENERATED_HEADER="\"$gen/ha_msgs.h\"" ${PIL_CFLAGS:-})
 sources=("$ha"/src/core/*.c "$ha"/src/firmware/*.c "$ha"/src/link/*.c "$gen"/*.c
-  "$ha"/src/vn200/*.c "$root"/vn200_driver/core/*.c "$ha"/src/hil/*.c "$here"/*.c
+  "$ha"/src/vn200/*.c "$root"/common/vn200/*.c "$root"/common/src/{geo_wgs84,hp_command}.c
+  "$ha"/src/hil/*.c "$here"/*.c
   "$ha/bench/startup_m3.c" "$ha/bench/semihost.c" "$ha/bench/insn_timer.c")
 # shellcheck source=../verify/m3_lib.sh
 source "$ha/verify/m3_lib.sh"

@@ -1,6 +1,7 @@
 """The Due sketch arduino-cli compiles is assembled under .build/ (`make sketch-ha`,
-arduino_ha/tools/assemble_sketch.sh): arduino_ha's sources plus the VN-200 protocol core from
-vn200_driver/core, which arduino-cli could not reach outside the sketch folder. arduino-cli is not
+arduino_ha/tools/assemble_sketch.sh): arduino_ha's sources plus the ground floor from common/
+(the geodesy, the HP command's CRC, the VN-200 protocol), which arduino-cli could not reach
+outside the sketch folder. arduino-cli is not
 installed here (test_due_image.py builds the folder against the real SAM core the way it does),
 so these tests check what arduino-cli itself needs of the folder: every file the sketch includes
 is inside it, found the way arduino-cli's compiler finds it (relative to the
@@ -13,7 +14,9 @@ import sys
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 HA = ROOT / "arduino_ha"
-VN200_CORE = ROOT / "vn200_driver" / "core"
+VN200_CORE = ROOT / "common" / "vn200"
+FLOOR = [ROOT / "common" / "src" / name for name in
+         ("geo_wgs84.c", "geo_wgs84.h", "hp_command.c", "hp_command.h")]
 ASSEMBLE = HA / "tools" / "assemble_sketch.sh"
 SOURCE_SUFFIXES = (".ino", ".c", ".cpp", ".h")
 INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]', re.M)
@@ -71,8 +74,22 @@ def test_the_sketch_flies_the_vn200_core_the_host_tests_test(tmp_path):
     sketch = assemble(tmp_path)
     core = {p.name: p.read_bytes() for p in VN200_CORE.iterdir() if p.suffix in (".c", ".h")}
     in_sketch = {p.name: p.read_bytes() for p in (sketch / "src" / "vn200").iterdir()}
-    assert core, "vn200_driver/core has no sources"
+    assert core, "common/vn200 has no sources"
     assert {name: in_sketch.get(name) for name in core} == core
+
+
+def test_the_sketch_runs_the_core_on_the_ground_floor_the_host_tests_test(tmp_path):
+    """The geodesy and the HP command's CRC the Due compiles are common/src's, byte for byte, once:
+    other folders reach them through a one-line header."""
+    sketch = assemble(tmp_path)
+    floor = {p.name: p.read_bytes() for p in FLOOR}
+    in_core = {name: (sketch / "src" / "core" / name).read_bytes() for name in floor}
+    assert in_core == floor
+    compiled = sorted(str(p.relative_to(sketch)) for p in sketch.rglob("*.c") if p.name in floor)
+    assert compiled == ["src/core/geo_wgs84.c", "src/core/hp_command.c"]
+    forwarders = sorted(p for p in (sketch / "src").rglob("hp_command.h") if p.parent.name != "core")
+    assert [p.parent.name for p in forwarders] == ["hil", "link"]
+    assert all(len(p.read_text().splitlines()) == 2 for p in forwarders)
 
 
 def test_the_sketch_carries_the_message_code_msg_generates(tmp_path):
@@ -100,10 +117,10 @@ def test_no_generated_message_code_is_checked_in_under_arduino_ha():
     assert copies == [], "the sketch gets the message code at assembly (assemble_sketch.sh)"
 
 
-def test_no_vn200_core_file_is_checked_in_under_arduino_ha():
-    core_names = {p.name for p in VN200_CORE.iterdir() if p.suffix in (".c", ".h")}
-    copies = [str(p) for p in HA.rglob("*") if p.name in core_names]
-    assert copies == [], "vn200_driver/core is the one source; the sketch gets it at assembly"
+def test_no_ground_floor_file_is_checked_in_under_arduino_ha():
+    names = {p.name for p in VN200_CORE.iterdir() if p.suffix in (".c", ".h")} | {p.name for p in FLOOR}
+    copies = [str(p) for p in HA.rglob("*") if p.name in names]
+    assert copies == [], "common/ is the one source; the sketch gets it at assembly"
 
 
 def test_decision_status_header_is_the_one_the_message_generates(tmp_path):

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Assembles the Due sketch arduino-cli compiles: <out>/arduino_ha/ with arduino_ha.ino, this
-# folder's src/, the VN-200 protocol core from vn200_driver/core/ in src/vn200/ and the link's
-# message code generated from msg/ in src/link/generated/. arduino-cli compiles only what lies
-# inside the sketch folder and runs no generator, so the one VN-200 core and the one message
-# generator the host tests test are put there here, under .build/, instead of checked-in copies.
+# folder's src/, the ground floor from common/ (geodesy and the HP command's CRC in src/core/, the
+# VN-200 protocol in src/vn200/) and the link's message code generated from msg/ in
+# src/link/generated/. arduino-cli compiles only what lies inside the sketch folder and runs no
+# generator, so the one floor and the one message generator the host tests test are put there
+# here, under .build/, instead of checked-in copies.
 # usage: assemble_sketch.sh <out_dir>    (prints the sketch folder it made)
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -17,14 +18,33 @@ mkdir -p "$sketch"
 cp "$ha/arduino_ha.ino" "$sketch/"
 (cd "$ha" && find src -type f \( -name '*.c' -o -name '*.cpp' -o -name '*.h' \) -print0 |
   xargs -0 cp --parents -t "$sketch")
-mkdir -p "$sketch/src/vn200"
-for src in "$root"/vn200_driver/core/*.c "$root"/vn200_driver/core/*.h; do
-  dest=$sketch/src/vn200/$(basename "$src")
-  if [ -e "$dest" ]; then
-    echo "assemble_sketch: arduino_ha/src/vn200/$(basename "$src") would hide vn200_driver/core's" >&2
-    exit 1
-  fi
-  cp "$src" "$dest"
+# The ground floor (common/): the geodesy and the HP command's CRC beside the core that runs on
+# them, the VN-200 protocol beside the INS feed. A file of the same name in arduino_ha would hide it.
+place() {  # <sketch folder> <file>...
+  local dir=$sketch/$1
+  shift
+  mkdir -p "$dir"
+  for src in "$@"; do
+    if [ -e "$dir/$(basename "$src")" ]; then
+      echo "assemble_sketch: arduino_ha/$1/$(basename "$src") would hide common's" >&2
+      exit 1
+    fi
+    cp "$src" "$dir/"
+  done
+}
+place src/core "$root"/common/src/geo_wgs84.[ch] "$root"/common/src/hp_command.[ch]
+place src/vn200 "$root"/common/vn200/*.[ch]
+# arduino-cli gives the sketch no include path: a header is found only beside the file that
+# includes it. Each other folder that includes a floor header by name gets a one-line header
+# that includes src/core's.
+for header in geo_wgs84.h hp_command.h; do
+  includers=$(grep -rl --include='*.[ch]' --include='*.cpp' "#include \"$header\"" "$sketch/src" || true)
+  for dir in $(xargs -r -n1 dirname <<< "$includers" | LC_ALL=C sort -u); do
+    if [ "$dir" != "$sketch/src/core" ]; then
+      printf '/* Written by assemble_sketch.sh: the ground floor lies in src/core. */\n#include "%s"\n' \
+        "$(realpath --relative-to="$dir" "$sketch/src/core/$header")" > "$dir/$header"
+    fi
+  done
 done
 # The message code, as CMake generates it for the host builds (arduino_ha/link/CMakeLists.txt),
 # with ROS's Python and Debian's genmsg.

@@ -14,18 +14,25 @@ import os
 import sys
 
 
-def load(paths, core_dir):
-    """{file: {(line, arc): taken}} for the files under core_dir."""
-    core_dir = os.path.realpath(core_dir)
+def in_core(name, cores):
+    """Whether the source `name` is one of the core's: a file of a --core folder, or a --core file."""
+    return any(name == core or os.path.dirname(name) == core for core in cores)
+
+
+def load(paths, cores):
+    """{file: {(line, arc): taken}} for the core's files, and {file: its path}."""
+    cores = [os.path.realpath(core) for core in cores]
     seen = {}
+    where = {}
     for path in paths:
         with gzip.open(path, "rt") as f:
             doc = json.load(f)
         cwd = doc.get("current_working_directory", "")
         for entry in doc["files"]:
             name = os.path.realpath(os.path.join(cwd, entry["file"]))
-            if os.path.dirname(name) != core_dir:
+            if not in_core(name, cores):
                 continue
+            where[os.path.basename(name)] = name
             arcs = seen.setdefault(os.path.basename(name), {})
             for line in entry["lines"]:
                 for k, branch in enumerate(line.get("branches", [])):
@@ -33,7 +40,7 @@ def load(paths, core_dir):
                         continue  # C has no exceptions: none in the core
                     key = (line["line_number"], k)
                     arcs[key] = arcs.get(key, False) or branch["count"] > 0
-    return seen
+    return seen, where
 
 
 def parse_floor(text):
@@ -45,13 +52,14 @@ def parse_floor(text):
 
 def main(argv):
     ap = argparse.ArgumentParser(description=__doc__)
-    ap.add_argument("--core", required=True, help="the core's source folder")
+    ap.add_argument("--core", required=True, action="append",
+                    help="a folder of the core's sources, or one source (repeatable)")
     ap.add_argument("--floor", type=parse_floor, action="append", default=[],
                     help="FILE=PERCENT: fail when this core file's branch coverage is below")
     ap.add_argument("--total-floor", type=float, default=0.0, help="the whole core's floor, percent")
     ap.add_argument("json", nargs="+", help="gcov .gcov.json.gz files")
     args = ap.parse_args(argv)
-    files = load(args.json, args.core)
+    files, where = load(args.json, args.core)
     if not files:
         print("coverage-ha: no core file in gcov's output", file=sys.stderr)
         return 1
@@ -80,7 +88,7 @@ def main(argv):
     print("untaken branches (file:line arc: source):")
     for name in sorted(files):
         source = []
-        path = os.path.join(args.core, name)
+        path = where.get(name, "")
         if os.path.exists(path):
             with open(path) as f:
                 source = f.read().splitlines()

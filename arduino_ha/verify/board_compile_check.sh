@@ -2,7 +2,7 @@
 # What the real Due image (tools/build_due_image.sh, `make due-image`: the assembled sketch compiled
 # and linked for the Cortex-M3 against the real SAM core, Wire and Servo, with -Wall -Wextra
 # -Werror on the project's files) cannot show, because it only builds: the sketch RUN. On the
-# sketch as arduino-cli gets it (tools/assemble_sketch.sh: src/ plus vn200_driver/core):
+# sketch as arduino-cli gets it (tools/assemble_sketch.sh: src/ plus common/vn200):
 #  1. the AMS 5812 counts -> pressure -> airspeed arithmetic against hand-computed values;
 #  2. the whole sketch (board layer, core, link, VN-200 seam) built for the host with -Wall
 #     -Wextra -Werror on the board layer, linked with a fake Arduino (arduino_shim/: stand-in

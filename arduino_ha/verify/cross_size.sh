@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Cross-compiles every .c in arduino_ha/src/core for the Due's Cortex-M3 with the flags of the
-# issue, links it with verify/size_main.c into an image laid out for the SAM3X8E's flash and
-# SRAM, and reports flash (text+data), RAM (data+bss) and stack figures as metric lines.
+# Cross-compiles every .c in arduino_ha/src/core, with the ground floor it runs on (common/src), for
+# the Due's Cortex-M3 with the flags of the issue, links it with verify/size_main.c into an image
+# laid out for the SAM3X8E's flash and SRAM, and reports flash (text+data), RAM (data+bss) and stack figures as metric lines.
 # -Werror: a warning on the target compiler fails the check.
 # usage: cross_size.sh [out_dir]
 set -euo pipefail
@@ -10,6 +10,7 @@ ha=$(cd "$here/.." && pwd)
 root=$(cd "$ha/.." && pwd)
 out=${1:-$root/.build/arduino_ha_verify/m3}
 core=${HA_CORE_DIR:-$ha/src/core}  # override only to try a patched copy of the core
+floor=$root/common/src  # the ground floor the core runs on: geodesy, the HP command's CRC
 cc=arm-none-eabi-gcc
 
 if ! command -v "$cc" > /dev/null; then
@@ -20,9 +21,10 @@ rm -rf "$out"
 mkdir -p "$out/core" "$out/image"
 
 cflags=(-mcpu=cortex-m3 -mthumb -Os -std=c99 -ffunction-sections -fdata-sections -fstack-usage
-  -Wall -Wextra -Werror -I"$core")
+  -Wall -Wextra -Werror -I"$core" -I"$floor")
 
 mapfile -t core_sources < <(find "$core" -maxdepth 1 -name '*.c' | LC_ALL=C sort)
+core_sources+=("$floor/geo_wgs84.c" "$floor/hp_command.c")
 # shellcheck source=m3_lib.sh
 source "$here/m3_lib.sh"
 m3_objects=()
@@ -47,7 +49,7 @@ pat = re.compile(r"^ \.(?:text|rodata|data)\S*\s+0x[0-9a-f]+\s+0x([0-9a-f]+)\s+(
 print(sum(int(m.group(1), 16) for m in pat.finditer(text) if m.group(2).startswith(sys.argv[2])))
 PY
 )
-lines=$(cat "$core"/*.c "$core"/*.h | wc -l)
+lines=$(cat "$core"/*.c "$core"/*.h "$floor"/geo_wgs84.[ch] "$floor"/hp_command.[ch] | wc -l)
 
 echo "metric: m3_image_flash $((text + data)) bytes"
 echo "metric: m3_image_ram $((data + bss)) bytes"

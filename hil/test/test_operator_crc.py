@@ -1,6 +1,6 @@
 """The HiL's CRC of a message ending in crc32 (hil/faults/base.py, fields_crc32) is the CRC the HA
 checks: zlib's crc32 over the message's ROS serialization before crc32, equal to the C side's
-(arduino_ha/src/core/hp_command.c, as the build links it into libstack_common.so) for an
+(common/src/hp_command.c, as the build links it into libstack_common.so) for an
 OperatorCommand and for a ServoCommand packed by the C itself."""
 import ctypes
 import io
@@ -14,7 +14,7 @@ from hil.faults.base import fields_crc32
 
 
 class HaHpCommand(ctypes.Structure):
-    """arduino_ha/src/core/hp_command.h's struct, what ha_hp_command_compute_crc packs itself."""
+    """common/src/hp_command.h's struct, what ha_hp_command_compute_crc packs itself."""
     _fields_ = [("seq", ctypes.c_uint32), ("stamp_sec", ctypes.c_uint32), ("stamp_nsec", ctypes.c_uint32),
                 ("throttle", ctypes.c_float), ("elevator_deg", ctypes.c_float), ("aileron_deg", ctypes.c_float),
                 ("rudder_deg", ctypes.c_float), ("alpha_est_deg", ctypes.c_float), ("beta_est_deg", ctypes.c_float),

@@ -1,4 +1,4 @@
-/* Frama-C EVA analysis driver for the VN-200 protocol core (vn200_driver/core). Not compiled
+/* Frama-C EVA analysis driver for the VN-200 protocol core (common/vn200). Not compiled
  * into anything: make verify-vn200-eva (tools/eva.sh) hands it to frama-c with every .c of the
  * core. Every input is unknown: the bytes the framer reads (in several reads of any length), the
  * packet and sentence bytes and lengths given to the decoders, and every field of the command

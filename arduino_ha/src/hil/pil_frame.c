@@ -2,7 +2,7 @@
 
 #include <string.h>
 
-#include "../core/hp_command.h"
+#include "hp_command.h"
 
 void pil_frame_rx_init(PilFrameRx *rx) { memset(rx, 0, sizeof *rx); }
 

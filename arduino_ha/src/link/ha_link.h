@@ -13,9 +13,9 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "../core/hp_command.h"
 #include "ha_link_frame.h"
 #include "ha_link_msgs.h"
+#include "hp_command.h"
 
 #ifdef __cplusplus
 extern "C" {

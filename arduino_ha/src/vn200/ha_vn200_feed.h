@@ -6,7 +6,7 @@
  * (a pty) and the fake board run this one rule.
  *
  * The protocol core's headers are included by name: in the sketch they sit beside this file
- * (`make sketch-ha` puts vn200_driver/core here), host builds link CMake's vn200_core. */
+ * (`make sketch-ha` puts common/vn200 here), host builds link CMake's vn200_core. */
 #ifndef HA_VN200_FEED_H
 #define HA_VN200_FEED_H
 

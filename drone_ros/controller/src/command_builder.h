@@ -19,7 +19,7 @@ drone_ros::ServoCommand build_servo_command(uint32_t seq, const ros::Time &stamp
                                             const GncOutput &out, bool links_healthy,
                                             double throttle_min);
 
-// The CRC the HA checks (arduino_ha/src/core/hp_command.h), over the fields before crc32.
+// The CRC the HA checks (common/src/hp_command.h), over the fields before crc32.
 uint32_t servo_command_crc(const drone_ros::ServoCommand &cmd);
 
 void fill_data(const SensorBoard &board, const GncOutput &out, bool hp_in_control,

@@ -6,7 +6,7 @@
 
 namespace microhard_gs {
 namespace {
-// The stack's one flat earth (arduino_ha/src/core/geo_wgs84.h). A home that geo_ref_init refuses
+// The stack's one flat earth (common/src/geo_wgs84.h). A home that geo_ref_init refuses
 // is never used: the node only takes a home is_valid_position() accepts.
 GeoRef ref_of(const GeoPoint& home) {
   GeoRef r{};

@@ -1,8 +1,8 @@
 /* The ONE latitude/longitude <-> north/east/up conversion of the whole stack: the HA core (Due),
- * the DG808 GNC, the VN-200 tf, the ground station and the controller's test model all call
- * this file. It lives in the HA core because the Due sketch compiles src/ and the core's checks
- * (Frama-C EVA, Cortex-M3 size and step cost) cover every .c here; HP builds compile the same
- * file (CMake target geo_wgs84).
+ * the DG808 GNC, the VN-200 tf, the ground station, the controller's test model and, through
+ * libstack_common.so, the HiL's Python all call this file. It is part of the HA's trusted code:
+ * the sketch carries it in src/core and the core's checks (Frama-C EVA, Cortex-M3 size and step
+ * cost, branch coverage) take it with the core; HP builds link the CMake target geo_wgs84.
  *
  * A flat earth (local tangent plane) about a reference point, home: north and east are the
  * latitude and longitude differences times the WGS84 meridian radius M and the parallel radius

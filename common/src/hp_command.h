@@ -1,7 +1,8 @@
 /* The HP computer's command to the HA for one control period, as the HA core sees it, and the
  * end-to-end integrity check that ties it to the controller's computation (msg/ServoCommand.msg).
- * Shared verbatim by the Due firmware, the host link and controller_DG808, so both ends compute
- * the CRC from one implementation. C99, no heap. */
+ * Shared verbatim by the Due firmware, the host link, the controller, the ground station and,
+ * through libstack_common.so, the HiL's Python, so every end computes the CRC from one
+ * implementation. Part of the HA's trusted code (checked with the core). C99, no heap. */
 #ifndef HA_HP_COMMAND_H
 #define HA_HP_COMMAND_H
 
