@@ -45,6 +45,7 @@ from supervisor_core import node_query  # noqa: E402  (the supervisor's node que
 from hil import faults, gs_monitor, ha_channel, link_relay, mission, sensors, verdicts  # noqa: E402
 from hil.faults.base import RC_NEUTRAL, Board  # noqa: E402
 from hil.design_wind import DesignWind  # noqa: E402
+from hil.flight_record import Period  # noqa: E402
 from hil.fdm import Fdm, FdmCrash, Surfaces, Wind  # noqa: E402
 from stack_common import geo  # noqa: E402
 from stack_common.units import FT_PER_M  # noqa: E402
@@ -473,7 +474,7 @@ class Simulation:
 
     def truth_since(self, t_s):
         """(t_s, HilTruth) of every step from t_s on."""
-        return [(t_us * 1e-6, m) for t_us, m, _, _, _ in self.records if t_us * 1e-6 >= t_s - 1e-9]
+        return [(p.t_s, p.truth) for p in self.records if p.t_s >= t_s - 1e-9]
 
     def controller_pid(self):
         return node_pid(self.master, self.controller_node)
@@ -736,7 +737,7 @@ class Simulation:
         buf = io.BytesIO()
         m.serialize(buf)
         self.truth_log.write(struct.pack("<I", buf.tell()) + buf.getvalue())
-        self.records.append((t_us, m, reply, cmd_seq, tr.airspeed_cal_mps * FT_PER_M))
+        self.records.append(Period(t_us, m, reply, cmd_seq, tr.airspeed_cal_mps * FT_PER_M))
 
     # --- faults and recovery ---------------------------------------------------------------
     def emit_sensors(self, t_s):

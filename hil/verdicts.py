@@ -5,9 +5,12 @@ import bisect
 import math
 
 from drone_ros.msg import DecisionStatus
+from report_core.switches import stretches
 from stack_common import geo
 from stack_common.units import FT_PER_M
 from stack_tools import gen_aircraft_config
+
+from hil.flight_record import HaPeriod
 
 # Who drives the servos: msg/DecisionStatus.msg's CONTROLLER_* (the HA core's header is generated
 # from the same lines), by value and by name.
@@ -54,21 +57,19 @@ def reason_names(mask):
 
 
 def segments(records):
-    """Who flew when: one entry per stretch of one controller, with the HA's reasons."""
+    """Who flew when: one entry per stretch of one controller (report_core.switches.stretches),
+    with the HA's reasons at its first period."""
     out = []
-    for t_us, m, reply, _, _ in records:
-        t = t_us * 1e-6
-        if not out or out[-1]["controller"] != CONTROLLERS.get(reply.controller, str(reply.controller)):
-            if out:
-                out[-1]["to_s"] = round(t, 3)
-            out.append({"from_s": round(t, 3), "to_s": None,
-                        "controller": CONTROLLERS.get(reply.controller, str(reply.controller)),
-                        "reasons_at_switch": reply.reasons_at_switch,
-                        "why": reason_names(reply.reasons_at_switch if reply.controller != HP else 0),
-                        "reasons": reply.reasons,
-                        "stable_for_s_at_switch": round(reply.stable_for_s, 3)})
-    if out:
-        out[-1]["to_s"] = round(records[-1][0] * 1e-6, 3)
+    for run in stretches([p.reply.controller for p in records]):
+        first = records[run.first]
+        reply = first.reply
+        name = CONTROLLERS.get(reply.controller, str(reply.controller))
+        end = records[run.end] if run.end < len(records) else records[-1]
+        out.append({"from_s": round(first.t_s, 3), "to_s": round(end.t_s, 3), "controller": name,
+                    "reasons_at_switch": reply.reasons_at_switch,
+                    "why": reason_names(reply.reasons_at_switch if reply.controller != HP else 0),
+                    "reasons": reply.reasons,
+                    "stable_for_s_at_switch": round(reply.stable_for_s, 3)})
     return out
 
 
@@ -77,7 +78,8 @@ def waypoint_progress(plan, home, records, reach_ft):
     wps = [geo.north_east_ft(home, it.lat_deg, it.lon_deg) for it in plan.items]
     best = [float("inf")] * len(wps)
     first = [None] * len(wps)
-    for t_us, m, _, _, _ in records:
+    for p in records:
+        m = p.truth
         if m.on_ground:
             continue
         for i, (n, e) in enumerate(wps):
@@ -85,7 +87,7 @@ def waypoint_progress(plan, home, records, reach_ft):
             if d < best[i]:
                 best[i] = d
             if d <= reach_ft and first[i] is None:
-                first[i] = round(t_us * 1e-6, 2)
+                first[i] = round(p.t_s, 2)
     return [{"waypoint": i + 1, "closest_ft": round(b, 1), "first_reached_s": f}
             for i, (b, f) in enumerate(zip(best, first))]
 
@@ -119,12 +121,12 @@ def mission_tracking(plan, home, records, progress):
         t0, t1 = progress[i]["first_reached_s"], progress[i + 1]["first_reached_s"]
         if t0 is None or t1 is None or t1 <= t0:
             continue
-        leg = [x for x in records if t0 - 1e-9 <= x[0] * 1e-6 <= t1 + 1e-9]
-        if not leg or any(x[2].controller != HP for x in leg):
+        leg = [x for x in records if t0 - 1e-9 <= x.t_s <= t1 + 1e-9]
+        if not leg or any(x.reply.controller != HP for x in leg):
             continue
         legs += 1
         near = [(wps[j], wps[j + 1]) for j in range(max(0, i - 1), min(len(wps) - 1, i + 2))]
-        errors += [min(segment_distance_ft((x[1].north_ft, x[1].east_ft), a, b) for a, b in near) for x in leg]
+        errors += [min(segment_distance_ft((x.truth.north_ft, x.truth.east_ft), a, b) for a, b in near) for x in leg]
     return {"legs_flown_by_hp": legs, "legs": len(wps) - 1, "samples": len(errors),
             "max_cross_track_ft": round(max(errors), 2) if errors else None,
             "p95_cross_track_ft": None if not errors else round(nearest_rank(errors, 0.95), 2)}
@@ -138,8 +140,8 @@ def ground_station_view(sim, window_s=3.0):
     mon = getattr(sim, "gs_monitor", None)
     if mon is None:
         return None
-    recs = [x for x in sim.records if not x[1].on_ground]
-    times = [x[0] * 1e-6 for x in recs]
+    recs = [x for x in sim.records if not x.truth.on_ground]
+    times = [x.t_s for x in recs]
     horiz, vert = [], []
     for pos in list(mon.positions):
         lo = bisect.bisect_left(times, pos.t_s - window_s)
@@ -147,9 +149,9 @@ def ground_station_view(sim, window_s=3.0):
         if hi - lo < 1:
             continue
         n, e = geo.north_east_ft(sim.home, pos.lat_deg, pos.lon_deg)
-        best = min(recs[lo:hi], key=lambda x: math.hypot(x[1].north_ft - n, x[1].east_ft - e))
-        horiz.append(math.hypot(best[1].north_ft - n, best[1].east_ft - e))
-        vert.append(abs(best[1].height_above_home_ft - pos.relative_alt_m * FT_PER_M))
+        best = min(recs[lo:hi], key=lambda x: math.hypot(x.truth.north_ft - n, x.truth.east_ft - e))
+        horiz.append(math.hypot(best.truth.north_ft - n, best.truth.east_ft - e))
+        vert.append(abs(best.truth.height_above_home_ft - pos.relative_alt_m * FT_PER_M))
     home = None
     if mon.home is not None:
         n, e = geo.north_east_ft(sim.home, mon.home.lat_deg, mon.home.lon_deg)
@@ -182,7 +184,7 @@ def launch_stall_periods(recs, alphas):
     nobody's doing; it ends with the first period the wing flies."""
     n = 0
     for x in recs:
-        if not stalled(x[1], alphas):
+        if not stalled(x.truth, alphas):
             break
         n += 1
     return n
@@ -193,7 +195,7 @@ def longest_stall_s(recs, alphas, period_s):
     gust that spikes alpha for a period or two against a stall flown into and held."""
     best = run = 0
     for x in recs:
-        run = run + 1 if x[2].controller in HA_SIDE and stalled(x[1], alphas) else 0
+        run = run + 1 if x.reply.controller in HA_SIDE and stalled(x.truth, alphas) else 0
         best = max(best, run)
     return best * period_s
 
@@ -207,23 +209,23 @@ def recovery_height_losses(recs, since_s, rebound_ft=2.0):
     i, n = 0, len(recs)
     while i < n:
         x = recs[i]
-        prev = recs[i - 1][2].controller if i else None
-        if x[0] * 1e-6 < since_s - 1e-9 or prev != HP or x[2].controller not in HA_SIDE or x[1].on_ground:
+        prev = recs[i - 1].reply.controller if i else None
+        if x.t_s < since_s - 1e-9 or prev != HP or x.reply.controller not in HA_SIDE or x.truth.on_ground:
             i += 1
             continue
-        h0 = low = x[1].height_above_home_ft
+        h0 = low = x.truth.height_above_home_ft
         recovered = False
         j = i
-        while j < n and recs[j][2].controller in HA_SIDE:
-            h = recs[j][1].height_above_home_ft
+        while j < n and recs[j].reply.controller in HA_SIDE:
+            h = recs[j].truth.height_above_home_ft
             low = min(low, h)
             if h >= low + rebound_ft:
                 recovered = True
                 break
             j += 1
         # Not sinking at the takeover, or handed back before it sank rebound_ft: recovered at once.
-        recovered = recovered or (j < n and recs[j][2].controller == HP)
-        out.append((x[0] * 1e-6, h0 - low, recovered))
+        recovered = recovered or (j < n and recs[j].reply.controller == HP)
+        out.append((x.t_s, h0 - low, recovered))
         i = max(j, i + 1)
     return out
 
@@ -236,11 +238,11 @@ def ha_periods(sim):
     tick up to a step later."""
     rt = getattr(sim, "ha_periods", None)
     if rt is None:
-        return [(x[0] * 1e-6, x[2].commands_received, x[2].controller, x[2].reasons_at_switch)
+        return [HaPeriod(x.t_s, x.reply.commands_received, x.reply.controller, x.reply.reasons_at_switch)
                 for x in sim.records]
     if sim.pace0_mono is None:  # stopped before its first step
         return []
-    return [(t - sim.pace0_mono,) + tuple(rest) for t, *rest in rt]
+    return [HaPeriod(t - sim.pace0_mono, *rest) for t, *rest in rt]
 
 
 def command_deadline(periods, silent_from_s, late_periods_tolerated):
@@ -253,17 +255,18 @@ def command_deadline(periods, silent_from_s, late_periods_tolerated):
     are at any phase to each other, so it lies up to two periods later (hil/README.md)."""
     late = 0
     prev = None
-    for i, (t, n, *_) in enumerate(periods):
+    for i, p in enumerate(periods):
+        n = p.commands_received
         late = late + 1 if prev is not None and n == prev else 0
         prev = n
-        if late > late_periods_tolerated and t >= silent_from_s - 1e-9:
-            return periods[i - late_periods_tolerated][0], t
+        if late > late_periods_tolerated and p.t_s >= silent_from_s - 1e-9:
+            return periods[i - late_periods_tolerated].t_s, p.t_s
     return None
 
 
 def first_takeover_s(periods, from_s):
     """The first period at or after from_s in which the HP did not have the servos."""
-    return next((p for p in periods if p[0] >= from_s - 1e-9 and p[2] != 0), (None,))[0]
+    return next((p.t_s for p in periods if p.t_s >= from_s - 1e-9 and p.controller != HP), None)
 
 
 def crash_takeover(periods, crash_s, regions):
@@ -283,7 +286,7 @@ def crash_takeover(periods, crash_s, regions):
         "latency_after_crash_s": None if t_ha is None else round(t_ha - crash_s, 3) + 0.0,
         "latency_after_deadline_miss_s": None if t_ha is None else round(t_ha - deadline_miss_s, 3) + 0.0,
         "within_one_period_of_deadline_miss": t_ha is not None and t_ha - deadline_miss_s <= period_s + 1e-9,
-        "reasons_at_switch": next((p[3] for p in periods if p[0] == t_ha), None),
+        "reasons_at_switch": next((p.reasons_at_switch for p in periods if p.t_s == t_ha), None),
     }
 
 
@@ -301,13 +304,13 @@ def outside_s_x(r, recs, at):
     prev_out = False
     max_row = worst = None
     for x in recs:
-        row = r.sx_max(x[1])
+        row = r.sx_max(x.truth)
         out = row > 1.0
-        if out and (at is None or x[0] * 1e-6 >= at - 1e-9):
+        if out and (at is None or x.t_s >= at - 1e-9):
             outside_any += 1
         if out and not prev_out:
-            excursion_from_hp = x[2].controller == HP
-        if x[2].controller in HA_SIDE:
+            excursion_from_hp = x.reply.controller == HP
+        if x.reply.controller in HA_SIDE:
             if max_row is None or row > max_row:
                 max_row, worst = row, x
             if out:
@@ -323,12 +326,12 @@ def truth_takeover_due_s(r, recs, at):
     if at is None:
         return None
     for x in recs:
-        t = x[0] * 1e-6
-        m = x[1]
-        if t < at - 1e-9 or x[2].controller != HP or m.on_ground:
+        t = x.t_s
+        m = x.truth
+        if t < at - 1e-9 or x.reply.controller != HP or m.on_ground:
             continue
         airborne = m.height_above_home_ft > r.airborne_ft
-        if r.sx_max(m) > 1.0 or m.height_above_home_ft > r.ceiling_ft or (airborne and x[4] <= r.stall_ftps):
+        if r.sx_max(m) > 1.0 or m.height_above_home_ft > r.ceiling_ft or (airborne and x.airspeed_cal_ftps <= r.stall_ftps):
             return t
     return None
 
@@ -339,11 +342,11 @@ def fault_verdict(sim, progress):
     servos against when it had to (the fault class's own deadline, or the truth leaving S_x,
     passing the ceiling or falling to the stall while the HP flew)."""
     r = sim.regions
-    recs = [x for x in sim.records if x[0] * 1e-6 > sim.ground_s]
+    recs = [x for x in sim.records if x.t_s > sim.ground_s]
     period = r.period_s
     f = sim.fault
     at = f.at_s if f is not None else None
-    unsafe_n = sum(1 for x in sim.records if unsafe(r, x[2].applied))
+    unsafe_n = sum(1 for x in sim.records if unsafe(r, x.reply.applied))
     outside_ha, inherited, outside_any, max_row, worst = outside_s_x(r, recs, at)
     due = f.takeover_due_s() if f is not None else None
     truth_due = truth_takeover_due_s(r, recs, at)
@@ -355,10 +358,10 @@ def fault_verdict(sim, progress):
         lat = None if took is None else round(took - due_s, 4) + 0.0
     off = back = None
     if at is not None:
-        off = next((x[0] * 1e-6 for x in recs if x[0] * 1e-6 >= at - 1e-9 and x[2].controller != HP), None)
+        off = next((x.t_s for x in recs if x.t_s >= at - 1e-9 and x.reply.controller != HP), None)
         if off is not None:
-            back = next((x[0] * 1e-6 for x in recs if x[0] * 1e-6 > off and x[2].controller == HP), None)
-    airborne = [x for x in recs if not x[1].on_ground]
+            back = next((x.t_s for x in recs if x.t_s > off and x.reply.controller == HP), None)
+    airborne = [x for x in recs if not x.truth.on_ground]
     crashed = any("aircraft crashed" in e["event"] for e in sim.events)
     env_s = round(outside_ha * period, 4)
     takeover_ok = due_s is None or (lat is not None and lat <= period + 1e-9)
@@ -367,8 +370,8 @@ def fault_verdict(sim, progress):
     alphas = stall_alphas_deg(sim)
     launch = launch_stall_periods(recs, alphas)
     flown = recs[launch:]
-    stalled_ha = sum(1 for x in flown if x[2].controller in HA_SIDE and stalled(x[1], alphas))
-    stalled_any = sum(1 for x in recs if (at is None or x[0] * 1e-6 >= at - 1e-9) and stalled(x[1], alphas))
+    stalled_ha = sum(1 for x in flown if x.reply.controller in HA_SIDE and stalled(x.truth, alphas))
+    stalled_any = sum(1 for x in recs if (at is None or x.t_s >= at - 1e-9) and stalled(x.truth, alphas))
     losses = recovery_height_losses(recs, at if at is not None else sim.ground_s)
     return {
         "ok": unsafe_n == 0 and outside_ha == 0 and takeover_ok and not crashed and stalled_ha == 0,
@@ -396,10 +399,10 @@ def fault_verdict(sim, progress):
         "takeover_within_one_period": takeover_ok,
         "hp_lost_control_s": None if off is None else round(off, 4),
         "recovery_s": None if back is None else round(back - at, 4),
-        "latched": any(x[2].controller == HA_LATCHED for x in recs),
+        "latched": any(x.reply.controller == HA_LATCHED for x in recs),
         "aircraft_crashed": crashed,
-        "min_height_agl_ft": round(min(x[1].height_above_home_ft for x in airborne), 2) if airborne else None,
-        "min_airspeed_margin_ftps": round(min(x[4] for x in airborne) - r.stall_ftps, 2) if airborne else None,
+        "min_height_agl_ft": round(min(x.truth.height_above_home_ft for x in airborne), 2) if airborne else None,
+        "min_airspeed_margin_ftps": round(min(x.airspeed_cal_ftps for x in airborne) - r.stall_ftps, 2) if airborne else None,
         "mission_progress": round(sum(1 for p in progress if p["first_reached_s"] is not None) / float(len(progress)), 4)
         if progress else 0.0,
     }
@@ -407,12 +410,12 @@ def fault_verdict(sim, progress):
 
 def worst_state(x):
     """Where the state was at the step of the largest S_x row under the HA."""
-    m = x[1]
-    return {"t_s": round(x[0] * 1e-6, 3), "controller": CONTROLLERS.get(x[2].controller),
+    m = x.truth
+    return {"t_s": round(x.t_s, 3), "controller": CONTROLLERS.get(x.reply.controller),
             "alpha_deg": round(m.alpha_deg, 2), "beta_deg": round(m.beta_deg, 2), "roll_deg": round(m.roll_deg, 2),
             "pitch_deg": round(m.pitch_deg, 2), "p_deg_s": round(m.p_deg_s, 1), "q_deg_s": round(m.q_deg_s, 1),
             "r_deg_s": round(m.r_deg_s, 1), "height_ft": round(m.height_above_home_ft, 1),
-            "calibrated_airspeed_ftps": round(x[4], 2)}
+            "calibrated_airspeed_ftps": round(x.airspeed_cal_ftps, 2)}
 
 
 def world(sim):
@@ -459,10 +462,10 @@ def fault_record(sim):
 def summarize(sim):
     r = sim.regions
     recs = sim.records
-    airborne = [x for x in recs if not x[1].on_ground and x[1].height_above_home_ft > r.airborne_ft]
-    unsafe_servo = [x for x in recs if unsafe(r, x[2].applied)]
-    ha_flying = [x for x in recs if x[2].controller in HA_SIDE and x[0] * 1e-6 > sim.ground_s]
-    sx_ha = max((r.sx_max(x[1]) for x in ha_flying), default=None)
+    airborne = [x for x in recs if not x.truth.on_ground and x.truth.height_above_home_ft > r.airborne_ft]
+    unsafe_servo = [x for x in recs if unsafe(r, x.reply.applied)]
+    ha_flying = [x for x in recs if x.reply.controller in HA_SIDE and x.t_s > sim.ground_s]
+    sx_ha = max((r.sx_max(x.truth) for x in ha_flying), default=None)
     segs = segments(recs)
     crash = getattr(sim, "crashed_at", None)
     takeover = None
@@ -470,18 +473,19 @@ def summarize(sim):
         takeover = crash_takeover(ha_periods(sim), crash, r)
         t_ha = takeover["takeover_s"]
         t_back = None if t_ha is None else next(
-            (x[0] * 1e-6 for x in recs if x[0] * 1e-6 > t_ha and x[2].controller == HP), None)
+            (x.t_s for x in recs if x.t_s > t_ha and x.reply.controller == HP), None)
         takeover["hand_back_s"] = None if t_back is None else round(t_back, 3)
     handbacks = []
     prev = None
-    for t_us, m, reply, _, cal_ftps in recs:
+    for p in recs:
+        reply = p.reply
         if prev is not None and prev != HP and reply.controller == HP:
-            handbacks.append({"t_s": round(t_us * 1e-6, 3), "stable_for_s": round(reply.stable_for_s, 3),
+            handbacks.append({"t_s": round(p.t_s, 3), "stable_for_s": round(reply.stable_for_s, 3),
                               "after_stable_window": reply.stable_for_s + 1e-6 >= r.stable_window_s,
-                              "calibrated_airspeed_ftps": round(cal_ftps, 2)})
+                              "calibrated_airspeed_ftps": round(p.airspeed_cal_ftps, 2)})
         prev = reply.controller
-    heights = [x[1].height_above_home_ft for x in airborne]
-    cal = [x[4] for x in airborne]
+    heights = [x.truth.height_above_home_ft for x in airborne]
+    cal = [x.airspeed_cal_ftps for x in airborne]
     reach_ft = sim.reach_ft  # the controller's own "waypoint reached" distance (dist2b)
     progress = waypoint_progress(sim.plan, sim.home, recs, reach_ft)
     fault = fault_record(sim)
@@ -516,7 +520,7 @@ def summarize(sim):
             "min_stall_margin_ftps": round(min(cal) - r.stall_ftps, 2) if cal else None,
         },
         "unsafe_servo_commands": {"steps": len(recs), "outside_S_u": len(unsafe_servo),
-                                  "max_S_u_row": round(max(r.su_max(x[2].applied) for x in recs), 5) if recs else None},
+                                  "max_S_u_row": round(max(r.su_max(x.reply.applied) for x in recs), 5) if recs else None},
         "state_while_ha_flies": {"steps": len(ha_flying),
                                  "max_S_x_row": None if sx_ha is None else round(sx_ha, 4),
                                  "inside_S_x": sx_ha is None or sx_ha <= 1.0},

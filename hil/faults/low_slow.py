@@ -41,12 +41,12 @@ class LowSlow(SteeringFault):
     def extreme(self):
         """The lowest point after the fault began, and the throttle the HA applied there (a motor
         cut for height alone would show as 0)."""
-        low = min(((m.height_above_home_ft, t_us * 1e-6, reply.applied[3], cal)
-                   for t_us, m, reply, _, cal in self.ctx.records if t_us * 1e-6 >= self.at_s - 1e-9),
+        low = min(((p.truth.height_above_home_ft, p.t_s, p.reply.applied[3], p.airspeed_cal_ftps)
+                   for p in self.ctx.records if p.t_s >= self.at_s - 1e-9),
                   default=None)
         if low is None:
             return ""
-        end_ft = self.ctx.records[-1][1].height_above_home_ft
+        end_ft = self.ctx.records[-1].truth.height_above_home_ft
         return "lowest %.1f ft at %.2f s, throttle applied there %.3f, calibrated airspeed %.1f ft/s; " \
                "%.1f ft at the end" % (low[0], low[1], low[2], low[3], end_ft)
 

@@ -89,8 +89,8 @@ class WindShift(Fault):
     def effect(self):
         if not self.steps:
             return False, "the wind never changed while the HA stepped"
-        cal = [(t_us * 1e-6, c) for t_us, _, _, _, c in self.ctx.records
-               if self.at_s - 1e-9 <= t_us * 1e-6 <= self.at_s + self.ramp_s + 5.0]
+        cal = [(p.t_s, p.airspeed_cal_ftps) for p in self.ctx.records
+               if self.at_s - 1e-9 <= p.t_s <= self.at_s + self.ramp_s + 5.0]
         low = min(cal, key=lambda x: x[1]) if cal else None
         return True, "the HA stepped %d periods in the changed wind; %s%s" % (
             self.steps, "; ".join(self.notes[:1]),

@@ -9,6 +9,7 @@ from collections import namedtuple
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 from hil import verdicts  # noqa: E402
+from hil.flight_record import Period  # noqa: E402
 from hil.faults.crash import Crash  # noqa: E402
 
 PERIOD_S = 0.01
@@ -100,7 +101,7 @@ Reply = namedtuple("Reply", "commands_received controller reasons_at_switch")
 def test_in_lockstep_the_crashs_own_step_is_the_first_late_period():
     # One HA period per simulator step; the controller killed at step 30.00 sends nothing in it.
     steps = [round(29.9 + i * PERIOD_S, 6) for i in range(20)]
-    records = [(int(round(t * 1e6)), None, Reply(sum(1 for c in steps if c < 30.0 - 1e-9 and c <= t),
+    records = [Period(int(round(t * 1e6)), None, Reply(sum(1 for c in steps if c < 30.0 - 1e-9 and c <= t),
                                                   1 if t >= 30.01 - 1e-9 else 0, DEADLINE_MISS), None, 60.0)
                for t in steps]
 
@@ -118,7 +119,8 @@ def test_one_late_period_of_jitter_before_the_crash_is_not_the_deadline_miss():
     # tolerated, and not a deadline miss; the crash's comes after it.
     commands = [c for c in hp_commands(0.0041, 29.9941) if abs(c - 29.9441) > 1e-6] + [29.9503]
     periods = verdicts.ha_periods(RealtimeSim(realtime_periods(0.0002, sorted(commands))))
-    late = [round(periods[i][0], 6) for i in range(1, len(periods)) if periods[i][1] == periods[i - 1][1]]
+    late = [round(periods[i].t_s, 6) for i in range(1, len(periods))
+            if periods[i].commands_received == periods[i - 1].commands_received]
     assert late[:3] == [29.9502, 30.0102, 30.0202], late  # the jitter's one, then the crash's
     assert tuple(round(t, 6) for t in verdicts.command_deadline(periods, 29.9, 1)) == (30.0102, 30.0202)
 

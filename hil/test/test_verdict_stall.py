@@ -6,6 +6,7 @@ from collections import namedtuple
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 from hil import verdicts  # noqa: E402
+from hil.flight_record import Period  # noqa: E402
 from hil.fdm.airframe import Airframe  # noqa: E402
 
 M = namedtuple("M", "alpha_deg height_above_home_ft on_ground")
@@ -14,7 +15,7 @@ R = namedtuple("R", "controller")
 
 def recs(samples):
     """(t_s, controller, height, alpha) -> the simulator's records."""
-    return [(int(round(t * 1e6)), M(a, h, False), R(c), None, 60.0) for t, c, h, a in samples]
+    return [Period(int(round(t * 1e6)), M(a, h, False), R(c), None, 60.0) for t, c, h, a in samples]
 
 
 def test_the_stall_alpha_is_the_airframes_and_a_stall_is_past_either_side():

@@ -1,9 +1,9 @@
 """Who flew when: the runs of one controller and the switches between them, from the HA's
-DecisionStatus stream (the HA's own record of its decisions)."""
+DecisionStatus stream (the HA's own record of its decisions). `stretches` is the one
+computation of who flew when: the report's runs here and the HiL's verdicts (hil.verdicts'
+`who_flew`, over the simulator's periods) both take it."""
 from dataclasses import dataclass, field
-from typing import List
-
-import numpy as np
+from typing import List, NamedTuple, Sequence
 
 from . import definitions
 
@@ -26,15 +26,29 @@ class Switch:
     stable_for_s: float = 0.0  # how long the HP command had been valid at the switch
 
 
-def runs(log):
-    controller = log.decision.controller.astype(int)
-    t = log.decision.t
-    starts = np.concatenate(([0], np.flatnonzero(np.diff(controller)) + 1))
+class Stretch(NamedTuple):
+    controller: int
+    first: int  # index of its first sample
+    end: int  # index past its last sample: the next stretch's first, or the series' length
+
+
+def stretches(controllers: Sequence[int]):
+    """The runs of one controller in a series of samples, in order: [Stretch]. Empty for an
+    empty series."""
     out = []
-    for i, start in enumerate(starts):
-        end_s = t[starts[i + 1]] if i + 1 < len(starts) else t[-1]
-        out.append(Run(_name(log, controller[start]), float(t[start]), float(end_s)))
+    for i, c in enumerate(controllers):
+        c = int(c)
+        if not out or out[-1].controller != c:
+            if out:
+                out[-1] = out[-1]._replace(end=i)
+            out.append(Stretch(c, i, len(controllers)))
     return out
+
+
+def runs(log):
+    t = log.decision.t
+    return [Run(_name(log, s.controller), float(t[s.first]), float(t[s.end] if s.end < len(t) else t[-1]))
+            for s in stretches(log.decision.controller)]
 
 
 def switches(log):
@@ -42,7 +56,7 @@ def switches(log):
     caused it (reasons_at_switch); any other switch carries the checks failing in that period."""
     d = log.decision
     all_runs = runs(log)
-    index_of_start = np.concatenate(([0], np.flatnonzero(np.diff(d.controller.astype(int))) + 1))
+    index_of_start = [s.first for s in stretches(d.controller)]
     ha_modes = {log.controller_value.get(n) for n in ("HA", "HA_LATCHED")}
     out = []
     for k in range(1, len(all_runs)):
