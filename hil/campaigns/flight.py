@@ -93,49 +93,9 @@ def _num(v):
     return None if v is None or (isinstance(v, float) and math.isnan(v)) else v
 
 
-def verdict_of(summary):
-    """The agreed per-flight verdict: summary["verdict"] when run_flight.py writes it, else the
-    same quantities from the fields the first lockstep flight writes."""
-    v = dict(summary.get("verdict") or {})
-    tk = summary.get("takeover") or {}
-    if "unsafe_commands" not in v:
-        v["unsafe_commands"] = (summary.get("unsafe_servo_commands") or {}).get("outside_S_u")
-    if "envelope_violations_under_ha_s" not in v:
-        inside = (summary.get("state_while_ha_flies") or {}).get("inside_S_x")
-        # The first summary says whether S_x was left while the HA flew, not for how long.
-        v["envelope_violations_under_ha_s"] = None if inside is None else (0.0 if inside else float("nan"))
-    if "takeover_latency_s" not in v:
-        v["takeover_latency_s"] = tk.get("latency_after_deadline_miss_s")
-    if "recovery_s" not in v:
-        back, at = tk.get("hand_back_s"), tk.get("crash_injected_s")
-        v["recovery_s"] = None if back is None or at is None else round(back - at, 3)
-    if "latched" not in v:
-        v["latched"] = any(s.get("controller") == "HA_LATCHED" for s in summary.get("who_flew") or [])
-    m = summary.get("margins") or {}
-    if "min_height_agl_ft" not in v:
-        v["min_height_agl_ft"] = m.get("min_height_above_home_ft")
-    if "min_airspeed_margin_ftps" not in v:
-        v["min_airspeed_margin_ftps"] = m.get("min_stall_margin_ftps")
-    if "mission_progress" not in v:
-        mi = summary.get("mission") or {}
-        v["mission_progress"] = round(mi["reached"] / mi["waypoints"], 3) if mi.get("waypoints") else None
-    if "ok" not in v:
-        env = v["envelope_violations_under_ha_s"]
-        v["ok"] = (v["unsafe_commands"] == 0) and env is not None and not math.isnan(env) and env == 0.0
-    return v
-
-
-def fault_of(summary):
-    f = dict(summary.get("fault") or {})
-    if "took_effect" not in f:
-        events = [e.get("event", "") for e in summary.get("events") or []]
-        f["took_effect"] = any("injected" in e and "not running" not in e for e in events)
-    return f
-
-
 def broke_property(row):
     """The Simplex property: no servo command outside S_u, the aircraft inside S_x while the HA
-    flies (and the flight's own verdict, when it gives one). Beyond the aircraft's design wind
+    flies, and the flight's own verdict (hil.verdicts'). Beyond the aircraft's design wind
     (hil/design_wind.py) it is claimed no more: such a flight is judged on survival, no unsafe
     command and no crash."""
     if row["status"] not in ("ok", "fault_not_effective"):
@@ -249,6 +209,10 @@ def run(flight, argv, folder, wall_limit_s, term_grace_s=30.0, env=None):
         s = summary or {}
         row["status"] = "timeout" if s.get("status") == "timeout" else "died"
         row["reason"] = ("exit %s: %s" % (code, s["error"])) if s.get("error") else _death_reason(folder, code)
+    elif not isinstance(summary.get("verdict"), dict) or not isinstance(summary.get("fault"), dict):
+        # The verdict is hil.verdicts' alone: a summary without one is not judged here again.
+        row["status"] = "died"
+        row["reason"] = "summary.json has no verdict or no fault record (not written by this run_flight.py)"
     else:
         row["status"] = summary.get("status") or "ok"
     if row["status"] in ("died", "timeout"):
@@ -257,7 +221,7 @@ def run(flight, argv, folder, wall_limit_s, term_grace_s=30.0, env=None):
         from hil.campaigns import plan as plan_mod
         row["beyond_design_wind"] = "; ".join(plan_mod.beyond_design_wind(flight))
     if row["status"] not in ("died", "timeout"):
-        v, f = verdict_of(summary), fault_of(summary)
+        v, f = summary["verdict"], summary["fault"]
         row["took_effect"] = f.get("took_effect")
         for k in ("ok", "unsafe_commands", "envelope_violations_under_ha_s", "takeover_latency_s", "recovery_s",
                   "latched", "min_height_agl_ft", "min_airspeed_margin_ftps", "mission_progress",
@@ -267,7 +231,7 @@ def run(flight, argv, folder, wall_limit_s, term_grace_s=30.0, env=None):
         env = v.get("envelope_under_ha") or {}
         row["sx_inherited_from_hp_s"] = env.get("inherited_from_hp_s")
         row["sx_left_under_ha_s"] = env.get("left_under_ha_s")
-        row["max_sx_row_under_ha"] = env.get("max_S_x_row", (summary.get("state_while_ha_flies") or {}).get("max_S_x_row"))
+        row["max_sx_row_under_ha"] = env.get("max_S_x_row")
         row["takeover_within_one_period"] = v.get("takeover_within_one_period")
         row["aircraft_crashed"] = v.get("aircraft_crashed")
         row["beyond_design_wind"] = "; ".join((summary.get("world") or {}).get("beyond_design_wind") or [])

@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """A stand-in for hil/run_flight.py in the campaign runner's tests: the same command line, and per
 fault class one way a flight ends, so the runner's handling of each can be shown quickly:
-  quick    writes a summary.json like the lockstep flight's and exits 0
+  quick    writes a summary.json like the lockstep flight's (its verdict and fault record as
+           hil.verdicts writes them) and exits 0
+  unjudged the same without the verdict: a summary an older run_flight.py wrote
   wait     the same once the file CAMPAIGN_TEST_RELEASE names exists (a flight still flying)
   die      writes error.txt and exits 3, no summary (a flight that died)
   stuck    starts two processes in sessions of their own, as run_flight.py starts roscore and
@@ -21,15 +23,20 @@ STUCK_CHILD = ("import signal, time\n"
 
 
 def summary(args):
+    verdict = {"ok": True, "unsafe_commands": 0, "envelope_violations_under_ha_s": 0.0,
+               "envelope_under_ha": {"outside_S_x_s": 0.0, "inherited_from_hp_s": 0.0,
+                                     "left_under_ha_s": 0.0, "max_S_x_row": 0.4, "worst": None},
+               "takeover_latency_s": 0.01, "takeover_within_one_period": True, "recovery_s": 4.5,
+               "latched": False, "aircraft_crashed": False, "min_height_agl_ft": 150.0,
+               "min_airspeed_margin_ftps": 12.0, "mission_progress": 0.0938, "stalled_under_ha_s": 0.0,
+               "longest_stall_under_ha_s": 0.0, "stalled_from_fault_s": 0.0, "recovery_height_loss_ft": 3.0}
+    fault = {"class": args.fault, "at_s": args.fault_at, "duration_s": args.fault_duration, "params": {},
+             "took_effect": True, "evidence": "t=%g s: SIGKILL" % args.fault_at, "notes": [], "detail": None}
     return {"seed": args.seed, "simulated_s": args.duration, "wall_s": 1.0, "x_real_time": 1.0,
-            "takeover": {"crash_injected_s": args.fault_at, "latency_after_deadline_miss_s": 0.01,
-                         "hand_back_s": args.fault_at + 4.5},
             "who_flew": [{"controller": "HP"}, {"controller": "HA"}, {"controller": "HP"}],
-            "margins": {"min_height_above_home_ft": 150.0, "min_stall_margin_ftps": 12.0},
-            "unsafe_servo_commands": {"outside_S_u": 0, "steps": 100},
-            "state_while_ha_flies": {"inside_S_x": True, "max_S_x_row": 0.4},
-            "mission": {"reached": 3, "waypoints": 32},
-            "events": [{"t_s": args.fault_at, "event": "HP crash injected: SIGKILL"}]}
+            "world": {"beyond_design_wind": []},
+            "events": [{"t_s": args.fault_at, "event": "HP crash injected: SIGKILL"}],
+            "fault": fault, "verdict": verdict, "status": "ok"}
 
 
 def main():
@@ -62,8 +69,11 @@ def main():
     if args.fault == "wait":
         while not os.path.exists(os.environ["CAMPAIGN_TEST_RELEASE"]):
             time.sleep(0.05)
+    written = summary(args)
+    if args.fault == "unjudged":
+        del written["verdict"]
     with open(os.path.join(args.folder, "summary.json"), "w") as f:
-        json.dump(summary(args), f)
+        json.dump(written, f)
     return 0
 
 

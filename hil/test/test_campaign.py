@@ -20,7 +20,7 @@ from hil.campaigns import report as report_mod  # noqa: E402
 from hil.campaigns import runner  # noqa: E402
 
 FAKE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "campaign_fake_flight.py")
-AGREED = plan_mod.Interface(classes=("quick", "wait", "die", "stuck"), fault_at_flag="--fault-at",
+AGREED = plan_mod.Interface(classes=("quick", "wait", "die", "stuck", "unjudged"), fault_at_flag="--fault-at",
                             has_duration=True, has_params=True)
 
 
@@ -157,6 +157,24 @@ def test_a_campaign_with_ha_qemu_flies_every_flight_with_the_ha_in_qemu_and_the_
     folder = str(tmp_path)
     row = flight_mod.run(fl, plan_mod.command(fl, folder, AGREED, run_flight=FAKE), folder, 60.0)
     assert row["status"] == "ok" and row["ha"] == "qemu" and " --ha qemu " in row["command"]
+
+
+def test_a_flight_judged_ok_reaches_its_row_with_its_own_verdict(tmp_path):
+    fl = plan_mod.make_plan(1, 5, ("quick",), interface=AGREED)[0]
+    folder = str(tmp_path)
+    row = flight_mod.run(fl, plan_mod.command(fl, folder, AGREED, run_flight=FAKE), folder, 60.0)
+    assert row["status"] == "ok" and row["broke_property"] is False, row
+    assert (row["recovery_s"], row["max_sx_row_under_ha"], row["min_height_agl_ft"]) == (4.5, 0.4, 150.0)
+
+
+def test_a_summary_without_a_verdict_is_not_judged_again_but_reported_as_died(tmp_path):
+    """The verdict is hil.verdicts' alone: the campaign does not recompute one from a summary's
+    other fields (an older run_flight.py's schema)."""
+    fl = plan_mod.make_plan(1, 5, ("unjudged",), interface=AGREED)[0]
+    folder = str(tmp_path)
+    row = flight_mod.run(fl, plan_mod.command(fl, folder, AGREED, run_flight=FAKE), folder, 60.0)
+    assert row["status"] == "died" and "no verdict" in row["reason"], row
+    assert row["unsafe_commands"] is None and row["broke_property"] is False
 
 
 def test_the_classes_come_from_this_checkouts_run_flight():
