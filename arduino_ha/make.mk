@@ -56,7 +56,7 @@ EVA_ha-fw_SOURCES = $(HA_DIR)/verify/eva_firmware_main.c $(HA_DIR)/src/firmware/
   $(HA_DIR)/src/vn200/ha_vn200_feed.c $(addprefix $(ROOT)/common/vn200/,vn_framer.c vn_binary.c vn_checksum.c vn_ascii.c) \
   $(addprefix $(HA_DIR)/src/link/,ha_link.c ha_link_frame.c ha_link_report.c) $(LINK_GEN_DIR)/ha_msgs.c \
   $(sort $(wildcard $(HA_CORE_DIR)/*.c)) $(HA_FLOOR_SRC)
-EVA_ha-fw_ARGS = -I $(HA_CORE_DIR) -I $(HA_FLOOR_DIR) -I $(HA_DIR)/src/link -I $(HA_DIR)/src/firmware -I $(HA_DIR)/src/vn200 \
+EVA_ha-fw_ARGS = -I $(HA_CORE_DIR) -I $(HA_FLOOR_DIR) -I $(ROOT)/common/link -I $(HA_DIR)/src/link -I $(HA_DIR)/src/firmware -I $(HA_DIR)/src/vn200 \
   -I $(ROOT)/common/vn200 -D 'HA_LINK_GENERATED_HEADER="$(LINK_GEN_DIR)/ha_msgs.h"' \
   --reach $(HA_DIR)/src/firmware --case any-board:main:1:none --use-spec $(HA_BY_CONTRACT)
 EVA_ha-fw_DEPS = deps $(LINK_GEN_DIR)/ha_msgs.c

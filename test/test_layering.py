@@ -29,9 +29,6 @@ COMPONENTS = ([ROOT / "arduino_ha", ROOT / "vn200_driver", ROOT / "microhard_gs"
 # The crossings that remain, each with what removes it. The test fails on any other crossing, and
 # on a listed one that is gone (then delete its line).
 KNOWN_CROSSINGS = {
-    # The link's wire format: the HP end decodes the reserved topics with the Due's generated
-    # message code (arduino_ha/link/gen). Its place is common/ too; not moved yet.
-    ("drone_ros/arduino_link", "ha_link_msgs.h", "arduino_ha"),
     # The build's aircraft's GNC, bound by name (gnc_binding.h): issue 28 takes the generic GNC
     # out of the aircraft folder.
     ("drone_ros/controller", "gnc_binding.h", "aircraft/DG808"),

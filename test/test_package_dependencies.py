@@ -48,7 +48,7 @@ ROS_TOOLS = {"roscore": "roslaunch", "roslaunch": "roslaunch", "rosparam": "rosp
 # Build-time Python: the generators CMake runs, and what they import from the tree. check_config also
 # runs at launch (launch/check_config.launch), so its imports are run-time ones too.
 BUILD_ONLY = re.compile(r"^(tools/gen_[a-z_]+\.py|tools/stack_tools/(gen_[a-z_]+|generated_file)\.py|setup\.py|"
-                        r"arduino_ha/tools/[a-z_]+\.py|arduino_ha/link/gen/[a-z_0-9]+\.py)$")
+                        r"arduino_ha/tools/[a-z_]+\.py|common/link/gen/[a-z_0-9]+\.py)$")
 BUILD_AND_RUN = {"tools/check_config.py", "tools/stack_tools/check_config.py"}
 # Declarations that serve each time.
 KINDS = {"build": ("depend", "build_depend", "buildtool_depend"), "run": ("depend", "exec_depend"),

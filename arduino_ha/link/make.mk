@@ -11,10 +11,12 @@
 #                          for the Due's Cortex-M3 (-Werror, -pedantic, -Wconversion) with flash,
 #                          RAM and worst stack frame
 LINK_DIR := $(ROOT)/arduino_ha/link
-LINK_GEN := $(PYTHON) $(LINK_DIR)/gen/make_c99_msgs.py
+# The wire format both ends speak is the ground floor's: its generator and ha_link_msgs.h.
+LINK_MSGS_DIR := $(ROOT)/common/link
+LINK_GEN := $(PYTHON) $(LINK_MSGS_DIR)/gen/make_c99_msgs.py
 LINK_SEARCH := drone_ros=$(ROOT)/msg std_msgs=/usr/share/std_msgs/msg \
-  geometry_msgs=/usr/share/geometry_msgs/msg rosserial_msgs=$(LINK_DIR)/gen/rosserial_msgs/msg
-LINK_TYPES = $(shell cat $(LINK_DIR)/gen/device_types.txt)
+  geometry_msgs=/usr/share/geometry_msgs/msg rosserial_msgs=$(LINK_MSGS_DIR)/gen/rosserial_msgs/msg
+LINK_TYPES = $(shell cat $(LINK_MSGS_DIR)/gen/device_types.txt)
 LINK_GEN_DIR := $(ROOT)/.build/link/generated
 
 VERIFY_TARGETS += verify-link
@@ -26,9 +28,9 @@ due-sketch-msgs:
 	@echo "due-sketch-msgs: wrote arduino_ha/src/core/ha_decision_status.h"
 
 # The message code host builds use, generated into .build (CMake builds make their own).
-$(LINK_GEN_DIR)/ha_msgs.c: $(LINK_DIR)/gen/make_c99_msgs.py $(LINK_DIR)/gen/device_types.txt $(wildcard $(ROOT)/msg/*.msg)
+$(LINK_GEN_DIR)/ha_msgs.c: $(LINK_MSGS_DIR)/gen/make_c99_msgs.py $(LINK_MSGS_DIR)/gen/device_types.txt $(wildcard $(ROOT)/msg/*.msg)
 	@$(LINK_GEN) $(LINK_GEN_DIR) $(LINK_SEARCH) -- $(LINK_TYPES)
-LINK_GEN_HEADER := -DHA_LINK_GENERATED_HEADER=\"$(LINK_GEN_DIR)/ha_msgs.h\"
+LINK_GEN_HEADER := -I$(LINK_MSGS_DIR) -DHA_LINK_GENERATED_HEADER=\"$(LINK_GEN_DIR)/ha_msgs.h\"
 
 # Fuzzing (tools/kit.mk): the device link, the host framer and the host's handling of
 # announcements, logs and parameters.
@@ -45,7 +47,7 @@ FUZZ_link_host_framer_FLAGS := -I$(ROOT)/drone_ros/arduino_link/src
 FUZZ_link_host_framer_SEEDS := $(ROOT)/drone_ros/arduino_link/fuzz/corpus_host_framer
 FUZZ_link_host_payloads_SOURCES := $(ROOT)/drone_ros/arduino_link/fuzz/fuzz_host_payloads.cpp \
   $(ROOT)/drone_ros/arduino_link/src/device_payloads.cpp $(LINK_GEN_DIR)/ha_msgs.c
-FUZZ_link_host_payloads_FLAGS := -I$(ROOT)/drone_ros/arduino_link/src -I$(ROOT)/arduino_ha/src/link -I$(ROOT)/common/src $(LINK_GEN_HEADER)
+FUZZ_link_host_payloads_FLAGS := -I$(ROOT)/drone_ros/arduino_link/src $(LINK_GEN_HEADER)
 FUZZ_link_host_payloads_SEEDS := $(ROOT)/drone_ros/arduino_link/fuzz/corpus_host_payloads
 
 verify-link: verify-link-m3 verify-link-eva
@@ -57,7 +59,7 @@ EVA_link_SOURCES = $(LINK_DIR)/verify/eva_link_main.c $(ROOT)/arduino_ha/src/lin
   $(LINK_GEN_DIR)/ha_msgs.c $(ROOT)/common/src/hp_command.c \
   $(ROOT)/arduino_ha/src/core/ha_surfaces.c $(ROOT)/arduino_ha/src/core/ha_num.c \
   $(ROOT)/arduino_ha/src/core/ha_aircraft.c
-EVA_link_ARGS = -I $(ROOT)/arduino_ha/src/link -I $(ROOT)/arduino_ha/src/core -I $(ROOT)/common/src \
+EVA_link_ARGS = -I $(ROOT)/arduino_ha/src/link -I $(ROOT)/arduino_ha/src/core -I $(ROOT)/common/src -I $(LINK_MSGS_DIR) \
   -D 'HA_LINK_GENERATED_HEADER="$(LINK_GEN_DIR)/ha_msgs.h"' --case any-bytes:main:1:none \
   --use-spec $(HA_BY_CONTRACT)
 EVA_link_DEPS = $(LINK_GEN_DIR)/ha_msgs.c

@@ -17,6 +17,7 @@ HA = ROOT / "arduino_ha"
 VN200_CORE = ROOT / "common" / "vn200"
 FLOOR = [ROOT / "common" / "src" / name for name in
          ("geo_wgs84.c", "geo_wgs84.h", "hp_command.c", "hp_command.h")]
+LINK_MSGS = ROOT / "common" / "link" / "ha_link_msgs.h"
 ASSEMBLE = HA / "tools" / "assemble_sketch.sh"
 SOURCE_SUFFIXES = (".ino", ".c", ".cpp", ".h")
 INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]', re.M)
@@ -96,6 +97,7 @@ def test_the_sketch_carries_the_message_code_msg_generates(tmp_path):
     """The link's message code is generated into the sketch from msg/, by the generator the host
     builds use: what the Due serializes is what the md5sums pinned in test/ describe."""
     sketch = assemble(tmp_path)
+    assert (sketch / "src" / "link" / LINK_MSGS.name).read_bytes() == LINK_MSGS.read_bytes()
     gen = sketch / "src" / "link" / "generated"
     assert sorted(p.name for p in gen.iterdir()) == ["ha_msg_runtime.h", "ha_msgs.c", "ha_msgs.h"]
     header = (gen / "ha_msgs.h").read_text()
@@ -118,7 +120,8 @@ def test_no_generated_message_code_is_checked_in_under_arduino_ha():
 
 
 def test_no_ground_floor_file_is_checked_in_under_arduino_ha():
-    names = {p.name for p in VN200_CORE.iterdir() if p.suffix in (".c", ".h")} | {p.name for p in FLOOR}
+    names = {p.name for p in VN200_CORE.iterdir() if p.suffix in (".c", ".h")} | {p.name for p in FLOOR} \
+        | {LINK_MSGS.name}
     copies = [str(p) for p in HA.rglob("*") if p.name in names]
     assert copies == [], "common/ is the one source; the sketch gets it at assembly"
 

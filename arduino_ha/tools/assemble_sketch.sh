@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # Assembles the Due sketch arduino-cli compiles: <out>/arduino_ha/ with arduino_ha.ino, this
 # folder's src/, the ground floor from common/ (geodesy and the HP command's CRC in src/core/, the
-# VN-200 protocol in src/vn200/) and the link's message code generated from msg/ in
-# src/link/generated/. arduino-cli compiles only what lies inside the sketch folder and runs no
-# generator, so the one floor and the one message generator the host tests test are put there
-# here, under .build/, instead of checked-in copies.
+# VN-200 protocol in src/vn200/, the link's ha_link_msgs.h in src/link/) and the link's message
+# code generated from msg/ by common/link/gen in src/link/generated/. arduino-cli compiles only
+# what lies inside the sketch folder and runs no generator, so the one floor and the one message
+# generator the host tests test are put there here, under .build/, instead of checked-in copies.
 # usage: assemble_sketch.sh <out_dir>    (prints the sketch folder it made)
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -34,6 +34,7 @@ place() {  # <sketch folder> <file>...
 }
 place src/core "$root"/common/src/geo_wgs84.[ch] "$root"/common/src/hp_command.[ch]
 place src/vn200 "$root"/common/vn200/*.[ch]
+place src/link "$root"/common/link/ha_link_msgs.h
 # arduino-cli gives the sketch no include path: a header is found only beside the file that
 # includes it. Each other folder that includes a floor header by name gets a one-line header
 # that includes src/core's.
@@ -53,7 +54,8 @@ if [ -e "$gen" ]; then
   echo "assemble_sketch: arduino_ha/src/link/generated/ would hide the generated message code" >&2
   exit 1
 fi
-python3 "$ha/link/gen/make_c99_msgs.py" "$gen" drone_ros="$root/msg" std_msgs=/usr/share/std_msgs/msg \
-  geometry_msgs=/usr/share/geometry_msgs/msg rosserial_msgs="$ha/link/gen/rosserial_msgs/msg" \
-  -- $(cat "$ha/link/gen/device_types.txt") >/dev/null
+link_gen=$root/common/link/gen
+python3 "$link_gen/make_c99_msgs.py" "$gen" drone_ros="$root/msg" std_msgs=/usr/share/std_msgs/msg \
+  geometry_msgs=/usr/share/geometry_msgs/msg rosserial_msgs="$link_gen/rosserial_msgs/msg" \
+  -- $(cat "$link_gen/device_types.txt") >/dev/null
 echo "$sketch"

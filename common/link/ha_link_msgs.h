@@ -1,4 +1,4 @@
-/* The device's generated message code (arduino_ha/link/gen/make_c99_msgs.py), always fresh from
+/* The link's generated message code (common/link/gen/make_c99_msgs.py), always fresh from
  * msg/: CMake builds define HA_LINK_GENERATED_HEADER to the code generated in the build tree;
  * arduino-cli, which cannot run the generator, compiles the sketch `make sketch-ha` assembles,
  * with the same generator's output in generated/. */
