@@ -49,10 +49,24 @@ def test_valid_gain_is_echoed_as_the_new_value_and_the_controller_flies_with_it(
     assert controller_diagnostic(gs, "tunables_changed", lambda v: v is not None and int(v) >= 1) is not None
 
 
+def whole_statustext(conn, first, timeout_s=2.0):
+    """A STATUSTEXT and the chunks after it that share its id (MAVLink 2 splits long texts in
+    50-character chunks), joined."""
+    chunks = {first.chunk_seq: first.text}
+    deadline = time.time() + timeout_s
+    while first.id and len(chunks[max(chunks)]) == 50 and time.time() < deadline:
+        st = conn.recv_match(type="STATUSTEXT", blocking=True, timeout=0.2)
+        if st is not None and st.id == first.id:
+            chunks[st.chunk_seq] = st.text
+    return "".join(chunks[k] for k in sorted(chunks))
+
+
 def test_out_of_range_value_is_echoed_as_the_old_one_with_the_reason(gs):
     assert set_param(gs, "mpf_radius", -5.0) == pytest.approx(250.0)
     text = gh.wait_statustext(gs.conn, "mpf_radius")
     assert text is not None and "refused" in text.text
+    # The range and units of aircraft/DG808/tunables.yaml, through the controller's check.
+    assert whole_statustext(gs.conn, text).endswith("mpf_radius = -5 is outside [20, 5000] ft")
     # The reason is the controller's own check, the one the aircraft file meets.
     assert controller_diagnostic(gs, "tunables_refused", lambda v: v is not None and int(v) >= 1) is not None
     assert float(gs.rosparam("/controller_DG808/mpf_radius")) == pytest.approx(250.0)

@@ -1,5 +1,6 @@
 #include "controller_params.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -9,12 +10,22 @@
 namespace controller {
 namespace {
 
+// The aircraft's tunables.yaml, the list microhard_gs serves too (generated, tunables_table.h).
+const tunables::Tunable *find_tunable(const std::string &name) {
+  for (const tunables::Tunable &t : tunables::kTunables) {
+    if (name == t.name) {
+      return &t;
+    }
+  }
+  return nullptr;
+}
+
 // Collects the first failure so the operator sees which parameter is wrong.
 class Reader {
  public:
   Reader(const ParamLookup &lookup, std::string *error) : lookup_(lookup), error_(error) {}
 
-  double get(const std::string &key, double lo, double hi) {
+  double get(const std::string &key, double lo, double hi, const char *units = nullptr) {
     double v = 0.0;
     if (!ok_) {
       return 0.0;
@@ -24,9 +35,30 @@ class Reader {
     } else if (!std::isfinite(v) || v < lo || v > hi) {
       std::ostringstream s;
       s << key << " = " << v << " is outside [" << lo << ", " << hi << "]";
+      if (units != nullptr && std::string(units) != "1") {
+        s << " " << units;
+      }
       fail(s.str());
     }
     return v;
+  }
+
+  // A tunable, in its range of tunables.yaml, narrowed by [lo, hi] where another value bounds it.
+  double get_tunable(const std::string &key, double lo = -HUGE_VAL, double hi = HUGE_VAL) {
+    const tunables::Tunable *t = find_tunable(key);
+    if (t == nullptr) {
+      fail(key + " has no range: not in tunables.yaml");
+      return 0.0;
+    }
+    return get(key, std::max(t->min, lo), std::min(t->max, hi), t->units);
+  }
+
+  int32_t get_tunable_choice(const std::string &key) {
+    const double v = get_tunable(key);
+    if (ok_ && v != std::floor(v)) {
+      fail(key + " must be an integer");
+    }
+    return static_cast<int32_t>(v);
   }
 
   // A limits.yaml key, in the range every component accepts (aircraft/limits_ranges.yaml).
@@ -84,7 +116,7 @@ bool build_controller_params(const ParamLookup &lookup, ControllerParams *params
   ControllerParams p;
   GncParams &g = p.gnc;
   // The thesis ran at 20 Hz; the HA decides at up to 100 Hz, so the HP may not step faster.
-  g.dt_s = r.get("dt", 0.01, 0.05);
+  g.dt_s = r.get_tunable("dt");
   p.rate_hz = g.dt_s > 0.0 ? 1.0 / g.dt_s : 0.0;
 
   g.elevator_limit_deg = r.get_limit(limits_ranges::kActuatorsElevatorLimitDeg);
@@ -101,31 +133,31 @@ bool build_controller_params(const ParamLookup &lookup, ControllerParams *params
   const double roll_limit_deg = r.get_limit(limits_ranges::kStateRollLimitDeg);
   const double pitch_limit_deg = r.get_limit(limits_ranges::kStatePitchLimitDeg);
 
-  p.throttle_trim = r.get("throttle_trim", g.throttle_min, g.throttle_max);
-  p.elevator_trim_rad = r.get("elevator_trim", -g.elevator_limit_deg * kPi / 180.0,
-                              g.elevator_limit_deg * kPi / 180.0);
-  p.aileron_trim_rad =
-      r.get("aileron_trim", -g.aileron_limit_deg * kPi / 180.0, g.aileron_limit_deg * kPi / 180.0);
-  p.rudder_trim_rad =
-      r.get("rudder_trim", -g.rudder_limit_deg * kPi / 180.0, g.rudder_limit_deg * kPi / 180.0);
-  g.vt_trim_ftps = r.get("VTtrim", 0.0, 300.0);
+  p.throttle_trim = r.get_tunable("throttle_trim", g.throttle_min, g.throttle_max);
+  p.elevator_trim_rad = r.get_tunable("elevator_trim", -g.elevator_limit_deg * kPi / 180.0,
+                                      g.elevator_limit_deg * kPi / 180.0);
+  p.aileron_trim_rad = r.get_tunable("aileron_trim", -g.aileron_limit_deg * kPi / 180.0,
+                                     g.aileron_limit_deg * kPi / 180.0);
+  p.rudder_trim_rad = r.get_tunable("rudder_trim", -g.rudder_limit_deg * kPi / 180.0,
+                                    g.rudder_limit_deg * kPi / 180.0);
+  g.vt_trim_ftps = r.get_tunable("VTtrim");
   r.require(g.vt_trim_ftps > g.stall_speed_ftps, "VTtrim must be above limits' stall_speed_ftps");
-  g.alpha0_rad = r.get("alpha", -0.5, 0.5);
-  g.beta0_rad = r.get("beta", -0.5, 0.5);
+  g.alpha0_rad = r.get_tunable("alpha");
+  g.beta0_rad = r.get_tunable("beta");
 
-  g.guidance_selection = r.get_choice("guidance_selection", 1);
+  g.guidance_selection = r.get_tunable_choice("guidance_selection");
   p.home_cmd = r.get_choice("hmcmd", 1) == 1;
-  g.mpf_switch = r.get_choice("mpf_switch", 1);
-  g.mpf_radius_ft = r.get("mpf_radius", 20.0, 5000.0);
-  g.path_select = r.get_choice("path_select", 1);
-  g.max_allow_error_ft = r.get("max_allow_error", 10.0, 50000.0);
-  g.dist2b_ft = r.get("dist2b", 1.0, 5000.0);
-  g.kp_lon_rad_per_ft = r.get("KpLon", 0.0, 1.0);
-  g.ki_lon_rad_per_ft_s = r.get("KiLon", 0.0, 1.0);
-  g.max_bank_deg = r.get("max_bank_deg", 1.0, roll_limit_deg);
-  g.max_pitch_cmd_deg = r.get("max_pitch_cmd_deg", 1.0, pitch_limit_deg);
-  g.attitude_cmd_rate_deg_s = r.get("attitude_cmd_rate_deg_s", 1.0, 360.0);
-  g.min_airspeed_cmd_ftps = r.get("min_airspeed_cmd_ftps", 0.0, 300.0);
+  g.mpf_switch = r.get_tunable_choice("mpf_switch");
+  g.mpf_radius_ft = r.get_tunable("mpf_radius");
+  g.path_select = r.get_tunable_choice("path_select");
+  g.max_allow_error_ft = r.get_tunable("max_allow_error");
+  g.dist2b_ft = r.get_tunable("dist2b");
+  g.kp_lon_rad_per_ft = r.get_tunable("KpLon");
+  g.ki_lon_rad_per_ft_s = r.get_tunable("KiLon");
+  g.max_bank_deg = r.get_tunable("max_bank_deg", -HUGE_VAL, roll_limit_deg);
+  g.max_pitch_cmd_deg = r.get_tunable("max_pitch_cmd_deg", -HUGE_VAL, pitch_limit_deg);
+  g.attitude_cmd_rate_deg_s = r.get_tunable("attitude_cmd_rate_deg_s");
+  g.min_airspeed_cmd_ftps = r.get_tunable("min_airspeed_cmd_ftps");
   r.require(g.min_airspeed_cmd_ftps > g.stall_speed_ftps,
             "min_airspeed_cmd_ftps must be above limits' stall_speed_ftps");
   // The HA hands control back only above this speed: an HP commanded slower would be taken over
@@ -137,16 +169,16 @@ bool build_controller_params(const ParamLookup &lookup, ControllerParams *params
       "min_airspeed_cmd_ftps must be above the HA's hand-back speed (limits' stall_speed_ftps "
       "x handback_stall_multiple)");
   g.stall_prevention_min_bank_deg = r.get("stall_prevention_min_bank_deg", 1.0, g.max_bank_deg);
-  g.airspeed_valid_min_ftps = r.get("airspeed_valid_min_ftps", 1.0, 300.0);
+  g.airspeed_valid_min_ftps = r.get_tunable("airspeed_valid_min_ftps");
   r.require(g.airspeed_valid_min_ftps < g.stall_speed_ftps,
             "airspeed_valid_min_ftps must be below the stall speed, or flight has no air data");
-  g.converged_sigma_deg = r.get("converged_sigma_deg", 0.1, 10.0);
+  g.converged_sigma_deg = r.get_tunable("converged_sigma_deg");
 
-  p.q_weight = r.get("Q_weight", 1e-6, 1e6);
+  p.q_weight = r.get_tunable("Q_weight");
   r.require(p.q_weight == GNC_DESIGN_Q_WEIGHT,
             "Q_weight differs from the weight the checked-in gains were designed with: rerun "
             "aircraft/" GNC_AIRCRAFT_NAME "/design/design_gains.py");
-  p.sensor_timeout_s = r.get("sensor_timeout_s", 0.02, 10.0);
+  p.sensor_timeout_s = r.get_tunable("sensor_timeout_s");
   r.require(p.sensor_timeout_s >= 2.0 * g.dt_s, "sensor_timeout_s must cover at least two periods");
   if (!r.ok()) {
     return false;
@@ -172,16 +204,6 @@ TunableKind kind_of(tunables::Apply apply) {
       return TunableKind::kFixed;
   }
   return TunableKind::kNone;
-}
-
-// The aircraft's tunables.yaml, the list microhard_gs serves too (generated, tunables_table.h).
-const Tunable *find_tunable(const std::string &name) {
-  for (const Tunable &t : tunables::kTunables) {
-    if (name == t.name) {
-      return &t;
-    }
-  }
-  return nullptr;
 }
 
 }  // namespace

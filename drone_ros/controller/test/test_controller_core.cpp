@@ -3,8 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <map>
+#include <sstream>
 #include <string>
 
 #include "command_builder.h"
@@ -14,6 +16,7 @@
 #include "lockstep_gate.h"
 #include "sensor_board.h"
 #include "servo_command_as_ha.h"
+#include "tunables_table.h"
 #include "yaml_lookup.h"
 
 namespace {
@@ -157,6 +160,38 @@ TEST(Tunables, GncChangeWaitsForTheHaToFlyButATrimGoesLive) {
   board.apply_params(f.params);
   EXPECT_DOUBLE_EQ(board.elevator_trim_rad(), 0.01);
   EXPECT_DOUBLE_EQ(board.throttle_trim(), f.params.throttle_trim);  // untouched
+}
+
+TEST(Tunables, EachIsRefusedJustPastItsRangeInTunablesYamlNamingTheUnits) {
+  for (const tunables::Tunable &t : tunables::kTunables) {
+    const double step = t.is_integer ? 1.0 : (t.max - t.min) * 1e-3;
+    for (const double outside : {t.min - step, t.max + step}) {
+      const auto files = controller_test::aircraft_params(AIRCRAFT_DIR, {{t.name, outside}});
+      controller::ControllerParams p;
+      std::string error;
+      EXPECT_FALSE(
+          controller::build_controller_params(controller_test::lookup_in(files), &p, &error))
+          << t.name << " = " << outside;
+      EXPECT_EQ(error.find(std::string(t.name) + " = "), 0u) << error;
+      EXPECT_NE(error.find(" is outside ["), std::string::npos) << error;
+      if (std::string(t.units) != "1") {
+        EXPECT_EQ(error.substr(error.size() - std::strlen(t.units) - 1), std::string(" ") + t.units)
+            << error;
+      }
+    }
+  }
+}
+
+TEST(Tunables, ARangeIsNarrowedWhereAnotherValueBoundsIt) {
+  InForce f;
+  // tunables.yaml lets the bank reach 89 deg; limits.yaml's roll limit is the tighter bound.
+  const double roll_limit_deg = f.values.at("limits/state/roll_limit_deg");
+  const auto r = f.set("max_bank_deg", roll_limit_deg + 1.0);
+  EXPECT_FALSE(r.accepted);
+  std::ostringstream want;
+  want << "max_bank_deg = " << roll_limit_deg + 1.0 << " is outside [1, " << roll_limit_deg
+       << "] deg";
+  EXPECT_EQ(r.reason, want.str());
 }
 
 TEST(Tunables, EveryTunableIsAValueTheControllerReads) {
