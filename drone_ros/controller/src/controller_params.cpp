@@ -97,6 +97,91 @@ class Reader {
 
 constexpr double kPi = 3.14159265358979323846;
 
+// The bank and pitch limits of limits.yaml, which bound the guidance's commands.
+struct AttitudeLimits {
+  double roll_deg = 0.0;
+  double pitch_deg = 0.0;
+};
+
+// limits.yaml's values the GNC flies inside, as every component accepts them.
+AttitudeLimits read_limits(Reader &r, GncParams &g) {
+  g.elevator_limit_deg = r.get_limit(limits_ranges::kActuatorsElevatorLimitDeg);
+  g.elevator_pull_limit_deg = r.get_limit(limits_ranges::kActuatorsElevatorPullLimitDeg);
+  r.require(g.elevator_pull_limit_deg <= g.elevator_limit_deg,
+            "limits: elevator_pull_limit_deg must not exceed elevator_limit_deg");
+  g.aileron_limit_deg = r.get_limit(limits_ranges::kActuatorsAileronLimitDeg);
+  g.rudder_limit_deg = r.get_limit(limits_ranges::kActuatorsRudderLimitDeg);
+  g.throttle_min = r.get_limit(limits_ranges::kActuatorsThrottleMin);
+  g.throttle_max = r.get_limit(limits_ranges::kActuatorsThrottleMax);
+  r.require(g.throttle_min < g.throttle_max, "limits: throttle_min must be below throttle_max");
+  g.stall_speed_ftps = r.get_limit(limits_ranges::kStateStallSpeedFtps);
+  g.airborne_agl_ft = r.get_limit(limits_ranges::kStateAirborneAglFt);
+  AttitudeLimits a;
+  a.roll_deg = r.get_limit(limits_ranges::kStateRollLimitDeg);
+  a.pitch_deg = r.get_limit(limits_ranges::kStatePitchLimitDeg);
+  return a;
+}
+
+// The trims inside the actuator limits, the trim airspeed and the estimator's first guess.
+void read_trims(Reader &r, ControllerParams &p) {
+  GncParams &g = p.gnc;
+  p.throttle_trim = r.get_tunable("throttle_trim", g.throttle_min, g.throttle_max);
+  p.elevator_trim_rad = r.get_tunable("elevator_trim", -g.elevator_limit_deg * kPi / 180.0,
+                                      g.elevator_limit_deg * kPi / 180.0);
+  p.aileron_trim_rad = r.get_tunable("aileron_trim", -g.aileron_limit_deg * kPi / 180.0,
+                                     g.aileron_limit_deg * kPi / 180.0);
+  p.rudder_trim_rad = r.get_tunable("rudder_trim", -g.rudder_limit_deg * kPi / 180.0,
+                                    g.rudder_limit_deg * kPi / 180.0);
+  g.vt_trim_ftps = r.get_tunable("VTtrim");
+  r.require(g.vt_trim_ftps > g.stall_speed_ftps, "VTtrim must be above limits' stall_speed_ftps");
+  g.alpha0_rad = r.get_tunable("alpha");
+  g.beta0_rad = r.get_tunable("beta");
+}
+
+// Guidance: the path, the altitude loop and the commands it may give the inner loops.
+void read_guidance(Reader &r, ControllerParams &p, const AttitudeLimits &limits) {
+  GncParams &g = p.gnc;
+  g.guidance_selection = r.get_tunable_choice("guidance_selection");
+  p.home_cmd = r.get_choice("hmcmd", 1) == 1;
+  g.mpf_switch = r.get_tunable_choice("mpf_switch");
+  g.mpf_radius_ft = r.get_tunable("mpf_radius");
+  g.path_select = r.get_tunable_choice("path_select");
+  g.max_allow_error_ft = r.get_tunable("max_allow_error");
+  g.dist2b_ft = r.get_tunable("dist2b");
+  g.kp_lon_rad_per_ft = r.get_tunable("KpLon");
+  g.ki_lon_rad_per_ft_s = r.get_tunable("KiLon");
+  g.max_bank_deg = r.get_tunable("max_bank_deg", -HUGE_VAL, limits.roll_deg);
+  g.max_pitch_cmd_deg = r.get_tunable("max_pitch_cmd_deg", -HUGE_VAL, limits.pitch_deg);
+  g.attitude_cmd_rate_deg_s = r.get_tunable("attitude_cmd_rate_deg_s");
+  g.min_airspeed_cmd_ftps = r.get_tunable("min_airspeed_cmd_ftps");
+  r.require(g.min_airspeed_cmd_ftps > g.stall_speed_ftps,
+            "min_airspeed_cmd_ftps must be above limits' stall_speed_ftps");
+  // The HA hands control back only above this speed: an HP commanded slower would be taken over
+  // at its slowest and never given the servos back.
+  const double handback_ftps =
+      g.stall_speed_ftps * r.get_limit(limits_ranges::kStateHandbackStallMultiple);
+  r.require(
+      g.min_airspeed_cmd_ftps > handback_ftps,
+      "min_airspeed_cmd_ftps must be above the HA's hand-back speed (limits' stall_speed_ftps "
+      "x handback_stall_multiple)");
+  g.stall_prevention_min_bank_deg = r.get("stall_prevention_min_bank_deg", 1.0, g.max_bank_deg);
+}
+
+// The estimator's thresholds, the design weight the gains were made with, the node's timeout.
+void read_estimator_and_node(Reader &r, ControllerParams &p) {
+  GncParams &g = p.gnc;
+  g.airspeed_valid_min_ftps = r.get_tunable("airspeed_valid_min_ftps");
+  r.require(g.airspeed_valid_min_ftps < g.stall_speed_ftps,
+            "airspeed_valid_min_ftps must be below the stall speed, or flight has no air data");
+  g.converged_sigma_deg = r.get_tunable("converged_sigma_deg");
+  p.q_weight = r.get_tunable("Q_weight");
+  r.require(p.q_weight == GNC_DESIGN_Q_WEIGHT,
+            "Q_weight differs from the weight the checked-in gains were designed with: rerun "
+            "aircraft/" GNC_AIRCRAFT_NAME "/design/design_gains.py");
+  p.sensor_timeout_s = r.get_tunable("sensor_timeout_s");
+  r.require(p.sensor_timeout_s >= 2.0 * g.dt_s, "sensor_timeout_s must cover at least two periods");
+}
+
 }  // namespace
 
 bool build_controller_params(const ParamLookup &lookup, ControllerParams *params,
@@ -114,72 +199,13 @@ bool build_controller_params(const ParamLookup &lookup, ControllerParams *params
   };
   Reader r(recording, error);
   ControllerParams p;
-  GncParams &g = p.gnc;
   // The thesis ran at 20 Hz; the HA decides at up to 100 Hz, so the HP may not step faster.
-  g.dt_s = r.get_tunable("dt");
-  p.rate_hz = g.dt_s > 0.0 ? 1.0 / g.dt_s : 0.0;
-
-  g.elevator_limit_deg = r.get_limit(limits_ranges::kActuatorsElevatorLimitDeg);
-  g.elevator_pull_limit_deg = r.get_limit(limits_ranges::kActuatorsElevatorPullLimitDeg);
-  r.require(g.elevator_pull_limit_deg <= g.elevator_limit_deg,
-            "limits: elevator_pull_limit_deg must not exceed elevator_limit_deg");
-  g.aileron_limit_deg = r.get_limit(limits_ranges::kActuatorsAileronLimitDeg);
-  g.rudder_limit_deg = r.get_limit(limits_ranges::kActuatorsRudderLimitDeg);
-  g.throttle_min = r.get_limit(limits_ranges::kActuatorsThrottleMin);
-  g.throttle_max = r.get_limit(limits_ranges::kActuatorsThrottleMax);
-  r.require(g.throttle_min < g.throttle_max, "limits: throttle_min must be below throttle_max");
-  g.stall_speed_ftps = r.get_limit(limits_ranges::kStateStallSpeedFtps);
-  g.airborne_agl_ft = r.get_limit(limits_ranges::kStateAirborneAglFt);
-  const double roll_limit_deg = r.get_limit(limits_ranges::kStateRollLimitDeg);
-  const double pitch_limit_deg = r.get_limit(limits_ranges::kStatePitchLimitDeg);
-
-  p.throttle_trim = r.get_tunable("throttle_trim", g.throttle_min, g.throttle_max);
-  p.elevator_trim_rad = r.get_tunable("elevator_trim", -g.elevator_limit_deg * kPi / 180.0,
-                                      g.elevator_limit_deg * kPi / 180.0);
-  p.aileron_trim_rad = r.get_tunable("aileron_trim", -g.aileron_limit_deg * kPi / 180.0,
-                                     g.aileron_limit_deg * kPi / 180.0);
-  p.rudder_trim_rad = r.get_tunable("rudder_trim", -g.rudder_limit_deg * kPi / 180.0,
-                                    g.rudder_limit_deg * kPi / 180.0);
-  g.vt_trim_ftps = r.get_tunable("VTtrim");
-  r.require(g.vt_trim_ftps > g.stall_speed_ftps, "VTtrim must be above limits' stall_speed_ftps");
-  g.alpha0_rad = r.get_tunable("alpha");
-  g.beta0_rad = r.get_tunable("beta");
-
-  g.guidance_selection = r.get_tunable_choice("guidance_selection");
-  p.home_cmd = r.get_choice("hmcmd", 1) == 1;
-  g.mpf_switch = r.get_tunable_choice("mpf_switch");
-  g.mpf_radius_ft = r.get_tunable("mpf_radius");
-  g.path_select = r.get_tunable_choice("path_select");
-  g.max_allow_error_ft = r.get_tunable("max_allow_error");
-  g.dist2b_ft = r.get_tunable("dist2b");
-  g.kp_lon_rad_per_ft = r.get_tunable("KpLon");
-  g.ki_lon_rad_per_ft_s = r.get_tunable("KiLon");
-  g.max_bank_deg = r.get_tunable("max_bank_deg", -HUGE_VAL, roll_limit_deg);
-  g.max_pitch_cmd_deg = r.get_tunable("max_pitch_cmd_deg", -HUGE_VAL, pitch_limit_deg);
-  g.attitude_cmd_rate_deg_s = r.get_tunable("attitude_cmd_rate_deg_s");
-  g.min_airspeed_cmd_ftps = r.get_tunable("min_airspeed_cmd_ftps");
-  r.require(g.min_airspeed_cmd_ftps > g.stall_speed_ftps,
-            "min_airspeed_cmd_ftps must be above limits' stall_speed_ftps");
-  // The HA hands control back only above this speed: an HP commanded slower would be taken over
-  // at its slowest and never given the servos back.
-  const double handback_ftps =
-      g.stall_speed_ftps * r.get_limit(limits_ranges::kStateHandbackStallMultiple);
-  r.require(
-      g.min_airspeed_cmd_ftps > handback_ftps,
-      "min_airspeed_cmd_ftps must be above the HA's hand-back speed (limits' stall_speed_ftps "
-      "x handback_stall_multiple)");
-  g.stall_prevention_min_bank_deg = r.get("stall_prevention_min_bank_deg", 1.0, g.max_bank_deg);
-  g.airspeed_valid_min_ftps = r.get_tunable("airspeed_valid_min_ftps");
-  r.require(g.airspeed_valid_min_ftps < g.stall_speed_ftps,
-            "airspeed_valid_min_ftps must be below the stall speed, or flight has no air data");
-  g.converged_sigma_deg = r.get_tunable("converged_sigma_deg");
-
-  p.q_weight = r.get_tunable("Q_weight");
-  r.require(p.q_weight == GNC_DESIGN_Q_WEIGHT,
-            "Q_weight differs from the weight the checked-in gains were designed with: rerun "
-            "aircraft/" GNC_AIRCRAFT_NAME "/design/design_gains.py");
-  p.sensor_timeout_s = r.get_tunable("sensor_timeout_s");
-  r.require(p.sensor_timeout_s >= 2.0 * g.dt_s, "sensor_timeout_s must cover at least two periods");
+  p.gnc.dt_s = r.get_tunable("dt");
+  p.rate_hz = p.gnc.dt_s > 0.0 ? 1.0 / p.gnc.dt_s : 0.0;
+  const AttitudeLimits limits = read_limits(r, p.gnc);
+  read_trims(r, p);
+  read_guidance(r, p, limits);
+  read_estimator_and_node(r, p);
   if (!r.ok()) {
     return false;
   }
