@@ -54,9 +54,8 @@ bool expand_time_fields(const std::string& pattern, std::string* out, std::strin
   return true;
 }
 
-}  // namespace
-
-bool read_node_config(const ros::NodeHandle& nh, NodeConfig* c, std::string* error) {
+// The ground link: transport, ports, the tlog, the node's MAVLink identity and timeouts.
+bool read_link(const ros::NodeHandle& nh, NodeConfig* c, std::string* error) {
   nh.param<std::string>("transport", c->transport, "udp");
   nh.param<std::string>("udp_bind_address", c->udp.bind_address, "0.0.0.0");
   nh.param("udp_bind_port", c->udp.bind_port, 14555);
@@ -104,7 +103,11 @@ bool read_node_config(const ros::NodeHandle& nh, NodeConfig* c, std::string* err
   }
   c->core.param_set_timeout_ms = static_cast<uint32_t>(std::lround(param_set_timeout_s * 1000.0));
   c->core.system_id = static_cast<uint8_t>(system_id);
+  return true;
+}
 
+// The telemetry rate and what a mission may ask, inside the aircraft's limits.
+bool read_mission_limits(const ros::NodeHandle& nh, NodeConfig* c, std::string* error) {
   double rate_hz = 0, floor_ft = 0, radius_ft = 0, speed_ftps = 0, timeout_s = 0, retries = 0;
   double ceiling_ft = 0, stall_ftps = 0, airborne_ft = 0;
   if (!need(nh, "telemetry_rate_hz", &rate_hz, error) ||
@@ -135,33 +138,30 @@ bool read_node_config(const ros::NodeHandle& nh, NodeConfig* c, std::string* err
   c->core.airborne_agl_ft = airborne_ft;
   c->core.mission_item_timeout_ms = static_cast<uint32_t>(std::lround(timeout_s * 1000.0));
   c->core.mission_max_retries = static_cast<uint32_t>(std::lround(retries));
+  return true;
+}
 
-  // A second home would build /way about a point the controller and the HA do not fly about:
-  // the one home is the HA's, on /home. A settings file that still names one is refused.
-  if (nh.hasParam("home")) {
-    *error =
-        "home/... is gone: the ground station takes the HA's home from /home (set it from "
-        "QGroundControl with MAV_CMD_DO_SET_HOME while parked)";
+// The MAVLink 2 signing key, when a file names one.
+bool read_signing_key(NodeConfig* c, std::string* error) {
+  if (c->signing_key_file.empty()) return true;
+  std::ifstream in(c->signing_key_file);
+  if (!in) {
+    *error = "cannot read signing_key_file " + c->signing_key_file;
     return false;
   }
-
-  if (!c->signing_key_file.empty()) {
-    std::ifstream in(c->signing_key_file);
-    if (!in) {
-      *error = "cannot read signing_key_file " + c->signing_key_file;
-      return false;
-    }
-    std::stringstream text;
-    text << in.rdbuf();
-    std::string why;
-    if (!parse_signing_key(text.str(), &c->core.signing_key, &why)) {
-      *error = c->signing_key_file + ": " + why;
-      return false;
-    }
-    c->core.signing = true;
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string why;
+  if (!parse_signing_key(text.str(), &c->core.signing_key, &why)) {
+    *error = c->signing_key_file + ": " + why;
+    return false;
   }
+  c->core.signing = true;
+  return true;
+}
 
-  // The tunables: whatever of the known set the controller's namespace holds.
+// The tunables: whatever of the known set the controller's namespace holds.
+void read_tunables(NodeConfig* c) {
   for (const ParamSpec& spec : controller_param_specs()) {
     const std::string key = c->controller_param_ns + "/" + spec.ros_name;
     double value = 0.0;
@@ -177,6 +177,22 @@ bool read_node_config(const ros::NodeHandle& nh, NodeConfig* c, std::string* err
       c->missing_params.push_back(spec.ros_name);
     }
   }
+}
+
+}  // namespace
+
+bool read_node_config(const ros::NodeHandle& nh, NodeConfig* c, std::string* error) {
+  if (!read_link(nh, c, error) || !read_mission_limits(nh, c, error)) return false;
+  // A second home would build /way about a point the controller and the HA do not fly about:
+  // the one home is the HA's, on /home. A settings file that still names one is refused.
+  if (nh.hasParam("home")) {
+    *error =
+        "home/... is gone: the ground station takes the HA's home from /home (set it from "
+        "QGroundControl with MAV_CMD_DO_SET_HOME while parked)";
+    return false;
+  }
+  if (!read_signing_key(c, error)) return false;
+  read_tunables(c);
   return true;
 }
 
