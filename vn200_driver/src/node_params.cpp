@@ -7,8 +7,10 @@
 #include "vn_command.h"
 
 namespace vn200 {
+namespace {
 
-bool load_params(const ros::NodeHandle& pnh, NodeParams* p, std::string* error) {
+// Every private parameter, over the defaults NodeParams holds.
+void read_params(const ros::NodeHandle& pnh, NodeParams* p) {
   pnh.param("port", p->port, p->port);
   pnh.param("baud", p->baud, p->baud);
   pnh.param("sensor_baud", p->sensor_baud, p->sensor_baud);
@@ -36,7 +38,10 @@ bool load_params(const ros::NodeHandle& pnh, NodeParams* p, std::string* error) 
   pnh.param("data_timeout_s", p->data_timeout_s, p->data_timeout_s);
   pnh.param("response_timeout_s", p->response_timeout_s, p->response_timeout_s);
   pnh.param("publish_tf", p->publish_tf, p->publish_tf);
+}
 
+// The port, its rates and the sensor's output: what the sensor can be configured to send.
+bool check_serial(const NodeParams* p, std::string* error) {
   const bool replay = !p->replay_file.empty();
   if (!replay && p->port.empty()) {
     *error = "~port is empty and no ~replay_file is given";
@@ -80,6 +85,11 @@ bool load_params(const ros::NodeHandle& pnh, NodeParams* p, std::string* error) 
              std::to_string(p->baud) + " carries (the sensor would answer $VNERR 12)";
     return false;
   }
+  return true;
+}
+
+// One tf tree, and a mount on the airframe.
+bool check_frames_and_mount(const NodeParams* p, std::string* error) {
   const std::set<std::string> frames{p->frame_id, p->frd_frame_id, p->map_frame_id,
                                      p->odom_frame_id, p->base_frame_id};
   if (frames.size() != 5 || frames.count("") != 0) {
@@ -101,6 +111,10 @@ bool load_params(const ros::NodeHandle& pnh, NodeParams* p, std::string* error) 
     *error = "~mount/roll_deg and yaw_deg must be within +-180, pitch_deg within +-90";
     return false;
   }
+  return true;
+}
+
+bool check_timing(const NodeParams* p, std::string* error) {
   if (!(p->replay_speed > 0.0) || !(p->reconnect_period_s > 0.0) || !(p->data_timeout_s > 0.0) ||
       !(p->response_timeout_s > 0.0) || !(p->replay_delay_s >= 0.0)) {
     *error =
@@ -109,6 +123,13 @@ bool load_params(const ros::NodeHandle& pnh, NodeParams* p, std::string* error) 
     return false;
   }
   return true;
+}
+
+}  // namespace
+
+bool load_params(const ros::NodeHandle& pnh, NodeParams* p, std::string* error) {
+  read_params(pnh, p);
+  return check_serial(p, error) && check_frames_and_mount(p, error) && check_timing(p, error);
 }
 
 }  // namespace vn200
