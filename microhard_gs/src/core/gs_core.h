@@ -213,6 +213,10 @@ class GsCore {
 
   void send_heartbeat();
   void send_telemetry_set(const Clock& now);
+  void send_sys_status(bool fresh);
+  void send_attitude(uint32_t boot_ms);
+  void send_position(uint32_t boot_ms);
+  void send_mission_current();
   void send_home_position();
   void send_available_mode(int mode_index);
   void send_current_mode();

@@ -109,8 +109,18 @@ void GsCore::send_heartbeat() {
 void GsCore::send_telemetry_set(const Clock& now) {
   const uint32_t boot_ms = static_cast<uint32_t>(now.mono_ms - boot_ms_);
   const bool fresh = have_telemetry_ && now.mono_ms - telemetry_ms_ < kTelemetryStaleMs;
-  const Telemetry& t = telemetry_;
+  send_sys_status(fresh);
+  if (!fresh) return;  // no position or attitude to claim
+  send_attitude(boot_ms);
+  send_position(boot_ms);
+  send_home_position();
+  if (mission_count_ > 0) send_mission_current();
+  ++counters_.telemetry_sets_sent;
+}
 
+// The sensors present and, with fresh telemetry, healthy; the battery; the link's bad frames.
+void GsCore::send_sys_status(bool fresh) {
+  const Telemetry& t = telemetry_;
   mavlink_sys_status_t s{};
   const uint32_t sensors = MAV_SYS_STATUS_SENSOR_3D_GYRO | MAV_SYS_STATUS_SENSOR_3D_ACCEL |
                            MAV_SYS_STATUS_SENSOR_GPS | MAV_SYS_STATUS_SENSOR_DIFFERENTIAL_PRESSURE |
@@ -135,8 +145,10 @@ void GsCore::send_telemetry_set(const Clock& now) {
     mavlink_msg_sys_status_encode_status(config_.system_id, config_.component_id, &tx_status_, m,
                                          &s);
   });
-  if (!fresh) return;  // no position or attitude to claim
+}
 
+void GsCore::send_attitude(uint32_t boot_ms) {
+  const Telemetry& t = telemetry_;
   mavlink_attitude_t a{};
   a.time_boot_ms = boot_ms;
   a.roll = finite_or_zero(t.roll_rad);
@@ -148,7 +160,11 @@ void GsCore::send_telemetry_set(const Clock& now) {
   emit([&](mavlink_message_t* m) {
     mavlink_msg_attitude_encode_status(config_.system_id, config_.component_id, &tx_status_, m, &a);
   });
+}
 
+// GLOBAL_POSITION_INT, VFR_HUD and GPS_RAW_INT from the INS's solution.
+void GsCore::send_position(uint32_t boot_ms) {
+  const Telemetry& t = telemetry_;
   const double ground_mps = std::hypot(t.v_north_mps, t.v_east_mps);
   const double hdg_deg = heading_deg(t.yaw_rad);
   const bool position_ok = is_valid_position(t.lat_deg, t.lon_deg) && std::isfinite(t.alt_m);
@@ -195,24 +211,23 @@ void GsCore::send_telemetry_set(const Clock& now) {
     mavlink_msg_gps_raw_int_encode_status(config_.system_id, config_.component_id, &tx_status_, m,
                                           &r);
   });
+}
 
-  send_home_position();
-
-  if (mission_count_ > 0) {
-    mavlink_mission_current_t c{};
-    // The controller counts the waypoints on /way; the GCS counts mission items (home, speeds).
-    const int32_t wp =
-        std::max<int32_t>(0, std::min<int32_t>(t.waypoint_index, mission_plan_.fp - 1));
-    c.seq = static_cast<uint16_t>(mission_plan_.fp > 0 ? mission_plan_.item_seq[wp] : 0);
-    c.total = static_cast<uint16_t>(mission_count_);
-    c.mission_state = MISSION_STATE_ACTIVE;
-    c.mission_mode = t.computer_in_command ? 1 : 2;
-    emit([&](mavlink_message_t* m) {
-      mavlink_msg_mission_current_encode_status(config_.system_id, config_.component_id,
-                                                &tx_status_, m, &c);
-    });
-  }
-  ++counters_.telemetry_sets_sent;
+// The mission item the controller flies to, in the GCS's numbering.
+void GsCore::send_mission_current() {
+  const Telemetry& t = telemetry_;
+  mavlink_mission_current_t c{};
+  // The controller counts the waypoints on /way; the GCS counts mission items (home, speeds).
+  const int32_t wp =
+      std::max<int32_t>(0, std::min<int32_t>(t.waypoint_index, mission_plan_.fp - 1));
+  c.seq = static_cast<uint16_t>(mission_plan_.fp > 0 ? mission_plan_.item_seq[wp] : 0);
+  c.total = static_cast<uint16_t>(mission_count_);
+  c.mission_state = MISSION_STATE_ACTIVE;
+  c.mission_mode = t.computer_in_command ? 1 : 2;
+  emit([&](mavlink_message_t* m) {
+    mavlink_msg_mission_current_encode_status(config_.system_id, config_.component_id, &tx_status_,
+                                              m, &c);
+  });
 }
 
 }  // namespace microhard_gs
