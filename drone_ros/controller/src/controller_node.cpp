@@ -49,6 +49,24 @@ ControllerNode::ControllerNode(ros::NodeHandle &nh, ros::NodeHandle &pnh,
   if (gnc_initialize(&params_.gnc) != 0) {
     throw std::runtime_error("the GNC refused its parameters");
   }
+  // On its own clock only the newest sample matters (queue of 1). In lockstep every message a
+  // step declares must reach a callback to be counted, so none may be pushed out of the queue.
+  pnh_.param("lockstep", lockstep_, false);
+  subscribe_home_and_plan(nh);
+  subscribe_inputs(nh);
+  servo_pub_ = nh.advertise<drone_ros::ServoCommand>("servo_op", 10);
+  data_pub_ = nh.advertise<drone_ros::data>("data", 10);
+  hil_pub_ = nh.advertise<drone_ros::hil_data>("to_hil", 10);
+
+  set_tunable_srv_ = pnh_.advertiseService("set_tunable", &ControllerNode::on_set_tunable, this);
+
+  start_diagnostics();
+  start_stepping(nh);
+  ROS_INFO("controller_%s stepping at %.1f Hz%s", GNC_AIRCRAFT_NAME, params_.rate_hz,
+           lockstep_ ? " on /hil/lockstep" : "");
+}
+
+void ControllerNode::subscribe_home_and_plan(ros::NodeHandle &nh) {
   // Every topic name is relative: resolved in the node's namespace, so each aircraft launched in
   // a namespace of its own (<group ns="uav1">) flies on its own sensors only.
   // Home has one owner, the HA, which latches it from its own INS; the `arduino` node keeps it
@@ -62,9 +80,17 @@ ControllerNode::ControllerNode(ros::NodeHandle &nh, ros::NodeHandle &pnh,
           ROS_WARN("home %u dropped: position not finite or out of range", m->seq);
         }
       }));
-  // On its own clock only the newest sample matters (queue of 1). In lockstep every message a
-  // step declares must reach a callback to be counted, so none may be pushed out of the queue.
-  pnh_.param("lockstep", lockstep_, false);
+  subs_.push_back(nh.subscribe<drone_ros::way>("way", 1, [this](const drone_ros::way::ConstPtr &m) {
+    if (board_.on_way(*m)) {
+      ROS_INFO("new flight plan: %d waypoints", m->fp);
+    } else {
+      ROS_WARN("flight plan dropped: fp out of range or a waypoint not finite");
+    }
+  }));
+}
+
+// The sensors and the HA's reports: each counts for the lockstep's step that declared it.
+void ControllerNode::subscribe_inputs(ros::NodeHandle &nh) {
   const uint32_t q = lockstep_ ? 100 : 1;
   subs_.push_back(nh.subscribe<drone_ros::pwm>("pwm", q, [this](const drone_ros::pwm::ConstPtr &m) {
     board_.on_pwm(*m, now_s());
@@ -75,13 +101,6 @@ ControllerNode::ControllerNode(ros::NodeHandle &nh, ros::NodeHandle &pnh,
   subs_.push_back(nh.subscribe<drone_ros::ins>("ins", q, [this](const drone_ros::ins::ConstPtr &m) {
     board_.on_ins(*m, now_s());
     on_input(kInIns);
-  }));
-  subs_.push_back(nh.subscribe<drone_ros::way>("way", 1, [this](const drone_ros::way::ConstPtr &m) {
-    if (board_.on_way(*m)) {
-      ROS_INFO("new flight plan: %d waypoints", m->fp);
-    } else {
-      ROS_WARN("flight plan dropped: fp out of range or a waypoint not finite");
-    }
   }));
   subs_.push_back(nh.subscribe<sensor_msgs::NavSatFix>(
       "gps_position", q, [this](const sensor_msgs::NavSatFix::ConstPtr &m) {
@@ -112,12 +131,9 @@ ControllerNode::ControllerNode(ros::NodeHandle &nh, ros::NodeHandle &pnh,
       [this](const sensor_msgs::BatteryState::ConstPtr &m) { board_.on_battery(m->voltage); }));
   subs_.push_back(
       nh.subscribe("decision_status", lockstep_ ? 100 : 10, &ControllerNode::on_decision, this));
-  servo_pub_ = nh.advertise<drone_ros::ServoCommand>("servo_op", 10);
-  data_pub_ = nh.advertise<drone_ros::data>("data", 10);
-  hil_pub_ = nh.advertise<drone_ros::hil_data>("to_hil", 10);
+}
 
-  set_tunable_srv_ = pnh_.advertiseService("set_tunable", &ControllerNode::on_set_tunable, this);
-
+void ControllerNode::start_diagnostics() {
   diag_.setHardwareID(std::string("controller_") + GNC_AIRCRAFT_NAME);
   diag_.add("performance controller", this, &ControllerNode::diagnose);
   servo_op_rate_hz_ = params_.rate_hz;
@@ -125,6 +141,10 @@ ControllerNode::ControllerNode(ros::NodeHandle &nh, ros::NodeHandle &pnh,
       diagnostic_updater::FrequencyStatusParam(&servo_op_rate_hz_, &servo_op_rate_hz_, 0.1, 3),
       "/servo_op rate");
   diag_.add(*servo_op_rate_);
+}
+
+// On /hil/lockstep's steps, or on its own timer.
+void ControllerNode::start_stepping(ros::NodeHandle &nh) {
   if (lockstep_) {
     lockstep_sub_ = nh.subscribe("hil/lockstep", 100, &ControllerNode::on_lockstep, this,
                                  ros::TransportHints().tcpNoDelay());
@@ -136,8 +156,6 @@ ControllerNode::ControllerNode(ros::NodeHandle &nh, ros::NodeHandle &pnh,
     timer_ =
         nh.createSteadyTimer(ros::WallDuration(params_.gnc.dt_s), &ControllerNode::on_timer, this);
   }
-  ROS_INFO("controller_%s stepping at %.1f Hz%s", GNC_AIRCRAFT_NAME, params_.rate_hz,
-           lockstep_ ? " on /hil/lockstep" : "");
 }
 
 ControllerNode::~ControllerNode() { gnc_terminate(); }

@@ -39,6 +39,11 @@ class ControllerNode {
   ~ControllerNode();
 
  private:
+  // The constructor's parts, in its order.
+  void subscribe_home_and_plan(ros::NodeHandle &nh);
+  void subscribe_inputs(ros::NodeHandle &nh);
+  void start_diagnostics();
+  void start_stepping(ros::NodeHandle &nh);
   // Arrival times of sensor messages: the monotonic clock in flight; in lockstep the time of the
   // last step, so that when a message arrived in wall time between two steps changes nothing.
   double now_s() const { return lockstep_ ? lockstep_step_s_ : ros::SteadyTime::now().toSec(); }
