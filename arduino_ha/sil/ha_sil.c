@@ -278,85 +278,82 @@ static void run_realtime(Sil *sil, uint32_t unplug_us) {
   }
 }
 
-int main(int argc, char **argv) {
-  static Sil sil;
-  SilBoard *b = &sil.board;
-  double rate_hz = 100.0;
-  uint32_t unplug_us = 500000u;
+/* The command line: what the SIL serves and how. */
+typedef struct {
+  double rate_hz;
+  uint32_t unplug_us;
+  const char *vn200_path;
+  const char *channel_path;
+  int realtime;
+} SilArgs;
+
+/* Parses argv into args and the board's port; 0 when the command line is usable. */
+static int parse_args(int argc, char **argv, Sil *sil, SilArgs *args) {
   int i;
-  const char *vn200_path = NULL;
-  const char *channel_path = NULL;
-  int realtime = 0;
-  memset(&sil, 0, sizeof sil);
-  sil_board_init(b);
+  args->rate_hz = 100.0;
+  args->unplug_us = 500000u;
+  args->vn200_path = NULL;
+  args->channel_path = NULL;
+  args->realtime = 0;
   for (i = 1; i < argc; ++i) {
     if (strcmp(argv[i], "--realtime") == 0) {
-      realtime = 1;
+      args->realtime = 1;
       continue;
     }
     if (i + 1 >= argc || strncmp(argv[i], "--", 2) != 0) {
       continue; /* roslaunch's __name:= and __log:= */
     }
     if (strcmp(argv[i], "--port") == 0) {
-      b->port_path = argv[++i];
+      sil->board.port_path = argv[++i];
     } else if (strcmp(argv[i], "--rate-hz") == 0) {
-      rate_hz = atof(argv[++i]);
+      args->rate_hz = atof(argv[++i]);
     } else if (strcmp(argv[i], "--unplug-ms") == 0) {
-      unplug_us = (uint32_t)atoi(argv[++i]) * 1000u;
+      args->unplug_us = (uint32_t)atoi(argv[++i]) * 1000u;
     } else if (strcmp(argv[i], "--param") == 0) {
-      sil.opts.probe_param = argv[++i];
+      sil->opts.probe_param = argv[++i];
     } else if (strcmp(argv[i], "--vn200") == 0) {
-      vn200_path = argv[++i];
+      args->vn200_path = argv[++i];
     } else if (strcmp(argv[i], "--lockstep") == 0) {
-      channel_path = argv[++i];
+      args->channel_path = argv[++i];
     } else if (strcmp(argv[i], "--latency-log") == 0) {
-      sil.latency_log = fopen(argv[++i], "w");
-      if (sil.latency_log != NULL) {
-        setvbuf(sil.latency_log, NULL, _IOLBF, 0); /* readers watch it while we run */
+      sil->latency_log = fopen(argv[++i], "w");
+      if (sil->latency_log != NULL) {
+        setvbuf(sil->latency_log, NULL, _IOLBF, 0); /* readers watch it while we run */
       }
     }
   }
-  if ((b->port_path == NULL) || !(rate_hz >= 1.0 && rate_hz <= 1000.0)) {
+  if ((sil->board.port_path == NULL) || !(args->rate_hz >= 1.0 && args->rate_hz <= 1000.0)) {
     fprintf(stderr,
             "usage: ha_sil --port PATH [--rate-hz 1..1000] [--unplug-ms N] [--latency-log FILE]\n"
             "              [--param NAME] [--vn200 PATH] [--lockstep SOCKET [--realtime]]\n");
     return 2;
   }
-  signal(SIGINT, on_stop);
-  signal(SIGTERM, on_stop);
-  signal(SIGUSR1, on_unplug);
-  signal(SIGPIPE, SIG_IGN);
+  return 0;
+}
 
-  sil.opts.link_up_text = "HA SIL link up";
-  sil.opts.period_us = (uint32_t)(1e6 / rate_hz);
-  sil.opts.reads_per_pass = 8u; /* 512 bytes a port per pass, 200 us apart */
-  sil.opts.command_tap = on_command;
-  sil.opts.tap_ctx = &sil;
-  if (vn200_path != NULL && sil_board_open_vn200(b, vn200_path, &g_stop) != 0) {
-    fprintf(stderr, "ha_sil: cannot open the VN-200 port %s: %s\n", vn200_path, strerror(errno));
-    return 1;
-  }
-  if (channel_path != NULL && connect_channel(&sil, channel_path) != 0) {
-    fprintf(stderr, "ha_sil: cannot connect to the simulator at %s: %s\n", channel_path,
+/* The board's ports: the VN-200's, the simulator's channel, the HP link's pty. */
+static int open_ports(Sil *sil, const SilArgs *args) {
+  SilBoard *b = &sil->board;
+  if (args->vn200_path != NULL && sil_board_open_vn200(b, args->vn200_path, &g_stop) != 0) {
+    fprintf(stderr, "ha_sil: cannot open the VN-200 port %s: %s\n", args->vn200_path,
             strerror(errno));
     return 1;
   }
-  b->pins.standalone = channel_path == NULL;
+  if (args->channel_path != NULL && connect_channel(sil, args->channel_path) != 0) {
+    fprintf(stderr, "ha_sil: cannot connect to the simulator at %s: %s\n", args->channel_path,
+            strerror(errno));
+    return 1;
+  }
+  b->pins.standalone = args->channel_path == NULL;
   if (sil_board_plug(b) != 0) {
     perror("ha_sil: openpty");
     return 1;
   }
-  b->sim_clock = channel_path != NULL && !realtime;
-  /* power-up: the retained words hold no record yet */
-  ha_firmware_start(&sil.fw, &b->iface, &ha_aircraft_config, &sil.opts);
-  if (b->sim_clock) {
-    fprintf(stderr, "ha_sil: up on %s, lockstep with %s\n", b->port_path, channel_path);
-    run_lockstep(&sil);
-  } else {
-    fprintf(stderr, "ha_sil: up on %s at %.0f Hz%s\n", b->port_path, rate_hz,
-            channel_path != NULL ? " (board inputs from the simulator)" : "");
-    run_realtime(&sil, unplug_us);
-  }
+  return 0;
+}
+
+static void close_ports_and_report(Sil *sil) {
+  SilBoard *b = &sil->board;
   sil_board_unplug(b);
   if (b->vn_fd >= 0) {
     close(b->vn_fd);
@@ -364,15 +361,53 @@ int main(int argc, char **argv) {
   if (b->channel_fd >= 0) {
     close(b->channel_fd);
   }
-  if (sil.latency_log != NULL) {
-    fclose(sil.latency_log);
+  if (sil->latency_log != NULL) {
+    fclose(sil->latency_log);
   }
   fprintf(stderr,
           "ha_sil: %u commands, frames ok %u, bad checksum %u, skipped %u, unknown topic %u, "
           "VN-200 bytes %llu\n",
-          (unsigned)sil.commands, (unsigned)sil.fw.link.decoder.counters.frames_ok,
-          (unsigned)sil.fw.link.decoder.counters.bad_checksum,
-          (unsigned)sil.fw.link.decoder.counters.bytes_skipped,
-          (unsigned)sil.fw.link.counters.unknown_topic, (unsigned long long)b->vn_bytes);
+          (unsigned)sil->commands, (unsigned)sil->fw.link.decoder.counters.frames_ok,
+          (unsigned)sil->fw.link.decoder.counters.bad_checksum,
+          (unsigned)sil->fw.link.decoder.counters.bytes_skipped,
+          (unsigned)sil->fw.link.counters.unknown_topic, (unsigned long long)b->vn_bytes);
+}
+
+int main(int argc, char **argv) {
+  static Sil sil;
+  SilBoard *b = &sil.board;
+  SilArgs args;
+  int status;
+  memset(&sil, 0, sizeof sil);
+  sil_board_init(b);
+  status = parse_args(argc, argv, &sil, &args);
+  if (status != 0) {
+    return status;
+  }
+  signal(SIGINT, on_stop);
+  signal(SIGTERM, on_stop);
+  signal(SIGUSR1, on_unplug);
+  signal(SIGPIPE, SIG_IGN);
+
+  sil.opts.link_up_text = "HA SIL link up";
+  sil.opts.period_us = (uint32_t)(1e6 / args.rate_hz);
+  sil.opts.reads_per_pass = 8u; /* 512 bytes a port per pass, 200 us apart */
+  sil.opts.command_tap = on_command;
+  sil.opts.tap_ctx = &sil;
+  if (open_ports(&sil, &args) != 0) {
+    return 1;
+  }
+  b->sim_clock = args.channel_path != NULL && !args.realtime;
+  /* power-up: the retained words hold no record yet */
+  ha_firmware_start(&sil.fw, &b->iface, &ha_aircraft_config, &sil.opts);
+  if (b->sim_clock) {
+    fprintf(stderr, "ha_sil: up on %s, lockstep with %s\n", b->port_path, args.channel_path);
+    run_lockstep(&sil);
+  } else {
+    fprintf(stderr, "ha_sil: up on %s at %.0f Hz%s\n", b->port_path, args.rate_hz,
+            args.channel_path != NULL ? " (board inputs from the simulator)" : "");
+    run_realtime(&sil, args.unplug_us);
+  }
+  close_ports_and_report(&sil);
   return 0;
 }
