@@ -223,6 +223,145 @@ extern "C" int DG808_GNC_initialize(const DG808_GNC_Params *params) {
 
 extern "C" void DG808_GNC_terminate(void) { g_gnc.initialized = false; }
 
+namespace {
+
+// What the estimator measures this step. The surfaces actually deflected: the pilot's (captured
+// as trims every step while the pilot flies) or our last command.
+dg808::AirdataMeasurement measurement(const DG808_GNC_Input &in) {
+  dg808::AirdataMeasurement m;
+  m.vel_ned_mps = {in.vel_north_mps, in.vel_east_mps, in.vel_down_mps};
+  m.rates_radps = {in.p_radps, in.q_radps, in.r_radps};
+  m.specific_force_mps2 = {in.fx_mps2, in.fy_mps2, in.fz_mps2};
+  m.euler_rad = {in.phi_rad, in.theta_rad, in.psi_rad};
+  m.airspeed_mps = in.airspeed_ftps * kMPerFt;
+  m.elevator_rad = in.piccic == 0 ? in.elevator_trim_rad : g_gnc.last.elevator_rad;
+  m.rudder_rad = in.piccic == 0 ? in.rudder_trim_rad : g_gnc.last.rudder_rad;
+  return m;
+}
+
+// Flat earth around home, as the original's GPS-to-local block, by the stack's one conversion
+// (geo_wgs84.h, gnc.cmake links it): waypoints the operator places, the HA's safety region and
+// this guidance agree on where a latitude/longitude is relative to home. A home the module
+// refuses (an absurd height) is no home. Whether there is one.
+bool locate(const DG808_GNC_Input &in, DG808_GNC_Output *o) {
+  GeoRef ref{};
+  const bool home = in.home_valid != 0 &&
+                    geo_ref_init(&ref, in.home_lat_deg, in.home_lon_deg, in.home_alt_m) != 0;
+  if (home) {
+    double neu_ft[3];
+    geo_to_neu_ft(&ref, in.lat_deg, in.lon_deg, in.alt_m, neu_ft);
+    o->north_ft = neu_ft[0];
+    o->east_ft = neu_ft[1];
+    o->height_ft = neu_ft[2];
+  }
+  return home;
+}
+
+// The air data: the filter started on its first step and stepped after, started over when its
+// state breaks.
+dg808::AirdataEstimate estimate(const dg808::AirdataMeasurement &m, DG808_GNC_Output *o) {
+  const DG808_GNC_Params &p = g_gnc.params;
+  dg808::AirdataEstimate est;
+  if (!g_gnc.ekf_started) {
+    const dg808::AirdataEkf::Config cfg{p.airspeed_valid_min_ftps * kMPerFt,
+                                        p.converged_sigma_deg * kDegToRad,
+                                        p.stall_speed_ftps * kMPerFt};
+    g_gnc.ekf.reset(cfg, m, p.alpha0_rad, p.beta0_rad);
+    g_gnc.ekf_started = true;
+    est = g_gnc.ekf.peek(m);
+  } else {
+    est = g_gnc.ekf.step(m, p.dt_s);
+  }
+  if (!std::isfinite(est.vt_mps) || !std::isfinite(est.alpha_rad) || !std::isfinite(est.beta_rad) ||
+      !est.wind_ned_mps.allFinite()) {
+    // Cannot happen with plausible inputs; if it does, start the filter over next step rather
+    // than carry a broken state.
+    g_gnc.ekf_started = false;
+    est = dg808::AirdataEstimate{};
+  }
+  o->vt_est_ftps = est.vt_mps * kFtPerM;
+  o->alpha_est_rad = est.alpha_rad;
+  o->beta_est_rad = est.beta_rad;
+  o->alpha_sigma_rad = est.alpha_sigma_rad;
+  o->beta_sigma_rad = est.beta_sigma_rad;
+  o->wind_north_ftps = est.wind_ned_mps.x() * kFtPerM;
+  o->wind_east_ftps = est.wind_ned_mps.y() * kFtPerM;
+  o->wind_up_ftps = -est.wind_ned_mps.z() * kFtPerM;
+  o->estimator_converged = est.converged ? 1 : 0;
+  return est;
+}
+
+// Guidance, stall prevention and the attitude references the loops follow; the guidance's
+// figures and the next waypoints into the output.
+dg808::GuidanceCommand guide(const DG808_GNC_Input &in, const dg808::AirdataEstimate &est,
+                             bool flying, DG808_GNC_Output *o) {
+  const DG808_GNC_Params &p = g_gnc.params;
+  const dg808::GuidanceState gs{
+      o->north_ft, o->east_ft, o->height_ft, in.vel_north_mps * kFtPerM, in.vel_east_mps * kFtPerM,
+      in.psi_rad};
+  dg808::GuidanceCommand gc = g_gnc.guidance.step(in, gs, flying);
+  if (est.converged) {
+    stall_prevention(p, est.vt_mps * kFtPerM, &gc);
+  }
+  // While this command is not flown (the HA or the pilot flies, the loops not closed) the
+  // reference is the attitude the aircraft has, so that a hand-back starts from it.
+  if (flying && in.ha_in_control == 0) {
+    const double step_rad = p.attitude_cmd_rate_deg_s * kDegToRad * p.dt_s;
+    g_gnc.phi_ref_rad = slew(g_gnc.phi_ref_rad, gc.phi_cmd_rad, step_rad);
+    g_gnc.theta_ref_rad = slew(g_gnc.theta_ref_rad, gc.theta_cmd_rad, step_rad);
+  } else {
+    g_gnc.phi_ref_rad = in.phi_rad;
+    g_gnc.theta_ref_rad = in.theta_rad;
+  }
+  o->guidance_mode = gc.mode;
+  o->waypoint_index = gc.waypoint_index;
+  o->dist_to_waypoint_ft = gc.dist_to_waypoint_ft;
+  o->cross_track_ft = gc.cross_track_ft;
+  o->vt_cmd_ftps = gc.vt_cmd_ftps;
+  o->phi_cmd_rad = g_gnc.phi_ref_rad;
+  o->theta_cmd_rad = g_gnc.theta_ref_rad;
+  o->beta_cmd_rad = 0.0;  // coordinated flight
+  o->eta_lat_rad = gc.eta_lat_rad;
+  o->eta_lon_rad = gc.eta_lon_rad;
+  o->delta_psi_rad = gc.delta_psi_rad;
+  o->n_op_ft = gc.n_op_ft;
+  o->e_op_ft = gc.e_op_ft;
+  o->h_op_ft = gc.h_op_ft;
+  const int32_t count =
+      in.wp_count < 0
+          ? 0
+          : (in.wp_count > DG808_GNC_MAX_WAYPOINTS ? DG808_GNC_MAX_WAYPOINTS : in.wp_count);
+  for (int32_t k = 0; k < DG808_GNC_PREVIEW_WAYPOINTS && count > 0; ++k) {
+    const int32_t w = (gc.waypoint_index + k) % count;
+    o->mw_north_ft[k] = in.wp_north_ft[w];
+    o->mw_east_ft[k] = in.wp_east_ft[w];
+    o->mw_height_ft[k] = in.wp_height_ft[w];
+    o->mw_velocity_ftps[k] = in.wp_velocity_ftps[w];
+  }
+  return gc;
+}
+
+// The inner loops on the air data, or, without it, the trims held.
+dg808::Surfaces fly_loops(const DG808_GNC_Input &in, const dg808::AirdataEstimate &est,
+                          const dg808::GuidanceCommand &gc, bool flying) {
+  const dg808::Surfaces trim{in.elevator_trim_rad, in.aileron_trim_rad, in.rudder_trim_rad,
+                             in.throttle_trim};
+  if (!est.converged) {
+    // No air data to close the loops on: hold the trims, forget the integrators.
+    g_gnc.loops.reset();
+    return dg808::clamp_to_limits(trim, g_gnc.limits);
+  }
+  const dg808::LoopState x{est.vt_mps, est.alpha_rad, est.beta_rad, in.p_radps,
+                           in.q_radps, in.r_radps,    in.phi_rad,   in.theta_rad};
+  // est.converged implies vt >= airspeed_valid_min > 0.
+  const double vt_cmd_mps = gc.vt_cmd_ftps * kMPerFt;
+  const dg808::LoopReference ref{vt_cmd_mps, g_gnc.theta_ref_rad, g_gnc.phi_ref_rad,
+                                 DG808_GRAVITY_M_S2 / est.vt_mps * std::sin(g_gnc.phi_ref_rad)};
+  return g_gnc.loops.step(x, ref, trim, g_gnc.limits, g_gnc.params.dt_s, flying);
+}
+
+}  // namespace
+
 extern "C" void DG808_GNC_step(const DG808_GNC_Input *in, DG808_GNC_Output *out) {
   if (out == nullptr) {
     return;
@@ -246,124 +385,14 @@ extern "C" void DG808_GNC_step(const DG808_GNC_Input *in, DG808_GNC_Output *out)
   o.inputs_finite = 1;
   o.rejected_inputs = g_gnc.rejected;
 
-  const dg808::Surfaces trim{in->elevator_trim_rad, in->aileron_trim_rad, in->rudder_trim_rad,
-                             in->throttle_trim};
-  dg808::AirdataMeasurement m;
-  m.vel_ned_mps = {in->vel_north_mps, in->vel_east_mps, in->vel_down_mps};
-  m.rates_radps = {in->p_radps, in->q_radps, in->r_radps};
-  m.specific_force_mps2 = {in->fx_mps2, in->fy_mps2, in->fz_mps2};
-  m.euler_rad = {in->phi_rad, in->theta_rad, in->psi_rad};
-  m.airspeed_mps = in->airspeed_ftps * kMPerFt;
-  // The surfaces actually deflected: the pilot's (captured as trims every step while the pilot
-  // flies) or our last command.
-  m.elevator_rad = in->piccic == 0 ? in->elevator_trim_rad : g_gnc.last.elevator_rad;
-  m.rudder_rad = in->piccic == 0 ? in->rudder_trim_rad : g_gnc.last.rudder_rad;
-
-  // Flat earth around home, as the original's GPS-to-local block, by the stack's one conversion
-  // (geo_wgs84.h, gnc.cmake links it): waypoints the operator places, the HA's safety region and
-  // this guidance agree on where a latitude/longitude is relative to home. A home the module
-  // refuses (an absurd height) is no home.
-  GeoRef ref{};
-  const bool home = in->home_valid != 0 &&
-                    geo_ref_init(&ref, in->home_lat_deg, in->home_lon_deg, in->home_alt_m) != 0;
-  if (home) {
-    double neu_ft[3];
-    geo_to_neu_ft(&ref, in->lat_deg, in->lon_deg, in->alt_m, neu_ft);
-    o.north_ft = neu_ft[0];
-    o.east_ft = neu_ft[1];
-    o.height_ft = neu_ft[2];
-  }
+  dg808::AirdataMeasurement m = measurement(*in);
+  const bool home = locate(*in, &o);
   g_gnc.wing_borne = wing_borne(g_gnc.wing_borne, in->airspeed_ftps, home, o.height_ft, p);
   m.wing_borne = g_gnc.wing_borne;
-
-  dg808::AirdataEstimate est;
-  if (!g_gnc.ekf_started) {
-    const dg808::AirdataEkf::Config cfg{p.airspeed_valid_min_ftps * kMPerFt,
-                                        p.converged_sigma_deg * kDegToRad,
-                                        p.stall_speed_ftps * kMPerFt};
-    g_gnc.ekf.reset(cfg, m, p.alpha0_rad, p.beta0_rad);
-    g_gnc.ekf_started = true;
-    est = g_gnc.ekf.peek(m);
-  } else {
-    est = g_gnc.ekf.step(m, p.dt_s);
-  }
-  if (!std::isfinite(est.vt_mps) || !std::isfinite(est.alpha_rad) || !std::isfinite(est.beta_rad) ||
-      !est.wind_ned_mps.allFinite()) {
-    // Cannot happen with plausible inputs; if it does, start the filter over next step rather
-    // than carry a broken state.
-    g_gnc.ekf_started = false;
-    est = dg808::AirdataEstimate{};
-  }
-  o.vt_est_ftps = est.vt_mps * kFtPerM;
-  o.alpha_est_rad = est.alpha_rad;
-  o.beta_est_rad = est.beta_rad;
-  o.alpha_sigma_rad = est.alpha_sigma_rad;
-  o.beta_sigma_rad = est.beta_sigma_rad;
-  o.wind_north_ftps = est.wind_ned_mps.x() * kFtPerM;
-  o.wind_east_ftps = est.wind_ned_mps.y() * kFtPerM;
-  o.wind_up_ftps = -est.wind_ned_mps.z() * kFtPerM;
-  o.estimator_converged = est.converged ? 1 : 0;
-
-  const bool computer_flies = in->piccic == 1;
-  const bool flying = computer_flies && est.converged && home;
-
-  const dg808::GuidanceState gs{
-      o.north_ft, o.east_ft, o.height_ft, in->vel_north_mps * kFtPerM, in->vel_east_mps * kFtPerM,
-      in->psi_rad};
-  dg808::GuidanceCommand gc = g_gnc.guidance.step(*in, gs, flying);
-  if (est.converged) {
-    stall_prevention(p, est.vt_mps * kFtPerM, &gc);
-  }
-  // While this command is not flown (the HA or the pilot flies, the loops not closed) the
-  // reference is the attitude the aircraft has, so that a hand-back starts from it.
-  if (flying && in->ha_in_control == 0) {
-    const double step_rad = p.attitude_cmd_rate_deg_s * kDegToRad * p.dt_s;
-    g_gnc.phi_ref_rad = slew(g_gnc.phi_ref_rad, gc.phi_cmd_rad, step_rad);
-    g_gnc.theta_ref_rad = slew(g_gnc.theta_ref_rad, gc.theta_cmd_rad, step_rad);
-  } else {
-    g_gnc.phi_ref_rad = in->phi_rad;
-    g_gnc.theta_ref_rad = in->theta_rad;
-  }
-  o.guidance_mode = gc.mode;
-  o.waypoint_index = gc.waypoint_index;
-  o.dist_to_waypoint_ft = gc.dist_to_waypoint_ft;
-  o.cross_track_ft = gc.cross_track_ft;
-  o.vt_cmd_ftps = gc.vt_cmd_ftps;
-  o.phi_cmd_rad = g_gnc.phi_ref_rad;
-  o.theta_cmd_rad = g_gnc.theta_ref_rad;
-  o.beta_cmd_rad = 0.0;  // coordinated flight
-  o.eta_lat_rad = gc.eta_lat_rad;
-  o.eta_lon_rad = gc.eta_lon_rad;
-  o.delta_psi_rad = gc.delta_psi_rad;
-  o.n_op_ft = gc.n_op_ft;
-  o.e_op_ft = gc.e_op_ft;
-  o.h_op_ft = gc.h_op_ft;
-  const int32_t count =
-      in->wp_count < 0
-          ? 0
-          : (in->wp_count > DG808_GNC_MAX_WAYPOINTS ? DG808_GNC_MAX_WAYPOINTS : in->wp_count);
-  for (int32_t k = 0; k < DG808_GNC_PREVIEW_WAYPOINTS && count > 0; ++k) {
-    const int32_t w = (gc.waypoint_index + k) % count;
-    o.mw_north_ft[k] = in->wp_north_ft[w];
-    o.mw_east_ft[k] = in->wp_east_ft[w];
-    o.mw_height_ft[k] = in->wp_height_ft[w];
-    o.mw_velocity_ftps[k] = in->wp_velocity_ftps[w];
-  }
-
-  dg808::Surfaces u;
-  if (est.converged) {
-    const dg808::LoopState x{est.vt_mps,  est.alpha_rad, est.beta_rad, in->p_radps,
-                             in->q_radps, in->r_radps,   in->phi_rad,  in->theta_rad};
-    // est.converged implies vt >= airspeed_valid_min > 0.
-    const double vt_cmd_mps = gc.vt_cmd_ftps * kMPerFt;
-    const dg808::LoopReference ref{vt_cmd_mps, g_gnc.theta_ref_rad, g_gnc.phi_ref_rad,
-                                   DG808_GRAVITY_M_S2 / est.vt_mps * std::sin(g_gnc.phi_ref_rad)};
-    u = g_gnc.loops.step(x, ref, trim, g_gnc.limits, p.dt_s, flying);
-  } else {
-    // No air data to close the loops on: hold the trims, forget the integrators.
-    g_gnc.loops.reset();
-    u = dg808::clamp_to_limits(trim, g_gnc.limits);
-  }
+  const dg808::AirdataEstimate est = estimate(m, &o);
+  const bool flying = in->piccic == 1 && est.converged && home;
+  const dg808::GuidanceCommand gc = guide(*in, est, flying, &o);
+  const dg808::Surfaces u = fly_loops(*in, est, gc, flying);
   o.elevator_rad = u.elevator_rad;
   o.aileron_rad = u.aileron_rad;
   o.rudder_rad = u.rudder_rad;
