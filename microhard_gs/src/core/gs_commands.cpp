@@ -16,7 +16,7 @@ void GsCore::send_command_ack(const mavlink_message_t& msg, uint16_t command, ui
   a.target_system = msg.sysid;
   a.target_component = msg.compid;
   emit([&](mavlink_message_t* m) {
-    mavlink_msg_command_ack_encode_status(config_.system_id, config_.component_id, &tx_status_, m,
+    mavlink_msg_command_ack_encode_status(config_.system_id, config_.component_id, out_.status(), m,
                                           &a);
   });
 }

@@ -14,7 +14,9 @@ constexpr uint64_t kHeartbeatPeriodMs = 1000;
 }  // namespace
 
 GsCore::GsCore(const GsConfig& config, const ParamTable& params)
-    : config_(config), params_(params) {
+    : config_(config),
+      out_(config.system_id, config.component_id),
+      params_(params, config.param_set_timeout_ms, out_, counters_) {
   if (config_.signing) start_signing();
 }
 
@@ -84,15 +86,21 @@ void GsCore::dispatch(const mavlink_message_t& msg, const Clock& now) {
     case MAVLINK_MSG_ID_PARAM_REQUEST_LIST: {
       mavlink_param_request_list_t m;
       mavlink_msg_param_request_list_decode(&msg, &m);
-      if (addressed_to_us(m.target_system, m.target_component)) on_param_request_list();
+      if (addressed_to_us(m.target_system, m.target_component)) params_.on_request_list();
       break;
     }
-    case MAVLINK_MSG_ID_PARAM_REQUEST_READ:
-      on_param_request_read(msg);
+    case MAVLINK_MSG_ID_PARAM_REQUEST_READ: {
+      mavlink_param_request_read_t m;
+      mavlink_msg_param_request_read_decode(&msg, &m);
+      if (addressed_to_us(m.target_system, m.target_component)) params_.on_request_read(m);
       break;
-    case MAVLINK_MSG_ID_PARAM_SET:
-      on_param_set(msg, now);
+    }
+    case MAVLINK_MSG_ID_PARAM_SET: {
+      mavlink_param_set_t m;
+      mavlink_msg_param_set_decode(&msg, &m);
+      if (addressed_to_us(m.target_system, m.target_component)) params_.on_set(m, now);
       break;
+    }
     case MAVLINK_MSG_ID_MISSION_COUNT:
       on_mission_count(msg, now);
       break;
@@ -172,16 +180,7 @@ void GsCore::tick(const Clock& now) {
     next_telemetry_ms_ += std::max<uint64_t>(1, period_ms);
     if (next_telemetry_ms_ <= now.mono_ms) next_telemetry_ms_ = now.mono_ms + period_ms;
   }
-  for (auto it = pending_param_sets_.begin(); it != pending_param_sets_.end();) {
-    if (now.mono_ms - it->sent_ms < config_.param_set_timeout_ms) {
-      ++it;
-      continue;
-    }
-    const size_t index = it->index;
-    it = pending_param_sets_.erase(it);
-    ++counters_.param_sets_timed_out;
-    refuse_param_set(index, "no answer from the controller");
-  }
+  params_.tick(now);
   if (upload_.active && now.mono_ms - upload_.last_request_ms >= config_.mission_item_timeout_ms) {
     if (upload_.retries < config_.mission_max_retries) {
       ++upload_.retries;
@@ -208,12 +207,10 @@ std::vector<T> take(std::vector<T>* v) {
 }
 }  // namespace
 
-std::vector<std::vector<uint8_t>> GsCore::take_frames() { return take(&frames_); }
+std::vector<std::vector<uint8_t>> GsCore::take_frames() { return out_.take_frames(); }
 std::vector<std::vector<uint8_t>> GsCore::take_received_frames() { return take(&received_frames_); }
 std::vector<WayPlan> GsCore::take_way_plans() { return take(&way_plans_); }
 std::vector<OperatorRequest> GsCore::take_operator_requests() { return take(&operator_requests_); }
-std::vector<ParamSetRequest> GsCore::take_param_set_requests() {
-  return take(&param_set_requests_);
-}
+std::vector<ParamSetRequest> GsCore::take_param_set_requests() { return params_.take_requests(); }
 
 }  // namespace microhard_gs

@@ -8,6 +8,9 @@
 #include <vector>
 
 #include "geo.h"
+#include "gs_emitter.h"
+#include "gs_param_service.h"
+#include "gs_types.h"
 #include "mavlink_all.h"
 #include "mission.h"
 #include "mission_frames.h"
@@ -16,11 +19,6 @@
 #include "signing_key.h"
 
 namespace microhard_gs {
-
-struct Clock {
-  uint64_t mono_ms = 0;  // monotonic: schedules and timeouts
-  uint64_t unix_us = 0;  // wall clock: only for MAVLink 2 signing timestamps
-};
 
 struct GsConfig {
   uint8_t system_id = 1;
@@ -77,38 +75,6 @@ struct HomeRequest {
   GeoPoint position;
 };
 
-// A PARAM_SET for the controller to decide (the node calls its ~set_tunable), answered with
-// param_set_answered().
-struct ParamSetRequest {
-  uint32_t id = 0;
-  std::string ros_name;
-  double value = 0.0;
-};
-
-struct ParamSetAnswer {
-  bool accepted = false;
-  double value_in_force = 0.0;  // meaningful when accepted
-  std::string reason;           // why refused
-};
-
-struct Counters {
-  uint64_t frames_ok = 0;
-  uint64_t frames_bad_crc = 0;    // corrupt frames (CRC or length), dropped
-  uint64_t refused_unsigned = 0;  // signing on: unsigned message that changes something
-  uint64_t refused_bad_signature = 0;
-  uint64_t ignored_other_target = 0;  // addressed to another system
-  uint64_t missions_accepted = 0;
-  uint64_t missions_rejected = 0;
-  uint64_t mission_request_retries = 0;
-  uint64_t mission_uploads_timed_out = 0;
-  uint64_t commands_accepted = 0;
-  uint64_t commands_refused = 0;
-  uint64_t telemetry_sets_sent = 0;
-  uint64_t param_sets_accepted = 0;
-  uint64_t param_sets_refused = 0;  // by the controller, or because it did not answer
-  uint64_t param_sets_timed_out = 0;
-};
-
 class GsCore {
  public:
   // The config is assumed validated by the caller (the node's parameter reader).
@@ -142,14 +108,16 @@ class GsCore {
   // STATUSTEXT naming the reason when refused. An answer after the timeout (the GCS has already
   // been told the set failed) that accepted the change still updates the table and announces
   // the new value, since that is what the controller flies with.
-  void param_set_answered(const ParamSetRequest& request, const ParamSetAnswer& answer);
+  void param_set_answered(const ParamSetRequest& request, const ParamSetAnswer& answer) {
+    params_.answered(request, answer);
+  }
 
   const Counters& counters() const { return counters_; }
   bool home_known() const { return home_known_; }
   const GeoPoint& home() const { return home_; }
   int mission_count() const { return mission_count_; }
   bool upload_in_progress() const { return upload_.active; }
-  const ParamTable& params() const { return params_; }
+  const ParamTable& params() const { return params_.table(); }
   // The last decision status (nullptr before the first): who flies and the height the HEARTBEAT's
   // armed bit, SET_HOME and the self-test go by.
   const DecisionInfo* decision() const { return have_decision_ ? &decision_ : nullptr; }
@@ -179,19 +147,14 @@ class GsCore {
   };
 
   // One unit per MAVLink microservice defines these: gs_core.cpp (routing, schedule),
-  // gs_signing.cpp, gs_params.cpp, gs_missions.cpp, gs_commands.cpp, gs_telemetry.cpp,
-  // gs_statustext.cpp; emit() is in gs_core_emit.h.
+  // gs_signing.cpp, gs_missions.cpp, gs_commands.cpp, gs_telemetry.cpp, gs_statustext.cpp;
+  // emit() is in gs_core_emit.h. The parameters are a service of their own (ParamService,
+  // gs_param_service.h), over the same Emitter.
   void start_signing();
   void update_signing_clock(const Clock& now);
   void dispatch(const mavlink_message_t& msg, const Clock& now);
   void keep_received_frame(const mavlink_message_t& msg);
   bool addressed_to_us(uint8_t target_system, uint8_t target_component);
-
-  void on_param_request_list();
-  void on_param_request_read(const mavlink_message_t& msg);
-  void on_param_set(const mavlink_message_t& msg, const Clock& now);
-  void send_param(size_t index);
-  void refuse_param_set(size_t index, const std::string& reason);
 
   void on_mission_count(const mavlink_message_t& msg, const Clock& now);
   void on_mission_item(const mavlink_message_t& msg, const MissionItem& item, uint8_t target_sys,
@@ -227,8 +190,10 @@ class GsCore {
   void emit(Encode encode);
 
   GsConfig config_;
-  ParamTable params_;
   Counters counters_;
+  // The services' shared way out, then the services (in this order: they hold references to it).
+  Emitter out_;
+  ParamService params_;
 
   mavlink_status_t rx_status_{};
   mavlink_message_t rx_buffer_{};
@@ -237,7 +202,6 @@ class GsCore {
   uint8_t rx_recent_[MAVLINK_MAX_PACKET_LEN] = {};
   size_t rx_recent_next_ = 0;
   std::vector<std::vector<uint8_t>> received_frames_;
-  mavlink_status_t tx_status_{};
   mavlink_signing_t signing_{};
   mavlink_signing_streams_t signing_streams_{};
 
@@ -262,23 +226,12 @@ class GsCore {
   int mission_count_ = 0;
   WayPlan mission_plan_;  // the plan of the mission held (its waypoints' item numbers)
 
-  uint16_t statustext_id_ = 0;
-
-  std::vector<std::vector<uint8_t>> frames_;
   std::vector<WayPlan> way_plans_;
   std::vector<OperatorRequest> operator_requests_;
   std::vector<HomeRequest> home_requests_;
   // COMMAND_INT's x/y as sent (deg x 1e7): a float param would put a new home a metre off.
   bool command_int_ = false;
   int32_t command_int_x_ = 0, command_int_y_ = 0;
-  struct PendingParamSet {
-    uint32_t id = 0;
-    size_t index = 0;
-    uint64_t sent_ms = 0;
-  };
-  std::vector<PendingParamSet> pending_param_sets_;
-  uint32_t next_param_set_id_ = 0;
-  std::vector<ParamSetRequest> param_set_requests_;
 };
 
 // Names of the DecisionStatus REASON_* bits set in `reasons`, comma separated ("NO_COMMAND,STALL").

@@ -1,5 +1,6 @@
 // GsCore::emit, shared by the units that make GsCore (one per MAVLink microservice): encodes one
-// message with the vehicle's ids and signing state and queues its frame.
+// message with the vehicle's ids and signing state and queues its frame, through the Emitter
+// every service shares.
 #pragma once
 
 #include "gs_core.h"
@@ -8,11 +9,7 @@ namespace microhard_gs {
 
 template <typename Encode>
 void GsCore::emit(Encode encode) {
-  mavlink_message_t msg;
-  encode(&msg);
-  uint8_t buf[MAVLINK_MAX_PACKET_LEN];
-  const uint16_t n = mavlink_msg_to_send_buffer(buf, &msg);
-  frames_.emplace_back(buf, buf + n);
+  out_.emit(encode);
 }
 
 }  // namespace microhard_gs

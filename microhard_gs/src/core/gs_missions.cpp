@@ -22,7 +22,7 @@ void GsCore::send_mission_ack(uint8_t sys, uint8_t comp, uint8_t result, uint8_t
   a.type = result;
   a.mission_type = mission_type;
   emit([&](mavlink_message_t* m) {
-    mavlink_msg_mission_ack_encode_status(config_.system_id, config_.component_id, &tx_status_, m,
+    mavlink_msg_mission_ack_encode_status(config_.system_id, config_.component_id, out_.status(), m,
                                           &a);
   });
 }
@@ -75,7 +75,7 @@ void GsCore::request_next_item(const Clock& now) {
     r.mission_type = MAV_MISSION_TYPE_MISSION;
     emit([&](mavlink_message_t* m) {
       mavlink_msg_mission_request_encode_status(config_.system_id, config_.component_id,
-                                                &tx_status_, m, &r);
+                                                out_.status(), m, &r);
     });
   } else {
     mavlink_mission_request_int_t r{};
@@ -85,7 +85,7 @@ void GsCore::request_next_item(const Clock& now) {
     r.mission_type = MAV_MISSION_TYPE_MISSION;
     emit([&](mavlink_message_t* m) {
       mavlink_msg_mission_request_int_encode_status(config_.system_id, config_.component_id,
-                                                    &tx_status_, m, &r);
+                                                    out_.status(), m, &r);
     });
   }
   upload_.last_request_ms = now.mono_ms;
@@ -168,7 +168,7 @@ void GsCore::on_mission_request_list(const mavlink_message_t& msg) {
   c.count = m.mission_type == MAV_MISSION_TYPE_MISSION ? static_cast<uint16_t>(mission_count_) : 0;
   c.mission_type = m.mission_type;
   emit([&](mavlink_message_t* out) {
-    mavlink_msg_mission_count_encode_status(config_.system_id, config_.component_id, &tx_status_,
+    mavlink_msg_mission_count_encode_status(config_.system_id, config_.component_id, out_.status(),
                                             out, &c);
   });
 }
@@ -200,7 +200,7 @@ void GsCore::on_mission_request(const mavlink_message_t& msg, bool legacy) {
     m.target_component = msg.compid;
     m.current = seq == 0 ? 1 : 0;
     emit([&](mavlink_message_t* out) {
-      mavlink_msg_mission_item_encode_status(config_.system_id, config_.component_id, &tx_status_,
+      mavlink_msg_mission_item_encode_status(config_.system_id, config_.component_id, out_.status(),
                                              out, &m);
     });
   } else {
@@ -210,7 +210,7 @@ void GsCore::on_mission_request(const mavlink_message_t& msg, bool legacy) {
     m.current = seq == 0 ? 1 : 0;
     emit([&](mavlink_message_t* out) {
       mavlink_msg_mission_item_int_encode_status(config_.system_id, config_.component_id,
-                                                 &tx_status_, out, &m);
+                                                 out_.status(), out, &m);
     });
   }
 }

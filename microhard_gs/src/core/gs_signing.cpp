@@ -42,8 +42,8 @@ void GsCore::start_signing() {
   signing_.accept_unsigned_callback = accept_unsigned;
   rx_status_.signing = &signing_;
   rx_status_.signing_streams = &signing_streams_;
-  tx_status_.signing = &signing_;
-  tx_status_.signing_streams = &signing_streams_;
+  out_.status()->signing = &signing_;
+  out_.status()->signing_streams = &signing_streams_;
 }
 
 void GsCore::update_signing_clock(const Clock& now) {

@@ -50,7 +50,7 @@ void GsCore::send_autopilot_version() {
   v.uid = config_.system_id;
   emit([&](mavlink_message_t* m) {
     mavlink_msg_autopilot_version_encode_status(config_.system_id, config_.component_id,
-                                                &tx_status_, m, &v);
+                                                out_.status(), m, &v);
   });
 }
 
@@ -62,8 +62,8 @@ void GsCore::send_home_position() {
   h.altitude = clamp_i32(home_.alt_m * 1000.0);
   h.q[0] = 1.0f;
   emit([&](mavlink_message_t* m) {
-    mavlink_msg_home_position_encode_status(config_.system_id, config_.component_id, &tx_status_, m,
-                                            &h);
+    mavlink_msg_home_position_encode_status(config_.system_id, config_.component_id, out_.status(),
+                                            m, &h);
   });
 }
 
@@ -71,8 +71,8 @@ void GsCore::send_available_mode(int mode_index) {
   mavlink_available_modes_t m{};
   if (!available_mode(mode_index, &m)) return;
   emit([&](mavlink_message_t* out) {
-    mavlink_msg_available_modes_encode_status(config_.system_id, config_.component_id, &tx_status_,
-                                              out, &m);
+    mavlink_msg_available_modes_encode_status(config_.system_id, config_.component_id,
+                                              out_.status(), out, &m);
   });
 }
 
@@ -80,7 +80,7 @@ void GsCore::send_current_mode() {
   const mavlink_current_mode_t m =
       current_mode(have_decision_, decision_.controller, intended_custom_mode_);
   emit([&](mavlink_message_t* out) {
-    mavlink_msg_current_mode_encode_status(config_.system_id, config_.component_id, &tx_status_,
+    mavlink_msg_current_mode_encode_status(config_.system_id, config_.component_id, out_.status(),
                                            out, &m);
   });
 }
@@ -100,7 +100,7 @@ void GsCore::send_heartbeat() {
   }
   hb.mavlink_version = 3;
   emit([&](mavlink_message_t* m) {
-    mavlink_msg_heartbeat_encode_status(config_.system_id, config_.component_id, &tx_status_, m,
+    mavlink_msg_heartbeat_encode_status(config_.system_id, config_.component_id, out_.status(), m,
                                         &hb);
   });
   send_current_mode();  // streamed with the heartbeat (the protocol asks for about 0.5 Hz)
@@ -142,7 +142,7 @@ void GsCore::send_sys_status(bool fresh) {
   s.battery_remaining = -1;
   s.errors_comm = clamp_u16(static_cast<double>(counters_.frames_bad_crc % 65535));
   emit([&](mavlink_message_t* m) {
-    mavlink_msg_sys_status_encode_status(config_.system_id, config_.component_id, &tx_status_, m,
+    mavlink_msg_sys_status_encode_status(config_.system_id, config_.component_id, out_.status(), m,
                                          &s);
   });
 }
@@ -158,7 +158,8 @@ void GsCore::send_attitude(uint32_t boot_ms) {
   a.pitchspeed = finite_or_zero(t.q_radps);
   a.yawspeed = finite_or_zero(t.r_radps);
   emit([&](mavlink_message_t* m) {
-    mavlink_msg_attitude_encode_status(config_.system_id, config_.component_id, &tx_status_, m, &a);
+    mavlink_msg_attitude_encode_status(config_.system_id, config_.component_id, out_.status(), m,
+                                       &a);
   });
 }
 
@@ -181,7 +182,7 @@ void GsCore::send_position(uint32_t boot_ms) {
   g.hdg = clamp_u16(hdg_deg * 100.0);
   emit([&](mavlink_message_t* m) {
     mavlink_msg_global_position_int_encode_status(config_.system_id, config_.component_id,
-                                                  &tx_status_, m, &g);
+                                                  out_.status(), m, &g);
   });
 
   mavlink_vfr_hud_t v{};
@@ -192,7 +193,8 @@ void GsCore::send_position(uint32_t boot_ms) {
   v.alt = finite_or_zero(t.alt_m);
   v.climb = finite_or_zero(-t.v_down_mps);
   emit([&](mavlink_message_t* m) {
-    mavlink_msg_vfr_hud_encode_status(config_.system_id, config_.component_id, &tx_status_, m, &v);
+    mavlink_msg_vfr_hud_encode_status(config_.system_id, config_.component_id, out_.status(), m,
+                                      &v);
   });
 
   mavlink_gps_raw_int_t r{};
@@ -208,7 +210,7 @@ void GsCore::send_position(uint32_t boot_ms) {
       std::fmod(std::atan2(t.v_east_mps, t.v_north_mps) * 180.0 / kPi + 360.0, 360.0) * 100.0);
   r.satellites_visible = 255;  // unknown: /data does not carry it
   emit([&](mavlink_message_t* m) {
-    mavlink_msg_gps_raw_int_encode_status(config_.system_id, config_.component_id, &tx_status_, m,
+    mavlink_msg_gps_raw_int_encode_status(config_.system_id, config_.component_id, out_.status(), m,
                                           &r);
   });
 }
@@ -225,8 +227,8 @@ void GsCore::send_mission_current() {
   c.mission_state = MISSION_STATE_ACTIVE;
   c.mission_mode = t.computer_in_command ? 1 : 2;
   emit([&](mavlink_message_t* m) {
-    mavlink_msg_mission_current_encode_status(config_.system_id, config_.component_id, &tx_status_,
-                                              m, &c);
+    mavlink_msg_mission_current_encode_status(config_.system_id, config_.component_id,
+                                              out_.status(), m, &c);
   });
 }
 
