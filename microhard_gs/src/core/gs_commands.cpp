@@ -83,7 +83,7 @@ uint8_t GsCore::execute_command(uint16_t command, const float params[7]) {
       return MAV_RESULT_DENIED;
     case MAV_CMD_ACTUATOR_TEST:
       // The HA refuses it in the air too; refusing here first gives the operator the reason.
-      if (have_decision_ && decision_.altitude_agl_ft > config_.airborne_agl_ft) {
+      if (vehicle_.have_decision && vehicle_.decision.altitude_agl_ft > config_.airborne_agl_ft) {
         send_statustext(MAV_SEVERITY_WARNING, "Self-test refused: airborne");
         return MAV_RESULT_TEMPORARILY_REJECTED;
       }
@@ -95,14 +95,14 @@ uint8_t GsCore::execute_command(uint16_t command, const float params[7]) {
                           : set_home_command(params[0], params[4], params[5], params[6]);
     case MAV_CMD_REQUEST_AUTOPILOT_CAPABILITIES:
     case MAV_CMD_GET_HOME_POSITION:
-      if (command == MAV_CMD_GET_HOME_POSITION && !home_known_)
+      if (command == MAV_CMD_GET_HOME_POSITION && !vehicle_.home_known)
         return MAV_RESULT_TEMPORARILY_REJECTED;
       return MAV_RESULT_ACCEPTED;
     case MAV_CMD_REQUEST_MESSAGE:
       if (params[0] == static_cast<float>(MAVLINK_MSG_ID_AUTOPILOT_VERSION))
         return MAV_RESULT_ACCEPTED;
       if (params[0] == static_cast<float>(MAVLINK_MSG_ID_HOME_POSITION)) {
-        return home_known_ ? MAV_RESULT_ACCEPTED : MAV_RESULT_TEMPORARILY_REJECTED;
+        return vehicle_.home_known ? MAV_RESULT_ACCEPTED : MAV_RESULT_TEMPORARILY_REJECTED;
       }
       if (params[0] == static_cast<float>(MAVLINK_MSG_ID_CURRENT_MODE)) return MAV_RESULT_ACCEPTED;
       if (params[0] == static_cast<float>(MAVLINK_MSG_ID_AVAILABLE_MODES)) {

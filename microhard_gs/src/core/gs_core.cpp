@@ -16,7 +16,10 @@ constexpr uint64_t kHeartbeatPeriodMs = 1000;
 GsCore::GsCore(const GsConfig& config, const ParamTable& params)
     : config_(config),
       out_(config.system_id, config.component_id),
-      params_(params, config.param_set_timeout_ms, out_, counters_) {
+      params_(params, config.param_set_timeout_ms, out_, counters_),
+      missions_(
+          MissionConfig{config.limits, config.mission_item_timeout_ms, config.mission_max_retries},
+          vehicle_, out_, counters_) {
   if (config_.signing) start_signing();
 }
 
@@ -81,58 +84,94 @@ bool GsCore::addressed_to_us(uint8_t target_system, uint8_t target_component) {
   return ok;
 }
 
-void GsCore::dispatch(const mavlink_message_t& msg, const Clock& now) {
+// The parameter service's messages; false for any other.
+bool GsCore::route_params(const mavlink_message_t& msg, const Clock& now) {
   switch (msg.msgid) {
     case MAVLINK_MSG_ID_PARAM_REQUEST_LIST: {
       mavlink_param_request_list_t m;
       mavlink_msg_param_request_list_decode(&msg, &m);
       if (addressed_to_us(m.target_system, m.target_component)) params_.on_request_list();
-      break;
+      return true;
     }
     case MAVLINK_MSG_ID_PARAM_REQUEST_READ: {
       mavlink_param_request_read_t m;
       mavlink_msg_param_request_read_decode(&msg, &m);
       if (addressed_to_us(m.target_system, m.target_component)) params_.on_request_read(m);
-      break;
+      return true;
     }
     case MAVLINK_MSG_ID_PARAM_SET: {
       mavlink_param_set_t m;
       mavlink_msg_param_set_decode(&msg, &m);
       if (addressed_to_us(m.target_system, m.target_component)) params_.on_set(m, now);
-      break;
+      return true;
     }
-    case MAVLINK_MSG_ID_MISSION_COUNT:
-      on_mission_count(msg, now);
-      break;
+    default:
+      return false;
+  }
+}
+
+// The mission service's messages; false for any other.
+bool GsCore::route_mission(const mavlink_message_t& msg, const Clock& now) {
+  switch (msg.msgid) {
+    case MAVLINK_MSG_ID_MISSION_COUNT: {
+      mavlink_mission_count_t m;
+      mavlink_msg_mission_count_decode(&msg, &m);
+      if (addressed_to_us(m.target_system, m.target_component)) missions_.on_count(msg, m, now);
+      return true;
+    }
     case MAVLINK_MSG_ID_MISSION_ITEM_INT: {
       mavlink_mission_item_int_t m;
       mavlink_msg_mission_item_int_decode(&msg, &m);
-      on_mission_item(msg, from_item_int(m), m.target_system, m.target_component, m.mission_type,
-                      false, now);
-      break;
+      if (addressed_to_us(m.target_system, m.target_component))
+        missions_.on_item(msg, from_item_int(m), m.mission_type, false, now);
+      return true;
     }
     case MAVLINK_MSG_ID_MISSION_ITEM: {
       mavlink_mission_item_t m;
       mavlink_msg_mission_item_decode(&msg, &m);
-      on_mission_item(msg, from_item_float(m), m.target_system, m.target_component, m.mission_type,
-                      true, now);
-      break;
+      if (addressed_to_us(m.target_system, m.target_component))
+        missions_.on_item(msg, from_item_float(m), m.mission_type, true, now);
+      return true;
     }
-    case MAVLINK_MSG_ID_MISSION_REQUEST_LIST:
-      on_mission_request_list(msg);
-      break;
-    case MAVLINK_MSG_ID_MISSION_REQUEST_INT:
-      on_mission_request(msg, false);
-      break;
-    case MAVLINK_MSG_ID_MISSION_REQUEST:
-      on_mission_request(msg, true);
-      break;
-    case MAVLINK_MSG_ID_MISSION_CLEAR_ALL:
-      on_mission_clear_all(msg);
-      break;
+    case MAVLINK_MSG_ID_MISSION_REQUEST_LIST: {
+      mavlink_mission_request_list_t m;
+      mavlink_msg_mission_request_list_decode(&msg, &m);
+      if (addressed_to_us(m.target_system, m.target_component))
+        missions_.on_request_list(msg, m.mission_type);
+      return true;
+    }
+    case MAVLINK_MSG_ID_MISSION_REQUEST_INT: {
+      mavlink_mission_request_int_t r;
+      mavlink_msg_mission_request_int_decode(&msg, &r);
+      if (addressed_to_us(r.target_system, r.target_component))
+        missions_.on_request(msg, r.seq, r.mission_type, false);
+      return true;
+    }
+    case MAVLINK_MSG_ID_MISSION_REQUEST: {
+      mavlink_mission_request_t r;
+      mavlink_msg_mission_request_decode(&msg, &r);
+      if (addressed_to_us(r.target_system, r.target_component))
+        missions_.on_request(msg, r.seq, r.mission_type, true);
+      return true;
+    }
+    case MAVLINK_MSG_ID_MISSION_CLEAR_ALL: {
+      mavlink_mission_clear_all_t m;
+      mavlink_msg_mission_clear_all_decode(&msg, &m);
+      if (addressed_to_us(m.target_system, m.target_component))
+        missions_.on_clear_all(msg, m.mission_type);
+      return true;
+    }
     case MAVLINK_MSG_ID_MISSION_ACK:
-      on_mission_ack(msg);
-      break;
+      missions_.on_ack(msg);
+      return true;
+    default:
+      return false;
+  }
+}
+
+void GsCore::dispatch(const mavlink_message_t& msg, const Clock& now) {
+  if (route_params(msg, now) || route_mission(msg, now)) return;
+  switch (msg.msgid) {
     case MAVLINK_MSG_ID_COMMAND_LONG: {
       mavlink_command_long_t c;
       mavlink_msg_command_long_decode(&msg, &c);
@@ -181,21 +220,7 @@ void GsCore::tick(const Clock& now) {
     if (next_telemetry_ms_ <= now.mono_ms) next_telemetry_ms_ = now.mono_ms + period_ms;
   }
   params_.tick(now);
-  if (upload_.active && now.mono_ms - upload_.last_request_ms >= config_.mission_item_timeout_ms) {
-    if (upload_.retries < config_.mission_max_retries) {
-      ++upload_.retries;
-      ++counters_.mission_request_retries;
-      // No item yet: maybe the GCS answers only the other request message. Ask both ways in turn.
-      if (!upload_.answered) upload_.legacy = !upload_.legacy;
-      request_next_item(now);
-    } else {
-      ++counters_.mission_uploads_timed_out;
-      upload_.active = false;
-      send_mission_ack(upload_.partner_sys, upload_.partner_comp, MAV_MISSION_OPERATION_CANCELLED,
-                       MAV_MISSION_TYPE_MISSION);
-      send_statustext(MAV_SEVERITY_WARNING, "Mission upload timed out, old mission kept");
-    }
-  }
+  missions_.tick(now);
 }
 
 namespace {
@@ -209,7 +234,7 @@ std::vector<T> take(std::vector<T>* v) {
 
 std::vector<std::vector<uint8_t>> GsCore::take_frames() { return out_.take_frames(); }
 std::vector<std::vector<uint8_t>> GsCore::take_received_frames() { return take(&received_frames_); }
-std::vector<WayPlan> GsCore::take_way_plans() { return take(&way_plans_); }
+std::vector<WayPlan> GsCore::take_way_plans() { return missions_.take_way_plans(); }
 std::vector<OperatorRequest> GsCore::take_operator_requests() { return take(&operator_requests_); }
 std::vector<ParamSetRequest> GsCore::take_param_set_requests() { return params_.take_requests(); }
 

@@ -9,6 +9,7 @@
 
 #include "geo.h"
 #include "gs_emitter.h"
+#include "gs_mission_service.h"
 #include "gs_param_service.h"
 #include "gs_types.h"
 #include "mavlink_all.h"
@@ -36,28 +37,6 @@ struct GsConfig {
   uint8_t signing_link_id = 0;
   // Keep every frame received, as it came, for take_received_frames() (the telemetry log).
   bool keep_received_frames = false;
-};
-
-// What the controller reported last on /data, in the units of the `data` message.
-struct Telemetry {
-  double roll_rad = 0, pitch_rad = 0, yaw_rad = 0;
-  double p_radps = 0, q_radps = 0, r_radps = 0;
-  double lat_deg = 0, lon_deg = 0, alt_m = 0;
-  double v_north_mps = 0, v_east_mps = 0, v_down_mps = 0;
-  double airspeed_ftps = 0;
-  double throttle = 0;  // [0..1]
-  double voltage_v = 0;
-  bool ins_link_up = false;
-  bool ha_link_up = false;
-  bool computer_in_command = false;
-  int32_t waypoint_index = 0;
-};
-
-struct DecisionInfo {
-  uint8_t controller = kControllerHp;  // one of kController*
-  uint32_t reasons = 0;
-  uint32_t reasons_at_switch = 0;
-  double altitude_agl_ft = 0.0;
 };
 
 // Operator requests; values match drone_ros/OperatorCommand's constants.
@@ -113,59 +92,29 @@ class GsCore {
   }
 
   const Counters& counters() const { return counters_; }
-  bool home_known() const { return home_known_; }
-  const GeoPoint& home() const { return home_; }
-  int mission_count() const { return mission_count_; }
-  bool upload_in_progress() const { return upload_.active; }
+  bool home_known() const { return vehicle_.home_known; }
+  const GeoPoint& home() const { return vehicle_.home; }
+  int mission_count() const { return missions_.count(); }
+  bool upload_in_progress() const { return missions_.upload_in_progress(); }
   const ParamTable& params() const { return params_.table(); }
   // The last decision status (nullptr before the first): who flies and the height the HEARTBEAT's
   // armed bit, SET_HOME and the self-test go by.
-  const DecisionInfo* decision() const { return have_decision_ ? &decision_ : nullptr; }
+  const DecisionInfo* decision() const {
+    return vehicle_.have_decision ? &vehicle_.decision : nullptr;
+  }
 
  private:
-  struct Upload {
-    bool active = false;
-    // Ask with MISSION_REQUEST rather than MISSION_REQUEST_INT: the GCS answered with MISSION_ITEM,
-    // or it answered only once asked that way (MAVProxy answers MISSION_REQUEST alone).
-    bool legacy = false;
-    bool answered = false;  // an item of this upload arrived: the way of asking is settled
-    uint8_t partner_sys = 0, partner_comp = 0;
-    int count = 0;
-    int next_seq = 0;
-    uint32_t retries = 0;
-    uint64_t last_request_ms = 0;
-    MissionItem items[kMaxMissionItems];
-  };
-  // The answer to the last finished upload, resent if the GCS repeats the last item because it
-  // lost our MISSION_ACK.
-  struct LastUploadResult {
-    bool valid = false;
-    uint8_t partner_sys = 0, partner_comp = 0;
-    int last_seq = -1;
-    uint8_t result = 0;
-    uint64_t finished_ms = 0;
-  };
-
   // One unit per MAVLink microservice defines these: gs_core.cpp (routing, schedule),
-  // gs_signing.cpp, gs_missions.cpp, gs_commands.cpp, gs_telemetry.cpp, gs_statustext.cpp;
-  // emit() is in gs_core_emit.h. The parameters are a service of their own (ParamService,
-  // gs_param_service.h), over the same Emitter.
+  // gs_signing.cpp, gs_commands.cpp, gs_telemetry.cpp, gs_statustext.cpp; emit() is in
+  // gs_core_emit.h. The parameters and the missions are services of their own (ParamService,
+  // MissionService), over the same Emitter and reading vehicle_.
   void start_signing();
   void update_signing_clock(const Clock& now);
   void dispatch(const mavlink_message_t& msg, const Clock& now);
+  bool route_params(const mavlink_message_t& msg, const Clock& now);
+  bool route_mission(const mavlink_message_t& msg, const Clock& now);
   void keep_received_frame(const mavlink_message_t& msg);
   bool addressed_to_us(uint8_t target_system, uint8_t target_component);
-
-  void on_mission_count(const mavlink_message_t& msg, const Clock& now);
-  void on_mission_item(const mavlink_message_t& msg, const MissionItem& item, uint8_t target_sys,
-                       uint8_t target_comp, uint8_t mission_type, bool legacy, const Clock& now);
-  void on_mission_request_list(const mavlink_message_t& msg);
-  void on_mission_request(const mavlink_message_t& msg, bool legacy);
-  void on_mission_clear_all(const mavlink_message_t& msg);
-  void on_mission_ack(const mavlink_message_t& msg);
-  void request_next_item(const Clock& now);
-  void finish_upload(uint8_t result, const std::string& reason, const Clock& now);
-  void send_mission_ack(uint8_t sys, uint8_t comp, uint8_t result, uint8_t mission_type);
 
   void on_command(const mavlink_message_t& msg, uint16_t command, const float params[7],
                   uint8_t target_sys, uint8_t target_comp);
@@ -194,6 +143,8 @@ class GsCore {
   // The services' shared way out, then the services (in this order: they hold references to it).
   Emitter out_;
   ParamService params_;
+  VehicleState vehicle_;
+  MissionService missions_;
 
   mavlink_status_t rx_status_{};
   mavlink_message_t rx_buffer_{};
@@ -210,23 +161,8 @@ class GsCore {
   uint64_t next_heartbeat_ms_ = 0;
   uint64_t next_telemetry_ms_ = 0;
 
-  bool have_telemetry_ = false;
-  uint64_t telemetry_ms_ = 0;
-  Telemetry telemetry_;
-  bool have_decision_ = false;
-  DecisionInfo decision_;
   uint32_t intended_custom_mode_ = 0;  // the operator's last DO_SET_MODE (0: none yet)
 
-  bool home_known_ = false;
-  GeoPoint home_;
-
-  Upload upload_;
-  LastUploadResult last_upload_;
-  MissionItem mission_[kMaxMissionItems];
-  int mission_count_ = 0;
-  WayPlan mission_plan_;  // the plan of the mission held (its waypoints' item numbers)
-
-  std::vector<WayPlan> way_plans_;
   std::vector<OperatorRequest> operator_requests_;
   std::vector<HomeRequest> home_requests_;
   // COMMAND_INT's x/y as sent (deg x 1e7): a float param would put a new home a metre off.

@@ -12,10 +12,10 @@ bool GsCore::set_home(const GeoPoint& home) {
   if (!is_valid_home(home)) {
     return false;
   }
-  const bool moved = !home_known_ || home.lat_deg != home_.lat_deg ||
-                     home.lon_deg != home_.lon_deg || home.alt_m != home_.alt_m;
-  home_ = home;
-  home_known_ = true;
+  const bool moved = !vehicle_.home_known || home.lat_deg != vehicle_.home.lat_deg ||
+                     home.lon_deg != vehicle_.home.lon_deg || home.alt_m != vehicle_.home.alt_m;
+  vehicle_.home = home;
+  vehicle_.home_known = true;
   if (moved) {
     send_home_position();
     send_statustext(MAV_SEVERITY_INFO, "Home set by the HA");
@@ -29,12 +29,12 @@ bool GsCore::set_home(const GeoPoint& home) {
 // shift all three under the aircraft. The HA refuses it in the air too (ha_ins_set_home), and
 // decides: ACCEPTED means forwarded, the new home comes back on /home as HOME_POSITION.
 uint8_t GsCore::set_home_command(float use_current, double lat_deg, double lon_deg, float alt_m) {
-  if (!have_decision_) {
+  if (!vehicle_.have_decision) {
     send_statustext(MAV_SEVERITY_WARNING,
                     "Set home refused: no HA status, cannot tell it is on the ground");
     return MAV_RESULT_TEMPORARILY_REJECTED;
   }
-  if (decision_.altitude_agl_ft > config_.airborne_agl_ft) {
+  if (vehicle_.decision.altitude_agl_ft > config_.airborne_agl_ft) {
     send_statustext(MAV_SEVERITY_WARNING, "Set home refused: in flight");
     return MAV_RESULT_TEMPORARILY_REJECTED;
   }

@@ -1,11 +1,9 @@
-// The mission microservice: uploads checked whole against the limits, downloads, clear, acks.
-#include "gs_core.h"
-
+// The mission microservice (gs_mission_service.h).
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 
-#include "gs_core_emit.h"
+#include "gs_mission_service.h"
 
 namespace microhard_gs {
 namespace {
@@ -15,25 +13,30 @@ constexpr uint64_t kReAckWindowMs = 10000;
 
 }  // namespace
 
-void GsCore::send_mission_ack(uint8_t sys, uint8_t comp, uint8_t result, uint8_t mission_type) {
+void MissionService::send_ack(uint8_t sys, uint8_t comp, uint8_t result, uint8_t mission_type) {
   mavlink_mission_ack_t a{};
   a.target_system = sys;
   a.target_component = comp;
   a.type = result;
   a.mission_type = mission_type;
-  emit([&](mavlink_message_t* m) {
-    mavlink_msg_mission_ack_encode_status(config_.system_id, config_.component_id, out_.status(), m,
+  out_.emit([&](mavlink_message_t* m) {
+    mavlink_msg_mission_ack_encode_status(out_.system_id(), out_.component_id(), out_.status(), m,
                                           &a);
   });
 }
 
-void GsCore::on_mission_count(const mavlink_message_t& msg, const Clock& now) {
-  mavlink_mission_count_t m;
-  mavlink_msg_mission_count_decode(&msg, &m);
-  if (!addressed_to_us(m.target_system, m.target_component)) return;
+void MissionService::clear() {
+  upload_.active = false;
+  count_ = 0;
+  plan_ = WayPlan{};
+  way_plans_.push_back(WayPlan{});
+}
+
+void MissionService::on_count(const mavlink_message_t& msg, const mavlink_mission_count_t& m,
+                              const Clock& now) {
   if (m.mission_type != MAV_MISSION_TYPE_MISSION) {
     // No geofence or rally points on this vehicle.
-    send_mission_ack(msg.sysid, msg.compid, MAV_MISSION_UNSUPPORTED, m.mission_type);
+    send_ack(msg.sysid, msg.compid, MAV_MISSION_UNSUPPORTED, m.mission_type);
     return;
   }
   if (m.count > kMaxMissionItems) {
@@ -41,17 +44,14 @@ void GsCore::on_mission_count(const mavlink_message_t& msg, const Clock& now) {
     upload_.active = false;
     const std::string why = "Mission rejected: " + std::to_string(m.count) + " items, max " +
                             std::to_string(kMaxMissionItems);
-    send_mission_ack(msg.sysid, msg.compid, MAV_MISSION_NO_SPACE, MAV_MISSION_TYPE_MISSION);
-    send_statustext(MAV_SEVERITY_WARNING, why);
+    send_ack(msg.sysid, msg.compid, MAV_MISSION_NO_SPACE, MAV_MISSION_TYPE_MISSION);
+    out_.statustext(MAV_SEVERITY_WARNING, why);
     return;
   }
   if (m.count == 0) {  // an empty upload clears the mission
-    upload_.active = false;
-    mission_count_ = 0;
-    mission_plan_ = WayPlan{};
-    way_plans_.push_back(WayPlan{});
+    clear();
     ++counters_.missions_accepted;
-    send_mission_ack(msg.sysid, msg.compid, MAV_MISSION_ACCEPTED, MAV_MISSION_TYPE_MISSION);
+    send_ack(msg.sysid, msg.compid, MAV_MISSION_ACCEPTED, MAV_MISSION_TYPE_MISSION);
     return;
   }
   // A repeated MISSION_COUNT (our first request was lost) simply restarts the transfer.
@@ -65,7 +65,7 @@ void GsCore::on_mission_count(const mavlink_message_t& msg, const Clock& now) {
   request_next_item(now);
 }
 
-void GsCore::request_next_item(const Clock& now) {
+void MissionService::request_next_item(const Clock& now) {
   const uint16_t seq = static_cast<uint16_t>(upload_.next_seq);
   if (upload_.legacy) {
     mavlink_mission_request_t r{};
@@ -73,8 +73,8 @@ void GsCore::request_next_item(const Clock& now) {
     r.target_component = upload_.partner_comp;
     r.seq = seq;
     r.mission_type = MAV_MISSION_TYPE_MISSION;
-    emit([&](mavlink_message_t* m) {
-      mavlink_msg_mission_request_encode_status(config_.system_id, config_.component_id,
+    out_.emit([&](mavlink_message_t* m) {
+      mavlink_msg_mission_request_encode_status(out_.system_id(), out_.component_id(),
                                                 out_.status(), m, &r);
     });
   } else {
@@ -83,19 +83,19 @@ void GsCore::request_next_item(const Clock& now) {
     r.target_component = upload_.partner_comp;
     r.seq = seq;
     r.mission_type = MAV_MISSION_TYPE_MISSION;
-    emit([&](mavlink_message_t* m) {
-      mavlink_msg_mission_request_int_encode_status(config_.system_id, config_.component_id,
+    out_.emit([&](mavlink_message_t* m) {
+      mavlink_msg_mission_request_int_encode_status(out_.system_id(), out_.component_id(),
                                                     out_.status(), m, &r);
     });
   }
   upload_.last_request_ms = now.mono_ms;
 }
 
-void GsCore::finish_upload(uint8_t result, const std::string& reason, const Clock& now) {
-  send_mission_ack(upload_.partner_sys, upload_.partner_comp, result, MAV_MISSION_TYPE_MISSION);
+void MissionService::finish_upload(uint8_t result, const std::string& reason, const Clock& now) {
+  send_ack(upload_.partner_sys, upload_.partner_comp, result, MAV_MISSION_TYPE_MISSION);
   if (result != MAV_MISSION_ACCEPTED) {
     ++counters_.missions_rejected;
-    send_statustext(MAV_SEVERITY_WARNING, "Mission rejected: " + reason);
+    out_.statustext(MAV_SEVERITY_WARNING, "Mission rejected: " + reason);
   }
   last_upload_.valid = true;
   last_upload_.partner_sys = upload_.partner_sys;
@@ -106,16 +106,27 @@ void GsCore::finish_upload(uint8_t result, const std::string& reason, const Cloc
   upload_.active = false;
 }
 
-void GsCore::on_mission_item(const mavlink_message_t& msg, const MissionItem& item,
-                             uint8_t target_sys, uint8_t target_comp, uint8_t mission_type,
-                             bool legacy, const Clock& now) {
-  if (!addressed_to_us(target_sys, target_comp) || mission_type != MAV_MISSION_TYPE_MISSION) return;
+void MissionService::accept(const WayPlan& plan, const Clock& now) {
+  std::copy(upload_.items, upload_.items + upload_.count, items_);
+  count_ = upload_.count;
+  plan_ = plan;
+  way_plans_.push_back(plan);
+  ++counters_.missions_accepted;
+  finish_upload(MAV_MISSION_ACCEPTED, "", now);
+  const bool home_row = is_home_row(items_[0], vehicle_.home, config_.limits);
+  out_.statustext(MAV_SEVERITY_INFO, "Mission accepted: " + std::to_string(plan.fp) + " waypoints" +
+                                         (home_row ? ", item 0 is home (not flown)" : ""));
+}
+
+void MissionService::on_item(const mavlink_message_t& msg, const MissionItem& item,
+                             uint8_t mission_type, bool legacy, const Clock& now) {
+  if (mission_type != MAV_MISSION_TYPE_MISSION) return;
   if (!upload_.active || msg.sysid != upload_.partner_sys || msg.compid != upload_.partner_comp) {
     // The GCS repeats the last item when our final MISSION_ACK was lost: answer it again.
     if (last_upload_.valid && msg.sysid == last_upload_.partner_sys &&
         msg.compid == last_upload_.partner_comp && item.seq == last_upload_.last_seq &&
         now.mono_ms - last_upload_.finished_ms < kReAckWindowMs) {
-      send_mission_ack(msg.sysid, msg.compid, last_upload_.result, MAV_MISSION_TYPE_MISSION);
+      send_ack(msg.sysid, msg.compid, last_upload_.result, MAV_MISSION_TYPE_MISSION);
     }
     return;
   }
@@ -128,8 +139,9 @@ void GsCore::on_mission_item(const mavlink_message_t& msg, const MissionItem& it
     return;
   }
   upload_.retries = 0;
-  const MissionVerdict v = home_known_ ? check_mission_item(item, home_, config_.limits)
-                                       : MissionVerdict{MAV_MISSION_DENIED, "no home position yet"};
+  const MissionVerdict v = vehicle_.home_known
+                               ? check_mission_item(item, vehicle_.home, config_.limits)
+                               : MissionVerdict{MAV_MISSION_DENIED, "no home position yet"};
   if (!v.ok()) {
     finish_upload(v.result, v.reason, now);
     return;
@@ -142,93 +154,60 @@ void GsCore::on_mission_item(const mavlink_message_t& msg, const MissionItem& it
   }
   WayPlan plan;
   const MissionVerdict all =
-      build_way_plan(upload_.items, upload_.count, home_, config_.limits, &plan);
+      build_way_plan(upload_.items, upload_.count, vehicle_.home, config_.limits, &plan);
   if (!all.ok()) {
     finish_upload(all.result, all.reason, now);
     return;
   }
-  std::copy(upload_.items, upload_.items + upload_.count, mission_);
-  mission_count_ = upload_.count;
-  mission_plan_ = plan;
-  way_plans_.push_back(plan);
-  ++counters_.missions_accepted;
-  finish_upload(MAV_MISSION_ACCEPTED, "", now);
-  const bool home_row = is_home_row(mission_[0], home_, config_.limits);
-  send_statustext(MAV_SEVERITY_INFO, "Mission accepted: " + std::to_string(plan.fp) + " waypoints" +
-                                         (home_row ? ", item 0 is home (not flown)" : ""));
+  accept(plan, now);
 }
 
-void GsCore::on_mission_request_list(const mavlink_message_t& msg) {
-  mavlink_mission_request_list_t m;
-  mavlink_msg_mission_request_list_decode(&msg, &m);
-  if (!addressed_to_us(m.target_system, m.target_component)) return;
+void MissionService::on_request_list(const mavlink_message_t& msg, uint8_t mission_type) {
   mavlink_mission_count_t c{};
   c.target_system = msg.sysid;
   c.target_component = msg.compid;
-  c.count = m.mission_type == MAV_MISSION_TYPE_MISSION ? static_cast<uint16_t>(mission_count_) : 0;
-  c.mission_type = m.mission_type;
-  emit([&](mavlink_message_t* out) {
-    mavlink_msg_mission_count_encode_status(config_.system_id, config_.component_id, out_.status(),
-                                            out, &c);
+  c.count = mission_type == MAV_MISSION_TYPE_MISSION ? static_cast<uint16_t>(count_) : 0;
+  c.mission_type = mission_type;
+  out_.emit([&](mavlink_message_t* m) {
+    mavlink_msg_mission_count_encode_status(out_.system_id(), out_.component_id(), out_.status(), m,
+                                            &c);
   });
 }
 
-void GsCore::on_mission_request(const mavlink_message_t& msg, bool legacy) {
-  uint16_t seq = 0;
-  uint8_t mission_type = 0;
-  if (legacy) {
-    mavlink_mission_request_t r;
-    mavlink_msg_mission_request_decode(&msg, &r);
-    if (!addressed_to_us(r.target_system, r.target_component)) return;
-    seq = r.seq;
-    mission_type = r.mission_type;
-  } else {
-    mavlink_mission_request_int_t r;
-    mavlink_msg_mission_request_int_decode(&msg, &r);
-    if (!addressed_to_us(r.target_system, r.target_component)) return;
-    seq = r.seq;
-    mission_type = r.mission_type;
-  }
-  if (mission_type != MAV_MISSION_TYPE_MISSION || seq >= mission_count_) {
-    send_mission_ack(msg.sysid, msg.compid, MAV_MISSION_INVALID_SEQUENCE, mission_type);
+void MissionService::on_request(const mavlink_message_t& msg, uint16_t seq, uint8_t mission_type,
+                                bool legacy) {
+  if (mission_type != MAV_MISSION_TYPE_MISSION || seq >= count_) {
+    send_ack(msg.sysid, msg.compid, MAV_MISSION_INVALID_SEQUENCE, mission_type);
     return;
   }
   // Downloads answer in the frame each item was uploaded in (mission_frames.h).
   if (legacy) {
-    mavlink_mission_item_t m = to_item_float(mission_[seq]);
-    m.target_system = msg.sysid;
-    m.target_component = msg.compid;
-    m.current = seq == 0 ? 1 : 0;
-    emit([&](mavlink_message_t* out) {
-      mavlink_msg_mission_item_encode_status(config_.system_id, config_.component_id, out_.status(),
-                                             out, &m);
+    mavlink_mission_item_t item = to_item_float(items_[seq]);
+    item.target_system = msg.sysid;
+    item.target_component = msg.compid;
+    item.current = seq == 0 ? 1 : 0;
+    out_.emit([&](mavlink_message_t* m) {
+      mavlink_msg_mission_item_encode_status(out_.system_id(), out_.component_id(), out_.status(),
+                                             m, &item);
     });
   } else {
-    mavlink_mission_item_int_t m = to_item_int(mission_[seq]);
-    m.target_system = msg.sysid;
-    m.target_component = msg.compid;
-    m.current = seq == 0 ? 1 : 0;
-    emit([&](mavlink_message_t* out) {
-      mavlink_msg_mission_item_int_encode_status(config_.system_id, config_.component_id,
-                                                 out_.status(), out, &m);
+    mavlink_mission_item_int_t item = to_item_int(items_[seq]);
+    item.target_system = msg.sysid;
+    item.target_component = msg.compid;
+    item.current = seq == 0 ? 1 : 0;
+    out_.emit([&](mavlink_message_t* m) {
+      mavlink_msg_mission_item_int_encode_status(out_.system_id(), out_.component_id(),
+                                                 out_.status(), m, &item);
     });
   }
 }
 
-void GsCore::on_mission_clear_all(const mavlink_message_t& msg) {
-  mavlink_mission_clear_all_t m;
-  mavlink_msg_mission_clear_all_decode(&msg, &m);
-  if (!addressed_to_us(m.target_system, m.target_component)) return;
-  if (m.mission_type == MAV_MISSION_TYPE_MISSION || m.mission_type == MAV_MISSION_TYPE_ALL) {
-    upload_.active = false;
-    mission_count_ = 0;
-    mission_plan_ = WayPlan{};
-    way_plans_.push_back(WayPlan{});
-  }
-  send_mission_ack(msg.sysid, msg.compid, MAV_MISSION_ACCEPTED, m.mission_type);
+void MissionService::on_clear_all(const mavlink_message_t& msg, uint8_t mission_type) {
+  if (mission_type == MAV_MISSION_TYPE_MISSION || mission_type == MAV_MISSION_TYPE_ALL) clear();
+  send_ack(msg.sysid, msg.compid, MAV_MISSION_ACCEPTED, mission_type);
 }
 
-void GsCore::on_mission_ack(const mavlink_message_t& msg) {
+void MissionService::on_ack(const mavlink_message_t& msg) {
   mavlink_mission_ack_t a;
   mavlink_msg_mission_ack_decode(&msg, &a);
   // The GCS gives up on an upload: drop it, the stored mission is untouched.
@@ -236,6 +215,29 @@ void GsCore::on_mission_ack(const mavlink_message_t& msg) {
       a.mission_type == MAV_MISSION_TYPE_MISSION) {
     upload_.active = false;
   }
+}
+
+void MissionService::tick(const Clock& now) {
+  if (!upload_.active || now.mono_ms - upload_.last_request_ms < config_.item_timeout_ms) return;
+  if (upload_.retries < config_.max_retries) {
+    ++upload_.retries;
+    ++counters_.mission_request_retries;
+    // No item yet: maybe the GCS answers only the other request message. Ask both ways in turn.
+    if (!upload_.answered) upload_.legacy = !upload_.legacy;
+    request_next_item(now);
+  } else {
+    ++counters_.mission_uploads_timed_out;
+    upload_.active = false;
+    send_ack(upload_.partner_sys, upload_.partner_comp, MAV_MISSION_OPERATION_CANCELLED,
+             MAV_MISSION_TYPE_MISSION);
+    out_.statustext(MAV_SEVERITY_WARNING, "Mission upload timed out, old mission kept");
+  }
+}
+
+std::vector<WayPlan> MissionService::take_way_plans() {
+  std::vector<WayPlan> out;
+  out.swap(way_plans_);
+  return out;
 }
 
 }  // namespace microhard_gs

@@ -69,15 +69,15 @@ std::string decision_announcement(const DecisionInfo* previous, const DecisionIn
 }
 
 void GsCore::set_decision(const DecisionInfo& d) {
-  const bool changed = !have_decision_ || d.controller != decision_.controller;
+  const bool changed = !vehicle_.have_decision || d.controller != vehicle_.decision.controller;
   if (changed) {
     uint8_t severity = MAV_SEVERITY_NOTICE;
     const std::string text =
-        decision_announcement(have_decision_ ? &decision_ : nullptr, d, &severity);
+        decision_announcement(vehicle_.have_decision ? &vehicle_.decision : nullptr, d, &severity);
     send_statustext(severity, text);
   }
-  decision_ = d;
-  have_decision_ = true;
+  vehicle_.decision = d;
+  vehicle_.have_decision = true;
   if (changed) send_current_mode();  // the standard-modes protocol wants every change at once
 }
 

@@ -36,9 +36,9 @@ double heading_deg(double yaw_rad) {
 }  // namespace
 
 void GsCore::set_telemetry(const Telemetry& t, const Clock& now) {
-  telemetry_ = t;
-  have_telemetry_ = true;
-  telemetry_ms_ = now.mono_ms;
+  vehicle_.telemetry = t;
+  vehicle_.have_telemetry = true;
+  vehicle_.telemetry_ms = now.mono_ms;
 }
 
 void GsCore::send_autopilot_version() {
@@ -55,11 +55,11 @@ void GsCore::send_autopilot_version() {
 }
 
 void GsCore::send_home_position() {
-  if (!home_known_) return;
+  if (!vehicle_.home_known) return;
   mavlink_home_position_t h{};
-  h.latitude = clamp_i32(home_.lat_deg * 1e7);
-  h.longitude = clamp_i32(home_.lon_deg * 1e7);
-  h.altitude = clamp_i32(home_.alt_m * 1000.0);
+  h.latitude = clamp_i32(vehicle_.home.lat_deg * 1e7);
+  h.longitude = clamp_i32(vehicle_.home.lon_deg * 1e7);
+  h.altitude = clamp_i32(vehicle_.home.alt_m * 1000.0);
   h.q[0] = 1.0f;
   emit([&](mavlink_message_t* m) {
     mavlink_msg_home_position_encode_status(config_.system_id, config_.component_id, out_.status(),
@@ -78,7 +78,7 @@ void GsCore::send_available_mode(int mode_index) {
 
 void GsCore::send_current_mode() {
   const mavlink_current_mode_t m =
-      current_mode(have_decision_, decision_.controller, intended_custom_mode_);
+      current_mode(vehicle_.have_decision, vehicle_.decision.controller, intended_custom_mode_);
   emit([&](mavlink_message_t* out) {
     mavlink_msg_current_mode_encode_status(config_.system_id, config_.component_id, out_.status(),
                                            out, &m);
@@ -89,13 +89,15 @@ void GsCore::send_heartbeat() {
   mavlink_heartbeat_t hb{};
   hb.type = MAV_TYPE_FIXED_WING;
   hb.autopilot = MAV_AUTOPILOT_GENERIC;
-  const bool airborne = have_decision_ && decision_.altitude_agl_ft > config_.airborne_agl_ft;
+  const bool airborne =
+      vehicle_.have_decision && vehicle_.decision.altitude_agl_ft > config_.airborne_agl_ft;
   // custom_mode tells which controller drives the servos (DecisionStatus.CONTROLLER_*, modes.h).
-  hb.base_mode = heartbeat_base_mode(have_decision_, decision_.controller, airborne);
-  hb.custom_mode = have_decision_ ? decision_.controller : kCustomModeUnknown;
+  hb.base_mode =
+      heartbeat_base_mode(vehicle_.have_decision, vehicle_.decision.controller, airborne);
+  hb.custom_mode = vehicle_.have_decision ? vehicle_.decision.controller : kCustomModeUnknown;
   hb.system_status = airborne ? MAV_STATE_ACTIVE : MAV_STATE_STANDBY;
-  if (have_decision_ &&
-      (decision_.controller == kControllerHa || decision_.controller == kControllerHaLatched)) {
+  if (vehicle_.have_decision && (vehicle_.decision.controller == kControllerHa ||
+                                 vehicle_.decision.controller == kControllerHaLatched)) {
     hb.system_status = MAV_STATE_CRITICAL;  // flying on the safety controller
   }
   hb.mavlink_version = 3;
@@ -108,19 +110,20 @@ void GsCore::send_heartbeat() {
 
 void GsCore::send_telemetry_set(const Clock& now) {
   const uint32_t boot_ms = static_cast<uint32_t>(now.mono_ms - boot_ms_);
-  const bool fresh = have_telemetry_ && now.mono_ms - telemetry_ms_ < kTelemetryStaleMs;
+  const bool fresh =
+      vehicle_.have_telemetry && now.mono_ms - vehicle_.telemetry_ms < kTelemetryStaleMs;
   send_sys_status(fresh);
   if (!fresh) return;  // no position or attitude to claim
   send_attitude(boot_ms);
   send_position(boot_ms);
   send_home_position();
-  if (mission_count_ > 0) send_mission_current();
+  if (missions_.count() > 0) send_mission_current();
   ++counters_.telemetry_sets_sent;
 }
 
 // The sensors present and, with fresh telemetry, healthy; the battery; the link's bad frames.
 void GsCore::send_sys_status(bool fresh) {
-  const Telemetry& t = telemetry_;
+  const Telemetry& t = vehicle_.telemetry;
   mavlink_sys_status_t s{};
   const uint32_t sensors = MAV_SYS_STATUS_SENSOR_3D_GYRO | MAV_SYS_STATUS_SENSOR_3D_ACCEL |
                            MAV_SYS_STATUS_SENSOR_GPS | MAV_SYS_STATUS_SENSOR_DIFFERENTIAL_PRESSURE |
@@ -148,7 +151,7 @@ void GsCore::send_sys_status(bool fresh) {
 }
 
 void GsCore::send_attitude(uint32_t boot_ms) {
-  const Telemetry& t = telemetry_;
+  const Telemetry& t = vehicle_.telemetry;
   mavlink_attitude_t a{};
   a.time_boot_ms = boot_ms;
   a.roll = finite_or_zero(t.roll_rad);
@@ -165,7 +168,7 @@ void GsCore::send_attitude(uint32_t boot_ms) {
 
 // GLOBAL_POSITION_INT, VFR_HUD and GPS_RAW_INT from the INS's solution.
 void GsCore::send_position(uint32_t boot_ms) {
-  const Telemetry& t = telemetry_;
+  const Telemetry& t = vehicle_.telemetry;
   const double ground_mps = std::hypot(t.v_north_mps, t.v_east_mps);
   const double hdg_deg = heading_deg(t.yaw_rad);
   const bool position_ok = is_valid_position(t.lat_deg, t.lon_deg) && std::isfinite(t.alt_m);
@@ -175,7 +178,7 @@ void GsCore::send_position(uint32_t boot_ms) {
   g.lat = clamp_i32(t.lat_deg * 1e7);
   g.lon = clamp_i32(t.lon_deg * 1e7);
   g.alt = clamp_i32(t.alt_m * 1000.0);  // ellipsoid height: the INS gives no geoid separation
-  g.relative_alt = home_known_ ? clamp_i32((t.alt_m - home_.alt_m) * 1000.0) : 0;
+  g.relative_alt = vehicle_.home_known ? clamp_i32((t.alt_m - vehicle_.home.alt_m) * 1000.0) : 0;
   g.vx = clamp_i16(t.v_north_mps * 100.0);
   g.vy = clamp_i16(t.v_east_mps * 100.0);
   g.vz = clamp_i16(t.v_down_mps * 100.0);
@@ -217,13 +220,13 @@ void GsCore::send_position(uint32_t boot_ms) {
 
 // The mission item the controller flies to, in the GCS's numbering.
 void GsCore::send_mission_current() {
-  const Telemetry& t = telemetry_;
+  const Telemetry& t = vehicle_.telemetry;
   mavlink_mission_current_t c{};
   // The controller counts the waypoints on /way; the GCS counts mission items (home, speeds).
   const int32_t wp =
-      std::max<int32_t>(0, std::min<int32_t>(t.waypoint_index, mission_plan_.fp - 1));
-  c.seq = static_cast<uint16_t>(mission_plan_.fp > 0 ? mission_plan_.item_seq[wp] : 0);
-  c.total = static_cast<uint16_t>(mission_count_);
+      std::max<int32_t>(0, std::min<int32_t>(t.waypoint_index, missions_.plan().fp - 1));
+  c.seq = static_cast<uint16_t>(missions_.plan().fp > 0 ? missions_.plan().item_seq[wp] : 0);
+  c.total = static_cast<uint16_t>(missions_.count());
   c.mission_state = MISSION_STATE_ACTIVE;
   c.mission_mode = t.computer_in_command ? 1 : 2;
   emit([&](mavlink_message_t* m) {

@@ -1,15 +1,54 @@
-// What the ground station's core and its services share: the caller's clock, the counters the
-// node reports as diagnostics, and the parameter set requests the node carries to the controller.
+// What the ground station's core and its services share: the caller's clock, the vehicle's state
+// (read-only to the services), the counters the node reports as diagnostics, and the parameter
+// set requests the node carries to the controller.
 #pragma once
 
 #include <cstdint>
 #include <string>
+
+#include "geo.h"
+#include "modes.h"
 
 namespace microhard_gs {
 
 struct Clock {
   uint64_t mono_ms = 0;  // monotonic: schedules and timeouts
   uint64_t unix_us = 0;  // wall clock: only for MAVLink 2 signing timestamps
+};
+
+// What the controller reported last on /data, in the units of the `data` message.
+struct Telemetry {
+  double roll_rad = 0, pitch_rad = 0, yaw_rad = 0;
+  double p_radps = 0, q_radps = 0, r_radps = 0;
+  double lat_deg = 0, lon_deg = 0, alt_m = 0;
+  double v_north_mps = 0, v_east_mps = 0, v_down_mps = 0;
+  double airspeed_ftps = 0;
+  double throttle = 0;  // [0..1]
+  double voltage_v = 0;
+  bool ins_link_up = false;
+  bool ha_link_up = false;
+  bool computer_in_command = false;
+  int32_t waypoint_index = 0;
+};
+
+struct DecisionInfo {
+  uint8_t controller = kControllerHp;  // one of kController*
+  uint32_t reasons = 0;
+  uint32_t reasons_at_switch = 0;
+  double altitude_agl_ft = 0.0;
+};
+
+// What the ground station knows of the vehicle, from the node (set_telemetry, set_home,
+// set_decision on GsCore): the services read it, GsCore alone writes it.
+struct VehicleState {
+  bool have_telemetry = false;
+  uint64_t telemetry_ms = 0;  // when the last telemetry came (Clock::mono_ms)
+  Telemetry telemetry;
+  bool have_decision = false;
+  DecisionInfo decision;
+  // Home from its one owner, the HA (/home).
+  bool home_known = false;
+  GeoPoint home;
 };
 
 // A PARAM_SET for the controller to decide (the node calls its ~set_tunable), answered with
