@@ -1,5 +1,5 @@
 """What a HiL flight leaves behind for its judges, by name: the simulator writes it, the verdicts
-(hil.verdicts), the fault classes' own checks and the wind sweep read it.
+(hil.verdicts) and the fault classes' own checks read it.
 
 - `Period`: one HA period on the simulator's time axis, the truth and the HA's reply of it. In
   lockstep there is one per step; real time keeps one per simulator step too.

@@ -53,13 +53,7 @@ class Reader {
     return get(key, std::max(t->min, lo), std::min(t->max, hi), t->units);
   }
 
-  int32_t get_tunable_choice(const std::string &key) {
-    const double v = get_tunable(key);
-    if (ok_ && v != std::floor(v)) {
-      fail(key + " must be an integer");
-    }
-    return static_cast<int32_t>(v);
-  }
+  int32_t get_tunable_choice(const std::string &key) { return whole(key, get_tunable(key)); }
 
   // A limits.yaml key, in the range every component accepts (aircraft/limits_ranges.yaml).
   double get_limit(const limits_ranges::Range &range) {
@@ -67,11 +61,7 @@ class Reader {
   }
 
   int32_t get_choice(const std::string &key, int32_t max_choice) {
-    const double v = get(key, 0.0, max_choice);
-    if (ok_ && v != std::floor(v)) {
-      fail(key + " must be an integer");
-    }
-    return static_cast<int32_t>(v);
+    return whole(key, get(key, 0.0, max_choice));
   }
 
   void require(bool condition, const std::string &what) {
@@ -83,6 +73,14 @@ class Reader {
   bool ok() const { return ok_; }
 
  private:
+  // A switch or a selection: a value already in range must also be whole.
+  int32_t whole(const std::string &key, double v) {
+    if (ok_ && v != std::floor(v)) {
+      fail(key + " must be an integer");
+    }
+    return static_cast<int32_t>(v);
+  }
+
   void fail(const std::string &message) {
     ok_ = false;
     if (error_ != nullptr) {

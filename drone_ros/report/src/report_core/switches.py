@@ -45,18 +45,21 @@ def stretches(controllers: Sequence[int]):
     return out
 
 
-def runs(log):
+def runs(log, cuts=None):
+    """[Run], from `cuts` (stretches of the log's controller series) when the caller has them."""
     t = log.decision.t
+    cuts = stretches(log.decision.controller) if cuts is None else cuts
     return [Run(_name(log, s.controller), float(t[s.first]), float(t[s.end] if s.end < len(t) else t[-1]))
-            for s in stretches(log.decision.controller)]
+            for s in cuts]
 
 
 def switches(log):
     """Every change of the controller in force. A switch to an HA mode carries the checks that
     caused it (reasons_at_switch); any other switch carries the checks failing in that period."""
     d = log.decision
-    all_runs = runs(log)
-    index_of_start = [s.first for s in stretches(d.controller)]
+    cuts = stretches(d.controller)
+    all_runs = runs(log, cuts)
+    index_of_start = [s.first for s in cuts]
     ha_modes = {log.controller_value.get(n) for n in ("HA", "HA_LATCHED")}
     out = []
     for k in range(1, len(all_runs)):
