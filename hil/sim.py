@@ -36,7 +36,7 @@ import rosgraph
 import rospy
 import yaml
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
-from drone_ros.msg import DecisionStatus, HilTruth, LockstepStep, ServoCommand, hil_data, pwm, way
+from drone_ros.msg import DecisionStatus, HilTruth, HomePosition, LockstepStep, ServoCommand, hil_data, pwm, way
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import Temperature
 
@@ -54,7 +54,7 @@ from stack_common.units import FT_PER_M  # noqa: E402
 # Names relative to the flight's namespace, as every node of it uses them; resolved where the
 # master's graph is asked (it knows only full names).
 CONTROLLER_INPUTS = ["hil/lockstep", "ins", "attitude", "gps_position", "gps_velocity",
-                     "imu_PQR_acceleration", "pwm", "decision_status", "way"]
+                     "imu_PQR_acceleration", "pwm", "decision_status", "way", "home"]
 
 
 def isa_temperature_c(elevation_ft):
@@ -370,6 +370,7 @@ class Simulation:
         rospy.Subscriber("pwm", pwm, lambda m: m.usbstatus and self.waiter.hit("pwm"), queue_size=1000, tcp_nodelay=True)
         rospy.Subscriber("servo_op", ServoCommand, self.on_servo_op, queue_size=1000, tcp_nodelay=True)
         rospy.Subscriber("way", way, lambda m: self.waiter.hit("way", m), queue_size=10)
+        rospy.Subscriber("home", HomePosition, lambda m: self.waiter.hit("home", m), queue_size=100, tcp_nodelay=True)
         rospy.Subscriber("to_hil", hil_data, self.on_to_hil, queue_size=1000)
         self.relay_pub = None if self.relay_topic is None else \
             rospy.Publisher(self.relay_topic, ServoCommand, queue_size=None, tcp_nodelay=True)
@@ -415,7 +416,8 @@ class Simulation:
         self.hp_pid = None
         self.status_expected = 0  # HA reports (a /decision_status and a /pwm each) the link carried
         self.hp_packets = 0
-        self.declared = (0, 0)  # (hp_packets, status_expected) as last declared on /hil/lockstep
+        self.home_expected = 0    # /home messages waited for: the one the HA sends as it latches home
+        self.declared = (0, 0, 0, 0)  # self.delivered() as last declared on /hil/lockstep
         self.last_cmd_seq = None
         self.controller_index = -1
         self.progress_path = os.path.join(self.out_dir, "progress")
@@ -565,7 +567,7 @@ class Simulation:
         # count one short for the rest of the flight, every step waiting out wait_s.
         self.wait_subscribed({self.controller_node: inputs, self.arduino_node: [self.arduino_input],
                               rospy.get_name(): [rospy.resolve_name(t) for t in
-                                                 ("vn200/temperature", "decision_status", "pwm")]}, 120.0)
+                                                 ("vn200/temperature", "decision_status", "pwm", "home")]}, 120.0)
         # With the relay, what reaches the HA must be what the relay sends, and nothing else.
         self.relay_verified = self.relay_topic is not None and \
             inbound_connected(self.master, self.arduino_node, [self.relay_topic]) and \
@@ -579,6 +581,11 @@ class Simulation:
         self.hp_pid = node_pid(self.master, self.controller_node)
 
     # --- one step --------------------------------------------------------------------------
+    def delivered(self):
+        """What the controller's inputs have carried so far, in the order LockstepStep declares
+        them: VN-200 packets, HA reports, homes, plans."""
+        return self.hp_packets, self.status_expected, self.waiter.count("home"), self.waiter.count("way")
+
     def controller_steps_at(self, t_us):
         index = t_us // self.controller_period_us
         if index > self.controller_index:
@@ -599,7 +606,8 @@ class Simulation:
         tm.lap("sensors")
         for key, topic, expected in (("vn", "/vn200/temperature", self.hp_packets),
                                      ("status", "/decision_status", self.status_expected),
-                                     ("pwm", "/pwm", self.status_expected)):
+                                     ("pwm", "/pwm", self.status_expected),
+                                     ("home", "/home", self.home_expected)):
             was_silent = self.waiter.silent(key)
             lost = self.waiter.wait_published(key, expected, self.wait_s)
             if lost and not was_silent:
@@ -614,12 +622,13 @@ class Simulation:
         self.clock_pub.publish(Clock(clock=clock))
         # What this node has seen published since its last step, for the controller to wait for:
         # each VN-200 packet is one message on each of its five topics, each HA report one
-        # /decision_status and one /pwm.
-        packets, reports = self.hp_packets - self.declared[0], self.status_expected - self.declared[1]
-        self.declared = (self.hp_packets, self.status_expected)
+        # /decision_status and one /pwm; home and the plan as they went out.
+        now = self.delivered()
+        packets, reports, homes, ways = (n - d for n, d in zip(now, self.declared))
+        self.declared = now
         self.lockstep_pub.publish(LockstepStep(clock=clock, ins=packets, attitude=packets, gps_position=packets,
                                                gps_velocity=packets, imu_pqr_acceleration=packets,
-                                               pwm=reports, decision_status=reports))
+                                               pwm=reports, decision_status=reports, home=homes, way=ways))
         cmd_seq = None
         msg = None
         if expect_command:
@@ -655,6 +664,11 @@ class Simulation:
             self.event(t_s, "ha_sil wait ran out (flags %#x)" % reply.flags)
         if reply.flags & ha_channel.R_LINK_CONNECTED:
             self.status_expected += 1
+            # The period the HA latches home, it sends it: the next step waits for it, so the
+            # controller takes home at a step the seed decides. Its repeats carry the same home
+            # and are declared as they are seen.
+            if reply.flags & ha_channel.R_HOME:
+                self.home_expected = 1
         el, ai, ru, th = reply.applied
         self.fdm.set_surfaces(Surfaces(elevator_deg=el, aileron_deg=ai, rudder_deg=ru, throttle=th))
         self.publish_truth(t_us, tr, reply, cmd_seq)
@@ -781,8 +795,10 @@ class Simulation:
         self.hp_pid = node_pid(self.master, self.controller_node)
         self.hp_alive = True
         self.controller_index = -1
-        # What went out before the new controller subscribed never reaches it: not declared.
-        self.declared = (self.hp_packets, self.status_expected)
+        # What went out before the new controller subscribed never reaches it: not declared. Home
+        # and the plan are latched: it has the last of each as it connects.
+        packets, reports, homes, ways = self.delivered()
+        self.declared = (packets, reports, homes - min(homes, 1), ways - min(ways, 1))
         self.event(t_s, "controller restarted by hp_supervisor (pid %d, %.2f s wall)" % (self.hp_pid, time.monotonic() - t0))
 
     # --- the flight ------------------------------------------------------------------------

@@ -73,20 +73,37 @@ void ControllerNode::subscribe_home_and_plan(ros::NodeHandle &nh) {
   // on the latched /home, so a controller started again (HP restart) has the same home at once.
   subs_.push_back(nh.subscribe<drone_ros::HomePosition>(
       "home", 1, [this](const drone_ros::HomePosition::ConstPtr &m) {
-        if (board_.on_home(m->latitude, m->longitude, m->altitude)) {
-          ROS_INFO("home %u from the HA: %.7f %.7f %.1f m", m->seq, m->latitude, m->longitude,
-                   m->altitude);
-        } else {
-          ROS_WARN("home %u dropped: position not finite or out of range", m->seq);
+        if (!lockstep_) {
+          take_home(*m);
+          return;
         }
+        held_home_.hold(*m);
+        on_input(kInHome);
       }));
   subs_.push_back(nh.subscribe<drone_ros::way>("way", 1, [this](const drone_ros::way::ConstPtr &m) {
-    if (board_.on_way(*m)) {
-      ROS_INFO("new flight plan: %d waypoints", m->fp);
-    } else {
-      ROS_WARN("flight plan dropped: fp out of range or a waypoint not finite");
+    if (!lockstep_) {
+      take_way(*m);
+      return;
     }
+    held_way_.hold(*m);
+    on_input(kInWay);
   }));
+}
+
+void ControllerNode::take_home(const drone_ros::HomePosition &m) {
+  if (board_.on_home(m.latitude, m.longitude, m.altitude)) {
+    ROS_INFO("home %u from the HA: %.7f %.7f %.1f m", m.seq, m.latitude, m.longitude, m.altitude);
+  } else {
+    ROS_WARN("home %u dropped: position not finite or out of range", m.seq);
+  }
+}
+
+void ControllerNode::take_way(const drone_ros::way &m) {
+  if (board_.on_way(m)) {
+    ROS_INFO("new flight plan: %d waypoints", m.fp);
+  } else {
+    ROS_WARN("flight plan dropped: fp out of range or a waypoint not finite");
+  }
 }
 
 // The sensors and the HA's reports: each counts for the lockstep's step that declared it.
@@ -240,7 +257,9 @@ void ControllerNode::on_timer(const ros::SteadyTimerEvent &event) {
 // has been received here (LockstepGate), whichever connection brings it last.
 void ControllerNode::on_lockstep(const drone_ros::LockstepStep::ConstPtr &msg) {
   gate_.declare({msg->ins, msg->attitude, msg->gps_position, msg->gps_velocity,
-                 msg->imu_pqr_acceleration, msg->pwm, msg->decision_status});
+                 msg->imu_pqr_acceleration, msg->pwm, msg->decision_status, msg->home, msg->way});
+  held_home_.declared(gate_.declared(kInHome));
+  held_way_.declared(gate_.declared(kInWay));
   const int64_t dt_ns = static_cast<int64_t>(std::llround(params_.gnc.dt_s * 1e9));
   const int64_t index = static_cast<int64_t>(msg->clock.toNSec()) / dt_ns;
   if (index <= lockstep_index_) {
@@ -294,6 +313,12 @@ void ControllerNode::run_lockstep_step() {
   lockstep_pending_ = false;
   lockstep_wait_timer_.stop();
   const ros::Time stamp = lockstep_pending_stamp_;
+  if (const drone_ros::HomePosition *home = held_home_.release(gate_.declared(kInHome))) {
+    take_home(*home);
+  }
+  if (const drone_ros::way *way = held_way_.release(gate_.declared(kInWay))) {
+    take_way(*way);
+  }
   step(stamp.toSec(), stamp);
   lockstep_step_s_ = stamp.toSec();
 }

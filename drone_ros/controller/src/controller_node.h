@@ -13,6 +13,7 @@
 #include <drone_ros/HomePosition.h>
 #include <drone_ros/LockstepStep.h>
 #include <drone_ros/SetTunable.h>
+#include <drone_ros/way.h>
 #include <ros/ros.h>
 #include <sensor_msgs/BatteryState.h>
 #include <sensor_msgs/FluidPressure.h>
@@ -42,6 +43,8 @@ class ControllerNode {
   // The constructor's parts, in its order.
   void subscribe_home_and_plan(ros::NodeHandle &nh);
   void subscribe_inputs(ros::NodeHandle &nh);
+  void take_home(const drone_ros::HomePosition &m);
+  void take_way(const drone_ros::way &m);
   void start_diagnostics();
   void start_stepping(ros::NodeHandle &nh);
   // Arrival times of sensor messages: the monotonic clock in flight; in lockstep the time of the
@@ -73,6 +76,8 @@ class ControllerNode {
   static constexpr double kLockstepWaitS = 2.0;
   ros::Subscriber lockstep_sub_;
   LockstepGate gate_;
+  HeldInput<drone_ros::HomePosition> held_home_;
+  HeldInput<drone_ros::way> held_way_;
   ros::SteadyTimer lockstep_wait_timer_;
   bool lockstep_pending_ = false;  // a step is due, waiting for its inputs
   ros::Time lockstep_pending_stamp_;

@@ -4,8 +4,8 @@ namespace controller {
 
 const char *lockstep_input_topic(LockstepInput input) {
   static const char *const kTopics[kLockstepInputCount] = {
-      "/ins", "/attitude",       "/gps_position", "/gps_velocity", "/imu_PQR_acceleration",
-      "/pwm", "/decision_status"};
+      "/ins", "/attitude",        "/gps_position", "/gps_velocity", "/imu_PQR_acceleration",
+      "/pwm", "/decision_status", "/home",         "/way"};
   return input < kLockstepInputCount ? kTopics[input] : "?";
 }
 

@@ -442,6 +442,75 @@ TEST(LockstepGate, LinkDownPwmBeforeTheFirstStepDoesNotStandInForALaterReport) {
   EXPECT_EQ("/pwm 1", gate.missing());
 }
 
+TEST(LockstepGate, AStepThatDeclaresHomeWaitsForIt) {
+  controller::LockstepGate gate;
+  gate.declare({0, 0, 0, 0, 0, 0, 0, 1, 0});
+  EXPECT_FALSE(gate.complete());
+  EXPECT_EQ("/home 1", gate.missing());
+  gate.received(controller::kInHome);
+  EXPECT_TRUE(gate.complete());
+}
+
+// Latched state in lockstep: home and the plan are taken at the step that declares them.
+struct Home {
+  int seq;
+};
+
+TEST(HeldInput, AHomeThatArrivesBeforeItsStepIsTakenAtThatStepNotBefore) {
+  controller::HeldInput<Home> home;
+  home.declared(0);
+  home.hold({1});  // the HA latched home in this step; its /home beat the next /hil/lockstep
+  EXPECT_EQ(nullptr, home.release(0)) << "taken at a step that did not declare it";
+  home.declared(1);
+  const Home *h = home.release(1);
+  ASSERT_NE(nullptr, h);
+  EXPECT_EQ(1, h->seq);
+  EXPECT_EQ(nullptr, home.release(1)) << "handed over twice";
+}
+
+TEST(HeldInput, ARestartedControllerTakesTheLatchedHomeAtItsFirstStep) {
+  controller::HeldInput<Home> home;
+  home.hold({4});  // the latched /home, delivered as the connection came up
+  home.declared(1);
+  const Home *h = home.release(1);
+  ASSERT_NE(nullptr, h);
+  EXPECT_EQ(4, h->seq);
+}
+
+TEST(HeldInput, ARestartedControllerWhoseHomeIsStillOnItsWayWaitsForIt) {
+  controller::HeldInput<Home> home;
+  home.declared(1);
+  EXPECT_EQ(nullptr, home.release(1));  // the gate would not have let this step run
+  home.hold({4});
+  const Home *h = home.release(1);
+  ASSERT_NE(nullptr, h);
+  EXPECT_EQ(4, h->seq);
+}
+
+TEST(HeldInput, OfWhatWentOutBeforeTheFirstStepOnlyTheNewestCounts) {
+  controller::HeldInput<Home> plan;
+  plan.hold({1});
+  plan.hold({2});  // two plans before the first step; the simulator saw only the latched one
+  plan.declared(1);
+  const Home *p = plan.release(1);
+  ASSERT_NE(nullptr, p);
+  EXPECT_EQ(2, p->seq);
+}
+
+TEST(HeldInput, ANewPlanHereEarlyWaitsForTheStepThatDeclaresIt) {
+  controller::HeldInput<Home> plan;
+  plan.declared(1);
+  plan.hold({1});
+  plan.hold({2});  // the next step's, here before its declaration
+  const Home *p = plan.release(1);
+  ASSERT_NE(nullptr, p);
+  EXPECT_EQ(1, p->seq);
+  plan.declared(2);
+  p = plan.release(2);
+  ASSERT_NE(nullptr, p);
+  EXPECT_EQ(2, p->seq);
+}
+
 int main(int argc, char **argv) {
   testing::InitGoogleTest(&argc, argv);
   return RUN_ALL_TESTS();
