@@ -134,13 +134,16 @@ def mission_tracking(plan, home, records, progress):
 
 def ground_station_view(sim, window_s=3.0):
     """The ground station's positions (GLOBAL_POSITION_INT as microhard_gs sent it) held against
-    the truth: each one's distance to the nearest true position of the `window_s` of simulated
-    time before it arrived (the telemetry lags by its own period, in wall time), and its height
-    above home against that sample's. And the ground station's home against the simulator's."""
+    the truth: each one's nearest true position, horizontal and height together, of the
+    `window_s` of simulated time before it arrived (the telemetry lags by its own period, in wall
+    time), its distance to it and its height above home against that sample's. A position whose
+    nearest sample is parked was measured on the ground, however late it came (on a loaded
+    machine one sent just before the airborne start arrived after it): it is not one in flight.
+    And the ground station's home against the simulator's."""
     mon = getattr(sim, "gs_monitor", None)
     if mon is None:
         return None
-    recs = [x for x in sim.records if not x.truth.on_ground]
+    recs = sim.records
     times = [x.t_s for x in recs]
     horiz, vert = [], []
     for pos in list(mon.positions):
@@ -149,9 +152,13 @@ def ground_station_view(sim, window_s=3.0):
         if hi - lo < 1:
             continue
         n, e = geo.north_east_ft(sim.home, pos.lat_deg, pos.lon_deg)
-        best = min(recs[lo:hi], key=lambda x: math.hypot(x.truth.north_ft - n, x.truth.east_ft - e))
+        h = pos.relative_alt_m * FT_PER_M
+        best = min(recs[lo:hi], key=lambda x: math.hypot(math.hypot(x.truth.north_ft - n, x.truth.east_ft - e),
+                                                         x.truth.height_above_home_ft - h))
+        if best.truth.on_ground:
+            continue
         horiz.append(math.hypot(best.truth.north_ft - n, best.truth.east_ft - e))
-        vert.append(abs(best.truth.height_above_home_ft - pos.relative_alt_m * FT_PER_M))
+        vert.append(abs(best.truth.height_above_home_ft - h))
     home = None
     if mon.home is not None:
         n, e = geo.north_east_ft(sim.home, mon.home.lat_deg, mon.home.lon_deg)
