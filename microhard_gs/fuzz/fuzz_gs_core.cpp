@@ -37,8 +37,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   size -= 2;
 
   GsConfig c = test::gs_config(50.0);
-  c.mission_item_timeout_ms = 50;
-  c.mission_max_retries = 2;
+  c.mission.item_timeout_ms = 50;
+  c.mission.max_retries = 2;
   c.signing = (mode & 1) != 0;
   for (size_t i = 0; i < c.signing_key.size(); ++i) c.signing_key[i] = static_cast<uint8_t>(i + 1);
   ParamTable params;

@@ -23,7 +23,7 @@ inline GsConfig gs_config(double telemetry_rate_hz = 10.0) {
   GsConfig c;
   c.system_id = 1;
   c.telemetry_rate_hz = telemetry_rate_hz;
-  c.limits = mission_limits();
+  c.mission.limits = mission_limits();
   c.airborne_agl_ft = 30.0;
   return c;
 }

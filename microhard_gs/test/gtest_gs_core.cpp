@@ -26,8 +26,8 @@ const GeoPoint kHome{40.11, -88.22, 220.0};
 
 GsConfig base_config() {
   GsConfig c = test::gs_config();
-  c.mission_item_timeout_ms = 1500;
-  c.mission_max_retries = 5;
+  c.mission.item_timeout_ms = 1500;
+  c.mission.max_retries = 5;
   return c;
 }
 

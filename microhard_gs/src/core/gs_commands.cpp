@@ -1,54 +1,55 @@
-// The command microservice: COMMAND_LONG/INT to operator requests, and their COMMAND_ACKs.
-#include "gs_core.h"
-
-#include <algorithm>
+// The command microservice (gs_command_service.h).
 #include <cmath>
-#include <cstring>
+#include <utility>
 
-#include "gs_core_emit.h"
+#include "gs_command_service.h"
+#include "modes.h"
 
 namespace microhard_gs {
 
-void GsCore::send_command_ack(const mavlink_message_t& msg, uint16_t command, uint8_t result) {
+void CommandService::ack(const mavlink_message_t& msg, uint16_t command, uint8_t result) {
   mavlink_command_ack_t a{};
   a.command = command;
   a.result = result;
   a.target_system = msg.sysid;
   a.target_component = msg.compid;
-  emit([&](mavlink_message_t* m) {
-    mavlink_msg_command_ack_encode_status(config_.system_id, config_.component_id, out_.status(), m,
+  out_.emit([&](mavlink_message_t* m) {
+    mavlink_msg_command_ack_encode_status(out_.system_id(), out_.component_id(), out_.status(), m,
                                           &a);
   });
 }
 
-void GsCore::on_command(const mavlink_message_t& msg, uint16_t command, const float params[7],
-                        uint8_t target_sys, uint8_t target_comp) {
-  if (!addressed_to_us(target_sys, target_comp)) return;
-  const uint8_t result = execute_command(command, params);
+void CommandService::deny(const mavlink_message_t& msg, uint16_t command) {
+  ack(msg, command, MAV_RESULT_DENIED);
+}
+
+void CommandService::on_command(const mavlink_message_t& msg, const CommandArgs& c) {
+  const uint8_t result = execute(c);
   if (result == MAV_RESULT_ACCEPTED) {
     ++counters_.commands_accepted;
   } else {
     ++counters_.commands_refused;
   }
-  send_command_ack(msg, command, result);
-  // Answers that follow the ACK (the requested message itself).
-  if (result == MAV_RESULT_ACCEPTED) {
-    const bool want_version = command == MAV_CMD_REQUEST_AUTOPILOT_CAPABILITIES ||
-                              (command == MAV_CMD_REQUEST_MESSAGE &&
-                               params[0] == static_cast<float>(MAVLINK_MSG_ID_AUTOPILOT_VERSION));
-    const bool want_home = command == MAV_CMD_GET_HOME_POSITION ||
-                           (command == MAV_CMD_REQUEST_MESSAGE &&
-                            params[0] == static_cast<float>(MAVLINK_MSG_ID_HOME_POSITION));
-    if (want_version) send_autopilot_version();
-    if (want_home) send_home_position();
-    const bool request = command == MAV_CMD_REQUEST_MESSAGE;
-    if (request && params[0] == static_cast<float>(MAVLINK_MSG_ID_CURRENT_MODE))
-      send_current_mode();
-    if (request && params[0] == static_cast<float>(MAVLINK_MSG_ID_AVAILABLE_MODES)) {
-      const int index = static_cast<int>(params[1]);
-      for (int i = index == 0 ? 1 : index; i <= (index == 0 ? kModeCount : index); ++i)
-        send_available_mode(i);
-    }
+  ack(msg, c.command, result);
+  if (result == MAV_RESULT_ACCEPTED) send_requested(c);
+}
+
+void CommandService::send_requested(const CommandArgs& c) {
+  const float* params = c.params;
+  const bool request = c.command == MAV_CMD_REQUEST_MESSAGE;
+  const bool want_version =
+      c.command == MAV_CMD_REQUEST_AUTOPILOT_CAPABILITIES ||
+      (request && params[0] == static_cast<float>(MAVLINK_MSG_ID_AUTOPILOT_VERSION));
+  const bool want_home = c.command == MAV_CMD_GET_HOME_POSITION ||
+                         (request && params[0] == static_cast<float>(MAVLINK_MSG_ID_HOME_POSITION));
+  if (want_version) telemetry_.send_autopilot_version();
+  if (want_home) telemetry_.send_home_position();
+  if (request && params[0] == static_cast<float>(MAVLINK_MSG_ID_CURRENT_MODE))
+    telemetry_.send_current_mode();
+  if (request && params[0] == static_cast<float>(MAVLINK_MSG_ID_AVAILABLE_MODES)) {
+    const int index = static_cast<int>(params[1]);
+    for (int i = index == 0 ? 1 : index; i <= (index == 0 ? kModeCount : index); ++i)
+      telemetry_.send_available_mode(i);
   }
 }
 
@@ -59,9 +60,11 @@ void GsCore::on_command(const mavlink_message_t& msg, uint16_t command, const fl
 //   ACTUATOR_TEST -> SELF_TEST (the HA's whole surface self-test; refused while airborne)
 //   REQUEST_MESSAGE (AUTOPILOT_VERSION, HOME_POSITION), REQUEST_AUTOPILOT_CAPABILITIES,
 //   GET_HOME_POSITION
-//   DO_SET_HOME -> SET_HOME (on the ground only; gs_home.cpp)
+//   DO_SET_HOME -> SET_HOME (on the ground only; set_home below)
 // ACCEPTED for an operator request means "forwarded to the HA": the HA's checks still decide.
-uint8_t GsCore::execute_command(uint16_t command, const float params[7]) {
+uint8_t CommandService::execute(const CommandArgs& c) {
+  const float* params = c.params;
+  const uint16_t command = c.command;
   switch (command) {
     case MAV_CMD_DO_SET_MODE: {
       if (!std::isfinite(params[0]) || !std::isfinite(params[1])) return MAV_RESULT_DENIED;
@@ -70,7 +73,7 @@ uint8_t GsCore::execute_command(uint16_t command, const float params[7]) {
       if (params[1] == 0.0f || params[1] == 1.0f) {
         operator_requests_.push_back(params[1] == 0.0f ? OperatorRequest::kSelectHp
                                                        : OperatorRequest::kSelectHa);
-        intended_custom_mode_ = params[1] == 0.0f ? kControllerHp : kControllerHa;
+        intent_.custom_mode = params[1] == 0.0f ? kControllerHp : kControllerHa;
         return MAV_RESULT_ACCEPTED;
       }
       return MAV_RESULT_DENIED;
@@ -83,16 +86,15 @@ uint8_t GsCore::execute_command(uint16_t command, const float params[7]) {
       return MAV_RESULT_DENIED;
     case MAV_CMD_ACTUATOR_TEST:
       // The HA refuses it in the air too; refusing here first gives the operator the reason.
-      if (vehicle_.have_decision && vehicle_.decision.altitude_agl_ft > config_.airborne_agl_ft) {
-        send_statustext(MAV_SEVERITY_WARNING, "Self-test refused: airborne");
+      if (vehicle_.have_decision && vehicle_.decision.altitude_agl_ft > airborne_agl_ft_) {
+        out_.statustext(MAV_SEVERITY_WARNING, "Self-test refused: airborne");
         return MAV_RESULT_TEMPORARILY_REJECTED;
       }
       operator_requests_.push_back(OperatorRequest::kSelfTest);
       return MAV_RESULT_ACCEPTED;
     case MAV_CMD_DO_SET_HOME:
-      return command_int_ ? set_home_command(params[0], command_int_x_ * 1e-7,
-                                             command_int_y_ * 1e-7, params[6])
-                          : set_home_command(params[0], params[4], params[5], params[6]);
+      return c.is_int ? set_home(params[0], c.x_e7 * 1e-7, c.y_e7 * 1e-7, params[6])
+                      : set_home(params[0], params[4], params[5], params[6]);
     case MAV_CMD_REQUEST_AUTOPILOT_CAPABILITIES:
     case MAV_CMD_GET_HOME_POSITION:
       if (command == MAV_CMD_GET_HOME_POSITION && !vehicle_.home_known)
@@ -115,6 +117,44 @@ uint8_t GsCore::execute_command(uint16_t command, const float params[7]) {
     default:
       return MAV_RESULT_UNSUPPORTED;
   }
+}
+
+// MAV_CMD_DO_SET_HOME: param1 1 = here (where the HA's INS says the aircraft is), 0 = the
+// position in params 5-7 (altitude: WGS84 ellipsoid height, as HOME_POSITION reports it). Only on
+// the ground: moving the origin of /way, of the HA's circle and of its ceiling in flight would
+// shift all three under the aircraft. The HA refuses it in the air too (ha_ins_set_home), and
+// decides: ACCEPTED means forwarded, the new home comes back on /home as HOME_POSITION.
+uint8_t CommandService::set_home(float use_current, double lat_deg, double lon_deg, float alt_m) {
+  if (!vehicle_.have_decision) {
+    out_.statustext(MAV_SEVERITY_WARNING,
+                    "Set home refused: no HA status, cannot tell it is on the ground");
+    return MAV_RESULT_TEMPORARILY_REJECTED;
+  }
+  if (vehicle_.decision.altitude_agl_ft > airborne_agl_ft_) {
+    out_.statustext(MAV_SEVERITY_WARNING, "Set home refused: in flight");
+    return MAV_RESULT_TEMPORARILY_REJECTED;
+  }
+  HomeRequest r;
+  r.use_current = use_current == 1.0f;
+  if (!r.use_current) {
+    if (use_current != 0.0f || !is_valid_home(GeoPoint{lat_deg, lon_deg, alt_m})) {
+      out_.statustext(MAV_SEVERITY_WARNING, "Set home refused: not a valid position");
+      return MAV_RESULT_DENIED;
+    }
+    r.position.lat_deg = lat_deg;
+    r.position.lon_deg = lon_deg;
+    r.position.alt_m = alt_m;
+  }
+  home_requests_.push_back(r);
+  return MAV_RESULT_ACCEPTED;
+}
+
+std::vector<OperatorRequest> CommandService::take_operator_requests() {
+  return std::exchange(operator_requests_, {});
+}
+
+std::vector<HomeRequest> CommandService::take_home_requests() {
+  return std::exchange(home_requests_, {});
 }
 
 }  // namespace microhard_gs

@@ -1,25 +1,18 @@
 #include "gs_core.h"
 
 #include <algorithm>
-#include <cmath>
 #include <utility>
 
-#include "gs_core_emit.h"
-
 namespace microhard_gs {
-namespace {
-
-constexpr uint64_t kHeartbeatPeriodMs = 1000;
-
-}  // namespace
 
 GsCore::GsCore(const GsConfig& config, const ParamTable& params)
     : config_(config),
       out_(config.system_id, config.component_id),
       params_(params, config.param_set_timeout_ms, out_, counters_),
-      missions_(
-          MissionConfig{config.limits, config.mission_item_timeout_ms, config.mission_max_retries},
-          vehicle_, out_, counters_) {
+      missions_(config.mission, vehicle_, out_, counters_),
+      telemetry_(TelemetryConfig{config.telemetry_rate_hz, config.airborne_agl_ft}, vehicle_,
+                 intent_, missions_, out_, counters_),
+      commands_(config.airborne_agl_ft, vehicle_, intent_, telemetry_, out_, counters_) {
   if (config_.signing) start_signing();
 }
 
@@ -46,20 +39,28 @@ void GsCore::handle_bytes(const uint8_t* data, size_t len, const Clock& now) {
       } else {
         ++counters_.refused_unsigned;
       }
-      // An unsigned command still gets an answer, so the operator learns why nothing happened.
-      if (msg.msgid == MAVLINK_MSG_ID_COMMAND_LONG) {
-        mavlink_command_long_t c;
-        mavlink_msg_command_long_decode(&msg, &c);
-        if (c.target_system == config_.system_id)
-          send_command_ack(msg, c.command, MAV_RESULT_DENIED);
-      } else if (msg.msgid == MAVLINK_MSG_ID_COMMAND_INT) {
-        mavlink_command_int_t c;
-        mavlink_msg_command_int_decode(&msg, &c);
-        if (c.target_system == config_.system_id)
-          send_command_ack(msg, c.command, MAV_RESULT_DENIED);
-      }
+      deny_command(msg);
     }
   }
+}
+
+// An unsigned command still gets an answer, so the operator learns why nothing happened.
+void GsCore::deny_command(const mavlink_message_t& msg) {
+  if (msg.msgid == MAVLINK_MSG_ID_COMMAND_LONG) {
+    mavlink_command_long_t c;
+    mavlink_msg_command_long_decode(&msg, &c);
+    if (c.target_system == config_.system_id) commands_.deny(msg, c.command);
+  } else if (msg.msgid == MAVLINK_MSG_ID_COMMAND_INT) {
+    mavlink_command_int_t c;
+    mavlink_msg_command_int_decode(&msg, &c);
+    if (c.target_system == config_.system_id) commands_.deny(msg, c.command);
+  }
+}
+
+void GsCore::set_telemetry(const Telemetry& t, const Clock& now) {
+  vehicle_.telemetry = t;
+  vehicle_.have_telemetry = true;
+  vehicle_.telemetry_ms = now.mono_ms;
 }
 
 void GsCore::keep_received_frame(const mavlink_message_t& msg) {
@@ -169,56 +170,47 @@ bool GsCore::route_mission(const mavlink_message_t& msg, const Clock& now) {
   }
 }
 
+// The command service's messages; false for any other.
+bool GsCore::route_command(const mavlink_message_t& msg) {
+  CommandArgs a;
+  uint8_t target_system = 0, target_component = 0;
+  if (msg.msgid == MAVLINK_MSG_ID_COMMAND_LONG) {
+    mavlink_command_long_t c;
+    mavlink_msg_command_long_decode(&msg, &c);
+    a.command = c.command;
+    const float p[7] = {c.param1, c.param2, c.param3, c.param4, c.param5, c.param6, c.param7};
+    std::copy(p, p + 7, a.params);
+    target_system = c.target_system;
+    target_component = c.target_component;
+  } else if (msg.msgid == MAVLINK_MSG_ID_COMMAND_INT) {
+    mavlink_command_int_t c;
+    mavlink_msg_command_int_decode(&msg, &c);
+    a.command = c.command;
+    const float p[7] = {
+        c.param1, c.param2, c.param3, c.param4, static_cast<float>(c.x), static_cast<float>(c.y),
+        c.z};
+    std::copy(p, p + 7, a.params);
+    a.is_int = true;
+    a.x_e7 = c.x;
+    a.y_e7 = c.y;
+    target_system = c.target_system;
+    target_component = c.target_component;
+  } else {
+    return false;
+  }
+  if (addressed_to_us(target_system, target_component)) commands_.on_command(msg, a);
+  return true;
+}
+
+// Anything else is not for us (GCS heartbeats, radio status, ...).
 void GsCore::dispatch(const mavlink_message_t& msg, const Clock& now) {
   if (route_params(msg, now) || route_mission(msg, now)) return;
-  switch (msg.msgid) {
-    case MAVLINK_MSG_ID_COMMAND_LONG: {
-      mavlink_command_long_t c;
-      mavlink_msg_command_long_decode(&msg, &c);
-      const float p[7] = {c.param1, c.param2, c.param3, c.param4, c.param5, c.param6, c.param7};
-      on_command(msg, c.command, p, c.target_system, c.target_component);
-      break;
-    }
-    case MAVLINK_MSG_ID_COMMAND_INT: {
-      mavlink_command_int_t c;
-      mavlink_msg_command_int_decode(&msg, &c);
-      const float p[7] = {
-          c.param1, c.param2, c.param3, c.param4, static_cast<float>(c.x), static_cast<float>(c.y),
-          c.z};
-      command_int_ = true;
-      command_int_x_ = c.x;
-      command_int_y_ = c.y;
-      on_command(msg, c.command, p, c.target_system, c.target_component);
-      command_int_ = false;
-      break;
-    }
-    default:
-      break;  // not for us (GCS heartbeats, radio status, ...)
-  }
+  (void)route_command(msg);
 }
 
 void GsCore::tick(const Clock& now) {
   update_signing_clock(now);
-  if (!started_) {
-    started_ = true;
-    boot_ms_ = now.mono_ms;
-    next_heartbeat_ms_ = now.mono_ms;
-    next_telemetry_ms_ = now.mono_ms;
-  }
-  if (now.mono_ms >= next_heartbeat_ms_) {
-    send_heartbeat();
-    next_heartbeat_ms_ += kHeartbeatPeriodMs;
-    if (next_heartbeat_ms_ <= now.mono_ms) next_heartbeat_ms_ = now.mono_ms + kHeartbeatPeriodMs;
-  }
-  if (config_.telemetry_rate_hz > 0.0 && now.mono_ms >= next_telemetry_ms_) {
-    send_telemetry_set(now);
-    // Step the schedule by the period (not from now) so the rate holds without drift; after a
-    // long stall, restart the schedule instead of bursting.
-    const uint64_t period_ms =
-        static_cast<uint64_t>(std::llround(1000.0 / config_.telemetry_rate_hz));
-    next_telemetry_ms_ += std::max<uint64_t>(1, period_ms);
-    if (next_telemetry_ms_ <= now.mono_ms) next_telemetry_ms_ = now.mono_ms + period_ms;
-  }
+  telemetry_.tick(now);
   params_.tick(now);
   missions_.tick(now);
 }
@@ -235,7 +227,6 @@ std::vector<T> take(std::vector<T>* v) {
 std::vector<std::vector<uint8_t>> GsCore::take_frames() { return out_.take_frames(); }
 std::vector<std::vector<uint8_t>> GsCore::take_received_frames() { return take(&received_frames_); }
 std::vector<WayPlan> GsCore::take_way_plans() { return missions_.take_way_plans(); }
-std::vector<OperatorRequest> GsCore::take_operator_requests() { return take(&operator_requests_); }
 std::vector<ParamSetRequest> GsCore::take_param_set_requests() { return params_.take_requests(); }
 
 }  // namespace microhard_gs

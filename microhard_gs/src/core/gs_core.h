@@ -8,9 +8,11 @@
 #include <vector>
 
 #include "geo.h"
+#include "gs_command_service.h"
 #include "gs_emitter.h"
 #include "gs_mission_service.h"
 #include "gs_param_service.h"
+#include "gs_telemetry_service.h"
 #include "gs_types.h"
 #include "mavlink_all.h"
 #include "mission.h"
@@ -25,10 +27,8 @@ struct GsConfig {
   uint8_t system_id = 1;
   uint8_t component_id = MAV_COMP_ID_AUTOPILOT1;
   double telemetry_rate_hz = 0.0;
-  MissionLimits limits;
   double airborne_agl_ft = 0.0;  // above this the vehicle reports itself armed/flying
-  uint32_t mission_item_timeout_ms = 1500;
-  uint32_t mission_max_retries = 5;
+  MissionConfig mission;         // the limits a mission is checked against, the upload's timeout
   // How long a PARAM_SET waits for the controller's answer before the GCS is told it failed;
   // under QGroundControl's own wait for the echo, so it does not resend meanwhile.
   uint32_t param_set_timeout_ms = 500;
@@ -37,21 +37,6 @@ struct GsConfig {
   uint8_t signing_link_id = 0;
   // Keep every frame received, as it came, for take_received_frames() (the telemetry log).
   bool keep_received_frames = false;
-};
-
-// Operator requests; values match drone_ros/OperatorCommand's constants.
-enum class OperatorRequest : uint8_t {
-  kSelectHp = 1,
-  kSelectHa = 2,
-  kRestartHp = 3,
-  kSelfTest = 4
-};
-
-// A SET_HOME for the HA to decide (OperatorCommand SET_HOME): to a position, or where the HA's
-// INS says the aircraft is (use_current).
-struct HomeRequest {
-  bool use_current = false;
-  GeoPoint position;
 };
 
 class GsCore {
@@ -80,8 +65,10 @@ class GsCore {
   // came, whether acted on or refused (signing, another target): what the link carried.
   std::vector<std::vector<uint8_t>> take_received_frames();
   std::vector<WayPlan> take_way_plans();
-  std::vector<OperatorRequest> take_operator_requests();
-  std::vector<HomeRequest> take_home_requests();
+  std::vector<OperatorRequest> take_operator_requests() {
+    return commands_.take_operator_requests();
+  }
+  std::vector<HomeRequest> take_home_requests() { return commands_.take_home_requests(); }
   std::vector<ParamSetRequest> take_param_set_requests();
   // The controller's answer to a request: PARAM_VALUE with the value now in force, plus a
   // STATUSTEXT naming the reason when refused. An answer after the timeout (the GCS has already
@@ -104,39 +91,21 @@ class GsCore {
   }
 
  private:
-  // One unit per MAVLink microservice defines these: gs_core.cpp (routing, schedule),
-  // gs_signing.cpp, gs_commands.cpp, gs_telemetry.cpp, gs_statustext.cpp; emit() is in
-  // gs_core_emit.h. The parameters and the missions are services of their own (ParamService,
-  // MissionService), over the same Emitter and reading vehicle_.
+  // GsCore routes what arrives to its service, runs their schedules, signs the link
+  // (gs_signing.cpp) and alone writes the vehicle state (set_telemetry, set_home in gs_home.cpp,
+  // set_decision in gs_statustext.cpp). Each MAVLink microservice is a service of its own over
+  // the one Emitter, reading vehicle_: ParamService, MissionService, TelemetryService,
+  // CommandService.
   void start_signing();
   void update_signing_clock(const Clock& now);
   void dispatch(const mavlink_message_t& msg, const Clock& now);
   bool route_params(const mavlink_message_t& msg, const Clock& now);
   bool route_mission(const mavlink_message_t& msg, const Clock& now);
+  bool route_command(const mavlink_message_t& msg);
+  // The DENIED a command gets when its frame is refused for its signature.
+  void deny_command(const mavlink_message_t& msg);
   void keep_received_frame(const mavlink_message_t& msg);
   bool addressed_to_us(uint8_t target_system, uint8_t target_component);
-
-  void on_command(const mavlink_message_t& msg, uint16_t command, const float params[7],
-                  uint8_t target_sys, uint8_t target_comp);
-  void send_command_ack(const mavlink_message_t& msg, uint16_t command, uint8_t result);
-  uint8_t execute_command(uint16_t command, const float params[7]);
-  // MAV_CMD_DO_SET_HOME (gs_home.cpp); lat/lon in degrees, exact from COMMAND_INT.
-  uint8_t set_home_command(float use_current, double lat_deg, double lon_deg, float alt_m);
-
-  void send_heartbeat();
-  void send_telemetry_set(const Clock& now);
-  void send_sys_status(bool fresh);
-  void send_attitude(uint32_t boot_ms);
-  void send_position(uint32_t boot_ms);
-  void send_mission_current();
-  void send_home_position();
-  void send_available_mode(int mode_index);
-  void send_current_mode();
-  void send_autopilot_version();
-  void send_statustext(uint8_t severity, const std::string& text);
-
-  template <typename Encode>
-  void emit(Encode encode);
 
   GsConfig config_;
   Counters counters_;
@@ -144,7 +113,10 @@ class GsCore {
   Emitter out_;
   ParamService params_;
   VehicleState vehicle_;
+  OperatorIntent intent_;
   MissionService missions_;
+  TelemetryService telemetry_;
+  CommandService commands_;
 
   mavlink_status_t rx_status_{};
   mavlink_message_t rx_buffer_{};
@@ -155,19 +127,6 @@ class GsCore {
   std::vector<std::vector<uint8_t>> received_frames_;
   mavlink_signing_t signing_{};
   mavlink_signing_streams_t signing_streams_{};
-
-  bool started_ = false;
-  uint64_t boot_ms_ = 0;
-  uint64_t next_heartbeat_ms_ = 0;
-  uint64_t next_telemetry_ms_ = 0;
-
-  uint32_t intended_custom_mode_ = 0;  // the operator's last DO_SET_MODE (0: none yet)
-
-  std::vector<OperatorRequest> operator_requests_;
-  std::vector<HomeRequest> home_requests_;
-  // COMMAND_INT's x/y as sent (deg x 1e7): a float param would put a new home a metre off.
-  bool command_int_ = false;
-  int32_t command_int_x_ = 0, command_int_y_ = 0;
 };
 
 // Names of the DecisionStatus REASON_* bits set in `reasons`, comma separated ("NO_COMMAND,STALL").

@@ -3,8 +3,6 @@
 
 #include <cstring>
 
-#include "gs_core_emit.h"
-
 namespace microhard_gs {
 namespace {
 

@@ -4,8 +4,6 @@
 #include <algorithm>
 #include <cstring>
 
-#include "gs_core_emit.h"
-
 namespace microhard_gs {
 
 std::string reason_names(uint32_t reasons) {
@@ -74,15 +72,11 @@ void GsCore::set_decision(const DecisionInfo& d) {
     uint8_t severity = MAV_SEVERITY_NOTICE;
     const std::string text =
         decision_announcement(vehicle_.have_decision ? &vehicle_.decision : nullptr, d, &severity);
-    send_statustext(severity, text);
+    out_.statustext(severity, text);
   }
   vehicle_.decision = d;
   vehicle_.have_decision = true;
-  if (changed) send_current_mode();  // the standard-modes protocol wants every change at once
-}
-
-void GsCore::send_statustext(uint8_t severity, const std::string& text) {
-  out_.statustext(severity, text);
+  if (changed) telemetry_.send_current_mode();  // the standard-modes protocol wants it at once
 }
 
 }  // namespace microhard_gs

@@ -1,17 +1,18 @@
-// Telemetry: HEARTBEAT, modes, home, and the periodic set a ground station draws the aircraft with.
-#include "gs_core.h"
-
+// The telemetry service (gs_telemetry_service.h).
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 
-#include "gs_core_emit.h"
+#include "geo.h"
+#include "gs_telemetry_service.h"
+#include "modes.h"
 
 namespace microhard_gs {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr uint64_t kTelemetryStaleMs = 2000;  // stop claiming a position after this silence
+constexpr uint64_t kHeartbeatPeriodMs = 1000;
 
 int32_t clamp_i32(double v) {
   if (!std::isfinite(v)) return 0;
@@ -35,57 +36,51 @@ double heading_deg(double yaw_rad) {
 
 }  // namespace
 
-void GsCore::set_telemetry(const Telemetry& t, const Clock& now) {
-  vehicle_.telemetry = t;
-  vehicle_.have_telemetry = true;
-  vehicle_.telemetry_ms = now.mono_ms;
-}
-
-void GsCore::send_autopilot_version() {
+void TelemetryService::send_autopilot_version() {
   mavlink_autopilot_version_t v{};
   v.capabilities = MAV_PROTOCOL_CAPABILITY_MISSION_INT | MAV_PROTOCOL_CAPABILITY_MAVLINK2 |
                    MAV_PROTOCOL_CAPABILITY_COMMAND_INT |
                    MAV_PROTOCOL_CAPABILITY_PARAM_ENCODE_BYTEWISE;
   v.flight_sw_version = 0x00010000u;  // 0.1.0, the drone_ros package version
-  v.uid = config_.system_id;
-  emit([&](mavlink_message_t* m) {
-    mavlink_msg_autopilot_version_encode_status(config_.system_id, config_.component_id,
+  v.uid = out_.system_id();
+  out_.emit([&](mavlink_message_t* m) {
+    mavlink_msg_autopilot_version_encode_status(out_.system_id(), out_.component_id(),
                                                 out_.status(), m, &v);
   });
 }
 
-void GsCore::send_home_position() {
+void TelemetryService::send_home_position() {
   if (!vehicle_.home_known) return;
   mavlink_home_position_t h{};
   h.latitude = clamp_i32(vehicle_.home.lat_deg * 1e7);
   h.longitude = clamp_i32(vehicle_.home.lon_deg * 1e7);
   h.altitude = clamp_i32(vehicle_.home.alt_m * 1000.0);
   h.q[0] = 1.0f;
-  emit([&](mavlink_message_t* m) {
-    mavlink_msg_home_position_encode_status(config_.system_id, config_.component_id, out_.status(),
-                                            m, &h);
+  out_.emit([&](mavlink_message_t* m) {
+    mavlink_msg_home_position_encode_status(out_.system_id(), out_.component_id(), out_.status(), m,
+                                            &h);
   });
 }
 
-void GsCore::send_available_mode(int mode_index) {
+void TelemetryService::send_available_mode(int mode_index) {
   mavlink_available_modes_t m{};
   if (!available_mode(mode_index, &m)) return;
-  emit([&](mavlink_message_t* out) {
-    mavlink_msg_available_modes_encode_status(config_.system_id, config_.component_id,
-                                              out_.status(), out, &m);
+  out_.emit([&](mavlink_message_t* out) {
+    mavlink_msg_available_modes_encode_status(out_.system_id(), out_.component_id(), out_.status(),
+                                              out, &m);
   });
 }
 
-void GsCore::send_current_mode() {
+void TelemetryService::send_current_mode() {
   const mavlink_current_mode_t m =
-      current_mode(vehicle_.have_decision, vehicle_.decision.controller, intended_custom_mode_);
-  emit([&](mavlink_message_t* out) {
-    mavlink_msg_current_mode_encode_status(config_.system_id, config_.component_id, out_.status(),
+      current_mode(vehicle_.have_decision, vehicle_.decision.controller, intent_.custom_mode);
+  out_.emit([&](mavlink_message_t* out) {
+    mavlink_msg_current_mode_encode_status(out_.system_id(), out_.component_id(), out_.status(),
                                            out, &m);
   });
 }
 
-void GsCore::send_heartbeat() {
+void TelemetryService::send_heartbeat() {
   mavlink_heartbeat_t hb{};
   hb.type = MAV_TYPE_FIXED_WING;
   hb.autopilot = MAV_AUTOPILOT_GENERIC;
@@ -101,14 +96,14 @@ void GsCore::send_heartbeat() {
     hb.system_status = MAV_STATE_CRITICAL;  // flying on the safety controller
   }
   hb.mavlink_version = 3;
-  emit([&](mavlink_message_t* m) {
-    mavlink_msg_heartbeat_encode_status(config_.system_id, config_.component_id, out_.status(), m,
+  out_.emit([&](mavlink_message_t* m) {
+    mavlink_msg_heartbeat_encode_status(out_.system_id(), out_.component_id(), out_.status(), m,
                                         &hb);
   });
   send_current_mode();  // streamed with the heartbeat (the protocol asks for about 0.5 Hz)
 }
 
-void GsCore::send_telemetry_set(const Clock& now) {
+void TelemetryService::send_set(const Clock& now) {
   const uint32_t boot_ms = static_cast<uint32_t>(now.mono_ms - boot_ms_);
   const bool fresh =
       vehicle_.have_telemetry && now.mono_ms - vehicle_.telemetry_ms < kTelemetryStaleMs;
@@ -121,8 +116,30 @@ void GsCore::send_telemetry_set(const Clock& now) {
   ++counters_.telemetry_sets_sent;
 }
 
+void TelemetryService::tick(const Clock& now) {
+  if (!started_) {
+    started_ = true;
+    boot_ms_ = now.mono_ms;
+    next_heartbeat_ms_ = now.mono_ms;
+    next_set_ms_ = now.mono_ms;
+  }
+  if (now.mono_ms >= next_heartbeat_ms_) {
+    send_heartbeat();
+    next_heartbeat_ms_ += kHeartbeatPeriodMs;
+    if (next_heartbeat_ms_ <= now.mono_ms) next_heartbeat_ms_ = now.mono_ms + kHeartbeatPeriodMs;
+  }
+  if (config_.rate_hz > 0.0 && now.mono_ms >= next_set_ms_) {
+    send_set(now);
+    // Step the schedule by the period (not from now) so the rate holds without drift; after a
+    // long stall, restart the schedule instead of bursting.
+    const uint64_t period_ms = static_cast<uint64_t>(std::llround(1000.0 / config_.rate_hz));
+    next_set_ms_ += std::max<uint64_t>(1, period_ms);
+    if (next_set_ms_ <= now.mono_ms) next_set_ms_ = now.mono_ms + period_ms;
+  }
+}
+
 // The sensors present and, with fresh telemetry, healthy; the battery; the link's bad frames.
-void GsCore::send_sys_status(bool fresh) {
+void TelemetryService::send_sys_status(bool fresh) {
   const Telemetry& t = vehicle_.telemetry;
   mavlink_sys_status_t s{};
   const uint32_t sensors = MAV_SYS_STATUS_SENSOR_3D_GYRO | MAV_SYS_STATUS_SENSOR_3D_ACCEL |
@@ -144,13 +161,13 @@ void GsCore::send_sys_status(bool fresh) {
   s.current_battery = -1;
   s.battery_remaining = -1;
   s.errors_comm = clamp_u16(static_cast<double>(counters_.frames_bad_crc % 65535));
-  emit([&](mavlink_message_t* m) {
-    mavlink_msg_sys_status_encode_status(config_.system_id, config_.component_id, out_.status(), m,
+  out_.emit([&](mavlink_message_t* m) {
+    mavlink_msg_sys_status_encode_status(out_.system_id(), out_.component_id(), out_.status(), m,
                                          &s);
   });
 }
 
-void GsCore::send_attitude(uint32_t boot_ms) {
+void TelemetryService::send_attitude(uint32_t boot_ms) {
   const Telemetry& t = vehicle_.telemetry;
   mavlink_attitude_t a{};
   a.time_boot_ms = boot_ms;
@@ -160,14 +177,13 @@ void GsCore::send_attitude(uint32_t boot_ms) {
   a.rollspeed = finite_or_zero(t.p_radps);
   a.pitchspeed = finite_or_zero(t.q_radps);
   a.yawspeed = finite_or_zero(t.r_radps);
-  emit([&](mavlink_message_t* m) {
-    mavlink_msg_attitude_encode_status(config_.system_id, config_.component_id, out_.status(), m,
-                                       &a);
+  out_.emit([&](mavlink_message_t* m) {
+    mavlink_msg_attitude_encode_status(out_.system_id(), out_.component_id(), out_.status(), m, &a);
   });
 }
 
 // GLOBAL_POSITION_INT, VFR_HUD and GPS_RAW_INT from the INS's solution.
-void GsCore::send_position(uint32_t boot_ms) {
+void TelemetryService::send_position(uint32_t boot_ms) {
   const Telemetry& t = vehicle_.telemetry;
   const double ground_mps = std::hypot(t.v_north_mps, t.v_east_mps);
   const double hdg_deg = heading_deg(t.yaw_rad);
@@ -183,8 +199,8 @@ void GsCore::send_position(uint32_t boot_ms) {
   g.vy = clamp_i16(t.v_east_mps * 100.0);
   g.vz = clamp_i16(t.v_down_mps * 100.0);
   g.hdg = clamp_u16(hdg_deg * 100.0);
-  emit([&](mavlink_message_t* m) {
-    mavlink_msg_global_position_int_encode_status(config_.system_id, config_.component_id,
+  out_.emit([&](mavlink_message_t* m) {
+    mavlink_msg_global_position_int_encode_status(out_.system_id(), out_.component_id(),
                                                   out_.status(), m, &g);
   });
 
@@ -195,9 +211,8 @@ void GsCore::send_position(uint32_t boot_ms) {
   v.throttle = clamp_u16(std::max(0.0, std::min(1.0, t.throttle)) * 100.0);
   v.alt = finite_or_zero(t.alt_m);
   v.climb = finite_or_zero(-t.v_down_mps);
-  emit([&](mavlink_message_t* m) {
-    mavlink_msg_vfr_hud_encode_status(config_.system_id, config_.component_id, out_.status(), m,
-                                      &v);
+  out_.emit([&](mavlink_message_t* m) {
+    mavlink_msg_vfr_hud_encode_status(out_.system_id(), out_.component_id(), out_.status(), m, &v);
   });
 
   mavlink_gps_raw_int_t r{};
@@ -212,14 +227,14 @@ void GsCore::send_position(uint32_t boot_ms) {
   r.cog = clamp_u16(
       std::fmod(std::atan2(t.v_east_mps, t.v_north_mps) * 180.0 / kPi + 360.0, 360.0) * 100.0);
   r.satellites_visible = 255;  // unknown: /data does not carry it
-  emit([&](mavlink_message_t* m) {
-    mavlink_msg_gps_raw_int_encode_status(config_.system_id, config_.component_id, out_.status(), m,
+  out_.emit([&](mavlink_message_t* m) {
+    mavlink_msg_gps_raw_int_encode_status(out_.system_id(), out_.component_id(), out_.status(), m,
                                           &r);
   });
 }
 
 // The mission item the controller flies to, in the GCS's numbering.
-void GsCore::send_mission_current() {
+void TelemetryService::send_mission_current() {
   const Telemetry& t = vehicle_.telemetry;
   mavlink_mission_current_t c{};
   // The controller counts the waypoints on /way; the GCS counts mission items (home, speeds).
@@ -229,9 +244,9 @@ void GsCore::send_mission_current() {
   c.total = static_cast<uint16_t>(missions_.count());
   c.mission_state = MISSION_STATE_ACTIVE;
   c.mission_mode = t.computer_in_command ? 1 : 2;
-  emit([&](mavlink_message_t* m) {
-    mavlink_msg_mission_current_encode_status(config_.system_id, config_.component_id,
-                                              out_.status(), m, &c);
+  out_.emit([&](mavlink_message_t* m) {
+    mavlink_msg_mission_current_encode_status(out_.system_id(), out_.component_id(), out_.status(),
+                                              m, &c);
   });
 }
 

@@ -51,6 +51,12 @@ struct VehicleState {
   GeoPoint home;
 };
 
+// What the operator asked for last, as the CURRENT_MODE message reports it: the command service
+// writes it, the telemetry reads it.
+struct OperatorIntent {
+  uint32_t custom_mode = 0;  // the last DO_SET_MODE's (0: none yet)
+};
+
 // A PARAM_SET for the controller to decide (the node calls its ~set_tunable), answered with
 // param_set_answered().
 struct ParamSetRequest {

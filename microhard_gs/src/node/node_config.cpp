@@ -130,14 +130,14 @@ bool read_mission_limits(const ros::NodeHandle& nh, NodeConfig* c, std::string* 
     return false;
   }
   c->core.telemetry_rate_hz = rate_hz;
-  c->core.limits.floor_ft = floor_ft;
-  c->core.limits.ceiling_ft = ceiling_ft;
-  c->core.limits.max_radius_ft = radius_ft;
-  c->core.limits.min_speed_ftps = stall_ftps;
-  c->core.limits.default_speed_ftps = speed_ftps;
+  c->core.mission.limits.floor_ft = floor_ft;
+  c->core.mission.limits.ceiling_ft = ceiling_ft;
+  c->core.mission.limits.max_radius_ft = radius_ft;
+  c->core.mission.limits.min_speed_ftps = stall_ftps;
+  c->core.mission.limits.default_speed_ftps = speed_ftps;
   c->core.airborne_agl_ft = airborne_ft;
-  c->core.mission_item_timeout_ms = static_cast<uint32_t>(std::lround(timeout_s * 1000.0));
-  c->core.mission_max_retries = static_cast<uint32_t>(std::lround(retries));
+  c->core.mission.item_timeout_ms = static_cast<uint32_t>(std::lround(timeout_s * 1000.0));
+  c->core.mission.max_retries = static_cast<uint32_t>(std::lround(retries));
   return true;
 }
 
