@@ -45,7 +45,7 @@ from supervisor_core import node_query  # noqa: E402  (the supervisor's node que
 from hil import faults, gs_monitor, ha_channel, link_relay, mission, sensors, verdicts  # noqa: E402
 from hil.faults.base import RC_NEUTRAL, Board  # noqa: E402
 from hil.design_wind import DesignWind  # noqa: E402
-from hil.flight_record import Period  # noqa: E402
+from hil.flight_record import FlightRecord, Period, World  # noqa: E402
 from hil.fdm import Fdm, FdmCrash, Surfaces, Wind  # noqa: E402
 from stack_common import geo  # noqa: E402
 from stack_common.units import FT_PER_M  # noqa: E402
@@ -914,8 +914,24 @@ class Simulation:
             f.write("%.2f %.2f\n" % (t_s, self.duration_s))
         os.replace(tmp, self.progress_path)
 
+    def flight_record(self):
+        """The flight as its judges read it (hil.flight_record.FlightRecord)."""
+        mon = self.gs_monitor
+        return FlightRecord(
+            aircraft=self.aircraft, seed=self.seed, mode=self.mode, rate_hz=self.rate_hz,
+            period_us=self.period_us, controller_dt_s=self.controller_dt_s, periods=self.records,
+            ha_periods=verdicts.ha_periods(self), ground_s=self.ground_s, regions=self.regions,
+            stall_alphas_deg=verdicts.stall_alphas_deg(self.fdm.airframe), plan=self.plan,
+            home=self.home, reach_ft=self.reach_ft, fault=self.fault,
+            crashed_at=getattr(self, "crashed_at", None), events=self.events, waypoint_log=self.waypoint_log,
+            world=World(self.field_elevation_ft, self.temperature_c, getattr(self, "start_density_kg_m3", None),
+                        self.world_wind, self.wind, getattr(self, "design_wind", None)),
+            gs_positions=None if mon is None else list(mon.positions), gs_home=None if mon is None else mon.home,
+            wall_s=self.wall_s, cpu_s=getattr(self, "cpu_s", 0.0), step_totals=dict(self.timer.totals),
+            latency=None if self.latency is None else self.latency.summary())
+
     def summary(self):
-        return verdicts.summarize(self)
+        return verdicts.summarize(self.flight_record())
 
     def close(self):
         self.truth_log.close()

@@ -132,7 +132,7 @@ def mission_tracking(plan, home, records, progress):
             "p95_cross_track_ft": None if not errors else round(nearest_rank(errors, 0.95), 2)}
 
 
-def ground_station_view(sim, window_s=3.0):
+def ground_station_view(rec, window_s=3.0):
     """The ground station's positions (GLOBAL_POSITION_INT as microhard_gs sent it) held against
     the truth: each one's nearest true position, horizontal and height together, of the
     `window_s` of simulated time before it arrived (the telemetry lags by its own period, in wall
@@ -140,18 +140,17 @@ def ground_station_view(sim, window_s=3.0):
     nearest sample is parked was measured on the ground, however late it came (on a loaded
     machine one sent just before the airborne start arrived after it): it is not one in flight.
     And the ground station's home against the simulator's."""
-    mon = getattr(sim, "gs_monitor", None)
-    if mon is None:
+    if rec.gs_positions is None:
         return None
-    recs = sim.records
+    recs = rec.periods
     times = [x.t_s for x in recs]
     horiz, vert = [], []
-    for pos in list(mon.positions):
+    for pos in rec.gs_positions:
         lo = bisect.bisect_left(times, pos.t_s - window_s)
         hi = bisect.bisect_right(times, pos.t_s + 1e-9)
         if hi - lo < 1:
             continue
-        n, e = geo.north_east_ft(sim.home, pos.lat_deg, pos.lon_deg)
+        n, e = geo.north_east_ft(rec.home, pos.lat_deg, pos.lon_deg)
         h = pos.relative_alt_m * FT_PER_M
         best = min(recs[lo:hi], key=lambda x: math.hypot(math.hypot(x.truth.north_ft - n, x.truth.east_ft - e),
                                                          x.truth.height_above_home_ft - h))
@@ -160,11 +159,11 @@ def ground_station_view(sim, window_s=3.0):
         horiz.append(math.hypot(best.truth.north_ft - n, best.truth.east_ft - e))
         vert.append(abs(best.truth.height_above_home_ft - h))
     home = None
-    if mon.home is not None:
-        n, e = geo.north_east_ft(sim.home, mon.home.lat_deg, mon.home.lon_deg)
+    if rec.gs_home is not None:
+        n, e = geo.north_east_ft(rec.home, rec.gs_home.lat_deg, rec.gs_home.lon_deg)
         home = {"horizontal_ft": round(math.hypot(n, e), 3),
-                "vertical_ft": round(abs(mon.home.alt_m - sim.home[2]) * FT_PER_M, 3)}
-    return {"positions_received": len(mon.positions), "positions_in_flight": len(horiz),
+                "vertical_ft": round(abs(rec.gs_home.alt_m - rec.home[2]) * FT_PER_M, 3)}
+    return {"positions_received": len(rec.gs_positions), "positions_in_flight": len(horiz),
             "window_s": window_s,
             "max_horizontal_error_ft": round(max(horiz), 2) if horiz else None,
             "p95_horizontal_error_ft": None if not horiz else round(nearest_rank(horiz, 0.95), 2),
@@ -172,10 +171,9 @@ def ground_station_view(sim, window_s=3.0):
             "home_vs_truth": home}
 
 
-def stall_alphas_deg(sim):
-    """The airframe's stall angles of attack (airframe.yaml through the FDM: lift reaches cl_max,
-    or cl_min inverted), degrees."""
-    af = sim.fdm.airframe
+def stall_alphas_deg(af):
+    """The airframe's stall angles of attack (airframe.yaml through the FDM's hil.fdm airframe:
+    lift reaches cl_max, or cl_min inverted), degrees."""
     return math.degrees(af.alpha_stall_rad), math.degrees(af.alpha_stall_neg_rad)
 
 
@@ -343,17 +341,17 @@ def truth_takeover_due_s(r, recs, at):
     return None
 
 
-def fault_verdict(sim, progress):
+def fault_verdict(rec, progress):
     """The Simplex property for this flight, from the simulator's truth: what the servos were
     driven with (S_u), where the aircraft was while the HA flew (S_x), and when the HA took the
     servos against when it had to (the fault class's own deadline, or the truth leaving S_x,
     passing the ceiling or falling to the stall while the HP flew)."""
-    r = sim.regions
-    recs = [x for x in sim.records if x.t_s > sim.ground_s]
+    r = rec.regions
+    recs = [x for x in rec.periods if x.t_s > rec.ground_s]
     period = r.period_s
-    f = sim.fault
+    f = rec.fault
     at = f.at_s if f is not None else None
-    unsafe_n = sum(1 for x in sim.records if unsafe(r, x.reply.applied))
+    unsafe_n = sum(1 for x in rec.periods if unsafe(r, x.reply.applied))
     outside_ha, inherited, outside_any, max_row, worst = outside_s_x(r, recs, at)
     due = f.takeover_due_s() if f is not None else None
     truth_due = truth_takeover_due_s(r, recs, at)
@@ -361,7 +359,7 @@ def fault_verdict(sim, progress):
     due_s = min(dues) if dues else None
     took = lat = None
     if due_s is not None:
-        took = first_takeover_s(ha_periods(sim), due_s)
+        took = first_takeover_s(rec.ha_periods, due_s)
         lat = None if took is None else round(took - due_s, 4) + 0.0
     off = back = None
     if at is not None:
@@ -369,17 +367,17 @@ def fault_verdict(sim, progress):
         if off is not None:
             back = next((x.t_s for x in recs if x.t_s > off and x.reply.controller == HP), None)
     airborne = [x for x in recs if not x.truth.on_ground]
-    crashed = any("aircraft crashed" in e["event"] for e in sim.events)
+    crashed = any("aircraft crashed" in e["event"] for e in rec.events)
     env_s = round(outside_ha * period, 4)
     takeover_ok = due_s is None or (lat is not None and lat <= period + 1e-9)
     # The stall judged on the truth: the wing past its stall angle of attack while the HA's side
     # flies is the HA's own failure (it flies to keep the aircraft flying), whoever stalled it.
-    alphas = stall_alphas_deg(sim)
+    alphas = rec.stall_alphas_deg
     launch = launch_stall_periods(recs, alphas)
     flown = recs[launch:]
     stalled_ha = sum(1 for x in flown if x.reply.controller in HA_SIDE and stalled(x.truth, alphas))
     stalled_any = sum(1 for x in recs if (at is None or x.t_s >= at - 1e-9) and stalled(x.truth, alphas))
-    losses = recovery_height_losses(recs, at if at is not None else sim.ground_s)
+    losses = recovery_height_losses(recs, at if at is not None else rec.ground_s)
     return {
         "ok": unsafe_n == 0 and outside_ha == 0 and takeover_ok and not crashed and stalled_ha == 0,
         "stall_alpha_deg": round(alphas[0], 3),
@@ -388,8 +386,8 @@ def fault_verdict(sim, progress):
         "stalled_at_launch_s": round(launch * period, 4),
         "stalled_from_fault_s": round(stalled_any * period, 4),
         "recovery_height_loss_ft": round(max(v for _, v, _ in losses), 2) if losses else None,
-        "recoveries": [{"takeover_s": round(t, 3), "height_lost_ft": round(v, 2), "recovered": r}
-                       for t, v, r in losses],
+        "recoveries": [{"takeover_s": round(t, 3), "height_lost_ft": round(v, 2), "recovered": ok}
+                       for t, v, ok in losses],
         "unsafe_commands": unsafe_n,
         "envelope_violations_under_ha_s": env_s,
         "envelope_under_ha": {"outside_S_x_s": env_s, "inherited_from_hp_s": round(inherited * period, 4),
@@ -425,37 +423,38 @@ def worst_state(x):
             "calibrated_airspeed_ftps": round(x.airspeed_cal_ftps, 2)}
 
 
-def world(sim):
+def world(rec):
     """The air the flight flew in: the field's elevation and temperature, the density at the
     start (and what it makes of the pitot: IAS = TAS sqrt(rho / rho0)), the scenario's wind and,
     when a fault changed it, the wind at the end."""
-    rho = getattr(sim, "start_density_kg_m3", None)
-    w, w_end = sim.world_wind, sim.wind
+    air = rec.world
+    rho = air.start_density_kg_m3
+    w, w_end = air.wind, air.wind_at_end
 
     def wind(x):
         return {"from_deg": x.mean_from_deg, "mps": x.mean_mps, "ftps": round(x.mean_mps * FT_PER_M, 2),
                 "turbulence": x.turbulence}
-    return {"field_elevation_ft": round(sim.field_elevation_ft, 1), "temperature_c": round(sim.temperature_c, 2),
+    return {"field_elevation_ft": round(air.field_elevation_ft, 1), "temperature_c": round(air.temperature_c, 2),
             "air_density_kg_m3": None if rho is None else round(rho, 5),
             "ias_over_tas": None if rho is None else round(math.sqrt(rho / 1.225), 4),
-            "wind": wind(w), "wind_at_end": wind(w_end), "beyond_design_wind": beyond_design_wind(sim)}
+            "wind": wind(w), "wind_at_end": wind(w_end), "beyond_design_wind": beyond_design_wind(rec)}
 
 
-def beyond_design_wind(sim):
+def beyond_design_wind(rec):
     """Why the flight's air went beyond the aircraft's design wind (hil/design_wind.py): its
     steady wind and turbulence, and a fault's change of the wind ([]: within; the property is
     claimed there, and beyond it the flight is judged on survival)."""
-    design = getattr(sim, "design_wind", None)
+    design = rec.world.design_wind
     if design is None:
         return []
-    w = sim.world_wind
+    w = rec.world.wind
     why = design.steady(w.mean_mps, w.turbulence)
-    change = getattr(sim.fault, "beyond_design_wind", None)
+    change = getattr(rec.fault, "beyond_design_wind", None)
     return why + [x for x in (change() if callable(change) else []) if x not in why]
 
 
-def fault_record(sim):
-    f = sim.fault
+def fault_record(rec):
+    f = rec.fault
     if f is None:
         return {"class": "none", "at_s": None, "duration_s": None, "params": {}, "took_effect": True,
                 "evidence": "no fault injected"}
@@ -466,18 +465,19 @@ def fault_record(sim):
             "detail": detail() if callable(detail) else None}
 
 
-def summarize(sim):
-    r = sim.regions
-    recs = sim.records
+def summarize(rec):
+    """summary.json of a flight (hil.flight_record.FlightRecord)."""
+    r = rec.regions
+    recs = rec.periods
     airborne = [x for x in recs if not x.truth.on_ground and x.truth.height_above_home_ft > r.airborne_ft]
     unsafe_servo = [x for x in recs if unsafe(r, x.reply.applied)]
-    ha_flying = [x for x in recs if x.reply.controller in HA_SIDE and x.t_s > sim.ground_s]
+    ha_flying = [x for x in recs if x.reply.controller in HA_SIDE and x.t_s > rec.ground_s]
     sx_ha = max((r.sx_max(x.truth) for x in ha_flying), default=None)
     segs = segments(recs)
-    crash = getattr(sim, "crashed_at", None)
+    crash = rec.crashed_at
     takeover = None
     if crash is not None:
-        takeover = crash_takeover(ha_periods(sim), crash, r)
+        takeover = crash_takeover(rec.ha_periods, crash, r)
         t_ha = takeover["takeover_s"]
         t_back = None if t_ha is None else next(
             (x.t_s for x in recs if x.t_s > t_ha and x.reply.controller == HP), None)
@@ -493,28 +493,28 @@ def summarize(sim):
         prev = reply.controller
     heights = [x.truth.height_above_home_ft for x in airborne]
     cal = [x.airspeed_cal_ftps for x in airborne]
-    reach_ft = sim.reach_ft  # the controller's own "waypoint reached" distance (dist2b)
-    progress = waypoint_progress(sim.plan, sim.home, recs, reach_ft)
-    fault = fault_record(sim)
-    verdict = fault_verdict(sim, progress)
-    flown = len(recs) * sim.period_us * 1e-6
-    t = sim.timer.totals
+    reach_ft = rec.reach_ft  # the controller's own "waypoint reached" distance (dist2b)
+    progress = waypoint_progress(rec.plan, rec.home, recs, reach_ft)
+    fault = fault_record(rec)
+    verdict = fault_verdict(rec, progress)
+    flown = len(recs) * rec.period_us * 1e-6
+    t = rec.step_totals
     steps = max(len(recs), 1)
     return {
-        "aircraft": sim.aircraft,
-        "seed": sim.seed,
-        "mode": sim.mode,
-        "rate_hz": sim.rate_hz,
-        "controller_rate_hz": round(1.0 / sim.controller_dt_s, 3),
+        "aircraft": rec.aircraft,
+        "seed": rec.seed,
+        "mode": rec.mode,
+        "rate_hz": rec.rate_hz,
+        "controller_rate_hz": round(1.0 / rec.controller_dt_s, 3),
         "simulated_s": round(flown, 3),
-        "wall_s": round(sim.wall_s, 3),
-        "x_real_time": round(flown / sim.wall_s, 2) if sim.wall_s > 0 else None,
+        "wall_s": round(rec.wall_s, 3),
+        "x_real_time": round(flown / rec.wall_s, 2) if rec.wall_s > 0 else None,
         # The simulator's own work, which the wall time of a step hides on a loaded machine.
-        "sim_cpu_ms_per_step": round(getattr(sim, "cpu_s", 0.0) * 1000.0 / steps, 4),
+        "sim_cpu_ms_per_step": round(rec.cpu_s * 1000.0 / steps, 4),
         "step_time_ms": {k: round(v * 1000.0 / steps, 4) for k, v in sorted(t.items())
                          if k != "mission_upload_and_trim"},
         "mission_upload_and_trim_s": round(t.get("mission_upload_and_trim", 0.0), 3),
-        "sensor_to_servo_latency": None if sim.latency is None else sim.latency.summary(),
+        "sensor_to_servo_latency": rec.latency,
         "takeover": takeover,
         "hand_backs": handbacks,
         "who_flew": segs,
@@ -531,15 +531,15 @@ def summarize(sim):
         "state_while_ha_flies": {"steps": len(ha_flying),
                                  "max_S_x_row": None if sx_ha is None else round(sx_ha, 4),
                                  "inside_S_x": sx_ha is None or sx_ha <= 1.0},
-        "mission": {"waypoints": len(sim.plan.items),
+        "mission": {"waypoints": len(rec.plan.items),
                     "reached_within_ft": reach_ft,
                     "reached": sum(1 for p in progress if p["first_reached_s"] is not None),
                     "per_waypoint": progress,
-                    "tracking": mission_tracking(sim.plan, sim.home, recs, progress),
-                    "guidance_waypoint_index": sim.waypoint_log},
-        "ground_station": ground_station_view(sim),
-        "world": world(sim),
-        "events": sim.events,
+                    "tracking": mission_tracking(rec.plan, rec.home, recs, progress),
+                    "guidance_waypoint_index": rec.waypoint_log},
+        "ground_station": ground_station_view(rec),
+        "world": world(rec),
+        "events": rec.events,
         "fault": fault,
         "verdict": verdict,
         "status": "ok" if fault["took_effect"] else "fault_not_effective",

@@ -8,6 +8,7 @@ from stack_common import geo
 from stack_common.units import FT_PER_M
 
 from hil import verdicts
+from hil.flight_record import FlightRecord
 from hil.gs_monitor import Position
 
 HOME = (40.4237054, -86.9211946, 185.25)
@@ -29,15 +30,23 @@ def position(arrived_s, measured_s, extra_height_ft=0.0):
     return Position(arrived_s, lat, lon, (tr.height_above_home_ft + extra_height_ft) / FT_PER_M)
 
 
-def sim_with(positions):
-    records = [SimpleNamespace(t_s=k * 0.01, truth=truth_at(k * 0.01)) for k in range(1001)]
-    return SimpleNamespace(records=records, home=HOME,
-                           gs_monitor=SimpleNamespace(positions=positions, home=None))
+def flight_with(positions):
+    """A flight's record as the ground-station verdict reads it: the truth each period, what the
+    ground station was shown."""
+    periods = [SimpleNamespace(t_s=k * 0.01, truth=truth_at(k * 0.01)) for k in range(1001)]
+    return FlightRecord(aircraft="DG808", seed=1, mode="lockstep", rate_hz=100.0, period_us=10000,
+                        controller_dt_s=0.01, periods=periods, ha_periods=[], ground_s=AIRBORNE_S,
+                        regions=None, stall_alphas_deg=(8.85, -8.0), plan=None, home=HOME, reach_ft=80.0,
+                        gs_positions=positions)
+
+
+def test_a_flight_nobody_watched_has_no_ground_station_view():
+    assert verdicts.ground_station_view(flight_with(None)) is None
 
 
 def test_a_parked_position_that_arrives_after_the_airborne_start_is_not_one_in_flight():
     flown = [position(t, t - 0.3) for t in (3.0, 4.0, 5.0)]
-    view = verdicts.ground_station_view(sim_with([position(2.4, 1.9)] + flown))
+    view = verdicts.ground_station_view(flight_with([position(2.4, 1.9)] + flown))
     assert view["positions_received"] == 4
     assert view["positions_in_flight"] == 3
     assert view["max_height_error_ft"] < 0.01, view
@@ -46,13 +55,13 @@ def test_a_parked_position_that_arrives_after_the_airborne_start_is_not_one_in_f
 
 def test_an_absolute_altitude_shown_as_relative_in_flight_is_still_an_error():
     field_elevation_ft = 853.0
-    view = verdicts.ground_station_view(sim_with([position(5.0, 4.7, extra_height_ft=field_elevation_ft)]))
+    view = verdicts.ground_station_view(flight_with([position(5.0, 4.7, extra_height_ft=field_elevation_ft)]))
     assert view["positions_in_flight"] == 1
     assert abs(view["max_height_error_ft"] - field_elevation_ft) < 0.01, view
 
 
 def test_a_position_off_track_in_flight_is_measured_against_the_nearest_true_one():
     lat, lon = position(5.0, 4.7).lat_deg, position(5.0, 4.7).lon_deg + 0.0003  # about 83 ft east
-    view = verdicts.ground_station_view(sim_with([Position(5.0, lat, lon, HEIGHT_FT / FT_PER_M)]))
+    view = verdicts.ground_station_view(flight_with([Position(5.0, lat, lon, HEIGHT_FT / FT_PER_M)]))
     assert view["positions_in_flight"] == 1
     assert 70.0 < view["max_horizontal_error_ft"] < 100.0, view

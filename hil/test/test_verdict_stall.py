@@ -19,12 +19,7 @@ def recs(samples):
 
 
 def test_the_stall_alpha_is_the_airframes_and_a_stall_is_past_either_side():
-    af = Airframe(os.path.join(ROOT, "aircraft", "DG808"))
-
-    class Sim:
-        class fdm:
-            airframe = af
-    a_s, a_n = verdicts.stall_alphas_deg(Sim)
+    a_s, a_n = verdicts.stall_alphas_deg(Airframe(os.path.join(ROOT, "aircraft", "DG808")))
     assert round(a_s, 2) == 8.85 and a_n < 0.0                       # (cl_max - cl0) / cl_alpha
     assert verdicts.stalled(M(8.9, 100.0, False), (a_s, a_n)) and verdicts.stalled(M(a_n - 0.1, 100.0, False), (a_s, a_n))
     assert not verdicts.stalled(M(8.8, 100.0, False), (a_s, a_n))
