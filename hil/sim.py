@@ -901,8 +901,9 @@ class Simulation:
         if result != "MAV_MISSION_ACCEPTED":
             raise RuntimeError("mission upload refused: %s" % result)
         self.wait_until("/way from microhard_gs", lambda r: self.waiter.count("way") > before, 30.0)
-        # The latched /way reached the controller over its own connection; give it a moment.
-        t_end = time.monotonic() + 0.5
+        # In lockstep the next step declares the plan and the controller waits for it. On the
+        # wall clock the latched /way reaches it over its own connection: give it a moment.
+        t_end = time.monotonic() + (0.5 if self.realtime else 0.0)
         while time.monotonic() < t_end:
             self.service_while_waiting()
             time.sleep(0.05)
