@@ -71,8 +71,11 @@ void ControllerNode::subscribe_home_and_plan(ros::NodeHandle &nh) {
   // a namespace of its own (<group ns="uav1">) flies on its own sensors only.
   // Home has one owner, the HA, which latches it from its own INS; the `arduino` node keeps it
   // on the latched /home, so a controller started again (HP restart) has the same home at once.
+  // In lockstep each one counts for the step that declares it, so none may be pushed out of the
+  // queue (as for the sensors below).
+  const uint32_t q = lockstep_ ? 100 : 1;
   subs_.push_back(nh.subscribe<drone_ros::HomePosition>(
-      "home", 1, [this](const drone_ros::HomePosition::ConstPtr &m) {
+      "home", q, [this](const drone_ros::HomePosition::ConstPtr &m) {
         if (!lockstep_) {
           take_home(*m);
           return;
@@ -80,7 +83,7 @@ void ControllerNode::subscribe_home_and_plan(ros::NodeHandle &nh) {
         held_home_.hold(*m);
         on_input(kInHome);
       }));
-  subs_.push_back(nh.subscribe<drone_ros::way>("way", 1, [this](const drone_ros::way::ConstPtr &m) {
+  subs_.push_back(nh.subscribe<drone_ros::way>("way", q, [this](const drone_ros::way::ConstPtr &m) {
     if (!lockstep_) {
       take_way(*m);
       return;
