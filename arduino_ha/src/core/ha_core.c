@@ -309,30 +309,8 @@ static void fill_outputs(const HaCore *core, const HaStateView *view, const HaIn
   out->operator_lost = core->operator_lost;
 }
 
-void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *out) {
-  const HaAircraftConfig *cfg = core->cfg;
-  const uint32_t dt_us = period_dt_us(core, now_us);
-  const float dt_s = (float)dt_us * 1.0e-6f;
-  HaCmdFacts facts;
-  HaStateView view;
-  HaPolicyIn policy;
-  HaSurfaces ha_cmd, target;
-  float sx_max = 0.0f, su_max = 0.0f;
-  uint32_t reasons;
-  uint8_t source;
-
-  out->restart_requested = 0u;
-  track_command(core, in, now_us, dt_us, &facts);
-  track_own_sensors(core, in, now_us, dt_us);
-  ha_state_view(cfg, in, facts.cmd, facts.have_cmd, &core->own, &view);
-  ha_airdata_view(&core->airdata, cfg, &view);
-  decide_airborne(core, dt_us, &view);
-  policy.operator_restart = (uint8_t)handle_operator(core, in, &view, now_us);
-  reasons = ha_checks_evaluate(cfg, &facts, &view, &sx_max, &su_max) |
-            (core->ground_command ? HA_REASON_GROUND_COMMAND : 0u);
-  /* The stall is flown out only on a speed the HA may fly by: the INS's speed over the ground,
-   * the wind unknown, reads a headwind as a stall, and a push on it dives a healthy aircraft. */
-  view.stalling = (uint8_t)((reasons & HA_REASON_STALL) != 0u && view.speed_known);
+/* The windows the hand-back waits out: the commands clear, the HA's own state whole. */
+static void update_windows(HaCore *core, uint32_t reasons, uint32_t dt_us) {
   core->stable_for_us = (reasons & HA_REASONS_COMMAND) ? 0u : add_sat(core->stable_for_us, dt_us);
   core->own_state_for_us =
       (reasons & HA_REASON_NO_HA_STATE) ? 0u : add_sat(core->own_state_for_us, dt_us);
@@ -340,61 +318,54 @@ void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *
     core->awaiting_boot = 0u; /* the HP is back */
     core->hp_up = 1u;
   }
-  prune_restarts(core, now_us);
+}
 
-  policy.controller = core->controller;
-  policy.manual = (uint8_t)(in->rc.valid && in->rc.pulse_us[HA_RC_PIC] >= cfg->pic_threshold_us);
-  if (policy.manual || !view.parked) {
+/* The policy's inputs but the operator's restart (handle_operator's). */
+static void fill_policy(HaCore *core, const HaInputs *in, const HaStateView *view,
+                        const HaCmdFacts *facts, uint32_t reasons, float sx_max, uint32_t now_us,
+                        HaPolicyIn *policy) {
+  const HaAircraftConfig *cfg = core->cfg;
+  policy->controller = core->controller;
+  policy->manual = (uint8_t)(in->rc.valid && in->rc.pulse_us[HA_RC_PIC] >= cfg->pic_threshold_us);
+  if (policy->manual || !view->parked) {
     core->self_test.active = 0u; /* the pilot or a lift-off ends the self-test */
   }
-  policy.latched = core->latched;
-  policy.self_test = core->self_test.active;
-  policy.ground_command = core->ground_command;
-  policy.reasons = reasons;
-  policy.stable = (uint8_t)(core->stable_for_us >= cfg->stable_window_us);
+  policy->latched = core->latched;
+  policy->self_test = core->self_test.active;
+  policy->ground_command = core->ground_command;
+  policy->reasons = reasons;
+  policy->stable = (uint8_t)(core->stable_for_us >= cfg->stable_window_us);
   /* The HA hands back only on a state it has had whole for the stable window too: an INS that
    * comes every 150 ms, stale every other period, otherwise swapped the controller 86 times a
    * minute, each hand-back on one fresh state. */
-  policy.inner =
+  policy->inner =
       (uint8_t)(!(reasons & HA_REASONS_STATE) && !ha_greater(sx_max, cfg->inner_region_fraction) &&
-                (!view.airborne || ha_greater(view.airspeed_ftps, cfg->handback_airspeed_ftps)) &&
+                (!view->airborne || ha_greater(view->airspeed_ftps, cfg->handback_airspeed_ftps)) &&
                 core->own_state_for_us >= cfg->stable_window_us);
-  policy.restart_cap_reached = (uint8_t)restart_cap_reached(core);
-  policy.boot_overdue = (uint8_t)boot_overdue(core, now_us);
+  policy->restart_cap_reached = (uint8_t)restart_cap_reached(core);
+  policy->boot_overdue = (uint8_t)boot_overdue(core, now_us);
   /* An HP that had been up and fails while the pilot or the operator's HA flies is restarted as
    * if it had lost control: silent, or alive but failing a check (its sensor link lost). An HP
    * still booting at power-up (estimator not yet converged) has never been up. */
-  policy.hp_failed = (uint8_t)(!core->awaiting_boot && !core->reset_active &&
-                               ((facts.have_cmd && (reasons & HA_REASON_NO_COMMAND)) ||
-                                (core->hp_up && (reasons & HA_REASONS_COMMAND))));
-  {
-    const uint8_t next = ha_policy_decide(&policy);
-    const uint8_t restart = ha_policy_restart(&policy, next);
-    if (next != core->controller) {
-      on_switch(core, next, reasons);
-    }
-    if (restart) {
-      request_restart(core, now_us, out);
-    }
-  }
+  policy->hp_failed = (uint8_t)(!core->awaiting_boot && !core->reset_active &&
+                                ((facts->have_cmd && (reasons & HA_REASON_NO_COMMAND)) ||
+                                 (core->hp_up && (reasons & HA_REASONS_COMMAND))));
+}
 
-  /* The safety controller runs every period; it tracks the applied surfaces unless it was the
-   * source last period, so that it starts from them. From then on it flies, the rate limiter
-   * easing the servos to it: tracking through the handover left pitch and roll unflown while
-   * the throttle (0.5 a second) or the yaw damper's rudder still eased (HiL campaign seed 27 #5:
-   * 1.08 s with the elevator frozen at 1.9 deg of pull while a gust put 1.9 g on the wing and
-   * stalled it; the lift guard's push went into the tracking integrator). */
-  ha_safety_ctrl_step(&core->sc, cfg, &view, &core->applied, core->last_source == SRC_HA, dt_s,
-                      &ha_cmd);
-  source = choose_source(core);
-  target = ha_cmd;
+/* What reaches the servos this period, from its source, eased through a transition and
+ * saturated into S_u whatever the source. */
+static void drive_servos(HaCore *core, const HaInputs *in, const HaStateView *view,
+                         const HaSurfaces *ha_cmd, uint32_t now_us, float dt_s) {
+  const HaAircraftConfig *cfg = core->cfg;
+  uint8_t source = choose_source(core);
+  HaSurfaces target = *ha_cmd;
   if (source == SRC_MANUAL) {
     ha_surfaces_from_rc(cfg, &in->rc, &target);
   } else if (source == SRC_HP) {
     ha_surfaces_from_cmd(&in->hp_cmd, &target); /* every check passed: finite, inside S_u */
   } else if (source == SRC_SELF_TEST &&
              !ha_self_test_target(&core->self_test, cfg, now_us, &target)) {
-    target = ha_cmd; /* the sequence just ended */
+    target = *ha_cmd; /* the sequence just ended */
     source = SRC_HA;
   }
   if (source != core->last_source || source == SRC_SELF_TEST) {
@@ -416,12 +387,60 @@ void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *
       ha_surfaces_saturate(cfg, &target);
     }
     core->transition_active = (uint8_t)!ha_surfaces_rate_limit(
-        cfg, &core->applied, &target, dt_s, view.stalling && source == SRC_HA, &limited);
+        cfg, &core->applied, &target, dt_s, view->stalling && source == SRC_HA, &limited);
     target = limited;
   }
   ha_surfaces_saturate(cfg, &target); /* the last word: nothing outside S_u reaches a servo */
   core->applied = target;
   core->last_source = source;
+}
+
+void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *out) {
+  const HaAircraftConfig *cfg = core->cfg;
+  const uint32_t dt_us = period_dt_us(core, now_us);
+  const float dt_s = (float)dt_us * 1.0e-6f;
+  HaCmdFacts facts;
+  HaStateView view;
+  HaPolicyIn policy;
+  HaSurfaces ha_cmd;
+  float sx_max = 0.0f, su_max = 0.0f;
+  uint32_t reasons;
+
+  out->restart_requested = 0u;
+  track_command(core, in, now_us, dt_us, &facts);
+  track_own_sensors(core, in, now_us, dt_us);
+  ha_state_view(cfg, in, facts.cmd, facts.have_cmd, &core->own, &view);
+  ha_airdata_view(&core->airdata, cfg, &view);
+  decide_airborne(core, dt_us, &view);
+  policy.operator_restart = (uint8_t)handle_operator(core, in, &view, now_us);
+  reasons = ha_checks_evaluate(cfg, &facts, &view, &sx_max, &su_max) |
+            (core->ground_command ? HA_REASON_GROUND_COMMAND : 0u);
+  /* The stall is flown out only on a speed the HA may fly by: the INS's speed over the ground,
+   * the wind unknown, reads a headwind as a stall, and a push on it dives a healthy aircraft. */
+  view.stalling = (uint8_t)((reasons & HA_REASON_STALL) != 0u && view.speed_known);
+  update_windows(core, reasons, dt_us);
+  prune_restarts(core, now_us);
+  fill_policy(core, in, &view, &facts, reasons, sx_max, now_us, &policy);
+  {
+    const uint8_t next = ha_policy_decide(&policy);
+    const uint8_t restart = ha_policy_restart(&policy, next);
+    if (next != core->controller) {
+      on_switch(core, next, reasons);
+    }
+    if (restart) {
+      request_restart(core, now_us, out);
+    }
+  }
+
+  /* The safety controller runs every period; it tracks the applied surfaces unless it was the
+   * source last period, so that it starts from them. From then on it flies, the rate limiter
+   * easing the servos to it: tracking through the handover left pitch and roll unflown while
+   * the throttle (0.5 a second) or the yaw damper's rudder still eased (HiL campaign seed 27 #5:
+   * 1.08 s with the elevator frozen at 1.9 deg of pull while a gust put 1.9 g on the wing and
+   * stalled it; the lift guard's push went into the tracking integrator). */
+  ha_safety_ctrl_step(&core->sc, cfg, &view, &core->applied, core->last_source == SRC_HA, dt_s,
+                      &ha_cmd);
+  drive_servos(core, in, &view, &ha_cmd, now_us, dt_s);
 
   if (core->reset_active &&
       ha_elapsed_us(now_us, core->reset_started_us) >= cfg->hp_reset_pulse_us) {

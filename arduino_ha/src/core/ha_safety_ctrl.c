@@ -107,58 +107,53 @@ static float lift_excess_g(const HaAircraftConfig *cfg, const HaStateView *s) {
   return 0.0f;
 }
 
-void ha_safety_ctrl_step(HaSafetyCtrlState *st, const HaAircraftConfig *cfg, const HaStateView *s,
-                         const HaSurfaces *applied, int in_control, float dt_s, HaSurfaces *out) {
-  /* What depends on the configuration alone is the generator's (sc_target_ftps and the rest). */
-  const float throttle_half = cfg->sc_throttle_half;
-  const float throttle_mid = cfg->sc_throttle_mid;
-  float roll_pd = 0.0f, roll_step = 0.0f, pitch_pd = 0.0f, pitch_step = 0.0f;
-  float thr_pd = cfg->sc_throttle_trim_offset, thr_step = 0.0f;
-  float nose_up_deg;
-  const float pitch_integ_limit = cfg->sc_elevator_integ_limit; /* pid's and the stop's */
-  if (!s->attitude_ok && in_control) {
-    /* Blind: nothing to close a loop on. What the integrators hold fades to the trims. */
-    const float fade = cfg->sc_blind_fade_auth_per_s * dt_s;
-    st->roll_integ_deg = toward_zero(st->roll_integ_deg, fade * cfg->aileron_limit_deg);
-    st->pitch_integ_deg = toward_zero(st->pitch_integ_deg, fade * cfg->elevator_limit_deg);
-    st->throttle_integ = toward_zero(st->throttle_integ, fade * throttle_half);
+/* One period's proportional-derivative terms and integrator steps of the three loops. */
+typedef struct {
+  float roll_pd, roll_step, pitch_pd, pitch_step, thr_pd, thr_step;
+} LoopTerms;
+
+/* The roll and pitch loops' terms, on an attitude. */
+static void attitude_terms(const HaAircraftConfig *cfg, const HaStateView *s, float dt_s,
+                           LoopTerms *t) {
+  const float roll_err = bank_command_deg(cfg, s) - s->x[HA_X_ROLL_DEG];
+  /* The error is bounded: a pitch target far from the nose (a dive it inherited, the speed's
+   * source switching from a doubted pitot to the INS) is flown towards at a bounded pull, not
+   * with the elevator at its stop (HiL pitot reading low: 38 deg of error at 75 ft/s, full up
+   * elevator, 3.4 g and the wing stalled in the pull-out). Both terms are clamped: finite. */
+  /* A stall is flown out as a pilot does, whatever the height asks: the nose to the pitch
+   * limit below the horizon while the check holds (the pid's pull is dropped below). */
+  const float pitch_cmd_deg =
+      s->stalling ? -cfg->sc_pitch_cmd_limit_deg : pitch_command_deg(cfg, s);
+  const float pitch_err = ha_clampf(pitch_cmd_deg - s->x[HA_X_PITCH_DEG],
+                                    -cfg->sc_pitch_error_max_deg, cfg->sc_pitch_error_max_deg);
+  t->roll_pd = cfg->sc_roll_kp * roll_err - cfg->sc_roll_kd * s->x[HA_X_P_DEG_S];
+  t->roll_step = cfg->sc_roll_ki * roll_err * dt_s;
+  /* The wing's lift beats height and speed: past the guard's load the nose is pushed down in
+   * proportion, and the integrator may not pull against the push (HiL: pitching up to hold
+   * height in the 47 deg bank it inherited, the HA stalled the wing at 61 ft/s). */
+  const float excess_g = lift_excess_g(cfg, s);
+  t->pitch_pd = cfg->sc_pitch_kp * pitch_err - cfg->sc_pitch_kd * s->x[HA_X_Q_DEG_S];
+  t->pitch_step = cfg->sc_pitch_ki * pitch_err * dt_s;
+  if (ha_greater(excess_g, 0.0f)) {
+    t->pitch_pd -= cfg->sc_lift_push_deg_per_g * excess_g;
+    t->pitch_step = ha_greater(t->pitch_step, 0.0f) ? 0.0f : t->pitch_step;
   }
-  if (s->attitude_ok) {
-    const float roll_err = bank_command_deg(cfg, s) - s->x[HA_X_ROLL_DEG];
-    /* The error is bounded: a pitch target far from the nose (a dive it inherited, the speed's
-     * source switching from a doubted pitot to the INS) is flown towards at a bounded pull, not
-     * with the elevator at its stop (HiL pitot reading low: 38 deg of error at 75 ft/s, full up
-     * elevator, 3.4 g and the wing stalled in the pull-out). Both terms are clamped: finite. */
-    /* A stall is flown out as a pilot does, whatever the height asks: the nose to the pitch
-     * limit below the horizon while the check holds (the pid's pull is dropped below). */
-    const float pitch_cmd_deg =
-        s->stalling ? -cfg->sc_pitch_cmd_limit_deg : pitch_command_deg(cfg, s);
-    const float pitch_err = ha_clampf(pitch_cmd_deg - s->x[HA_X_PITCH_DEG],
-                                      -cfg->sc_pitch_error_max_deg, cfg->sc_pitch_error_max_deg);
-    roll_pd = cfg->sc_roll_kp * roll_err - cfg->sc_roll_kd * s->x[HA_X_P_DEG_S];
-    roll_step = cfg->sc_roll_ki * roll_err * dt_s;
-    /* The wing's lift beats height and speed: past the guard's load the nose is pushed down in
-     * proportion, and the integrator may not pull against the push (HiL: pitching up to hold
-     * height in the 47 deg bank it inherited, the HA stalled the wing at 61 ft/s). */
-    const float excess_g = lift_excess_g(cfg, s);
-    pitch_pd = cfg->sc_pitch_kp * pitch_err - cfg->sc_pitch_kd * s->x[HA_X_Q_DEG_S];
-    pitch_step = cfg->sc_pitch_ki * pitch_err * dt_s;
-    if (ha_greater(excess_g, 0.0f)) {
-      pitch_pd -= cfg->sc_lift_push_deg_per_g * excess_g;
-      pitch_step = ha_greater(pitch_step, 0.0f) ? 0.0f : pitch_step;
-    }
-  }
+}
+
+/* The throttle loop's terms: the speed loop on a speed, pitch and power without one. */
+static void throttle_terms(HaSafetyCtrlState *st, const HaAircraftConfig *cfg, const HaStateView *s,
+                           int in_control, float dt_s, LoopTerms *t) {
   if (s->airborne && s->speed_known && s->attitude_ok) {
     const float speed_err = cfg->sc_target_ftps - s->ias_ftps;
-    thr_pd += cfg->sc_throttle_kp_per_ftps * speed_err;
-    thr_step = cfg->sc_throttle_ki_per_ft * speed_err * dt_s;
+    t->thr_pd += cfg->sc_throttle_kp_per_ftps * speed_err;
+    t->thr_step = cfg->sc_throttle_ki_per_ft * speed_err * dt_s;
   } else if (in_control && s->attitude_ok) {
     /* Pitch and power: the nose at the attitude that holds the speed, the power for the height.
      * Whatever the HP or a speed loop fed a lying sensor left in the integrator fades (HiL: the
      * throttle cut to 0.05 on a tailwind's speed over the ground); less power than the trim
      * would slow the aircraft at that attitude, so the band's ceiling is the pitch term's. */
-    st->throttle_integ =
-        toward_zero(st->throttle_integ, cfg->sc_blind_fade_auth_per_s * dt_s * throttle_half);
+    st->throttle_integ = toward_zero(st->throttle_integ,
+                                     cfg->sc_blind_fade_auth_per_s * dt_s * cfg->sc_throttle_half);
   }
   /* Power for height in both modes: below the band's middle, throttle_trim's margin to full in
    * proportion, full at the band's floor. With the speed known, the nose may rise only as far
@@ -166,10 +161,15 @@ void ha_safety_ctrl_step(HaSafetyCtrlState *st, const HaAircraftConfig *cfg, con
    * campaign seed 27 #4: 4 ft/s slow at throttle 0.6, pitch held at 2 deg, 158 ft lost). */
   if (s->airborne && s->attitude_ok && s->altitude_ok) {
     const float below_ft = cfg->sc_alt_mid_ft - s->x[HA_X_ALT_AGL_FT];
-    thr_pd += ha_clampf(cfg->sc_power_throttle_per_ft * below_ft, 0.0f, cfg->sc_power_throttle_max);
+    t->thr_pd +=
+        ha_clampf(cfg->sc_power_throttle_per_ft * below_ft, 0.0f, cfg->sc_power_throttle_max);
   }
-  out->aileron_deg = pid(&st->roll_integ_deg, roll_pd, roll_step, cfg->aileron_limit_deg,
-                         cfg->sc_aileron_integ_limit, in_control, applied->aileron_deg);
+}
+
+static float aileron_deg(HaSafetyCtrlState *st, const HaAircraftConfig *cfg, const HaStateView *s,
+                         const LoopTerms *t, int in_control, const HaSurfaces *applied) {
+  const float aileron = pid(&st->roll_integ_deg, t->roll_pd, t->roll_step, cfg->aileron_limit_deg,
+                            cfg->sc_aileron_integ_limit, in_control, applied->aileron_deg);
   /* Past the bank limit the integrator keeps no part that holds the bank, the one it tracked
    * from the HP or its own: the proportional term rolls the wing back at once (HiL campaign
    * seed 26 #91: the HA held the 33 deg bank it inherited for seconds, its integrator unwinding
@@ -180,30 +180,58 @@ void ha_safety_ctrl_step(HaSafetyCtrlState *st, const HaAircraftConfig *cfg, con
        (ha_greater(-cfg->sc_bank_limit_deg, s->x[HA_X_ROLL_DEG]) &&
         ha_greater(0.0f, st->roll_integ_deg)))) {
     st->roll_integ_deg = 0.0f;
-    out->aileron_deg = ha_clampf(roll_pd, -cfg->aileron_limit_deg, cfg->aileron_limit_deg);
+    return ha_clampf(t->roll_pd, -cfg->aileron_limit_deg, cfg->aileron_limit_deg);
   }
-  /* Elevator trailing edge down is positive (nose down): the loop works in nose-up degrees. */
-  nose_up_deg = pid(&st->pitch_integ_deg, pitch_pd, pitch_step, cfg->elevator_limit_deg,
-                    pitch_integ_limit, in_control, -applied->elevator_deg);
+  return aileron;
+}
+
+/* Elevator trailing edge down is positive (nose down): the loop works in nose-up degrees. */
+static float nose_up_deg(HaSafetyCtrlState *st, const HaAircraftConfig *cfg, const HaStateView *s,
+                         const LoopTerms *t, int in_control, const HaSurfaces *applied) {
+  const float pitch_integ_limit = cfg->sc_elevator_integ_limit; /* pid's and the stop's */
+  float nose_up = pid(&st->pitch_integ_deg, t->pitch_pd, t->pitch_step, cfg->elevator_limit_deg,
+                      pitch_integ_limit, in_control, -applied->elevator_deg);
   if (s->stalling && ha_greater(st->pitch_integ_deg, 0.0f)) {
     st->pitch_integ_deg = 0.0f; /* no pull held, the one it tracked from the HP or its own */
-    nose_up_deg = ha_clampf(pitch_pd, -cfg->elevator_limit_deg, cfg->elevator_limit_deg);
+    nose_up = ha_clampf(t->pitch_pd, -cfg->elevator_limit_deg, cfg->elevator_limit_deg);
   }
   /* The elevator stop: the HA's own pull never trims the wing at its stall (the generator holds
    * sc_elevator_pull_max_deg to airframe.yaml). Flying, the integrator is wound back to the stop
    * so that it does not hold a pull beyond it; tracking another controller, the surfaces it
    * inherits are the rate limiter's to ease. */
-  if (ha_greater(nose_up_deg, cfg->sc_elevator_pull_max_deg)) {
+  if (ha_greater(nose_up, cfg->sc_elevator_pull_max_deg)) {
     if (in_control) {
       st->pitch_integ_deg =
-          ha_clampf(st->pitch_integ_deg - (nose_up_deg - cfg->sc_elevator_pull_max_deg),
+          ha_clampf(st->pitch_integ_deg - (nose_up - cfg->sc_elevator_pull_max_deg),
                     -pitch_integ_limit, pitch_integ_limit);
     }
-    nose_up_deg = cfg->sc_elevator_pull_max_deg;
+    nose_up = cfg->sc_elevator_pull_max_deg;
   }
-  out->elevator_deg = -nose_up_deg;
+  return nose_up;
+}
+
+void ha_safety_ctrl_step(HaSafetyCtrlState *st, const HaAircraftConfig *cfg, const HaStateView *s,
+                         const HaSurfaces *applied, int in_control, float dt_s, HaSurfaces *out) {
+  /* What depends on the configuration alone is the generator's (sc_target_ftps and the rest). */
+  const float throttle_half = cfg->sc_throttle_half;
+  const float throttle_mid = cfg->sc_throttle_mid;
+  LoopTerms t = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
+  t.thr_pd = cfg->sc_throttle_trim_offset;
+  if (!s->attitude_ok && in_control) {
+    /* Blind: nothing to close a loop on. What the integrators hold fades to the trims. */
+    const float fade = cfg->sc_blind_fade_auth_per_s * dt_s;
+    st->roll_integ_deg = toward_zero(st->roll_integ_deg, fade * cfg->aileron_limit_deg);
+    st->pitch_integ_deg = toward_zero(st->pitch_integ_deg, fade * cfg->elevator_limit_deg);
+    st->throttle_integ = toward_zero(st->throttle_integ, fade * throttle_half);
+  }
+  if (s->attitude_ok) {
+    attitude_terms(cfg, s, dt_s, &t);
+  }
+  throttle_terms(st, cfg, s, in_control, dt_s, &t);
+  out->aileron_deg = aileron_deg(st, cfg, s, &t, in_control, applied);
+  out->elevator_deg = -nose_up_deg(st, cfg, s, &t, in_control, applied);
   /* Throttle is handled about the middle of its range so the same symmetric PID applies. */
-  out->throttle = throttle_mid + pid(&st->throttle_integ, thr_pd, thr_step, throttle_half,
+  out->throttle = throttle_mid + pid(&st->throttle_integ, t.thr_pd, t.thr_step, throttle_half,
                                      cfg->sc_throttle_integ_limit, in_control,
                                      applied->throttle - throttle_mid);
   if (!s->airborne) {
