@@ -60,18 +60,8 @@ void ha_bench_timeline_init(HaBenchTimeline *t, const HaAircraftConfig *cfg, uin
   t->cfg = cfg;
 }
 
-uint32_t ha_bench_timeline_next(HaBenchTimeline *t, HaInputs *in) {
-  const HaAircraftConfig *cfg = t->cfg;
-  const uint32_t segment = (t->period / SEGMENT_PERIODS) % SEGMENT_COUNT;
-  const uint32_t jitter_us = next_random(t) % 200u;
-  HaHpCommand cmd;
-  int send_command = 1;
-  uint32_t i;
-
-  t->now_us += cfg->period_us;
-  ++t->period;
-
-  /* Flight state: level-ish flight inside the region, above stall, below the ceiling. */
+/* Flight state: level-ish flight inside the region, above stall, below the ceiling. */
+static void fly_level(HaBenchTimeline *t, const HaAircraftConfig *cfg, HaInputs *in) {
   in->airspeed_ftps = uniform(t, cfg->stall_speed_ftps * 1.3f, cfg->stall_speed_ftps * 2.0f);
   in->roll_deg = uniform(t, -20.0f, 20.0f);
   in->pitch_deg = uniform(t, -8.0f, 8.0f);
@@ -99,45 +89,52 @@ uint32_t ha_bench_timeline_next(HaBenchTimeline *t, HaInputs *in) {
   }
   in->on_ground = 0u;
   in->state_valid = 1u;
-  in->state_rx_us = t->now_us - jitter_us;
-  in->battery_v = uniform(t, 10.0f, 12.6f);
+}
 
+/* The sticks anywhere, the pilot-in-command switch off. */
+static void rc_sticks(HaBenchTimeline *t, const HaAircraftConfig *cfg, HaInputs *in) {
+  uint32_t i;
   in->rc.valid = 1u;
   for (i = 0u; i < (uint32_t)HA_RC_CHANNELS; ++i) {
     in->rc.pulse_us[i] = rc_pulse(cfg, uniform(t, 0.0f, 1.0f));
   }
   in->rc.pulse_us[HA_RC_PIC] = (uint16_t)(cfg->pic_threshold_us - 200u);
+}
 
-  memset(&cmd, 0, sizeof cmd);
-  cmd.seq = t->seq++;
-  cmd.stamp_sec = t->now_us / 1000000u;
-  cmd.stamp_nsec = (t->now_us % 1000000u) * 1000u;
-  cmd.throttle = uniform(t, cfg->throttle_min, cfg->throttle_max);
+/* A healthy HP's command of this period, inside S_u (its CRC is added once it is final). */
+static void healthy_command(HaBenchTimeline *t, const HaAircraftConfig *cfg, HaHpCommand *cmd) {
+  memset(cmd, 0, sizeof *cmd);
+  cmd->seq = t->seq++;
+  cmd->stamp_sec = t->now_us / 1000000u;
+  cmd->stamp_nsec = (t->now_us % 1000000u) * 1000u;
+  cmd->throttle = uniform(t, cfg->throttle_min, cfg->throttle_max);
   /* No more nose-up than the pull limit: a pull past it is refused in flight (REASON_PULL) and
    * would keep the timeline's HP out of control, unmeasured. */
-  cmd.elevator_deg = uniform(t, -cfg->elevator_pull_limit_deg, cfg->elevator_limit_deg) * 0.9f;
-  cmd.aileron_deg = uniform(t, -cfg->aileron_limit_deg, cfg->aileron_limit_deg) * 0.9f;
-  cmd.rudder_deg = uniform(t, -cfg->rudder_limit_deg, cfg->rudder_limit_deg) * 0.9f;
-  cmd.alpha_est_deg = uniform(t, -2.0f, 6.0f); /* inside the stall alpha of limits.yaml */
-  cmd.beta_est_deg = uniform(t, -5.0f, 5.0f);
-  cmd.estimator_converged = 1u;
-  cmd.sensor_links_healthy = 1u;
+  cmd->elevator_deg = uniform(t, -cfg->elevator_pull_limit_deg, cfg->elevator_limit_deg) * 0.9f;
+  cmd->aileron_deg = uniform(t, -cfg->aileron_limit_deg, cfg->aileron_limit_deg) * 0.9f;
+  cmd->rudder_deg = uniform(t, -cfg->rudder_limit_deg, cfg->rudder_limit_deg) * 0.9f;
+  cmd->alpha_est_deg = uniform(t, -2.0f, 6.0f); /* inside the stall alpha of limits.yaml */
+  cmd->beta_est_deg = uniform(t, -5.0f, 5.0f);
+  cmd->estimator_converged = 1u;
+  cmd->sensor_links_healthy = 1u;
+}
 
+/* The segment's fault on this period's inputs and command; returns whether the command is sent. */
+static int apply_segment(HaBenchTimeline *t, const HaAircraftConfig *cfg, uint32_t segment,
+                         HaInputs *in, HaHpCommand *cmd) {
   switch (segment) {
     case 1u: /* HP crashed: silence */
-      send_command = 0;
-      break;
+      return 0;
     case 2u: /* late every other period */
-      send_command = (t->period % 2u) == 0u;
-      break;
+      return (t->period % 2u) == 0u;
     case 3u: /* garbage in the command and the state */
-      cmd.aileron_deg = garbage(t);
-      cmd.alpha_est_deg = garbage(t);
+      cmd->aileron_deg = garbage(t);
+      cmd->alpha_est_deg = garbage(t);
       in->roll_deg = garbage(t);
       in->airspeed_ftps = garbage(t);
       break;
     case 4u: /* command outside S_u */
-      cmd.elevator_deg = cfg->elevator_limit_deg * uniform(t, 1.01f, 3.0f);
+      cmd->elevator_deg = cfg->elevator_limit_deg * uniform(t, 1.01f, 3.0f);
       break;
     case 5u: /* stall, then above the ceiling, then outside S_x */
       in->airspeed_ftps = cfg->stall_speed_ftps * 0.8f;
@@ -148,7 +145,7 @@ uint32_t ha_bench_timeline_next(HaBenchTimeline *t, HaInputs *in) {
       }
       break;
     case 6u: /* frozen HP: the same sequence number again and again */
-      cmd.seq = 7u;
+      cmd->seq = 7u;
       break;
     case 7u: /* pilot in command, part of the time with the receiver lost */
       in->rc.pulse_us[HA_RC_PIC] = (uint16_t)(cfg->pic_threshold_us + 200u);
@@ -157,8 +154,23 @@ uint32_t ha_bench_timeline_next(HaBenchTimeline *t, HaInputs *in) {
     default: /* 0, 8, 9: healthy HP; after a fault this is the recovery to the HP */
       break;
   }
+  return 1;
+}
 
-  if (send_command) {
+uint32_t ha_bench_timeline_next(HaBenchTimeline *t, HaInputs *in) {
+  const HaAircraftConfig *cfg = t->cfg;
+  const uint32_t segment = (t->period / SEGMENT_PERIODS) % SEGMENT_COUNT;
+  const uint32_t jitter_us = next_random(t) % 200u;
+  HaHpCommand cmd;
+
+  t->now_us += cfg->period_us;
+  ++t->period;
+  fly_level(t, cfg, in);
+  in->state_rx_us = t->now_us - jitter_us;
+  in->battery_v = uniform(t, 10.0f, 12.6f);
+  rc_sticks(t, cfg, in);
+  healthy_command(t, cfg, &cmd);
+  if (apply_segment(t, cfg, segment, in, &cmd)) {
     cmd.crc32 = ha_hp_command_compute_crc(&cmd);
     if (segment == 6u && (t->period % 4u) == 0u) {
       cmd.crc32 ^= 0x00010000u; /* a corrupted frame now and then */

@@ -47,6 +47,47 @@ int vn_parse_u32(const char *s, size_t len, unsigned base, uint32_t *out) {
   return parse_u32_range(s, 0u, len, base, out);
 }
 
+/* The exponent after s[*i] == 'e': a sign and one to three digits, in [-999, 999]; moves *i
+ * past it. 0 if malformed. */
+static int read_exponent(const char *s, size_t *i, size_t len, int *exp_out) {
+  int eneg = 0;
+  int e = 0;
+  int edigits = 0;
+  size_t k = *i + 1u;
+  if (k < len && (s[k] == '+' || s[k] == '-')) {
+    eneg = s[k] == '-';
+    ++k;
+  }
+  for (; k < len && s[k] >= '0' && s[k] <= '9'; ++k) {
+    if (edigits >= 3) {
+      return 0;
+    }
+    e = e * 10 + (s[k] - '0');
+    ++edigits;
+  }
+  if (edigits == 0) {
+    return 0;
+  }
+  *exp_out = eneg ? -e : e;
+  *i = k;
+  return 1;
+}
+
+/* mant x 10^exp10, exp10 in [-340, 20]. Bounded scaling loops; dividing keeps "+010.071"
+ * exactly as close as strtod to 1 ulp. */
+static double scaled(uint64_t mant, int exp10) {
+  double v = (double)mant;
+  while (exp10 > 0) {
+    v *= 10.0;
+    --exp10;
+  }
+  while (exp10 < 0) {
+    v /= 10.0;
+    ++exp10;
+  }
+  return v;
+}
+
 static int parse_f64_range(const char *s, size_t begin, size_t len, double *out) {
   size_t i = begin;
   int neg = 0;
@@ -54,6 +95,7 @@ static int parse_f64_range(const char *s, size_t begin, size_t len, double *out)
   int mant_digits = 0;
   int exp10 = 0;
   int any_digit = 0;
+  int e = 0;
   double v;
   if (len <= begin || len - begin > 40u) {
     return 0;
@@ -92,25 +134,10 @@ static int parse_f64_range(const char *s, size_t begin, size_t len, double *out)
     return 0;
   }
   if (i < len && (s[i] == 'e' || s[i] == 'E')) {
-    int eneg = 0;
-    int e = 0;
-    int edigits = 0;
-    ++i;
-    if (i < len && (s[i] == '+' || s[i] == '-')) {
-      eneg = s[i] == '-';
-      ++i;
-    }
-    for (; i < len && s[i] >= '0' && s[i] <= '9'; ++i) {
-      if (edigits >= 3) {
-        return 0;
-      }
-      e = e * 10 + (s[i] - '0');
-      ++edigits;
-    }
-    if (edigits == 0) {
+    if (!read_exponent(s, &i, len, &e)) {
       return 0;
     }
-    exp10 += eneg ? -e : e;
+    exp10 += e;
   }
   if (i != len) {
     return 0;
@@ -120,16 +147,7 @@ static int parse_f64_range(const char *s, size_t begin, size_t len, double *out)
   if (exp10 > 20 || exp10 < -340) {
     return 0;
   }
-  v = (double)mant;
-  /* Bounded scaling loops; dividing keeps "+010.071" exactly as close as strtod to 1 ulp. */
-  while (exp10 > 0) {
-    v *= 10.0;
-    --exp10;
-  }
-  while (exp10 < 0) {
-    v /= 10.0;
-    ++exp10;
-  }
+  v = scaled(mant, exp10);
   *out = neg ? -v : v;
   return 1;
 }

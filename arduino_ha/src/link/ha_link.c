@@ -105,8 +105,73 @@ void ha_link_command_from_msg(const drone_ros_ServoCommand *msg, HaHpCommand *cm
   cmd->crc32 = msg->crc32;
 }
 
-static void dispatch(HaLink *link, const HaLinkFrame *frame, uint32_t now_us) {
+/* One handler per topic the device takes; each counts what it cannot take as a bad payload. */
+static void on_time_frame(HaLink *link, const HaLinkFrame *frame, uint32_t now_us) {
   size_t used = 0u;
+  std_msgs_Time t;
+  memset(&t, 0, sizeof t); /* every local starts defined: EVA then needs no path reasoning */
+  if (std_msgs_Time_deserialize(&t, frame->payload, frame->payload_len, &used) &&
+      (used == frame->payload_len) && (t.data.nsec < 1000000000u)) {
+    apply_time(link, &t, now_us);
+  } else {
+    link->counters.bad_payload++;
+  }
+}
+
+static void on_param_frame(HaLink *link, const HaLinkFrame *frame) {
+  size_t used = 0u;
+  rosserial_msgs_RequestParamResponse reply;
+  memset(&reply, 0, sizeof reply);
+  if (rosserial_msgs_RequestParamResponse_deserialize(&reply, frame->payload, frame->payload_len,
+                                                      &used) &&
+      (used == frame->payload_len)) {
+    link->counters.param_replies++;
+    if (link->cb.on_param != NULL) {
+      link->cb.on_param(link->cb.ctx, &reply);
+    }
+  } else {
+    link->counters.bad_payload++;
+  }
+}
+
+static void on_servo_op_frame(HaLink *link, const HaLinkFrame *frame, uint32_t now_us) {
+  size_t used = 0u;
+  drone_ros_ServoCommand msg;
+  HaHpCommand cmd;
+  memset(&msg, 0, sizeof msg);
+  memset(&cmd, 0, sizeof cmd);
+  if (drone_ros_ServoCommand_deserialize(&msg, frame->payload, frame->payload_len, &used) &&
+      (used == frame->payload_len)) {
+    ha_link_command_from_msg(&msg, &cmd);
+    link->counters.commands++;
+    if (link->cb.on_command != NULL) {
+      link->cb.on_command(link->cb.ctx, &cmd, now_us);
+    }
+  } else {
+    link->counters.bad_payload++;
+  }
+}
+
+static void on_operator_frame(HaLink *link, const HaLinkFrame *frame, uint32_t now_us) {
+  size_t used = 0u;
+  drone_ros_OperatorCommand msg;
+  memset(&msg, 0, sizeof msg);
+  if (!drone_ros_OperatorCommand_deserialize(&msg, frame->payload, frame->payload_len, &used) ||
+      (used != frame->payload_len) || (frame->payload_len != HA_OPERATOR_COMMAND_FIELDS_LEN + 4u)) {
+    link->counters.bad_payload++;
+  } else if (ha_crc32(frame->payload, HA_OPERATOR_COMMAND_FIELDS_LEN) != msg.crc32) {
+    /* rosserial's 8-bit sum misses a +1/-1 byte pair: SELECT_HA read as SELECT_HP, a home
+     * moved by hundreds of metres. A request is acted on only whole, as its sender made it. */
+    link->counters.operator_bad_crc++;
+  } else {
+    link->counters.operator_commands++;
+    if (link->cb.on_operator != NULL) {
+      link->cb.on_operator(link->cb.ctx, &msg, now_us);
+    }
+  }
+}
+
+static void dispatch(HaLink *link, const HaLinkFrame *frame, uint32_t now_us) {
   if (frame->payload_len > HA_LINK_MAX_PAYLOAD) {
     /* The decoder never delivers this; the check makes the bound local, for EVA and readers. */
     link->counters.bad_payload++;
@@ -120,72 +185,22 @@ static void dispatch(HaLink *link, const HaLinkFrame *frame, uint32_t now_us) {
         link->counters.bad_payload++;
       }
       break;
-    case TOPIC_ID_TIME: {
-      std_msgs_Time t;
-      memset(&t, 0, sizeof t); /* every local starts defined: EVA then needs no path reasoning */
-      if (std_msgs_Time_deserialize(&t, frame->payload, frame->payload_len, &used) &&
-          (used == frame->payload_len) && (t.data.nsec < 1000000000u)) {
-        apply_time(link, &t, now_us);
-      } else {
-        link->counters.bad_payload++;
-      }
+    case TOPIC_ID_TIME:
+      on_time_frame(link, frame, now_us);
       break;
-    }
     case TOPIC_ID_TX_STOP:
       link->configured = false;
       link->counters.tx_stops++;
       break;
-    case TOPIC_ID_PARAMETER_REQUEST: {
-      rosserial_msgs_RequestParamResponse reply;
-      memset(&reply, 0, sizeof reply);
-      if (rosserial_msgs_RequestParamResponse_deserialize(&reply, frame->payload,
-                                                          frame->payload_len, &used) &&
-          (used == frame->payload_len)) {
-        link->counters.param_replies++;
-        if (link->cb.on_param != NULL) {
-          link->cb.on_param(link->cb.ctx, &reply);
-        }
-      } else {
-        link->counters.bad_payload++;
-      }
+    case TOPIC_ID_PARAMETER_REQUEST:
+      on_param_frame(link, frame);
       break;
-    }
-    case HA_LINK_TOPIC_SERVO_OP: {
-      drone_ros_ServoCommand msg;
-      HaHpCommand cmd;
-      memset(&msg, 0, sizeof msg);
-      memset(&cmd, 0, sizeof cmd);
-      if (drone_ros_ServoCommand_deserialize(&msg, frame->payload, frame->payload_len, &used) &&
-          (used == frame->payload_len)) {
-        ha_link_command_from_msg(&msg, &cmd);
-        link->counters.commands++;
-        if (link->cb.on_command != NULL) {
-          link->cb.on_command(link->cb.ctx, &cmd, now_us);
-        }
-      } else {
-        link->counters.bad_payload++;
-      }
+    case HA_LINK_TOPIC_SERVO_OP:
+      on_servo_op_frame(link, frame, now_us);
       break;
-    }
-    case HA_LINK_TOPIC_OPERATOR_COMMAND: {
-      drone_ros_OperatorCommand msg;
-      memset(&msg, 0, sizeof msg);
-      if (!drone_ros_OperatorCommand_deserialize(&msg, frame->payload, frame->payload_len, &used) ||
-          (used != frame->payload_len) ||
-          (frame->payload_len != HA_OPERATOR_COMMAND_FIELDS_LEN + 4u)) {
-        link->counters.bad_payload++;
-      } else if (ha_crc32(frame->payload, HA_OPERATOR_COMMAND_FIELDS_LEN) != msg.crc32) {
-        /* rosserial's 8-bit sum misses a +1/-1 byte pair: SELECT_HA read as SELECT_HP, a home
-         * moved by hundreds of metres. A request is acted on only whole, as its sender made it. */
-        link->counters.operator_bad_crc++;
-      } else {
-        link->counters.operator_commands++;
-        if (link->cb.on_operator != NULL) {
-          link->cb.on_operator(link->cb.ctx, &msg, now_us);
-        }
-      }
+    case HA_LINK_TOPIC_OPERATOR_COMMAND:
+      on_operator_frame(link, frame, now_us);
       break;
-    }
     default:
       link->counters.unknown_topic++;
       break;
