@@ -20,7 +20,6 @@ RecordBridge; the loop pass's time is in microseconds on the Due). SIGINT/SIGTER
 simulator closing the socket, end it."""
 import argparse
 import os
-import signal
 import sys
 import termios
 import time
@@ -64,16 +63,10 @@ def main(argv=None):
     if not args.realtime:
         print("ha_due: a Due keeps its own clock: it flies in real time only (--realtime)", file=sys.stderr)
         return 2
-    if abs(args.rate_hz - 100.0) > 1e-6:
-        print("ha_due: the image runs the aircraft's period; --rate-hz %g is not it" % args.rate_hz,
-              file=sys.stderr)
-        return 2
-    stop = {"now": False}
-
-    def on_signal(_sig, _frame):
-        stop["now"] = True
-    signal.signal(signal.SIGINT, on_signal)
-    signal.signal(signal.SIGTERM, on_signal)
+    refused = record_bridge.board_period_refused("ha_due", args.rate_hz)
+    if refused is not None:
+        return refused
+    stop = record_bridge.stop_on_signals()
     missing = wait_for_paths([args.native, args.ins, args.vn200], stop, 30.0)
     if missing is not None:
         print("ha_due: no device at %s" % missing, file=sys.stderr)

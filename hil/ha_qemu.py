@@ -27,7 +27,6 @@ import argparse
 import os
 import select
 import shutil
-import signal
 import socket
 import struct
 import subprocess
@@ -235,16 +234,10 @@ def main(argv=None):
               "PIL_CFLAGS=-DPIL_REALTIME=1, as run_flight.py --ha qemu --realtime does), not %s" % args.image,
               file=sys.stderr)
         return 2
-    if abs(args.rate_hz - 100.0) > 1e-6:
-        print("ha_qemu: the image runs the aircraft's period; --rate-hz %g is not it" % args.rate_hz,
-              file=sys.stderr)
-        return 2
-    stop = {"now": False}
-
-    def on_signal(_sig, _frame):
-        stop["now"] = True
-    signal.signal(signal.SIGINT, on_signal)
-    signal.signal(signal.SIGTERM, on_signal)
+    refused = record_bridge.board_period_refused("ha_qemu", args.rate_hz)
+    if refused is not None:
+        return refused
+    stop = record_bridge.stop_on_signals()
     if not wait_for(args.vn200, stop):
         print("ha_qemu: no VN-200 port at %s" % args.vn200, file=sys.stderr)
         return 1

@@ -5,6 +5,7 @@ board's ticks put on the host's clock (HaClock), and the bridge that carries the
 The simulator's side is its control socket (ha_channel), which ha_sil --realtime serves itself."""
 import os
 import select
+import signal
 import socket
 import struct
 import sys
@@ -170,6 +171,28 @@ class RecordBridge:
         if self.log:
             self.log.write("%d %d %d %d %d %d %d\n" % (due_us, host_us, dropped, ticks, tx_dropped, rx_dropped,
                                                        self.ins_dropped))
+
+
+def board_period_refused(name, rate_hz):
+    """The board's image runs the aircraft's period (100 Hz): for another rate, says so on stderr
+    and returns the exit code 2; None for the period itself."""
+    if abs(rate_hz - 100.0) > 1e-6:
+        print("%s: the image runs the aircraft's period; --rate-hz %g is not it" % (name, rate_hz),
+              file=sys.stderr)
+        return 2
+    return None
+
+
+def stop_on_signals():
+    """A flag, {"now": bool}, that SIGINT and SIGTERM (roslaunch's stop) set: the loops that
+    wait for the board or carry its records end at the next look."""
+    stop = {"now": False}
+
+    def on_signal(_sig, _frame):
+        stop["now"] = True
+    signal.signal(signal.SIGINT, on_signal)
+    signal.signal(signal.SIGTERM, on_signal)
+    return stop
 
 
 def wait_for(path, stop, timeout_s=30.0):

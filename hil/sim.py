@@ -604,31 +604,11 @@ class Simulation:
         tm.lap("scenario")
         self.emit_sensors(t_s)
         tm.lap("sensors")
-        for key, topic, expected in (("vn", "/vn200/temperature", self.hp_packets),
-                                     ("status", "/decision_status", self.status_expected),
-                                     ("pwm", "/pwm", self.status_expected),
-                                     ("home", "/home", self.home_expected)):
-            was_silent = self.waiter.silent(key)
-            lost = self.waiter.wait_published(key, expected, self.wait_s)
-            if lost and not was_silent:
-                self.event(t_s, "%s late: %s %d of %d within %.1f s; %d counted as lost, not waited for again, "
-                           "nor the node until it publishes" %
-                           ("vn200 node" if key == "vn" else "arduino node", topic, self.waiter.count(key),
-                            expected, self.wait_s, lost))
+        self.wait_hp_inputs(t_s)
         tm.lap("wait_hp_inputs")
         expect_command = self.controller_steps_at(t_us) and self.hp_alive
         want = self.waiter.count("servo_op") + 1  # counted before the clock moves: it may answer at once
-        clock = rospy.Time(t_us // 1000000, (t_us % 1000000) * 1000)
-        self.clock_pub.publish(Clock(clock=clock))
-        # What this node has seen published since its last step, for the controller to wait for:
-        # each VN-200 packet is one message on each of its five topics, each HA report one
-        # /decision_status and one /pwm; home and the plan as they went out.
-        now = self.delivered()
-        packets, reports, homes, ways = (n - d for n, d in zip(now, self.declared))
-        self.declared = now
-        self.lockstep_pub.publish(LockstepStep(clock=clock, ins=packets, attitude=packets, gps_position=packets,
-                                               gps_velocity=packets, imu_pqr_acceleration=packets,
-                                               pwm=reports, decision_status=reports, home=homes, way=ways))
+        self.publish_step(t_us)
         cmd_seq = None
         msg = None
         if expect_command:
@@ -678,6 +658,35 @@ class Simulation:
             self.await_restart(t_s)
         tm.lap("restart")
         return reply
+
+    def wait_hp_inputs(self, t_s):
+        """Until the vn200 node has published this step's packets and the arduino node the HA's
+        last report (and home when it is due): what the step will declare to the controller."""
+        for key, topic, expected in (("vn", "/vn200/temperature", self.hp_packets),
+                                     ("status", "/decision_status", self.status_expected),
+                                     ("pwm", "/pwm", self.status_expected),
+                                     ("home", "/home", self.home_expected)):
+            was_silent = self.waiter.silent(key)
+            lost = self.waiter.wait_published(key, expected, self.wait_s)
+            if lost and not was_silent:
+                self.event(t_s, "%s late: %s %d of %d within %.1f s; %d counted as lost, not waited for again, "
+                           "nor the node until it publishes" %
+                           ("vn200 node" if key == "vn" else "arduino node", topic, self.waiter.count(key),
+                            expected, self.wait_s, lost))
+
+    def publish_step(self, t_us):
+        """/clock moves to t_us, and /hil/lockstep declares the step: what this node has seen
+        published since its last step, for the controller to wait for. Each VN-200 packet is one
+        message on each of its five topics, each HA report one /decision_status and one /pwm;
+        home and the plan as they went out."""
+        clock = rospy.Time(t_us // 1000000, (t_us % 1000000) * 1000)
+        self.clock_pub.publish(Clock(clock=clock))
+        now = self.delivered()
+        packets, reports, homes, ways = (n - d for n, d in zip(now, self.declared))
+        self.declared = now
+        self.lockstep_pub.publish(LockstepStep(clock=clock, ins=packets, attitude=packets, gps_position=packets,
+                                               gps_velocity=packets, imu_pqr_acceleration=packets,
+                                               pwm=reports, decision_status=reports, home=homes, way=ways))
 
     def step_realtime(self, k):
         """Real time: nobody is waited for; the SIL runs its own periods on the wall clock and the
