@@ -33,7 +33,7 @@ from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 from drone_ros.msg import DecisionStatus
 
 # node_query.py lies beside this file (the devel space runs it from the source folder).
-from supervisor_core.node_query import ask_pid, node_uri  # noqa: E402
+from supervisor_core.node_query import ThreadMasters, ask_pid, node_uri  # noqa: E402
 
 
 def local(uri):
@@ -63,7 +63,7 @@ class Supervisor:
         self.type = rospy.get_param("~type", "controller_DG808")
         self.kill_grace_s = float(rospy.get_param("~kill_grace_s", 1.0))
         self.boot_delay_s = float(rospy.get_param("~boot_delay_s", 0.0))
-        self.master = rosgraph.Master(rospy.get_name())
+        self.masters = ThreadMasters(rospy.get_name())  # the learner's and each restart's own
         self.children = []
         self.requested = False
         self.busy = threading.Lock()
@@ -105,7 +105,7 @@ class Supervisor:
     def learn_pids(self):
         """Remembers the node's PID while it answers: a hung node cannot be asked."""
         while not rospy.is_shutdown():
-            uri = node_uri(self.master, self.node)
+            uri = node_uri(self.masters.get(), self.node)
             if uri is not None and uri != self.known[0] and local(uri):
                 pid = ask_pid(uri, rospy.get_name())
                 if pid is not None:
@@ -113,7 +113,7 @@ class Supervisor:
             time.sleep(0.2)
 
     def find_pid(self):
-        uri = node_uri(self.master, self.node)
+        uri = node_uri(self.masters.get(), self.node)
         if uri is None:
             return None
         if not local(uri):
@@ -171,6 +171,9 @@ class Supervisor:
                 self.start_new()
         except rospy.ROSInterruptException:
             pass
+        except Exception as e:  # noqa: BLE001  a restart that dies unseen leaves the HA flying on
+            rospy.logerr("hp_supervisor: restarting %s failed: %s", self.node, e)
+            self.failure = "restart failed: %s" % e
         finally:
             self.busy.release()
 

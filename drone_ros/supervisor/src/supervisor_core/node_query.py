@@ -2,6 +2,8 @@
 a deadline: a hung node accepts the connection and never answers. hp_supervisor.py finds the
 controller's process this way, and so does the HiL simulator (hil/sim.py), which also asks a node
 which topics it is connected on."""
+import http.client
+import threading
 import xmlrpc.client
 
 import rosgraph
@@ -20,11 +22,30 @@ class TimeoutTransport(xmlrpc.client.Transport):
         return conn
 
 
+class ThreadMasters:
+    """The master's API, one connection per thread. xmlrpc.client keeps one HTTP connection per
+    proxy and is not thread-safe: the supervisor's PID learner and a restart asking through one
+    proxy at the same moment failed the restart with http.client.CannotSendRequest (HiL: the
+    request lost, the HA flying 15 s more until it asked again)."""
+
+    def __init__(self, caller_id, master_uri=None):
+        self.caller_id, self.master_uri = caller_id, master_uri
+        self.local = threading.local()
+
+    def get(self):
+        """This thread's rosgraph.Master."""
+        master = getattr(self.local, "master", None)
+        if master is None:
+            master = self.local.master = rosgraph.Master(self.caller_id, master_uri=self.master_uri)
+        return master
+
+
 def node_uri(master, name):
-    """The node's XML-RPC URI, or None (not registered, or the master gone)."""
+    """The node's XML-RPC URI, or None (not registered, the master gone, or its answer broken
+    off)."""
     try:
         return master.lookupNode(name)
-    except (rosgraph.MasterException, OSError, xmlrpc.client.Error):
+    except (rosgraph.MasterException, OSError, xmlrpc.client.Error, http.client.HTTPException):
         return None
 
 
@@ -38,7 +59,7 @@ def _call(uri, method, caller_id, timeout_s):
     refused; hung: no answer; or a failure code)."""
     try:
         code, _, value = getattr(node_api(uri, timeout_s), method)(caller_id)
-    except (OSError, xmlrpc.client.Error):
+    except (OSError, xmlrpc.client.Error, http.client.HTTPException):
         return None
     return value if code == 1 else None
 
