@@ -654,8 +654,14 @@ class Simulation:
         self.publish_truth(t_us, tr, reply, cmd_seq)
         tm.lap("truth")
         if reply.flags & ha_channel.R_RESTART_REQUESTED:
-            self.event(t_s, "HA requests an HP restart (restart %d)" % reply.restart_count)
-            self.await_restart(t_s)
+            if reply.flags & ha_channel.R_LINK_CONNECTED:
+                self.event(t_s, "HA requests an HP restart (restart %d)" % reply.restart_count)
+                self.await_restart(t_s)
+            else:
+                # Over a link that is down (an HA just reset, its topics not yet negotiated
+                # again) the request reaches no hp_supervisor: nothing to wait for.
+                self.event(t_s, "HA requests an HP restart (restart %d) with its link down: no one on the HP "
+                           "hears it, so none is waited for" % reply.restart_count)
         tm.lap("restart")
         return reply
 

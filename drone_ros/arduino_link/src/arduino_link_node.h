@@ -91,6 +91,7 @@ class ArduinoLinkNode {
   bool link_up_ = false;
   bool negotiated_ = false;
   ros::WallTime last_rx_;
+  ros::Time last_rx_ros_;
   ros::WallTime last_open_attempt_;
   ros::WallTime last_topic_request_;
   ros::WallTime lost_since_;
