@@ -63,8 +63,7 @@ void ArduinoLinkNode::run() {
         frames.clear();
         framer_.feed(buf.data(), got, at.toSec(), &frames);
         for (const Frame &f : frames) {
-          last_rx_ = at;
-          last_rx_ros_ = ros::Time::now();
+          last_rx_ = ros::Time::now();
           handle_frame(f);
         }
         if (!link_up_ && (at - last_topic_request_).toSec() >= params_.topic_request_period_s) {
@@ -99,8 +98,7 @@ void ArduinoLinkNode::try_open(const ros::WallTime &now) {
   ROS_INFO("arduino: opened %s at %d baud, requesting topics", params_.port.c_str(), params_.baud);
   framer_.reset();
   negotiated_ = false;
-  last_rx_ = now;
-  last_rx_ros_ = ros::Time::now();
+  last_rx_ = ros::Time::now();
   last_topic_request_ = now;
   (void)send_raw(topic_request_frame());
 }
@@ -412,7 +410,7 @@ bool ArduinoLinkNode::send_raw(const std::vector<uint8_t> &bytes) {
 void ArduinoLinkNode::update_link_state(const ros::WallTime &now) {
   framer_.poll(now.toSec());
   const bool up = port_.is_open() && negotiated_ &&
-                  (ros::Time::now() - last_rx_ros_).toSec() < params_.link_timeout_s;
+                  (ros::Time::now() - last_rx_).toSec() < params_.link_timeout_s;
   if (up && !link_up_) {
     last_gap_s_ = (now - lost_since_).toSec();
     ROS_INFO("arduino: HA link up (gap %.3f s)", last_gap_s_);

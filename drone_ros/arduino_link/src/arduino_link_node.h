@@ -90,8 +90,8 @@ class ArduinoLinkNode {
 
   bool link_up_ = false;
   bool negotiated_ = false;
-  ros::WallTime last_rx_;
-  ros::Time last_rx_ros_;
+  // ROS time: the wall clock in flight; in lockstep it stands while the simulator holds time.
+  ros::Time last_rx_;
   ros::WallTime last_open_attempt_;
   ros::WallTime last_topic_request_;
   ros::WallTime lost_since_;
