@@ -12,6 +12,7 @@ import io
 import json
 import sys
 import threading
+import time
 import zlib
 
 import rospy
@@ -67,6 +68,7 @@ def main():
                    rospy.Subscriber("/operator_command", OperatorCommand, on_command),
                    rospy.Subscriber("/diagnostics", DiagnosticArray, on_diagnostics)]
     connected = False
+    last_waiting_s = 0.0
 
     def read_stdin():
         for line in sys.stdin:
@@ -99,10 +101,14 @@ def main():
         # Tell the test once microhard_gs's publishers reach us (earlier messages would be lost),
         # and once it is gone: /way and /operator_command are its alone (a test that restarts
         # the node waits for both).
-        if not connected and all(sub.get_num_connections() > 0 for sub in subscribers) and \
-                data_pub.get_num_connections() > 0 and decision_pub.get_num_connections() > 0:
+        missing = [t.name for t in subscribers + [data_pub, decision_pub] if t.get_num_connections() == 0]
+        if not connected and not missing:
             connected = True
             emit({"topic": "connected"})
+        elif not connected and time.monotonic() - last_waiting_s >= 5.0:
+            # For a test that gives up waiting: which of microhard_gs's ends never reached us.
+            last_waiting_s = time.monotonic()
+            emit({"topic": "waiting", "missing": missing})
         elif connected and all(sub.get_num_connections() == 0 for sub in subscribers[:2]):
             connected = False
             emit({"topic": "disconnected"})

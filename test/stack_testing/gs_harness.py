@@ -60,6 +60,18 @@ def stop_process_groups(procs):
             p.wait(timeout=5)
 
 
+def _state(proc):
+    return "running" if proc.poll() is None else "ended with %s" % proc.returncode
+
+
+def _tail(path, lines=30):
+    try:
+        with open(path, "rb") as f:
+            return b"".join(f.readlines()[-lines:]).decode(errors="replace")
+    except OSError as e:
+        return "(unreadable: %s)" % e
+
+
 class LossyRelay:
     """Forwards datagrams between the GCS and the node, dropping a fraction each way."""
 
@@ -169,8 +181,23 @@ class GsSystem:
         args.update(launch_args or {})
         self.launch = self._start(["roslaunch", "drone_ros", "microhard_gs.launch"] +
                                   ["%s:=%s" % kv for kv in args.items()])
-        if self.wait_event(lambda e: e["topic"] == "connected", 60) is None:
-            raise RuntimeError("microhard_gs and the probe never connected on ROS")
+        waiting = {"missing": "no report from the probe"}
+        deadline = time.time() + 60
+        while time.time() < deadline and self.launch.poll() is None and self.probe.poll() is None:
+            event = self.wait_event(lambda e: e["topic"] in ("connected", "waiting"), 1.0)
+            if event is not None and event["topic"] == "connected":
+                return
+            waiting = event or waiting
+        raise RuntimeError("microhard_gs and the probe never connected on ROS: %s" % self._why_not_connected(waiting))
+
+    def _why_not_connected(self, waiting):
+        """What a test that gave up on the connection reports: which process ended, which of the
+        node's topics never reached the probe, and the last lines each of them logged."""
+        parts = ["roslaunch %s, probe %s; the probe still missed %s" % (
+            _state(self.launch), _state(self.probe), waiting["missing"])]
+        for p in (self.launch, self.probe):
+            parts.append("--- last lines of %s:\n%s" % (p.log_path, _tail(p.log_path)))
+        return "\n".join(parts)
 
     def stop_node(self):
         """Stops the launch start_node made, and waits until the probe has lost it: every event
@@ -183,9 +210,12 @@ class GsSystem:
 
     def _start(self, cmd, **kw):
         os.makedirs(self.env["ROS_LOG_DIR"], exist_ok=True)
-        log = open(os.path.join(self.env["ROS_LOG_DIR"], "%s-%d.log" % (os.path.basename(cmd[-1] if cmd[0] == ROS_PYTHON else cmd[0]), self.master_port)), "ab")
+        name = os.path.basename(cmd[1] if cmd[0] == ROS_PYTHON else cmd[0])
+        log_path = os.path.join(self.env["ROS_LOG_DIR"], "%s-%d.log" % (name, self.master_port))
+        log = open(log_path, "ab")
         kw.setdefault("stdout", log)
         p = subprocess.Popen(cmd, env=self.env, start_new_session=True, stderr=log, **kw)
+        p.log_path = log_path
         log.close()
         self.procs.append(p)
         return p
