@@ -136,9 +136,9 @@ class GsSystem:
             if relay_loss is not None:
                 self.relay = LossyRelay(self.node_port, self.gcs_port, relay_loss)
                 remote_port = self.relay.port
-            self._start(["rosmaster", "--core", "-p", str(self.master_port)])
+            master = self._start(["rosmaster", "--core", "-p", str(self.master_port)])
             self.master = rosgraph.Master("/gs_harness", master_uri=self.env["ROS_MASTER_URI"])
-            self._wait_for_master()
+            self._wait_for_master(master)
             # As `rosparam load FILE NS` does it (rosparam's own reader, then one set per key),
             # in this process rather than two more interpreters.
             self._load_params(os.path.join(AIRCRAFT_DIR, "controller_param.yaml"), CONTROLLER_NS)
@@ -220,15 +220,19 @@ class GsSystem:
         self.procs.append(p)
         return p
 
-    def _wait_for_master(self):
+    def _wait_for_master(self, proc):
         deadline = time.time() + 20
-        while time.time() < deadline:
+        while time.time() < deadline and proc.poll() is None:
             try:
-                self.master.getPid()
-                return
+                pid = self.master.getPid()
             except OSError:
                 time.sleep(0.05)
-        raise RuntimeError("rosmaster did not start")
+                continue
+            if pid != proc.pid:  # our pick of a free port was another test's pick too
+                raise RuntimeError("port %d answers as the master of pid %d, not ours (%d)" %
+                                   (self.master_port, pid, proc.pid))
+            return
+        raise RuntimeError("rosmaster did not start (%s):\n%s" % (_state(proc), _tail(proc.log_path)))
 
     def _load_params(self, path, namespace):
         for params, ns in rosparam.load_file(path, default_namespace=namespace):
