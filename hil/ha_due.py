@@ -9,7 +9,10 @@ adapter wired to the Due's RX1, as the sensor's port 1 feeds Serial1 in flight. 
 not here: the `arduino` node opens the Due's programming port itself.
 
     ha_due.py --native /dev/ttyACM1 --ins /dev/ttyUSB0 --vn200 PATH --lockstep SOCKET --realtime
-              [--record-log FILE]
+              --aircraft-dir aircraft/DG808 [--record-log FILE]
+
+--aircraft-dir names the aircraft the Due's image was built for: its period (limits.yaml's
+decision.rate_hz) is the only --rate-hz the image runs.
 
 The records travel framed as the QEMU board's UART2 takes them (record_bridge.frame: A5 5A, length,
 record, CRC-32); a reply frame that fails its CRC is counted and dropped here. Real time only: the
@@ -57,13 +60,14 @@ def main(argv=None):
     ap.add_argument("--vn200", required=True, help="the simulator's VN-200 port 1 (a pty)")
     ap.add_argument("--lockstep", required=True, help="the simulator's control socket")
     ap.add_argument("--realtime", action="store_true")
-    ap.add_argument("--rate-hz", type=float, default=100.0)
+    ap.add_argument("--rate-hz", type=float, default=None, help="the aircraft's (the only one the image runs)")
+    ap.add_argument("--aircraft-dir", required=True, help="the aircraft folder the image was built from")
     ap.add_argument("--record-log", default=None)
     args, _ = ap.parse_known_args(argv)  # roslaunch's __name:= and __log:=
     if not args.realtime:
         print("ha_due: a Due keeps its own clock: it flies in real time only (--realtime)", file=sys.stderr)
         return 2
-    refused = record_bridge.board_period_refused("ha_due", args.rate_hz)
+    refused = record_bridge.board_period_refused("ha_due", args.rate_hz, args.aircraft_dir)
     if refused is not None:
         return refused
     stop = record_bridge.stop_on_signals()

@@ -2,11 +2,11 @@
 """The HA as Cortex-M3 machine code in the loop (processor in the loop): QEMU's mps2-an385 running
 the firmware image of arduino_ha/pil (make pil-image), in place of the host SIL (ha_sil).
 
-    ha_qemu.py --port PATH --vn200 PATH --lockstep SOCKET [--rate-hz 100] [--image ELF]
-               [--icount] [--record-log FILE]
+    ha_qemu.py --port PATH --vn200 PATH --lockstep SOCKET --aircraft-dir aircraft/DG808
+               [--rate-hz 100] [--image ELF] [--icount] [--record-log FILE]
 
-takes ha_sil's arguments, so the launch file starts either. QEMU's UART0 is the HP link: a pty
-this process serves for it (QemuBoard says why not QEMU's own) is published under --port (a
+takes ha_sil's arguments and the aircraft whose period the image runs, so the launch file starts
+either. QEMU's UART0 is the HP link: a pty this process serves for it (QemuBoard says why not QEMU's own) is published under --port (a
 symlink, like /dev/ttyACM0) for the real `arduino` node. UART1 is the VN-200's port 1: QEMU opens
 the simulator's pty (--vn200) itself. UART2 carries the simulator's control records (arduino_ha/src/hil/ha_sil_channel.h) framed with a length and a CRC-32
 (arduino_ha/src/hil/pil_frame.h); this process connects to the simulator's control socket as ha_sil
@@ -221,7 +221,8 @@ def main(argv=None):
     ap.add_argument("--port", required=True)
     ap.add_argument("--vn200", required=True)
     ap.add_argument("--lockstep", required=True)
-    ap.add_argument("--rate-hz", type=float, default=100.0)
+    ap.add_argument("--rate-hz", type=float, default=None, help="the aircraft's (the only one the image runs)")
+    ap.add_argument("--aircraft-dir", required=True, help="the aircraft folder the image was built from")
     ap.add_argument("--realtime", action="store_true")
     ap.add_argument("--image", default=DEFAULT_IMAGE, help="the PIL image ('default': %s)" % DEFAULT_IMAGE)
     ap.add_argument("--icount", action="store_true")
@@ -234,7 +235,7 @@ def main(argv=None):
               "PIL_CFLAGS=-DPIL_REALTIME=1, as run_flight.py --ha qemu --realtime does), not %s" % args.image,
               file=sys.stderr)
         return 2
-    refused = record_bridge.board_period_refused("ha_qemu", args.rate_hz)
+    refused = record_bridge.board_period_refused("ha_qemu", args.rate_hz, args.aircraft_dir)
     if refused is not None:
         return refused
     stop = record_bridge.stop_on_signals()

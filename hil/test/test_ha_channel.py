@@ -41,7 +41,8 @@ def rig(request):
         argv = [ha_sil_path()] + args
     else:
         argv = [sys.executable, os.path.join(ROOT, "hil", "ha_qemu.py"), "--image",
-                request.getfixturevalue("pil_image")] + args
+                request.getfixturevalue("pil_image"), "--aircraft-dir",
+                os.path.join(ROOT, "aircraft", "DG808")] + args
     proc = subprocess.Popen(argv, stderr=subprocess.PIPE)
     assert chan.accept(20.0), "the HA (%s) did not connect to the control channel" % request.param
     yield chan, vn, proc

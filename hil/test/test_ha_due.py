@@ -11,6 +11,9 @@ import threading
 import time
 
 from hil import ha_channel, ha_due, ptys, record_bridge
+from stack_tools.paths import ROOT
+
+DG808 = os.path.join(ROOT, "aircraft", "DG808")  # whose period (100 Hz) the image runs
 
 
 def test_the_due_clock_dates_ticks_within_the_least_latency_through_drift_and_wrap():
@@ -149,4 +152,10 @@ def test_the_vn200s_bytes_reach_rx1_unchanged_and_the_simulator_closing_ends_the
 
 def test_lockstep_is_refused_with_the_reason():
     assert ha_due.main(["--native", "/nonexistent", "--ins", "/nonexistent", "--vn200", "/nonexistent",
-                        "--lockstep", "/nonexistent"]) == 2
+                        "--lockstep", "/nonexistent", "--aircraft-dir", DG808]) == 2
+
+
+def test_a_rate_other_than_the_aircrafts_period_is_refused_with_it(capsys):
+    assert ha_due.main(["--native", "/nonexistent", "--ins", "/nonexistent", "--vn200", "/nonexistent",
+                        "--lockstep", "/nonexistent", "--aircraft-dir", DG808, "--realtime", "--rate-hz", "50"]) == 2
+    assert "the image runs the aircraft's period (100 Hz" in capsys.readouterr().err
