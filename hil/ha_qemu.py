@@ -6,8 +6,8 @@ the firmware image of arduino_ha/pil (make pil-image), in place of the host SIL 
                [--rate-hz 100] [--image ELF] [--icount] [--record-log FILE]
 
 takes ha_sil's arguments and the aircraft whose period the image runs, so the launch file starts
-either. QEMU's UART0 is the HP link: a pty this process serves for it (QemuBoard says why not QEMU's own) is published under --port (a
-symlink, like /dev/ttyACM0) for the real `arduino` node. UART1 is the VN-200's port 1: QEMU opens
+either. QEMU's UART0 is the HP link: a pty this process serves for it (QemuBoard says why not
+QEMU's own) is published under --port (a symlink, like /dev/ttyACM0) for the real `arduino` node. UART1 is the VN-200's port 1: QEMU opens
 the simulator's pty (--vn200) itself. UART2 carries the simulator's control records (arduino_ha/src/hil/ha_sil_channel.h) framed with a length and a CRC-32
 (arduino_ha/src/hil/pil_frame.h); this process connects to the simulator's control socket as ha_sil
 does and carries each record to the board and its reply back, without the reply's trailer (the

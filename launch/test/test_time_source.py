@@ -8,7 +8,7 @@ import subprocess
 import pytest
 import yaml
 
-LAUNCH = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+LAUNCH = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
 def dump_params(launch, *args):
