@@ -16,12 +16,11 @@
 #include <drone_ros/way.h>
 
 #include "hp_command.h"
+#include "message_md5sums.h"
 #include "servo_command_as_ha.h"
 
 #include <cmath>
-#include <fstream>
 #include <map>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -50,20 +49,6 @@ M roundTrip(const M& msg) {
   const M back = deserialize<M>(bytes);
   EXPECT_EQ(bytes, serialize(back));
   return back;
-}
-
-std::map<std::string, std::string> pinnedMd5sums() {
-  std::map<std::string, std::string> sums;
-  std::ifstream file(MD5SUMS_FILE);
-  std::string line;
-  while (std::getline(file, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream fields(line);
-    std::string name, md5;
-    fields >> name >> md5;
-    sums[name] = md5;
-  }
-  return sums;
 }
 
 template <typename M>
@@ -329,7 +314,7 @@ TEST(Messages, OriginalThesisFieldsStillCompileAndRoundTrip) {
 }
 
 TEST(Messages, Md5sumsArePinned) {
-  const auto sums = pinnedMd5sums();
+  const auto sums = pinned_md5sums(MD5SUMS_FILE);
   expectPinned<drone_ros::ins>(sums);
   expectPinned<drone_ros::pwm>(sums);
   expectPinned<drone_ros::way>(sums);

@@ -3,33 +3,13 @@
 // (de)serializers refuse what does not fit.
 #include <gtest/gtest.h>
 
-#include <fstream>
-#include <map>
-#include <sstream>
 #include <string>
 
 #include "ha_link_msgs.h"
-
-namespace {
-
-std::map<std::string, std::string> pinned() {
-  std::ifstream in(MD5SUMS_FILE);
-  std::map<std::string, std::string> sums;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream fields(line);
-    std::string name, md5;
-    fields >> name >> md5;
-    sums[name] = md5;
-  }
-  return sums;
-}
-
-}  // namespace
+#include "message_md5sums.h"
 
 TEST(HaMsgsGenerated, DeviceMd5sumsEqualThePinnedOnes) {
-  const auto sums = pinned();
+  const auto sums = pinned_md5sums(MD5SUMS_FILE);
   ASSERT_FALSE(sums.empty());
   EXPECT_EQ(sums.at(DRONE_ROS_PWM_TYPE), DRONE_ROS_PWM_MD5);
   EXPECT_EQ(sums.at(DRONE_ROS_DECISIONSTATUS_TYPE), DRONE_ROS_DECISIONSTATUS_MD5);
