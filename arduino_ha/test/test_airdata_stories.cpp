@@ -62,6 +62,24 @@ int PeriodsUntilTakeover(Timeline* t, int max_periods) {
   return -1;
 }
 
+// A second of the HP's good commands in the state set up: it still flies (and if not, why not).
+::testing::AssertionResult HpStillFliesAfterASecond(Timeline* t) {
+  for (int i = 0; i < 100; ++i) t->StepWithGood();
+  if (t->controller() == HA_CONTROLLER_HP) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << "the HA took over, reasons " << t->out().reasons;
+}
+
+// The HA takes the servos within max_periods of the HP's good commands, for STALL alone.
+::testing::AssertionResult TakenOverForStallWithin(Timeline* t, int max_periods) {
+  if (PeriodsUntilTakeover(t, max_periods) < 0) {
+    return ::testing::AssertionFailure() << "left to the HP for " << max_periods << " periods";
+  }
+  if (t->out().reasons_at_switch != HA_REASON_STALL) {
+    return ::testing::AssertionFailure() << "taken over for reasons " << t->out().reasons_at_switch;
+  }
+  return ::testing::AssertionSuccess();
+}
+
 // F1. A stalled glide at 48 ft/s, above the 1 g switch speed of 46.2, at 14 deg of angle of
 // attack (pitch 2, flight path -12): the 1 g stall speed says nothing is wrong; the INS's pitch
 // less flight path says the wing is stalled.
@@ -74,8 +92,7 @@ TEST(HaAirdataStories, StalledGlideAt14DegAlphaAbove1gSwitchSpeedIsTakenOver) {
   // First an ordinary glide at the same speed (alpha 5 deg): the HP keeps flying.
   t.board.airspeed_ftps = v;
   FlyEast(&t, v * std::cos(3.0f / kDegPerRad), v * std::sin(-3.0f / kDegPerRad), 2.0f, 0.0f);
-  for (int i = 0; i < 100; ++i) t.StepWithGood();
-  ASSERT_EQ(t.controller(), HA_CONTROLLER_HP) << "reasons " << t.out().reasons;
+  ASSERT_TRUE(HpStillFliesAfterASecond(&t));
   // Then the stalled one.
   FlyEast(&t, v * std::cos(gamma_deg / kDegPerRad), v * std::sin(gamma_deg / kDegPerRad), 2.0f,
           0.0f);
@@ -104,12 +121,9 @@ TEST(HaAirdataStories, BankedTurnStallSpeedScalesWithLoadFactor) {
       t.cfg.stall_switch_airspeed_ftps / std::sqrt(std::cos(50.0f / kDegPerRad));
   ASSERT_LT(55.0f, banked_switch_ftps);
   LevelTurn(&t, 55.0f, 30.0f);  // 30 deg: n = 1.15, switch at 49.6: still flying
-  for (int i = 0; i < 100; ++i) t.StepWithGood();
-  ASSERT_EQ(t.controller(), HA_CONTROLLER_HP) << "reasons " << t.out().reasons;
+  ASSERT_TRUE(HpStillFliesAfterASecond(&t));
   LevelTurn(&t, 55.0f, 50.0f);
-  const int periods = PeriodsUntilTakeover(&t, 300);
-  ASSERT_GT(periods, 0) << "55 ft/s in a 50 deg bank was left to the HP";
-  EXPECT_EQ(t.out().reasons_at_switch, HA_REASON_STALL);
+  EXPECT_TRUE(TakenOverForStallWithin(&t, 300)) << "55 ft/s in a 50 deg bank";
 }
 
 // F1, the HiL's accelerated_stall: wings level at 70 ft/s, far above the 1 g switch speed, the HP
@@ -122,12 +136,9 @@ TEST(HaAirdataStories, PullUpAt70FtpsIsJudgedByTheLoadFactorTheGyrosShow) {
   ASSERT_GT(t.ReachHp(), 0);
   FlyEast(&t, 70.0f, 0.0f, 2.0f, 0.0f);
   t.app.inputs.q_deg_s = 20.0f;  // a brisk pitch-up: 0.76 g on top, 1.76 in all, not yet 2.45
-  for (int i = 0; i < 100; ++i) t.StepWithGood();
-  ASSERT_EQ(t.controller(), HA_CONTROLLER_HP) << "reasons " << t.out().reasons;
+  ASSERT_TRUE(HpStillFliesAfterASecond(&t));
   t.app.inputs.q_deg_s = 40.0f;  // 2.5 g: 70 ft/s is the switch speed x sqrt(2.5)
-  const int periods = PeriodsUntilTakeover(&t, 10);
-  ASSERT_GT(periods, 0) << "a 2.5 g pull at 70 ft/s was left to the HP";
-  EXPECT_EQ(t.out().reasons_at_switch, HA_REASON_STALL);
+  EXPECT_TRUE(TakenOverForStallWithin(&t, 10)) << "a 2.5 g pull at 70 ft/s";
 }
 
 // HiL campaign seed 25 #94, moderate turbulence: the HP, pulling 4 deg inside the pull limit in
@@ -190,9 +201,7 @@ TEST(HaAirdataStories, RealStallInAKnownTailwindIsAStallNotALyingPitot) {
   ASSERT_EQ(t.controller(), HA_CONTROLLER_HP);
   t.board.airspeed_ftps = 37.6f;
   FlyEast(&t, 68.0f, -6.0f, 12.0f, 0.0f);
-  const int periods = PeriodsUntilTakeover(&t, 300);
-  ASSERT_GT(periods, 0);
-  EXPECT_EQ(t.out().reasons_at_switch, HA_REASON_STALL);  // and not NO_HA_STATE: it is believed
+  EXPECT_TRUE(TakenOverForStallWithin(&t, 300));  // and not NO_HA_STATE: it is believed
 }
 
 // F3. The pitot stuck at 85 ft/s while the INS sees 35 over the ground in still air: 50 ft/s
@@ -347,8 +356,7 @@ TEST(HaAirdataStories, AGustsLoadIsNotTheHpsStall) {
   for (int i = 0; i < 20; ++i) t.StepWithGood();
   EXPECT_EQ(t.controller(), HA_CONTROLLER_HP) << "reasons " << t.out().reasons;
   t.app.inputs.q_deg_s = 32.174f / 60.0f * kDegPerRad;  // the same 2 g pulled by the HP
-  EXPECT_GT(PeriodsUntilTakeover(&t, 10), 0);
-  EXPECT_EQ(t.out().reasons_at_switch, HA_REASON_STALL);
+  EXPECT_TRUE(TakenOverForStallWithin(&t, 10));
 }
 
 // F7. The pitot dead from 30 ft, no wind ever learnt: the HA flies pitch and power, the nose no

@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
+#include <tuple>
 #include <vector>
 
 #include "ha_ins.h"
@@ -814,81 +816,67 @@ TEST(HaDecision, LowPassAtTwentyFiveFeetKeepsTheMotorAndTheStallCheck) {
   EXPECT_EQ(t.out().reasons & HA_REASON_STALL, 0u);
 }
 
-// The HP dies while the pilot flies: it is restarted, the pilot keeps the servos.
-TEST(HaDecision, DeadHpIsRestartedWhileThePilotFlies) {
-  Timeline t;
-  ASSERT_GT(t.ReachHp(), 0);
-  t.board.SetPilotInCommand(true);
-  for (int i = 0; i < 100; ++i) t.StepWithGood();
-  ASSERT_EQ(t.controller(), HA_CONTROLLER_MANUAL);
-  for (int i = 0; i < 100; ++i) {  // the HP process dies
-    t.Step();
-    ASSERT_EQ(t.controller(), HA_CONTROLLER_MANUAL);
-  }
-  EXPECT_EQ(t.out().restart_count, 1u);
-  EXPECT_EQ(t.board.hp_reset_assertions, 1);
-  // It boots, and the pilot hands back to the computers: the HP earns control as usual.
-  t.board.SetPilotInCommand(false);
-  EXPECT_GT(t.ReachHp(), 0);
-  EXPECT_EQ(t.out().restart_count, 1u);
-}
+// An HP that fails while the pilot or the operator's HA flies is restarted all the same, once,
+// and whoever flies keeps the servos throughout; handed back, the restarted HP earns control as
+// usual. A failing HP that is alive (its sensor link lost) was never restarted while another flew
+// (issue 22, F9). Each case: who holds the servos, and how the HP fails.
+struct Holder {
+  const char* name;
+  uint8_t controller;
+  void (*take)(Timeline*);
+  void (*hand_back)(Timeline*);
+};
+struct HpFailure {
+  const char* name;
+  int periods;
+  void (*period)(Timeline*);
+};
 
-TEST(HaDecision, DeadHpIsRestartedWhileTheOperatorHoldsTheHa) {
+const Holder kPilot = {"ThePilotFlies", HA_CONTROLLER_MANUAL,
+                       [](Timeline* t) { t->board.SetPilotInCommand(true); },
+                       [](Timeline* t) { t->board.SetPilotInCommand(false); }};
+const Holder kOperatorHa = {"TheOperatorHoldsTheHa", HA_CONTROLLER_HA,
+                            [](Timeline* t) { t->Operator(HA_OP_SELECT_HA); },
+                            [](Timeline* t) { t->Operator(HA_OP_SELECT_HP); }};
+const HpFailure kProcessDies = {"Dies", 100, [](Timeline* t) { t->Step(); }};
+const HpFailure kSensorLinkLost = {"LosesItsSensorLink", 500, [](Timeline* t) {
+                                     HaHpCommand c =
+                                         MakeCommand(t->NextSeq(), 0.45f, -1.0f, 2.0f, 0.5f);
+                                     c.sensor_links_healthy = 0u;
+                                     SealCommand(&c);
+                                     t->StepWith(c);
+                                   }};
+
+class HpFailsWhileAnotherFlies : public ::testing::TestWithParam<std::tuple<Holder, HpFailure>> {};
+
+TEST_P(HpFailsWhileAnotherFlies, IsRestartedOnceAndEarnsControlBackWhenHandedBack) {
+  const Holder& holder = std::get<0>(GetParam());
+  const HpFailure& failure = std::get<1>(GetParam());
   Timeline t;
   ASSERT_GT(t.ReachHp(), 0);
-  t.Operator(HA_OP_SELECT_HA);
+  holder.take(&t);
   for (int i = 0; i < 100; ++i) t.StepWithGood();
-  ASSERT_EQ(t.controller(), HA_CONTROLLER_HA);
+  ASSERT_EQ(t.controller(), holder.controller);
   ASSERT_EQ(t.out().restart_count, 0u);
-  for (int i = 0; i < 100; ++i) t.Step();  // the HP dies
-  EXPECT_EQ(t.controller(), HA_CONTROLLER_HA);
-  EXPECT_EQ(t.out().restart_count, 1u);
-  EXPECT_EQ(t.board.hp_reset_assertions, 1);
-  // Back up, and the operator asks for it: it gets control.
-  for (int i = 0; i < 100; ++i) t.StepWithGood();
-  t.Operator(HA_OP_SELECT_HP);
-  EXPECT_GT(t.ReachHp(), 0);
-}
-
-// An HP that fails while alive (its sensor link lost) is restarted whoever flies, as a silent one
-// is: it was never restarted while the pilot or the operator's HA flew (issue 22, F9).
-HaHpCommand LinkLostCommand(Timeline* t) {
-  HaHpCommand c = MakeCommand(t->NextSeq(), 0.45f, -1.0f, 2.0f, 0.5f);
-  c.sensor_links_healthy = 0u;
-  SealCommand(&c);
-  return c;
-}
-
-TEST(HaDecision, HpThatLosesItsSensorLinkWhileThePilotFliesIsRestarted) {
-  Timeline t;
-  ASSERT_GT(t.ReachHp(), 0);
-  t.board.SetPilotInCommand(true);
-  for (int i = 0; i < 100; ++i) t.StepWithGood();
-  ASSERT_EQ(t.controller(), HA_CONTROLLER_MANUAL);
-  for (int i = 0; i < 500; ++i) {
-    t.StepWith(LinkLostCommand(&t));
-    ASSERT_EQ(t.controller(), HA_CONTROLLER_MANUAL);
+  for (int i = 0; i < failure.periods; ++i) {
+    failure.period(&t);
+    ASSERT_EQ(t.controller(), holder.controller);
   }
   EXPECT_EQ(t.out().restart_count, 1u);
   EXPECT_EQ(t.board.hp_reset_assertions, 1);
-  // It comes back healthy, and the pilot hands back to the computers.
-  for (int i = 0; i < 100; ++i) t.StepWithGood();
-  t.board.SetPilotInCommand(false);
+  for (int i = 0; i < 100; ++i) t.StepWithGood();  // it boots and runs healthy again
+  holder.hand_back(&t);
   EXPECT_GT(t.ReachHp(), 0);
   EXPECT_EQ(t.out().restart_count, 1u);
 }
 
-TEST(HaDecision, HpThatLosesItsSensorLinkWhileTheOperatorHoldsTheHaIsRestarted) {
-  Timeline t;
-  ASSERT_GT(t.ReachHp(), 0);
-  t.Operator(HA_OP_SELECT_HA);
-  for (int i = 0; i < 100; ++i) t.StepWithGood();
-  ASSERT_EQ(t.controller(), HA_CONTROLLER_HA);
-  for (int i = 0; i < 500; ++i) t.StepWith(LinkLostCommand(&t));
-  EXPECT_EQ(t.controller(), HA_CONTROLLER_HA);
-  EXPECT_EQ(t.out().restart_count, 1u);
-  EXPECT_EQ(t.board.hp_reset_assertions, 1);
-}
+INSTANTIATE_TEST_SUITE_P(HaDecision, HpFailsWhileAnotherFlies,
+                         ::testing::Combine(::testing::Values(kPilot, kOperatorHa),
+                                            ::testing::Values(kProcessDies, kSensorLinkLost)),
+                         [](const ::testing::TestParamInfo<std::tuple<Holder, HpFailure>>& info) {
+                           return std::string("Hp") + std::get<1>(info.param).name + "While" +
+                                  std::get<0>(info.param).name;
+                         });
 
 // At power-up the HP's first commands say its estimator has not converged yet: it is booting,
 // not failing, and is not restarted for it.
