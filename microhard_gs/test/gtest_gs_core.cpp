@@ -515,12 +515,23 @@ TEST(Decision, LongReasonListIsSentInChunks) {
   EXPECT_EQ(mavlink_msg_statustext_get_severity(&texts[0]), MAV_SEVERITY_CRITICAL);
 }
 
-TEST(Signing, UnsignedCommandIsRefusedWithDeniedAndCounted) {
+// The key the tests sign with (bytes 1..32), and a ground station that demands it.
+SigningKey test_signing_key() {
   SigningKey key{};
   for (size_t i = 0; i < key.size(); ++i) key[i] = static_cast<uint8_t>(i + 1);
+  return key;
+}
+
+GsConfig signing_config(const SigningKey& key) {
   GsConfig c = base_config();
   c.signing = true;
   c.signing_key = key;
+  return c;
+}
+
+TEST(Signing, UnsignedCommandIsRefusedWithDeniedAndCounted) {
+  const SigningKey key = test_signing_key();
+  GsConfig c = signing_config(key);
   Bench b(c);
   b.run_for(10);
   Gcs signed_gcs(&key);
@@ -559,11 +570,8 @@ TEST(Robustness, CorruptFramesAreCountedAndTheNextGoodFrameStillParses) {
 // What the telemetry log gets of the received side: each whole frame with a good CRC, byte for
 // byte, however the link chunked it; refused ones too (what the link carried), corrupt ones not.
 TEST(ReceivedFrames, EveryGoodFrameIsKeptAsItCameCorruptOnesAreNot) {
-  SigningKey key{};
-  for (size_t i = 0; i < key.size(); ++i) key[i] = static_cast<uint8_t>(i + 1);
-  GsConfig c = base_config();
-  c.signing = true;
-  c.signing_key = key;
+  const SigningKey key = test_signing_key();
+  GsConfig c = signing_config(key);
   c.keep_received_frames = true;
   Bench b(c);
   b.run_for(10);

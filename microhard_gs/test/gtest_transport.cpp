@@ -77,18 +77,28 @@ bool modem_to_vehicle(SerialTransport* link, int master) {
   return total == 2 && got[1] == 0x09;
 }
 
+// A frame's first bytes cross the link both ways.
+bool bytes_cross_both_ways(SerialTransport* link, int master) {
+  return vehicle_to_modem(link, master) && modem_to_vehicle(link, master);
+}
+
+// The modem plugged in behind its name, and the vehicle's link opened on it: up.
+class SerialTransportOnAModem : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    modem.plug(tmp.path);
+    link.maintain(0);
+    ASSERT_TRUE(link.health().up) << link.health().last_error;
+  }
+  const TempLink tmp;
+  Modem modem;
+  SerialTransport link{tmp.path, 57600, 1000};
+};
+
 }  // namespace
 
-TEST(SerialTransport, BytesCrossThePseudoTerminalBothWays) {
-  const TempLink tmp;
-  const std::string& path = tmp.path;
-  Modem modem;
-  modem.plug(path);
-  SerialTransport link(path, 57600, 1000);
-  link.maintain(0);
-  ASSERT_TRUE(link.health().up) << link.health().last_error;
-  EXPECT_TRUE(vehicle_to_modem(&link, modem.master));
-  EXPECT_TRUE(modem_to_vehicle(&link, modem.master));
+TEST_F(SerialTransportOnAModem, BytesCrossThePseudoTerminalBothWays) {
+  EXPECT_TRUE(bytes_cross_both_ways(&link, modem.master));
   uint8_t got[16];
   EXPECT_EQ(link.receive(got, sizeof got, 0), 0);  // nothing more: silence is not an outage
   EXPECT_TRUE(link.health().up);
@@ -116,19 +126,12 @@ TEST(SerialTransport, ModemMissingAtStartIsAnOutageAndTheLinkComesUpWhenItAppear
   ASSERT_TRUE(link.health().up) << link.health().last_error;
   EXPECT_EQ(link.health().opens, 1u);
   EXPECT_EQ(link.health().outages, 0u);
-  EXPECT_TRUE(vehicle_to_modem(&link, modem.master));
-  EXPECT_TRUE(modem_to_vehicle(&link, modem.master));
+  EXPECT_TRUE(bytes_cross_both_ways(&link, modem.master));
 }
 
-TEST(SerialTransport, UnplugIsReportedAndTheRepluggedModemIsReopened) {
-  const TempLink tmp;
+TEST_F(SerialTransportOnAModem, UnplugIsReportedAndTheRepluggedModemIsReopened) {
   const std::string& path = tmp.path;
-  Modem first;
-  first.plug(path);
-  SerialTransport link(path, 57600, 1000);
-  link.maintain(0);
-  ASSERT_TRUE(link.health().up);
-  first.unplug();
+  modem.unplug();
   uint8_t got[16];
   for (int i = 0; i < 10 && link.health().up; ++i) EXPECT_EQ(link.receive(got, sizeof got, 20), 0);
   EXPECT_FALSE(link.health().up);
@@ -144,8 +147,7 @@ TEST(SerialTransport, UnplugIsReportedAndTheRepluggedModemIsReopened) {
   link.maintain(3000);
   ASSERT_TRUE(link.health().up) << link.health().last_error;
   EXPECT_EQ(link.health().opens, 2u);
-  EXPECT_TRUE(vehicle_to_modem(&link, second.master));
-  EXPECT_TRUE(modem_to_vehicle(&link, second.master));
+  EXPECT_TRUE(bytes_cross_both_ways(&link, second.master));
 }
 
 TEST(SerialTransport, AbsurdBaudIsNotSupported) {

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <initializer_list>
 
 #include "airdata_ekf.h"
 #include "dg808_gnc_data.h"
@@ -73,6 +74,14 @@ bool finite_all(const double *v, size_t n) {
   return true;
 }
 
+// A waypoint table is stored as columns (north, east, height, speed), each n long.
+bool finite_columns(std::initializer_list<const double *> columns, size_t n) {
+  for (const double *c : columns) {
+    if (!finite_all(c, n)) return false;
+  }
+  return true;
+}
+
 bool input_finite(const DG808_GNC_Input &in) {
   const double scalars[] = {
       in.airspeed_ftps,   in.throttle_trim, in.elevator_trim_rad, in.aileron_trim_rad,
@@ -82,10 +91,8 @@ bool input_finite(const DG808_GNC_Input &in) {
       in.fz_mps2,         in.phi_rad,       in.theta_rad,         in.psi_rad,
       in.home_lat_deg,    in.home_lon_deg,  in.home_alt_m};
   return finite_all(scalars, sizeof(scalars) / sizeof(scalars[0])) &&
-         finite_all(in.wp_north_ft, DG808_GNC_MAX_WAYPOINTS) &&
-         finite_all(in.wp_east_ft, DG808_GNC_MAX_WAYPOINTS) &&
-         finite_all(in.wp_height_ft, DG808_GNC_MAX_WAYPOINTS) &&
-         finite_all(in.wp_velocity_ftps, DG808_GNC_MAX_WAYPOINTS);
+         finite_columns({in.wp_north_ft, in.wp_east_ft, in.wp_height_ft, in.wp_velocity_ftps},
+                        DG808_GNC_MAX_WAYPOINTS);
 }
 
 bool within(double v, double limit) { return v >= -limit && v <= limit; }
@@ -120,10 +127,8 @@ bool output_finite(const DG808_GNC_Output &o) {
                       o.beta_cmd_rad,   o.eta_lat_rad,     o.eta_lon_rad,    o.delta_psi_rad,
                       o.n_op_ft,        o.e_op_ft,         o.h_op_ft};
   return finite_all(v, sizeof(v) / sizeof(v[0])) &&
-         finite_all(o.mw_north_ft, DG808_GNC_PREVIEW_WAYPOINTS) &&
-         finite_all(o.mw_east_ft, DG808_GNC_PREVIEW_WAYPOINTS) &&
-         finite_all(o.mw_height_ft, DG808_GNC_PREVIEW_WAYPOINTS) &&
-         finite_all(o.mw_velocity_ftps, DG808_GNC_PREVIEW_WAYPOINTS);
+         finite_columns({o.mw_north_ft, o.mw_east_ft, o.mw_height_ft, o.mw_velocity_ftps},
+                        DG808_GNC_PREVIEW_WAYPOINTS);
 }
 
 bool params_valid(const DG808_GNC_Params &p) {

@@ -316,14 +316,20 @@ TEST(SensorBoard, HomeComesFromItsOwnerNeverFromTheFirstFix) {
   EXPECT_DOUBLE_EQ(in.home_alt_m, 251.0);
 }
 
-TEST(ServoCommand, CarriesDegreesAndAValidCrc) {
+// What the GNC outputs when all is well: converged, a valid command, from finite inputs.
+GncOutput healthy_output() {
   GncOutput out{};
-  out.throttle = 0.3;
-  out.elevator_rad = 0.1;
-  out.alpha_est_rad = 0.05;
   out.estimator_converged = 1;
   out.command_valid = 1;
   out.inputs_finite = 1;
+  return out;
+}
+
+TEST(ServoCommand, CarriesDegreesAndAValidCrc) {
+  GncOutput out = healthy_output();
+  out.throttle = 0.3;
+  out.elevator_rad = 0.1;
+  out.alpha_est_rad = 0.05;
   const auto cmd = controller::build_servo_command(7, ros::Time(12, 34), out, true, 0.0);
   EXPECT_EQ(cmd.seq, 7u);
   EXPECT_NEAR(cmd.elevator_deg, 0.1 * 180.0 / M_PI, 1e-4);
@@ -336,24 +342,18 @@ TEST(ServoCommand, CarriesDegreesAndAValidCrc) {
 }
 
 TEST(ServoCommand, TheHaFindsTheCrcTheControllerSent) {
-  GncOutput out{};
+  GncOutput out = healthy_output();
   out.throttle = 0.62;
   out.aileron_rad = -0.07;
   out.rudder_rad = 0.02;
   out.beta_est_rad = 0.01;
-  out.estimator_converged = 1;
-  out.command_valid = 1;
-  out.inputs_finite = 1;
   const auto cmd = controller::build_servo_command(4242, ros::Time(77, 5000), out, true, 0.0);
   const HaHpCommand ha = servo_command_as_ha(cmd);  // as the Due decodes it
   EXPECT_EQ(cmd.crc32, ha_hp_command_compute_crc(&ha));
 }
 
 TEST(ServoCommand, NanFromTheGncNeverReachesTheWire) {
-  GncOutput out{};
-  out.estimator_converged = 1;
-  out.command_valid = 1;
-  out.inputs_finite = 1;
+  GncOutput out = healthy_output();
   out.aileron_rad = std::numeric_limits<double>::quiet_NaN();
   const auto cmd = controller::build_servo_command(1, ros::Time(1, 0), out, true, 0.0);
   EXPECT_TRUE(std::isfinite(cmd.aileron_deg));
@@ -362,10 +362,8 @@ TEST(ServoCommand, NanFromTheGncNeverReachesTheWire) {
 }
 
 TEST(ServoCommand, InvalidGncOutputOrBadLinksAreFlaggedNotHidden) {
-  GncOutput out{};
-  out.estimator_converged = 1;
+  GncOutput out = healthy_output();
   out.command_valid = 0;
-  out.inputs_finite = 1;
   EXPECT_FALSE(
       controller::build_servo_command(1, ros::Time(1, 0), out, true, 0.0).estimator_converged);
   out.command_valid = 1;

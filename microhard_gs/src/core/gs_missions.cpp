@@ -11,6 +11,17 @@ namespace {
 // How long after finishing an upload a repeated last item still gets its MISSION_ACK again.
 constexpr uint64_t kReAckWindowMs = 10000;
 
+// MISSION_REQUEST and MISSION_REQUEST_INT ask for item seq of the partner's mission alike.
+template <typename Request>
+Request item_request(uint8_t partner_sys, uint8_t partner_comp, uint16_t seq) {
+  Request r{};
+  r.target_system = partner_sys;
+  r.target_component = partner_comp;
+  r.seq = seq;
+  r.mission_type = MAV_MISSION_TYPE_MISSION;
+  return r;
+}
+
 }  // namespace
 
 void MissionService::send_ack(uint8_t sys, uint8_t comp, uint8_t result, uint8_t mission_type) {
@@ -68,21 +79,15 @@ void MissionService::on_count(const mavlink_message_t& msg, const mavlink_missio
 void MissionService::request_next_item(const Clock& now) {
   const uint16_t seq = static_cast<uint16_t>(upload_.next_seq);
   if (upload_.legacy) {
-    mavlink_mission_request_t r{};
-    r.target_system = upload_.partner_sys;
-    r.target_component = upload_.partner_comp;
-    r.seq = seq;
-    r.mission_type = MAV_MISSION_TYPE_MISSION;
+    const auto r =
+        item_request<mavlink_mission_request_t>(upload_.partner_sys, upload_.partner_comp, seq);
     out_.emit([&](mavlink_message_t* m) {
       mavlink_msg_mission_request_encode_status(out_.system_id(), out_.component_id(),
                                                 out_.status(), m, &r);
     });
   } else {
-    mavlink_mission_request_int_t r{};
-    r.target_system = upload_.partner_sys;
-    r.target_component = upload_.partner_comp;
-    r.seq = seq;
-    r.mission_type = MAV_MISSION_TYPE_MISSION;
+    const auto r =
+        item_request<mavlink_mission_request_int_t>(upload_.partner_sys, upload_.partner_comp, seq);
     out_.emit([&](mavlink_message_t* m) {
       mavlink_msg_mission_request_int_encode_status(out_.system_id(), out_.component_id(),
                                                     out_.status(), m, &r);
