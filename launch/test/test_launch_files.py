@@ -6,17 +6,14 @@ stack's interfaces name has a publisher and carries messages, the recorder write
 the dated name; then everything started here is stopped."""
 import glob
 import os
-import signal
 import socket
 import subprocess
-import tempfile
 import time
 
 import pytest
-import rosgraph
 import yaml
 
-from launch_procs import echo, free_port, stop, wait_for
+from launch_procs import echo, free_port, private_master, stop, wait_for
 
 # ha_sil is no ROS node (the HA speaks rosserial over its pty, as the Due does): /decision_status
 # flowing from the arduino node below is what shows it up.
@@ -31,36 +28,10 @@ TOPICS = {"/clock": "/hil_sim", "/hil/truth": "/hil_sim", "/ins": "/vn200", "/at
 FLOWING = ["/clock", "/ins", "/odom", "/servo_op", "/decision_status", "/home", "/way", "/flight_markers"]
 
 
-
-
 @pytest.fixture(scope="module")
 def stack():
-    if "ROS_PACKAGE_PATH" not in os.environ:
-        pytest.fail("the workspace is not sourced (make test does it)")
-    port = free_port()
-    run_dir = tempfile.mkdtemp(prefix="launch_")
-    logs = os.path.join(run_dir, "logs")
-    env = dict(os.environ, ROS_MASTER_URI="http://127.0.0.1:%d" % port, ROS_IP="127.0.0.1",
-               ROS_LOG_DIR=os.path.join(run_dir, "ros"), PYTHONUNBUFFERED="1")
-    env.pop("ROS_HOSTNAME", None)
-    procs = []
-
-    def start(cmd):
-        log = open(os.path.join(run_dir, "%s.log" % len(procs)), "wb")
-        procs.append(subprocess.Popen(cmd, env=env, stdout=log, stderr=subprocess.STDOUT, start_new_session=True))
-
-    try:
-        start(["roscore", "-p", str(port)])
-        master = rosgraph.Master("/launch_test", master_uri=env["ROS_MASTER_URI"])
-        deadline = time.time() + 60
-        while True:
-            try:
-                master.getPid()
-                break
-            except OSError:
-                if time.time() > deadline:
-                    raise RuntimeError("roscore did not come up")
-                time.sleep(0.2)
+    with private_master("launch_", "/launch_test") as (master, env, run_dir, start):
+        logs = os.path.join(run_dir, "logs")
         # A long flight: the checks run while it flies, and the fixture stops it.
         start(["roslaunch", "--wait", "drone_ros", "DG808_hil.launch", "run_dir:=" + run_dir,
                "out_dir:=" + os.path.join(run_dir, "out"), "duration_s:=3600", "crash_at_s:=-1", "fault:=none",
@@ -70,10 +41,6 @@ def stack():
         start(["roslaunch", "--wait", "drone_ros", "record.launch", "aircraft:=DG808", "mode:=hil",
                "out_dir:=" + logs])
         yield master, env, logs
-    finally:
-        stop(procs)
-
-
 
 
 def test_every_node_of_the_launch_files_comes_up(stack):
@@ -120,15 +87,8 @@ def echoes(stack):
                                             start_new_session=True)
         yield procs
     finally:
+        stop(list(procs.values()))
         for p in procs.values():
-            if p.poll() is None:
-                os.killpg(p.pid, signal.SIGINT)
-        for p in procs.values():
-            try:
-                p.wait(timeout=20)
-            except subprocess.TimeoutExpired:
-                os.killpg(p.pid, signal.SIGKILL)
-                p.wait()
             p.stdout.close()
             p.stderr.close()
 

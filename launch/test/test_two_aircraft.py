@@ -11,14 +11,11 @@ hil/README.md. With absolute topic names the two vn200 nodes would both publish 
 controller would fly on both sensors: these checks fail then."""
 import os
 import socket
-import subprocess
-import tempfile
 import time
 
 import pytest
-import rosgraph
 
-from launch_procs import echo, free_port, stop, wait_for
+from launch_procs import echo, free_port, private_master, wait_for
 
 os.environ.setdefault("MAVLINK20", "1")  # microhard_gs speaks MAVLink 2
 from pymavlink import mavutil  # noqa: E402  (MAVLINK20 must be set first)
@@ -36,33 +33,9 @@ NODES = ["controller_DG808", "hp_supervisor", "vn200", "arduino", "microhard_gs"
 SHARED = {"/rosout", "/diagnostics", "/tf", "/tf_static"}
 
 
-
-
-
-
-
-
 @pytest.fixture(scope="module")
 def fleet():
-    if "ROS_PACKAGE_PATH" not in os.environ:
-        pytest.fail("the workspace is not sourced (make test does it)")
-    port = free_port()
-    run_dir = tempfile.mkdtemp(prefix="fleet_")
-    env = dict(os.environ, ROS_MASTER_URI="http://127.0.0.1:%d" % port, ROS_IP="127.0.0.1",
-               ROS_LOG_DIR=os.path.join(run_dir, "ros"), PYTHONUNBUFFERED="1")
-    env.pop("ROS_HOSTNAME", None)
-    procs = []
-
-    def start(cmd):
-        log = open(os.path.join(run_dir, "%d.log" % len(procs)), "wb")
-        procs.append(subprocess.Popen(cmd, env=env, stdout=log, stderr=subprocess.STDOUT,
-                                      start_new_session=True))
-
-    try:
-        start(["roscore", "-p", str(port)])
-        master = rosgraph.Master("/fleet_test", master_uri=env["ROS_MASTER_URI"])
-        if not wait_for(lambda: _master_up(master), 60.0):
-            raise RuntimeError("roscore did not come up")
+    with private_master("fleet_", "/fleet_test") as (master, env, run_dir, start):
         gs = {a: "%d %d" % (free_port(socket.SOCK_DGRAM), free_port(socket.SOCK_DGRAM)) for a in AIRCRAFT}
         start(["roslaunch", "--wait", os.path.join(HERE, "two_aircraft.launch"), "run_dir:=" + run_dir,
                "origin_uav1:=%s %s %s" % ORIGIN["uav1"], "origin_uav2:=%s %s %s" % ORIGIN["uav2"],
@@ -73,16 +46,6 @@ def fleet():
             start(["rostopic", "pub", "-l", "/%s/home" % a, "drone_ros/HomePosition",
                    "{seq: 1, latitude: %r, longitude: %r, altitude: %r}" % (lat, lon, alt)])
         yield master, env, gs
-    finally:
-        stop(procs)
-
-
-def _master_up(master):
-    try:
-        master.getPid()
-        return True
-    except OSError:
-        return False
 
 
 def graph(master):

@@ -9,6 +9,8 @@ from stack_testing import gs_harness as gh  # noqa: E402
 from stack_testing.gs_harness import mavlink  # noqa: E402
 from stack_testing.mavproxy_gcs import MavProxy, read_qgc_wpl, write_qgc_wpl  # noqa: E402
 
+from gs_way_plan import assert_plan_flies
+
 NAV_WAYPOINT = mavlink.MAV_CMD_NAV_WAYPOINT
 GOOD = [(300.0, 0.0, 200.0), (600.0, 250.0, 250.0), (300.0, 500.0, 300.0)]  # north, east, height ft
 
@@ -68,12 +70,7 @@ def test_wp_load_of_a_frame_3_file_flies_its_waypoints_and_not_its_home_row(gcs)
     system, mavproxy = gcs
     ack, mark = load(gcs, "good.txt", GOOD)
     assert ack is not None and "ACCEPTED" in ack, mavproxy.output(mark)
-    plan = system.wait_event(lambda e: e["topic"] == "way", 10)
-    assert plan is not None and plan["fp"] == 3
-    for i, (north, east, height) in enumerate(GOOD):
-        assert plan["north"][i] == pytest.approx(north, abs=0.5)
-        assert plan["east"][i] == pytest.approx(east, abs=0.5)
-        assert plan["height"][i] == pytest.approx(height, abs=0.01)
+    assert_plan_flies(system.wait_event(lambda e: e["topic"] == "way", 10), GOOD, 0.5, 0.01)
 
 
 def test_wp_list_gives_the_file_back_in_its_frames(gcs):

@@ -1,5 +1,6 @@
 """With a MAVLink 2 signing key configured, only correctly signed messages change anything:
 unsigned and badly signed ones are refused and counted, while read-only requests still work."""
+import contextlib
 
 import pytest
 
@@ -22,6 +23,18 @@ def signed_gs(tmp_path_factory):
     system.stop()
 
 
+@contextlib.contextmanager
+def client_signing(gs, key=KEY, sign_outgoing=True):
+    """The client sends the block's messages signed with key (or unsigned), then signs with KEY
+    again whatever the block raised: the module's other tests share the client."""
+    signing = gs.conn.mav.signing
+    signing.secret_key, signing.sign_outgoing = key, sign_outgoing
+    try:
+        yield
+    finally:
+        signing.secret_key, signing.sign_outgoing = KEY, True
+
+
 def test_signed_command_is_accepted_and_forwarded(signed_gs):
     gs = signed_gs
     gs.drain_events()
@@ -36,12 +49,9 @@ def test_unsigned_command_is_refused_and_counted(signed_gs):
     gs = signed_gs
     before = int(gs.diagnostic("refused_unsigned"))
     gs.drain_events()
-    gs.conn.mav.signing.sign_outgoing = False
-    try:
+    with client_signing(gs, sign_outgoing=False):
         gh.command_long(gs.conn, mavlink.MAV_CMD_DO_SET_MODE, *SELECT_HA)
         ack = gh.wait_command_ack(gs.conn, mavlink.MAV_CMD_DO_SET_MODE)
-    finally:
-        gs.conn.mav.signing.sign_outgoing = True
     assert ack is not None and ack.result == mavlink.MAV_RESULT_DENIED
     assert gs.wait_event(lambda e: e["topic"] == "operator_command", 1.5) is None
     assert int(gs.diagnostic("refused_unsigned")) >= before + 1
@@ -51,24 +61,18 @@ def test_badly_signed_mission_is_refused_and_counted(signed_gs):
     gs = signed_gs
     before = int(gs.diagnostic("refused_bad_signature"))
     gs.drain_events()
-    gs.conn.mav.signing.secret_key = WRONG_KEY
-    try:
+    with client_signing(gs, key=WRONG_KEY):
         gs.conn.mav.mission_count_send(1, 1, 3, mavlink.MAV_MISSION_TYPE_MISSION)
         request = gs.conn.recv_match(type=["MISSION_REQUEST_INT", "MISSION_REQUEST"], blocking=True, timeout=1.5)
-    finally:
-        gs.conn.mav.signing.secret_key = KEY
     assert request is None  # the upload never started
     assert int(gs.diagnostic("refused_bad_signature")) >= before + 1
 
 
 def test_unsigned_read_only_requests_still_work(signed_gs):
     gs = signed_gs
-    gs.conn.mav.signing.sign_outgoing = False
-    try:
+    with client_signing(gs, sign_outgoing=False):
         gs.conn.mav.param_request_read_send(1, 1, b"mpf_radius", -1)
         value = gs.conn.recv_match(type="PARAM_VALUE", blocking=True, timeout=5)
-    finally:
-        gs.conn.mav.signing.sign_outgoing = True
     assert value is not None and value.param_value == pytest.approx(250.0)
 
 

@@ -10,7 +10,8 @@ import time
 import pytest
 
 from stack_testing import gs_harness as gh  # noqa: E402
-from stack_testing.gs_harness import mavlink, mavutil  # noqa: E402
+from stack_testing.gs_harness import mavlink  # noqa: E402
+from stack_testing.tlog_file import tlog_messages
 
 
 @pytest.fixture(scope="module")
@@ -34,16 +35,6 @@ def node(bench):
         bench.stop_node()
 
 
-def read_tlog(path):
-    log = mavutil.mavlink_connection(path, dialect="development")
-    out = []
-    while True:
-        m = log.recv_msg()
-        if m is None:
-            return out
-        out.append(m)
-
-
 def autopilot_version_asked_and_answered(gs):
     gh.command_long(gs.conn, mavlink.MAV_CMD_REQUEST_MESSAGE, mavlink.MAVLINK_MSG_ID_AUTOPILOT_VERSION)
     ack = gh.wait_command_ack(gs.conn, mavlink.MAV_CMD_REQUEST_MESSAGE)
@@ -59,7 +50,7 @@ def test_the_tlog_holds_the_clients_request_and_the_vehicles_answer(node, tmp_pa
     assert re.fullmatch(r"\d{4}-\d{2}-\d{2}_\d{6}-DG808-bench\.tlog", os.path.basename(path)), path
     deadline = time.time() + 10.0  # written every 0.5 s
     while True:
-        messages = read_tlog(path)
+        messages = tlog_messages(path)
         asked = [m for m in messages if m.get_type() == "COMMAND_LONG" and
                  m.command == mavlink.MAV_CMD_REQUEST_MESSAGE]
         answered = [m for m in messages if m.get_type() == "AUTOPILOT_VERSION"]

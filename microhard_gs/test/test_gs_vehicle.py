@@ -10,6 +10,8 @@ import yaml
 from stack_testing import gs_harness as gh  # noqa: E402
 from stack_testing.gs_harness import mavlink  # noqa: E402
 
+from gs_way_plan import assert_plan_flies
+
 TEN = [(100.0 * i, 80.0 * (i % 3), 150.0 + 10.0 * i) for i in range(10)]
 
 
@@ -119,13 +121,8 @@ def test_parameter_set_without_a_controller_is_refused_and_says_so(gs):
 
 
 def assert_plan_is_ten(event, tolerance_ft=0.5):
-    assert event is not None, "no flight plan on /way"
-    assert event["fp"] == 10
-    for i, (n, e, h) in enumerate(TEN):
-        assert event["north"][i] == pytest.approx(n, abs=tolerance_ft)
-        assert event["east"][i] == pytest.approx(e, abs=tolerance_ft)
-        assert event["height"][i] == pytest.approx(h, abs=0.01)
-        assert event["velocity"][i] == pytest.approx(60.0)
+    assert_plan_flies(event, TEN, tolerance_ft, 0.01)
+    assert event["velocity"][:10] == pytest.approx([60.0] * 10)
 
 
 def test_ten_waypoint_mission_is_accepted_and_appears_on_way(gs):
@@ -139,22 +136,15 @@ def test_ten_waypoint_mission_is_accepted_and_appears_on_way(gs):
     assert current is not None and current.seq == 0
 
 
-def test_waypoint_at_600_ft_is_rejected_and_the_old_mission_kept(gs):
+@pytest.mark.parametrize("legs,refusal,said", [
+    ([(0, 0, 200), (300, 0, 600), (600, 0, 200)], mavlink.MAV_MISSION_INVALID_PARAM7, "ceiling"),
+    ([(10.0 * i, 0, 200) for i in range(33)], mavlink.MAV_MISSION_NO_SPACE, "33 items"),
+], ids=["waypoint_at_600_ft", "33_items"])
+def test_a_refused_mission_is_said_and_the_old_mission_kept(gs, legs, refusal, said):
     hold_ten_waypoint_mission(gs)
-    bad = [gh.waypoint(0, 0, 0, 200), gh.waypoint(1, 300, 0, 600), gh.waypoint(2, 600, 0, 200)]
-    ack = gh.upload_mission(gs.conn, bad)
-    assert ack is not None and ack.type == mavlink.MAV_MISSION_INVALID_PARAM7
-    assert gh.wait_statustext(gs.conn, "ceiling") is not None
-    assert len(gh.download_mission(gs.conn)) == 10
-    assert gs.wait_event(lambda e: e["topic"] == "way", 1.0) is None
-
-
-def test_mission_of_33_items_is_rejected_and_the_old_mission_kept(gs):
-    hold_ten_waypoint_mission(gs)
-    items = [gh.waypoint(i, 10.0 * i, 0, 200) for i in range(33)]
-    ack = gh.upload_mission(gs.conn, items)
-    assert ack is not None and ack.type == mavlink.MAV_MISSION_NO_SPACE
-    assert gh.wait_statustext(gs.conn, "33 items") is not None
+    ack = gh.upload_mission(gs.conn, [gh.waypoint(i, n, e, h) for i, (n, e, h) in enumerate(legs)])
+    assert ack is not None and ack.type == refusal
+    assert gh.wait_statustext(gs.conn, said) is not None
     assert len(gh.download_mission(gs.conn)) == 10
     assert gs.wait_event(lambda e: e["topic"] == "way", 1.0) is None
 
@@ -183,12 +173,7 @@ def test_mission_in_every_global_frame_flies_the_same_heights_and_downloads_in_i
     gs.drain_events()
     ack = gh.upload_mission(gs.conn, items, legacy=legacy)
     assert ack is not None and ack.type == mavlink.MAV_MISSION_ACCEPTED
-    plan = gs.wait_event(lambda e: e["topic"] == "way", 5)
-    assert plan is not None and plan["fp"] == 3
-    for i, (n, e, h) in enumerate(legs):
-        assert plan["north"][i] == pytest.approx(n, abs=3.0)
-        assert plan["east"][i] == pytest.approx(e, abs=3.0)
-        assert plan["height"][i] == pytest.approx(h, abs=0.05)
+    assert_plan_flies(gs.wait_event(lambda e: e["topic"] == "way", 5), legs, 3.0, 0.05)
     as_int = gh.download_mission(gs.conn)
     assert [m.frame for m in as_int] == [frame] * 3
     assert [m.z for m in as_int] == pytest.approx([m.z for m in items])

@@ -49,6 +49,21 @@ def percentile(values, p):
     return values[k]
 
 
+def publish_commands(pub, last_seq, duration_s, rate=None):
+    """Stamped servo commands numbered on from last_seq for duration_s, one per period of rate, or
+    back to back without one; returns the last seq sent."""
+    seq = last_seq
+    t0 = time.time()
+    while time.time() - t0 < duration_s:
+        seq += 1
+        cmd = ServoCommand(seq=seq)
+        cmd.stamp = rospy.Time.now()
+        pub.publish(cmd)
+        if rate is not None:
+            rate.sleep()
+    return seq
+
+
 def print_figures(steady, flood, steady_sensors, header):
     """The metric lines: latency at 100 Hz, what the link sustains, bytes per period against
     the two baud rates' budgets, then the machine."""
@@ -102,28 +117,15 @@ def main():
         if pub.get_num_connections() == 0:
             raise SystemExit("bench-link: the link never came up")
         # Steady 100 Hz: the latency a control period sees.
-        seq = 0
         sensors.clear()
-        rate = rospy.Rate(RATE_HZ)
-        t0 = time.time()
-        while time.time() - t0 < STEADY_S:
-            seq += 1
-            cmd = ServoCommand(seq=seq)
-            cmd.stamp = rospy.Time.now()
-            pub.publish(cmd)
-            rate.sleep()
+        seq = publish_commands(pub, 0, STEADY_S, rospy.Rate(RATE_HZ))
         steady_sensors = sum(1 for s in sensors if s == 1)
         time.sleep(0.3)
         with open(lat_log) as fh:
             steady = [float(line.split()[1]) for line in fh if line.strip()]
         # Flood: as fast as the publisher can go, what the link sustains.
         first_flood_seq = seq + 1
-        t0 = time.time()
-        while time.time() - t0 < FLOOD_S:
-            seq += 1
-            cmd = ServoCommand(seq=seq)
-            cmd.stamp = rospy.Time.now()
-            pub.publish(cmd)
+        publish_commands(pub, seq, FLOOD_S)
         time.sleep(0.5)
         with open(lat_log) as fh:
             flood = [line for line in fh if line.strip() and int(line.split()[0]) >= first_flood_seq]

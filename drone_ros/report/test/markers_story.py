@@ -16,21 +16,13 @@ from tf2_msgs.msg import TFMessage
 from visualization_msgs.msg import Marker, MarkerArray
 
 from drone_ros.msg import DecisionStatus, HilTruth, data as Data, way as Way
+from stack_testing.story_wait import wait_for
 
 FT = 0.3048
 HOME = (38.9717, -95.2353, 250.0)
 CEILING_FT = 400.0  # aircraft/DG808/limits.yaml state.ceiling_agl_ft, loaded by view.launch
 HP_BLUE = (0x1f / 255.0, 0x77 / 255.0, 0xb4 / 255.0)
 HA_RED = (0xd6 / 255.0, 0x27 / 255.0, 0x28 / 255.0)
-
-
-def wait_for(predicate, timeout_s, what):
-    deadline = time.time() + timeout_s
-    while time.time() < deadline and not rospy.is_shutdown():
-        if predicate():
-            return
-        time.sleep(0.05)
-    raise AssertionError("timed out waiting for " + what)
 
 
 class MarkersStory(unittest.TestCase):

@@ -15,6 +15,7 @@ from test_flight_report import FIGURES, page, png_size  # noqa: E402
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
 from stack_testing.fault_flight import fly  # noqa: E402  (the fault tests' flights, each flown once per test run)
+from stack_testing.tlog_file import tlog_messages  # noqa: E402
 from hil import mission  # noqa: E402  (the mission the HiL uploads, as a ground station holds it)
 # The page's controller labels (report_core figures.CONTROLLER_LABELS) for the summary's names.
 LABELS = {"HP": "HP", "HA": "HA", "RECOVERING": "recovering", "HA_LATCHED": "latched", "MANUAL": "pilot"}
@@ -60,15 +61,9 @@ def test_the_switch_list_is_the_flights_switches_with_their_reasons(flight):
 
 
 def tlog_records(path):
-    """Every message of a tlog, opened as MAVExplorer opens one (pymavlink's mavlogfile): (message,
-    record time [s], link tag: 3 sent by the vehicle, 0 received)."""
-    log = mavutil.mavlink_connection(path, dialect="development")
-    out = []
-    while True:
-        m = log.recv_msg()
-        if m is None:
-            return out
-        out.append((m, m._timestamp, m._link))
+    """Every message of a tlog as (message, record time [s], link tag: 3 sent by the vehicle, 0
+    received)."""
+    return [(m, m._timestamp, m._link) for m in tlog_messages(path)]
 
 
 def test_the_ground_links_tlog_holds_both_directions_on_the_wall_clock(flight):
