@@ -13,27 +13,18 @@
 # this checkout's .venv Python when it has one, else `make deps` makes the clone's.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-ws=${1:-$(mktemp -d /tmp/drone_ros_install_ws.XXXXXX)}
-if [ -z "${KEEP:-}" ]; then trap 'rm -rf "$ws"' EXIT; fi
-mkdir -p "$ws/src"
-git clone -q "$root" "$ws/src/drone_ros"
-echo "check-install: clone of $(git -C "$ws/src/drone_ros" rev-parse --short HEAD) in $ws/src/drone_ros"
+# shellcheck source=tools/fresh_clone_workspace.sh
+source "$root/tools/fresh_clone_workspace.sh"
+new_workspace check-install install "${1:-}"
 
-login_env=(env -i HOME="$HOME" LANG=C.UTF-8 PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin)
 mavgen_python=${DRONE_ROS_PYMAVLINK_PYTHON:-$root/.venv/bin/python}
 if [ ! -x "$mavgen_python" ]; then
   (cd "$ws/src/drone_ros" && "${login_env[@]}" make deps)
   mavgen_python=$ws/src/drone_ros/.venv/bin/python
 fi
-start=$(date +%s)
-if ! (cd "$ws" && "${login_env[@]}" catkin_make -j"${JOBS:-2}" -DPYTHON_EXECUTABLE=/usr/bin/python3 \
-      -Ddrone_ros_PYMAVLINK_PYTHON="$mavgen_python" -DCATKIN_ENABLE_TESTING=OFF \
-      -DCMAKE_INSTALL_PREFIX="$ws/install" install > "$ws/catkin_make.log" 2>&1); then
-  tail -n 60 "$ws/catkin_make.log"
-  echo "check-install: catkin_make install failed in $ws (KEEP=1 keeps the workspace)"
-  exit 1
-fi
-build_s=$(( $(date +%s) - start ))
+build_workspace check-install -j"${JOBS:-2}" -DPYTHON_EXECUTABLE=/usr/bin/python3 \
+  -Ddrone_ros_PYMAVLINK_PYTHON="$mavgen_python" -DCATKIN_ENABLE_TESTING=OFF \
+  -DCMAKE_INSTALL_PREFIX="$ws/install" install
 
 # Nothing but the install space from here on: the sources, build and devel spaces are moved away.
 mkdir "$ws/aside"

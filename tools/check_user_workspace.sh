@@ -7,23 +7,14 @@
 # usage: check_user_workspace.sh [WORKSPACE_DIR]   (default: a new folder under /tmp)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-ws=${1:-$(mktemp -d /tmp/drone_ros_user_ws.XXXXXX)}
-if [ -z "${KEEP:-}" ]; then trap 'rm -rf "$ws"' EXIT; fi
-mkdir -p "$ws/src"
-git clone -q "$root" "$ws/src/drone_ros"
-echo "check-user-ws: clone of $(git -C "$ws/src/drone_ros" rev-parse --short HEAD) in $ws/src/drone_ros"
+# shellcheck source=tools/fresh_clone_workspace.sh
+source "$root/tools/fresh_clone_workspace.sh"
+new_workspace check-user-ws user "${1:-}"
 
-login_env=(env -i HOME="$HOME" LANG=C.UTF-8 PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin)
 start=$(date +%s)
 (cd "$ws/src/drone_ros" && "${login_env[@]}" make deps)
 deps_s=$(( $(date +%s) - start ))
-start=$(date +%s)
-if ! (cd "$ws" && "${login_env[@]}" catkin_make -j2 > "$ws/catkin_make.log" 2>&1); then
-  tail -n 60 "$ws/catkin_make.log"
-  echo "check-user-ws: catkin_make failed in $ws (KEEP=1 keeps the workspace)"
-  exit 1
-fi
-build_s=$(( $(date +%s) - start ))
+build_workspace check-user-ws -j2
 
 # The executables the launch files start (<node pkg="drone_ros" type="...">), built into devel/.
 mapfile -t types < <(cd "$root" && git ls-files '*.launch' | grep -v '/test/' | xargs cat | tr '\n' ' ' \
