@@ -17,6 +17,8 @@ import sys
 import time
 import uuid
 
+from hil import proc_stat
+
 TOKEN_VAR = "HIL_CAMPAIGN_FLIGHT"
 # The row's columns, in order (the CSV's header).
 COLUMNS = ["flight_id", "fault_class", "seed", "fault_at_s", "fault_duration_s", "fault_params",
@@ -74,19 +76,11 @@ def kill_all(token, popen=None, bound_s=30.0):
             except subprocess.TimeoutExpired:
                 pass
         # Zombies still show their environment until their parent reaps them; a zombie is dead.
-        if not [p for p in holders(token) if not _zombie(p)]:
+        if not [p for p in holders(token) if not proc_stat.dead(p)]:
             return len(killed)
         if time.monotonic() > deadline:
             return len(killed)
         time.sleep(0.1)
-
-
-def _zombie(pid):
-    try:
-        with open("/proc/%d/stat" % pid) as f:
-            return f.read().rsplit(")", 1)[1].split()[0] in ("Z", "X")
-    except OSError:
-        return True
 
 
 def _num(v):

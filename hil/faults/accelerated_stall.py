@@ -16,6 +16,8 @@ from stack_common.units import FT_PER_M
 
 
 class AcceleratedStall(SteeringFault):
+    EXTREME = ("max alpha %.1f deg", max, lambda m: m.alpha_deg)
+
     def __init__(self, *a):
         super().__init__(*a)
         self.stall_alpha_deg = math.degrees(self.ctx.fdm.airframe.alpha_stall_rad)
@@ -69,10 +71,6 @@ class AcceleratedStall(SteeringFault):
         self.note(t_s, "alpha %.2f deg past the stall %.2f at %.1f ft/s calibrated, %.2f g, bank %.1f deg, "
                        "controller %d" % (tr.alpha_deg, self.stall_alpha_deg, tr.airspeed_cal_mps * FT_PER_M,
                                           -tr.accel_body_mps2[2] / 9.80665, tr.roll_deg, reply.controller))
-
-    def extreme(self):
-        a = [m.alpha_deg for t, m in self.ctx.truth_since(self.at_s)]
-        return "max alpha %.1f deg" % max(a) if a else ""
 
 
 # What a campaign draws for this class (hil/campaigns/plan.py says how).

@@ -5,10 +5,7 @@ from hil.faults.steer import SteeringFault
 
 class Bank(SteeringFault):
     TARGET_ROLL_DEG = 80.0
-
-    def extreme(self):
-        r = [abs(m.roll_deg) for t, m in self.ctx.truth_since(self.at_s)]
-        return "max |roll| %.1f deg" % max(r) if r else ""
+    EXTREME = ("max |roll| %.1f deg", max, lambda m: abs(m.roll_deg))
 
 
 # What a campaign draws for this class (hil/campaigns/plan.py says how).

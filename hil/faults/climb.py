@@ -6,10 +6,7 @@ from hil.faults.steer import SteeringFault
 class Climb(SteeringFault):
     TARGET_PITCH_DEG = 12.0
     THROTTLE = 1.0
-
-    def extreme(self):
-        h = [m.height_above_home_ft for t, m in self.ctx.truth_since(self.at_s)]
-        return "max height %.0f ft above home" % max(h) if h else ""
+    EXTREME = ("max height %.0f ft above home", max, lambda m: m.height_above_home_ft)
 
 
 # What a campaign draws for this class (hil/campaigns/plan.py says how).

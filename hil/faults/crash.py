@@ -5,14 +5,31 @@ import signal
 import time
 
 from hil.faults.base import Fault
+from hil.proc_stat import state
+
+GONE = (None, "Z")  # reaped, or a zombie: the controller runs no more
 
 
-def proc_state(pid):
-    try:
-        with open("/proc/%d/stat" % pid) as f:
-            return f.read().rsplit(")", 1)[1].split()[0]
-    except OSError:
-        return None  # gone
+def silence_hp(fault, t_s, verb):
+    """The HP falls silent at t_s (the HA's deadline counts from here): the controller's pid to
+    signal, or None, noted, when there is no controller to verb."""
+    ctx = fault.ctx
+    pid = ctx.controller_pid()
+    ctx.hp_alive = False
+    ctx.crashed_at = t_s
+    if pid is None:
+        fault.note(t_s, "controller_DG808 not running: nothing to %s" % verb)
+    return pid
+
+
+def signal_until(pid, sig, states, timeout_s=10.0):
+    """Sends sig to pid and waits up to timeout_s for /proc to show it in one of states (None:
+    gone); returns the state it is in then."""
+    os.kill(pid, sig)
+    deadline = time.monotonic() + timeout_s
+    while state(pid) not in states and time.monotonic() < deadline:
+        time.sleep(0.005)
+    return state(pid)
 
 
 class Crash(Fault):
@@ -28,23 +45,12 @@ class Crash(Fault):
         if self.done or t_s < self.at_s - 1e-9:
             return
         self.done = True
-        ctx = self.ctx
-        pid = ctx.controller_pid()
-        ctx.hp_alive = False
-        ctx.crashed_at = t_s
-        if pid is None:
-            self.note(t_s, "controller_DG808 not running: nothing to signal")
-            return
-        self.pid = pid
-        self.signal_controller(t_s, pid)
+        self.pid = silence_hp(self, t_s, "signal")
+        if self.pid is not None:
+            self.signal_controller(t_s, self.pid)
 
     def signal_controller(self, t_s, pid):
-        os.kill(pid, signal.SIGKILL)
-        deadline = time.monotonic() + 10.0
-        while proc_state(pid) not in (None, "Z") and time.monotonic() < deadline:
-            time.sleep(0.005)
-        st = proc_state(pid)
-        self.confirmed = st in (None, "Z")
+        self.confirmed = signal_until(pid, signal.SIGKILL, GONE) in GONE
         self.note(t_s, "SIGKILL to controller_DG808 (pid %d): %s" % (pid, "gone" if self.confirmed else "still running"))
         self.ctx.event(t_s, "HP crash injected: SIGKILL to controller_DG808 (pid %d)" % pid)
 

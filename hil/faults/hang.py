@@ -4,10 +4,12 @@ hp_supervisor kills a hung controller when the HA asks for a restart); negative:
 Took effect when /proc shows the process stopped (state T)."""
 import os
 import signal
-import time
 
 from hil.faults.base import Fault
-from hil.faults.crash import proc_state, silent_hp_due_s
+from hil.faults.crash import signal_until, silence_hp, silent_hp_due_s
+from hil.proc_stat import state
+
+STOPPED = ("T", "t")  # proc(5): stopped by a signal, or by a tracer
 
 
 class Hang(Fault):
@@ -19,26 +21,18 @@ class Hang(Fault):
         self.resumed = False
 
     def on_step(self, t_s):
-        ctx = self.ctx
         if not self.done and t_s >= self.at_s - 1e-9:
             self.done = True
-            pid = ctx.controller_pid()
-            ctx.hp_alive = False
-            ctx.crashed_at = t_s
+            self.pid = pid = silence_hp(self, t_s, "stop")
             if pid is None:
-                self.note(t_s, "controller_DG808 not running: nothing to stop")
                 return
-            self.pid = pid
-            os.kill(pid, signal.SIGSTOP)
-            deadline = time.monotonic() + 10.0
-            while proc_state(pid) not in ("T", "t", None) and time.monotonic() < deadline:
-                time.sleep(0.005)
-            self.confirmed = proc_state(pid) in ("T", "t")
-            self.note(t_s, "SIGSTOP to controller_DG808 (pid %d): state %s" % (pid, proc_state(pid)))
-            ctx.event(t_s, "HP hang injected: SIGSTOP to controller_DG808 (pid %d)" % pid)
+            st = signal_until(pid, signal.SIGSTOP, STOPPED + (None,))
+            self.confirmed = st in STOPPED
+            self.note(t_s, "SIGSTOP to controller_DG808 (pid %d): state %s" % (pid, st))
+            self.ctx.event(t_s, "HP hang injected: SIGSTOP to controller_DG808 (pid %d)" % pid)
         elif self.done and self.pid and not self.resumed and self.ended(t_s):
             self.resumed = True
-            if proc_state(self.pid) in ("T", "t"):
+            if state(self.pid) in STOPPED:
                 os.kill(self.pid, signal.SIGCONT)
                 self.note(t_s, "SIGCONT to controller_DG808 (pid %d)" % self.pid)
             else:

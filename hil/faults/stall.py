@@ -6,10 +6,7 @@ from hil.faults.steer import SteeringFault
 class Stall(SteeringFault):
     TARGET_PITCH_DEG = 20.0
     THROTTLE = 0.0
-
-    def extreme(self):
-        v = [m.airspeed_ftps for t, m in self.ctx.truth_since(self.at_s)]
-        return "min true airspeed %.1f ft/s" % min(v) if v else ""
+    EXTREME = ("min true airspeed %.1f ft/s", min, lambda m: m.airspeed_ftps)
 
 
 # What a campaign draws for this class (hil/campaigns/plan.py says how).

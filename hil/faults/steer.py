@@ -11,6 +11,9 @@ class SteeringFault(CommandFault):
     TARGET_PITCH_DEG = None
     TARGET_ROLL_DEG = None
     THROTTLE = None
+    # How far the truth went after at_s, for the evidence: (the words, a %-format of the value;
+    # max or min; the value of one truth sample).
+    EXTREME = None
 
     def makes_due(self, m):
         return False  # the command itself is acceptable; the state it leads to is not
@@ -51,4 +54,8 @@ class SteeringFault(CommandFault):
         return ok, why + ("; " + ex if ex else "")
 
     def extreme(self):
-        return ""
+        if self.EXTREME is None:
+            return ""
+        words, worst, value = self.EXTREME
+        series = [value(m) for t, m in self.ctx.truth_since(self.at_s)]
+        return words % worst(series) if series else ""

@@ -18,18 +18,11 @@ from hil.campaigns import flight as flight_mod  # noqa: E402
 from hil.campaigns import plan as plan_mod  # noqa: E402
 from hil.campaigns import report as report_mod  # noqa: E402
 from hil.campaigns import runner  # noqa: E402
+from hil import proc_stat  # noqa: E402
 
 FAKE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "campaign_fake_flight.py")
 AGREED = plan_mod.Interface(classes=("quick", "wait", "die", "stuck", "unjudged"), fault_at_flag="--fault-at",
                             has_duration=True, has_params=True)
-
-
-def gone(pid):
-    try:
-        with open("/proc/%d/stat" % pid) as f:
-            return f.read().rsplit(")", 1)[1].split()[0] in ("Z", "X")
-    except OSError:
-        return True
 
 
 def wait_for(cond, what, bound_s=120.0):
@@ -46,32 +39,25 @@ def my_children():
     me = str(os.getpid())
     out = []
     for pid in os.listdir("/proc"):
-        if pid.isdigit():
-            try:
-                with open("/proc/%s/stat" % pid) as f:
-                    fields = f.read().rsplit(")", 1)[1].split()
-            except OSError:
-                continue
-            if fields[1] == me and fields[0] not in ("Z", "X"):
-                try:
-                    with open("/proc/%s/cmdline" % pid, "rb") as f:
-                        if b"resource_tracker" in f.read():
-                            continue
-                except OSError:
+        fields = proc_stat.stat_fields(pid) if pid.isdigit() else None
+        if fields is None or fields[1] != me or fields[0] in ("Z", "X"):
+            continue
+        try:
+            with open("/proc/%s/cmdline" % pid, "rb") as f:
+                if b"resource_tracker" in f.read():
                     continue
-                out.append(int(pid))
+        except OSError:
+            continue
+        out.append(int(pid))
     return out
 
 
 def descendants(root):
     parent = {}
     for pid in os.listdir("/proc"):
-        if pid.isdigit():
-            try:
-                with open("/proc/%s/stat" % pid) as f:
-                    parent[int(pid)] = int(f.read().rsplit(")", 1)[1].split()[1])
-            except OSError:
-                continue
+        fields = proc_stat.stat_fields(pid) if pid.isdigit() else None
+        if fields is not None:
+            parent[int(pid)] = int(fields[1])
     out, pending = set(), [root]
     while pending:
         p = pending.pop()
@@ -195,7 +181,7 @@ def test_a_flight_past_its_wall_limit_is_killed_whole_and_reported_as_timed_out(
     assert len(pids) == 2, "the stuck flight had not started its processes within the limit"
     # Its processes in sessions of their own, one ignoring SIGTERM, are gone with it.
     for pid in pids:
-        wait_for(lambda: gone(pid), "process %d of the timed-out flight gone" % pid, bound_s=30.0)
+        wait_for(lambda: proc_stat.dead(pid), "process %d of the timed-out flight gone" % pid, bound_s=30.0)
     assert row["exit_code"] == -9
     assert row["leftovers_killed"] == 0  # nothing of it was left for the sweep after the kill
     assert row["broke_property"] is False
@@ -215,7 +201,7 @@ def test_a_test_flight_past_its_timeout_raises_and_leaves_no_process_behind(tmp_
         pids = [int(p) for p in f.read().split()]
     assert len(pids) == 2, "the stuck flight had not started its processes within the timeout"
     for pid in pids:
-        wait_for(lambda: gone(pid), "process %d of the timed-out flight gone" % pid, bound_s=30.0)
+        wait_for(lambda: proc_stat.dead(pid), "process %d of the timed-out flight gone" % pid, bound_s=30.0)
 
 
 def test_a_test_flight_that_ends_gives_its_exit_code_and_output(tmp_path):
