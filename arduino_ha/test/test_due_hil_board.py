@@ -12,6 +12,7 @@ import subprocess
 import pytest
 
 from hil import ha_channel, record_bridge
+from stack_testing.due_host import build_due_host_programs
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 
@@ -23,11 +24,7 @@ GOOD = ha_channel.RC_VALID | ha_channel.AIRSPEED_OK | ha_channel.BATTERY_OK
 
 @pytest.fixture(scope="module")
 def runner(tmp_path_factory):
-    out = tmp_path_factory.mktemp("board")
-    done = subprocess.run(["bash", str(ROOT / "arduino_ha" / "verify" / "board_compile_check.sh"), str(out)],
-                          capture_output=True, text=True)
-    assert done.returncode == 0, "board_compile_check.sh failed:\n%s\n%s" % (done.stdout, done.stderr)
-    return out / "due_hil_host_run"
+    return build_due_host_programs(tmp_path_factory.mktemp("board")) / "due_hil_host_run"
 
 
 def record(rc=CIC, flags=GOOD, airspeed_ftps=50.0, battery_v=12.4):

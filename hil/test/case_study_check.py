@@ -8,14 +8,14 @@
 - control goes back to the HP only after the stable window, and it does go back;
 - the mission: every one of the 32 waypoints is passed within the controller's reach distance."""
 import os
-import threading
-import time
 import unittest
 
 import rospy
 import rostest
 import yaml
 from drone_ros.msg import DecisionStatus, HilTruth
+from flight_end import wait_for_the_simulator
+from stack_testing.kept_messages import KeptMessages
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", ".."))
 from hil import verdicts  # noqa: E402
@@ -32,22 +32,10 @@ class CaseStudy(unittest.TestCase):
             cls.regions = verdicts.Regions(yaml.safe_load(f))
         cls.crash_at_s = float(rospy.get_param("~crash_at_s"))
         cls.duration_s = float(rospy.get_param("~duration_s"))
-        cls.lock = threading.Lock()
-        cls.truth, cls.status = [], []
-        rospy.Subscriber("/hil/truth", HilTruth, lambda m: cls._add(cls.truth, m), queue_size=100000)
-        rospy.Subscriber("/decision_status", DecisionStatus, lambda m: cls._add(cls.status, m), queue_size=100000)
-        done = os.path.join(cls.out_dir, "done")
-        deadline = time.monotonic() + float(rospy.get_param("~wait_s", 1400.0))
-        while not os.path.exists(done) and time.monotonic() < deadline and not rospy.is_shutdown():
-            time.sleep(0.5)
-        time.sleep(1.0)  # the last messages
-        with open(done) as f:
-            cls.sim_exit = int(f.read().strip())
-
-    @classmethod
-    def _add(cls, log, m):
-        with cls.lock:
-            log.append(m)
+        kept = KeptMessages()
+        cls.truth = kept.subscribe("/hil/truth", HilTruth, queue_size=100000)
+        cls.status = kept.subscribe("/decision_status", DecisionStatus, queue_size=100000)
+        cls.sim_exit = wait_for_the_simulator(cls.out_dir, float(rospy.get_param("~wait_s", 1400.0)), poll_s=0.5)
 
     def test_1_the_flight_ran_to_its_end(self):
         self.assertEqual(0, self.sim_exit, "the simulator stopped early: see %s" % self.out_dir)

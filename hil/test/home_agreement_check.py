@@ -9,10 +9,7 @@ parked. The truth's north/east use the simulator's own (Python) flat earth, inde
 stack's C module on purpose."""
 import bisect
 import math
-import os
 import sys
-import threading
-import time
 import unittest
 
 import rospy
@@ -21,6 +18,9 @@ from diagnostic_msgs.msg import DiagnosticArray
 from drone_ros.msg import HilTruth, HomePosition
 from pymavlink import mavutil
 from tf2_msgs.msg import TFMessage
+
+from flight_end import wait_for_the_simulator
+from stack_testing.kept_messages import KeptMessages
 
 FT_PER_M = 1.0 / 0.3048
 # How far the HA's home may sit from the truth's parked position: three times the VN-200
@@ -49,43 +49,35 @@ class HomeAgreement(unittest.TestCase):
         cls.out_dir = rospy.get_param("~out_dir")
         cls.crash_at_s = float(rospy.get_param("~crash_at_s"))
         cls.gs_port = int(rospy.get_param("~gs_udp_port"))
-        cls.lock = threading.Lock()
-        cls.truth, cls.homes, cls.controller, cls.tfs = [], [], [], []
-        rospy.Subscriber("/hil/truth", HilTruth, lambda m: cls._add(cls.truth, m), queue_size=100000)
-        rospy.Subscriber("/home", HomePosition, lambda m: cls._add(cls.homes, m), queue_size=100)
+        cls.kept = KeptMessages()
+        cls.truth = cls.kept.subscribe("/hil/truth", HilTruth, queue_size=100000)
+        cls.homes = cls.kept.subscribe("/home", HomePosition, queue_size=100)
+        cls.controller, cls.tfs = [], []
         rospy.Subscriber("/diagnostics", DiagnosticArray, cls._on_diagnostics, queue_size=1000)
         rospy.Subscriber("/tf", TFMessage, cls._on_tf, queue_size=100000)
-        # The ground station is asked while the flight runs: the launch ends with the simulator.
         cls.home_position = None
-        done = os.path.join(cls.out_dir, "done")
-        deadline = time.monotonic() + 800.0
-        while not os.path.exists(done) and time.monotonic() < deadline and not rospy.is_shutdown():
-            with cls.lock:
-                flying = bool(cls.truth) and cls.truth[-1].header.stamp.to_sec() > 5.0
-            if flying and cls.home_position is None:
-                cls.home_position = cls._ask_ground_station()
-            time.sleep(0.2)
-        time.sleep(1.0)  # the last messages
-        with open(done) as f:
-            cls.sim_exit = int(f.read().strip())
+        cls.sim_exit = wait_for_the_simulator(cls.out_dir, 800.0, poll_s=0.2, while_flying=cls._ask_once_airborne)
 
     @classmethod
-    def _add(cls, log, m):
-        with cls.lock:
-            log.append(m)
+    def _ask_once_airborne(cls):
+        # The ground station is asked while the flight runs: the launch ends with the simulator.
+        with cls.kept.lock:
+            flying = bool(cls.truth) and cls.truth[-1].header.stamp.to_sec() > 5.0
+        if flying and cls.home_position is None:
+            cls.home_position = cls._ask_ground_station()
 
     @classmethod
     def _on_diagnostics(cls, msg):
         for s in msg.status:
             if "performance controller" in s.name:
                 values = {kv.key: kv.value for kv in s.values}
-                cls._add(cls.controller, (msg.header.stamp.to_sec(), values))
+                cls.kept.keep(cls.controller, (msg.header.stamp.to_sec(), values))
 
     @classmethod
     def _on_tf(cls, msg):
         for t in msg.transforms:
             if (t.header.frame_id, t.child_frame_id) == ("odom", "base_link"):
-                cls._add(cls.tfs, t)
+                cls.kept.keep(cls.tfs, t)
 
     @classmethod
     def _ask_ground_station(cls):

@@ -10,7 +10,6 @@ bytes. Each flight gets a fresh emulated Due (a power cycle: nothing retained fr
 import json
 import os
 import pathlib
-import signal
 import subprocess
 import sys
 import time
@@ -18,7 +17,9 @@ import time
 import pytest
 
 from hil.campaigns.flight import run_completed  # a flight that runs out of time, killed whole
+from stack_testing.due_host import build_due_host_programs
 from stack_testing.gs_harness import free_port
+from stack_testing.processes import end_process
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 pytestmark = pytest.mark.realtime  # flown alone, after the rest (conftest.py)
@@ -29,11 +30,7 @@ FLIGHTS = 3
 
 @pytest.fixture(scope="module")
 def emulator(tmp_path_factory):
-    out = tmp_path_factory.mktemp("board")
-    done = subprocess.run(["bash", str(ROOT / "arduino_ha" / "verify" / "board_compile_check.sh"), str(out)],
-                          capture_output=True, text=True)
-    assert done.returncode == 0, "board_compile_check.sh failed:\n%s\n%s" % (done.stdout, done.stderr)
-    return out / "due_hil_on_ptys"
+    return build_due_host_programs(tmp_path_factory.mktemp("board")) / "due_hil_on_ptys"
 
 
 class EmulatedDue:
@@ -54,12 +51,7 @@ class EmulatedDue:
         return self
 
     def __exit__(self, *exc):
-        self.proc.send_signal(signal.SIGTERM)
-        try:
-            self.proc.wait(timeout=10)
-        except subprocess.TimeoutExpired:
-            self.proc.kill()
-            self.proc.wait()
+        end_process(self.proc, grace_s=10)
         self.log.close()
 
 

@@ -35,12 +35,17 @@ def test_parked_start_rests_on_its_wheels():
     assert end.heading_deg == pytest.approx(270.0, abs=0.01)
 
 
-def test_full_throttle_rolls_it_along_its_heading_on_the_wheels():
+def rolled(heading_deg, surfaces, seconds):
+    """The truth after seconds on the ground from a parked start facing heading_deg, surfaces held."""
     with Fdm(AIRCRAFT, seed=2) as fdm:
-        fdm.reset_on_ground(47.4, 8.5, 420.0, 270.0)
-        fdm.set_surfaces(Surfaces(0.0, 0.0, 0.0, 1.0))
-        fdm.advance(5.0)
-        t = fdm.truth()
+        fdm.reset_on_ground(47.4, 8.5, 420.0, heading_deg)
+        fdm.set_surfaces(surfaces)
+        fdm.advance(seconds)
+        return fdm.truth()
+
+
+def test_full_throttle_rolls_it_along_its_heading_on_the_wheels():
+    t = rolled(270.0, Surfaces(0.0, 0.0, 0.0, 1.0), 5.0)
     assert t.on_ground
     assert t.ve_mps < -5.0 and abs(t.vn_mps) < 0.1       # westward, straight
     assert t.airspeed_true_mps == pytest.approx(math.hypot(t.vn_mps, t.ve_mps), abs=0.01)
@@ -48,11 +53,7 @@ def test_full_throttle_rolls_it_along_its_heading_on_the_wheels():
 
 
 def test_positive_rudder_steers_the_nose_wheel_left():
-    with Fdm(AIRCRAFT, seed=2) as fdm:
-        fdm.reset_on_ground(47.4, 8.5, 420.0, 0.0)
-        fdm.set_surfaces(Surfaces(0.0, 0.0, 8.0, 0.6))
-        fdm.advance(2.0)
-        t = fdm.truth()
+    t = rolled(0.0, Surfaces(0.0, 0.0, 8.0, 0.6), 2.0)
     assert t.on_ground
     assert t.r_rad_s < -0.2
     assert 270.0 < t.heading_deg < 358.0

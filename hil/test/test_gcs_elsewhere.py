@@ -4,6 +4,7 @@ it was given. The "other machine" is 127.0.0.2 (loopback, but another address th
 a pymavlink link listening there as QGroundControl does (udpin) hears the HEARTBEATs and positions
 of a lockstep flight and gets a parameter back when it asks for one; MAVProxy, run there as an
 operator runs it, sees the vehicle come online and downloads the mission the flight flies."""
+import contextlib
 import os
 import socket
 import subprocess
@@ -28,9 +29,11 @@ def free_udp_port(host):
         return s.getsockname()[1]
 
 
-def fly_in_background(duration_s, gcs_port, vehicle_port):
-    """A lockstep flight whose ground station is GCS_HOST:gcs_port, flown in a thread while the
-    test plays the ground station: (the thread, a dict whose "r" is run_flight.py's result)."""
+@contextlib.contextmanager
+def flying_in_background(duration_s, gcs_port, vehicle_port):
+    """A lockstep flight whose ground station is GCS_HOST:gcs_port, flown in a thread (given to
+    see whether it still flies) while the test plays the ground station; waited for on the way
+    out, and it must have ended well."""
     folder = os.path.join(tempfile.mkdtemp(prefix="hil_gcs_"), "flight")
     result = {}
 
@@ -41,14 +44,18 @@ def fly_in_background(duration_s, gcs_port, vehicle_port):
                                      "--vehicle-port", str(vehicle_port)], timeout=600)
     flight = threading.Thread(target=fly)
     flight.start()
-    return flight, result
+    try:
+        yield flight
+    finally:
+        flight.join(timeout=600)
+    r = result["r"]
+    assert r.returncode == 0, r.stdout.decode(errors="replace")[-3000:]
 
 
 def test_a_ground_station_at_another_address_hears_the_vehicle_and_is_answered():
     gcs_port, vehicle_port = free_udp_port(GCS_HOST), free_udp_port("127.0.0.1")
     gcs = mavutil.mavlink_connection("udpin:%s:%d" % (GCS_HOST, gcs_port), source_system=255)
-    flight, result = fly_in_background(30, gcs_port, vehicle_port)
-    try:
+    with contextlib.closing(gcs), flying_in_background(30, gcs_port, vehicle_port) as flight:
         seen = {}
         while flight.is_alive() and not ({"HEARTBEAT", "GLOBAL_POSITION_INT"} <= set(seen)):
             m = gcs.recv_match(type=["HEARTBEAT", "GLOBAL_POSITION_INT"], blocking=True, timeout=1.0)
@@ -67,18 +74,14 @@ def test_a_ground_station_at_another_address_hears_the_vehicle_and_is_answered()
                 break
         assert answer is not None, "no PARAM_VALUE back to the ground station at %s" % GCS_HOST
         assert answer.param_count > 0
-    finally:
-        flight.join(timeout=600)
-        gcs.close()
-    r = result["r"]
-    assert r.returncode == 0, r.stdout.decode(errors="replace")[-3000:]
 
 
 def test_mavproxy_at_another_address_sees_the_vehicle_online_and_downloads_its_mission():
     gcs_port, vehicle_port = free_udp_port(GCS_HOST), free_udp_port("127.0.0.1")
     mavproxy = MavProxy(gcs_port, host=GCS_HOST)
-    flight, result = fly_in_background(40, gcs_port, vehicle_port)
-    try:
+    with contextlib.ExitStack() as on_exit:
+        on_exit.callback(mavproxy.stop)
+        flight = on_exit.enter_context(flying_in_background(40, gcs_port, vehicle_port))
         assert mavproxy.wait_for("online system 1", 300) is not None, mavproxy.output()[-3000:]
         # The simulator uploads the case study's mission once the stack is up; listed until then.
         rows = None
@@ -93,11 +96,6 @@ def test_mavproxy_at_another_address_sees_the_vehicle_online_and_downloads_its_m
         assert rows, "MAVProxy at %s got no mission: %s" % (GCS_HOST, mavproxy.output()[-3000:])
         flown = read_qgc_wpl(os.path.join(ROOT, "aircraft", "DG808", "missions", "case_study.waypoints"))[1:]
         assert [(round(r[2], 6), round(r[3], 6)) for r in rows] == [(round(r[2], 6), round(r[3], 6)) for r in flown]
-    finally:
-        flight.join(timeout=600)
-        mavproxy.stop()
-    r = result["r"]
-    assert r.returncode == 0, r.stdout.decode(errors="replace")[-3000:]
 
 
 def test_a_ground_station_address_that_is_not_ipv4_is_refused_before_anything_starts():

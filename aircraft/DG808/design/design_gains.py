@@ -126,6 +126,14 @@ def design(af, data, q_weight, dt_max):
                 rho_lat=rho_lat)
 
 
+def matrix_lines(name, k):
+    """A gain matrix as the header declares it: its size, then its rows."""
+    rows, cols = len(k), len(k[0])
+    return (["#define %s_ROWS %d" % (name, rows), "#define %s_COLS %d" % (name, cols),
+             "static const double %s[%d][%d] = {" % (name, rows, cols)]
+            + ["  {" + ", ".join(num(v) for v in row) + "}," for row in k] + ["};"])
+
+
 def header_text(af, g, q_weight, airframe_sha):
     """dg808_gnc_data.h: the airframe's constants, the design trim and the gains g."""
     lines = []
@@ -161,21 +169,11 @@ def header_text(af, g, q_weight, airframe_sha):
     w("")
     w("/* u_lon = [elevator rad, throttle] = trim - K_LON * [dV m/s, dalpha rad, q rad/s,")
     w(" *          dtheta rad, integral(V - V_cmd) m, integral(theta - theta_cmd) rad s] */")
-    w("#define DG808_K_LON_ROWS 2")
-    w("#define DG808_K_LON_COLS 6")
-    w("static const double DG808_K_LON[2][6] = {")
-    for row in g["k_lon"]:
-        w("  {" + ", ".join(num(v) for v in row) + "},")
-    w("};")
+    lines.extend(matrix_lines("DG808_K_LON", g["k_lon"]))
     w("")
     w("/* u_lat = [aileron rad, rudder rad] = -K_LAT * [beta rad, p rad/s, r rad/s, dphi rad,")
     w(" *          integral(phi - phi_cmd) rad s] */")
-    w("#define DG808_K_LAT_ROWS 2")
-    w("#define DG808_K_LAT_COLS 5")
-    w("static const double DG808_K_LAT[2][5] = {")
-    for row in g["k_lat"]:
-        w("  {" + ", ".join(num(v) for v in row) + "},")
-    w("};")
+    lines.extend(matrix_lines("DG808_K_LAT", g["k_lat"]))
     w("")
     w("#endif /* DG808_GNC_DATA_H */")
     return "\n".join(lines) + "\n"

@@ -16,7 +16,6 @@ import zlib
 
 import rospy
 import rostest
-from diagnostic_msgs.msg import DiagnosticArray
 from rosgraph_msgs.msg import Log
 from std_msgs.msg import String
 
@@ -24,7 +23,8 @@ from std_msgs.msg import String
 # environment, so even a fresh workspace's `run_tests` finds the messages.
 from drone_ros.msg import DecisionStatus, ServoCommand, pwm
 
-from story_wait import wait_for  # noqa: E402
+from story_wait import LinkDiagnostics, wait_for  # noqa: E402
+from stack_testing.processes import end_process  # noqa: E402
 from stack_testing.wire_tap import WireTap, frame, topic_info  # noqa: E402
 
 WS = os.environ.get("DRONE_ROS_WS", "")
@@ -58,11 +58,9 @@ class Watch:
         self.lock = threading.Lock()
         self.pwm = []
         self.status = None
-        self.diag = {}
         self.logs = []
         rospy.Subscriber("pwm", pwm, self._pwm, queue_size=1000)
         rospy.Subscriber("decision_status", DecisionStatus, self._status, queue_size=100)
-        rospy.Subscriber("/diagnostics", DiagnosticArray, self._diag, queue_size=100)
         rospy.Subscriber("/rosout", Log, self._log, queue_size=100)
 
     def _pwm(self, m):
@@ -73,20 +71,9 @@ class Watch:
         with self.lock:
             self.status = m
 
-    def _diag(self, m):
-        for s in m.status:
-            if s.name.endswith("HA link"):
-                with self.lock:
-                    self.diag = {kv.key: kv.value for kv in s.values}
-                    self.diag["_level"] = s.level
-
     def _log(self, m):
         with self.lock:
             self.logs.append(m.msg)
-
-    def counter(self, key):
-        with self.lock:
-            return float(self.diag.get(key, "0"))
 
     def device_errors(self):
         """The HA's own drop counters from its latest "[HA] link errors: name N ..." log (the SIL
@@ -106,6 +93,7 @@ class LinkStories(unittest.TestCase):
         cls.node_port = rospy.get_param("~node_port")
         cls.device_port = os.path.join(cls.tmp, "due")
         cls.watch = Watch()
+        cls.diag = LinkDiagnostics()
         cls.pub = rospy.Publisher("servo_op", ServoCommand, queue_size=100, tcp_nodelay=True)
         cls.sil = subprocess.Popen([find_sil(), "--port", cls.device_port, "--rate-hz", "100",
                                      "--param", "link_probe", "--unplug-ms", "800"])
@@ -116,21 +104,12 @@ class LinkStories(unittest.TestCase):
     @classmethod
     def tearDownClass(cls):
         cls.tap.close()
-        cls.sil.send_signal(signal.SIGTERM)
-        try:
-            cls.sil.wait(timeout=5)
-        except subprocess.TimeoutExpired:
-            cls.sil.kill()
-            cls.sil.wait()
+        end_process(cls.sil, grace_s=5)
         shutil.rmtree(cls.tmp, ignore_errors=True)
 
     def link_up(self):
         with self.watch.lock:
             return bool(self.watch.pwm) and self.watch.pwm[-1][1] == 1
-
-    def diag_ok(self):
-        with self.watch.lock:
-            return self.watch.diag.get("_level") in (0, b"\x00")
 
     def send_commands(self, count, good_crc=True, repeat=False, step=1):
         for _ in range(count):
@@ -149,7 +128,7 @@ class LinkStories(unittest.TestCase):
                  "/decision_status stamped with synced ROS time")
         self.assertLess(abs(self.status().stamp.to_sec() - rospy.Time.now().to_sec()), 2.0)
         wait_for(lambda: any("[HA] HA SIL link up" in m for m in self.watch.logs), 5.0, "device log on rosout")
-        wait_for(self.diag_ok, 5.0, "diagnostics OK")
+        wait_for(self.diag.ok, 5.0, "diagnostics OK")
 
     def test_01b_the_ha_reads_a_parameter_through_the_host(self):
         wait_for(lambda: any("[HA] param link_probe: 42" in m for m in self.watch.logs), 10.0,
@@ -180,7 +159,7 @@ class LinkStories(unittest.TestCase):
 
     def test_06_bad_bytes_both_ways_are_counted_on_both_ends_and_the_link_carries_on(self):
         wait_for(self.link_up, 10.0, "link up")
-        before = {k: self.watch.counter(k) for k in
+        before = {k: self.diag.counter(k) for k in
                   ("bytes_skipped", "bad_checksum", "oversized", "unknown_topic", "bad_length_checksum")}
         device_before = self.watch.device_errors()
         good = frame(125, bytes(66))
@@ -196,12 +175,12 @@ class LinkStories(unittest.TestCase):
             self.tap.inject_to_device(chunk)
             time.sleep(0.02)
         self.tap.inject_to_node(frame(4243, b"split across reads"), split=True)  # in 3-byte pieces
-        wait_for(lambda: self.watch.counter("bytes_skipped") > before["bytes_skipped"], 5.0, "skipped bytes counted")
-        wait_for(lambda: self.watch.counter("bad_checksum") >= before["bad_checksum"] + 2, 5.0, "bad checksums")
-        wait_for(lambda: self.watch.counter("oversized") > before["oversized"], 5.0, "absurd length counted")
-        wait_for(lambda: self.watch.counter("unknown_topic") >= before["unknown_topic"] + 2, 5.0,
+        wait_for(lambda: self.diag.counter("bytes_skipped") > before["bytes_skipped"], 5.0, "skipped bytes counted")
+        wait_for(lambda: self.diag.counter("bad_checksum") >= before["bad_checksum"] + 2, 5.0, "bad checksums")
+        wait_for(lambda: self.diag.counter("oversized") > before["oversized"], 5.0, "absurd length counted")
+        wait_for(lambda: self.diag.counter("unknown_topic") >= before["unknown_topic"] + 2, 5.0,
                  "unknown topics counted, including the split frame")
-        wait_for(lambda: self.watch.counter("bad_length_checksum") > before["bad_length_checksum"], 5.0,
+        wait_for(lambda: self.diag.counter("bad_length_checksum") > before["bad_length_checksum"], 5.0,
                  "bad length checksum counted")
         # The HA dropped the same kinds of bad input on its side, and says so.
         expected = {"bytes_skipped": 1, "bad_checksum": 2, "oversized": 1, "unknown_topic": 1, "bad_length_checksum": 1}
@@ -222,7 +201,7 @@ class LinkStories(unittest.TestCase):
         # throw out of advertise/subscribe and abort the node. A flaky or foreign device must
         # not take the HP's end of the link down with it.
         wait_for(self.link_up, 10.0, "link up")
-        bad_before = self.watch.counter("bad_payload")
+        bad_before = self.diag.counter("bad_payload")
         md5 = String._md5sum
         refused = [
             frame(0, topic_info(140, "bad name!", "std_msgs/String", md5)),   # not a ROS name
@@ -238,7 +217,7 @@ class LinkStories(unittest.TestCase):
         for f in refused:
             self.tap.inject_to_node(f)
             time.sleep(0.02)
-        wait_for(lambda: self.watch.counter("bad_payload") >= bad_before + len(refused), 5.0,
+        wait_for(lambda: self.diag.counter("bad_payload") >= bad_before + len(refused), 5.0,
                  "every refused frame counted as a bad payload")
         # The same node carries on both ways.
         self.send_commands(20)
@@ -264,8 +243,8 @@ class LinkStories(unittest.TestCase):
 
     def test_07_unplug_and_replug_is_survived_with_the_gap_reported(self):
         wait_for(self.link_up, 10.0, "link up")
-        opens_before = self.watch.counter("port_opens")
-        outages_before = self.watch.counter("outages")
+        opens_before = self.diag.counter("port_opens")
+        outages_before = self.diag.counter("outages")
         self.tap.unplug()
         t_unplug = time.time()
         wait_for(lambda: not self.link_up(), 3.0, "/pwm usbstatus 0 after the unplug")
@@ -273,25 +252,25 @@ class LinkStories(unittest.TestCase):
         self.tap.plug()
         wait_for(self.link_up, 10.0, "/pwm usbstatus 1 after the replug")
         # Diagnostics come once a second: wait for the one that reports the link back up.
-        wait_for(lambda: self.watch.counter("outages") == outages_before + 1 and self.diag_ok(), 3.0,
+        wait_for(lambda: self.diag.counter("outages") == outages_before + 1 and self.diag.ok(), 3.0,
                  "one outage reported, link OK again")
-        gap = self.watch.counter("last_gap_s")
+        gap = self.diag.counter("last_gap_s")
         self.assertGreater(gap, 0.8)
         self.assertLess(gap, time.time() - t_unplug + 1.0)
         # The same node process reopened the port (a restarted node would count from 1 again).
-        self.assertGreater(self.watch.counter("port_opens"), opens_before)
+        self.assertGreater(self.diag.counter("port_opens"), opens_before)
         self.send_commands(20)
         wait_for(lambda: self.status().last_seq == self.seq, 3.0, "commands flow again after the replug")
 
     def test_08_usb_loss_on_the_ha_side_is_survived_too(self):
         wait_for(self.link_up, 10.0, "link up")
-        outages_before = self.watch.counter("outages")
+        outages_before = self.diag.counter("outages")
         self.sil.send_signal(signal.SIGUSR1)  # the Due's end drops off the bus for 0.8 s
         wait_for(lambda: not self.link_up(), 3.0, "/pwm usbstatus 0 after the HA dropped off")
         wait_for(self.link_up, 10.0, "/pwm usbstatus 1 once the HA is back")
-        wait_for(lambda: self.watch.counter("outages") == outages_before + 1 and self.diag_ok(), 3.0,
+        wait_for(lambda: self.diag.counter("outages") == outages_before + 1 and self.diag.ok(), 3.0,
                  "the outage reported")
-        self.assertGreater(self.watch.counter("last_gap_s"), 0.5)
+        self.assertGreater(self.diag.counter("last_gap_s"), 0.5)
         self.send_commands(20)
         wait_for(lambda: self.status().last_seq == self.seq, 3.0, "commands flow again")
 

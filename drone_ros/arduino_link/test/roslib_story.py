@@ -8,25 +8,25 @@ import unittest
 
 import rospy
 import rostest
-from diagnostic_msgs.msg import DiagnosticArray
 from rosgraph_msgs.msg import Log
 from roscpp.srv import SetLoggerLevel
 from std_msgs.msg import Bool, Float32, Int32, String
 
 from roslib_device import RoslibDevice, Sketch, ser_string  # noqa: E402
-from story_wait import wait_for  # noqa: E402
+from story_wait import LinkDiagnostics, wait_for  # noqa: E402
+from stack_testing.kept_messages import KeptMessages  # noqa: E402
 
 
 class RoslibSketchStories(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         rospy.init_node("roslib_story")
-        cls.lock = threading.Lock()
-        cls.chatter, cls.battery, cls.rosout, cls.diag = [], [], [], {}
-        rospy.Subscriber("chatter", String, lambda m: cls._keep(cls.chatter, m.data), queue_size=100)
-        rospy.Subscriber("battery_v", Float32, lambda m: cls._keep(cls.battery, m.data), queue_size=100)
+        cls.kept = KeptMessages()
+        cls.chatter = cls.kept.subscribe("chatter", String, queue_size=100, value=lambda m: m.data)
+        cls.battery = cls.kept.subscribe("battery_v", Float32, queue_size=100, value=lambda m: m.data)
+        cls.rosout = []
         rospy.Subscriber("/rosout", Log, cls._log, queue_size=1000)
-        rospy.Subscriber("/diagnostics", DiagnosticArray, cls._diag, queue_size=100)
+        cls.diag = LinkDiagnostics()
         cls.led = rospy.Publisher("led", Bool, queue_size=10)
         cls.setpoint = rospy.Publisher("setpoint", Int32, queue_size=10)
         # The node forwards a ROSDEBUG device log with ROS_DEBUG, which rosout only carries once
@@ -45,30 +45,13 @@ class RoslibSketchStories(unittest.TestCase):
         cls.device.close()
 
     @classmethod
-    def _keep(cls, into, value):
-        with cls.lock:
-            into.append(value)
-
-    @classmethod
     def _log(cls, m):
         if m.name == "/arduino":
-            cls._keep(cls.rosout, (m.level, m.msg))
-
-    @classmethod
-    def _diag(cls, m):
-        for s in m.status:
-            if s.name.endswith("HA link"):
-                with cls.lock:
-                    cls.diag = {kv.key: kv.value for kv in s.values}
-                    cls.diag["_level"] = s.level
+            cls.kept.keep(cls.rosout, (m.level, m.msg))
 
     def events(self, kind):
         with self.device.lock:
             return [d for k, d in self.device.events if k == kind]
-
-    def counter(self, key):
-        with self.lock:
-            return float(self.diag.get(key, "0"))
 
     def test_01_the_node_asks_for_topics_with_the_documented_bytes_and_takes_the_sketchs(self):
         wait_for(lambda: self.events("negotiated"), 20.0, "the sketch to negotiate its topics")
@@ -83,7 +66,7 @@ class RoslibSketchStories(unittest.TestCase):
 
     def test_02_the_sketchs_topics_carry_its_values(self):
         wait_for(lambda: len(self.chatter) >= 5 and len(self.battery) >= 5, 20.0, "the sketch's messages")
-        with self.lock:
+        with self.kept.lock:
             self.assertTrue(all(s.startswith("hello from ros_lib ") for s in self.chatter), self.chatter[:3])
             counts = [int(s.rsplit(" ", 1)[1]) for s in self.chatter]
             self.assertEqual(counts, sorted(counts), "in order")
@@ -125,7 +108,7 @@ class RoslibSketchStories(unittest.TestCase):
         expected = {"debug": Log.DEBUG, "info": Log.INFO, "warn": Log.WARN, "error": Log.ERROR, "fatal": Log.FATAL}
 
         def seen():
-            with self.lock:
+            with self.kept.lock:
                 return {msg.rsplit(" ", 1)[1]: level for level, msg in self.rosout
                         if msg.startswith("[HA] roslib_device ")}
 
@@ -133,14 +116,14 @@ class RoslibSketchStories(unittest.TestCase):
         self.assertEqual(seen(), expected)
 
     def test_07_a_malformed_message_of_a_known_type_is_counted_not_published(self):
-        wait_for(lambda: len(self.chatter) > 0 and self.diag, 20.0, "the link up and diagnostics")
-        before = self.counter("bad_payload")
+        wait_for(lambda: len(self.chatter) > 0 and self.diag.heard(), 20.0, "the link up and diagnostics")
+        before = self.diag.counter("bad_payload")
         # A std_msgs/String whose length prefix claims more bytes than the frame holds.
         self.device.publish(self.sketch.chatter.id, struct.pack("<I", 100) + b"short")
         self.device.publish(self.sketch.chatter.id, ser_string("hello from ros_lib after the bad one"))
-        wait_for(lambda: self.counter("bad_payload") > before, 5.0, "the bad payload counted")
+        wait_for(lambda: self.diag.counter("bad_payload") > before, 5.0, "the bad payload counted")
         wait_for(lambda: "hello from ros_lib after the bad one" in self.chatter, 5.0, "the next message published")
-        with self.lock:
+        with self.kept.lock:
             self.assertFalse(any("short" in s for s in self.chatter))
 
 

@@ -1,14 +1,39 @@
 """What the link rostests share (not named test_*.py: pytest must not collect it)."""
-import time
+import threading
 
 import rospy
+from diagnostic_msgs.msg import DiagnosticArray
+
+# Shared with the markers story; link_story.py and roslib_story.py import it from here.
+from stack_testing.story_wait import wait_for
+
+__all__ = ["LinkDiagnostics", "wait_for"]
 
 
-def wait_for(predicate, timeout_s, what):
-    """Polls predicate until it holds; fails the story naming what never happened."""
-    deadline = time.time() + timeout_s
-    while time.time() < deadline and not rospy.is_shutdown():
-        if predicate():
-            return
-        time.sleep(0.02)
-    raise AssertionError("timed out waiting for " + what)
+class LinkDiagnostics:
+    """The `arduino` node's latest "HA link" diagnostics: its counters and its level."""
+
+    def __init__(self):
+        self.lock = threading.Lock()
+        self.values = {}
+        self.level = None
+        rospy.Subscriber("/diagnostics", DiagnosticArray, self._on_diagnostics, queue_size=100)
+
+    def _on_diagnostics(self, m):
+        for s in m.status:
+            if s.name.endswith("HA link"):
+                with self.lock:
+                    self.values = {kv.key: kv.value for kv in s.values}
+                    self.level = s.level
+
+    def heard(self):
+        with self.lock:
+            return self.level is not None
+
+    def ok(self):
+        with self.lock:
+            return self.level in (0, b"\x00")
+
+    def counter(self, key):
+        with self.lock:
+            return float(self.values.get(key, "0"))
