@@ -126,15 +126,22 @@ TEST(HaAirdataStories, BankedTurnStallSpeedScalesWithLoadFactor) {
   EXPECT_TRUE(TakenOverForStallWithin(&t, 300)) << "55 ft/s in a 50 deg bank";
 }
 
+// Wings level at 70 ft/s and 200 ft, far above the 1 g switch speed, the HP flying: where a pull
+// starts from.
+::testing::AssertionResult HpFliesWingsLevelAt70Ftps(Timeline* t) {
+  t->Cruise(200.0f, 70.0f);
+  if (t->ReachHp() <= 0) return ::testing::AssertionFailure() << "the HP never got control";
+  FlyEast(t, 70.0f, 0.0f, 2.0f, 0.0f);
+  return ::testing::AssertionSuccess();
+}
+
 // F1, the HiL's accelerated_stall: wings level at 70 ft/s, far above the 1 g switch speed, the HP
 // pulls: a pitch rate of 40 deg/s turns the velocity at 1.5 g on top of gravity's 1, and the wing
 // needs (70 / 42)^2 = 2.8 g worth of lift coefficient to stall. The gyros show the load before
 // the wing reaches its stall: the HA takes the servos while the bank alone says 1 g.
 TEST(HaAirdataStories, PullUpAt70FtpsIsJudgedByTheLoadFactorTheGyrosShow) {
   Timeline t;
-  t.Cruise(200.0f, 70.0f);
-  ASSERT_GT(t.ReachHp(), 0);
-  FlyEast(&t, 70.0f, 0.0f, 2.0f, 0.0f);
+  ASSERT_TRUE(HpFliesWingsLevelAt70Ftps(&t));
   t.app.inputs.q_deg_s = 20.0f;  // a brisk pitch-up: 0.76 g on top, 1.76 in all, not yet 2.45
   ASSERT_TRUE(HpStillFliesAfterASecond(&t));
   t.app.inputs.q_deg_s = 40.0f;  // 2.5 g: 70 ft/s is the switch speed x sqrt(2.5)
@@ -149,9 +156,7 @@ TEST(HaAirdataStories, PullUpAt70FtpsIsJudgedByTheLoadFactorTheGyrosShow) {
 // elevator moved nose down at the release rate, not eased.
 TEST(HaAirdataStories, HpsPitchRateAtAStallTakeoverIsUnloadedAtOnceNotEasedOut) {
   Timeline t;
-  t.Cruise(200.0f, 70.0f);
-  ASSERT_GT(t.ReachHp(), 0);
-  FlyEast(&t, 70.0f, 0.0f, 2.0f, 0.0f);
+  ASSERT_TRUE(HpFliesWingsLevelAt70Ftps(&t));
   t.app.inputs.q_deg_s = 40.0f;  // 2.5 g at 70 ft/s: the switch speed x sqrt(2.5)
   int periods = 0;
   for (; periods < 10 && t.controller() == HA_CONTROLLER_HP; ++periods) {

@@ -442,12 +442,19 @@ TEST(HaDecision, HpThatNeverReturnsIsRestartedUntilTheCapThenLatched) {
   EXPECT_EQ(t.board.leds, HA_LED_HA | HA_LED_FAULT);
 }
 
+// The HP earns control, then falls silent: two periods without a command are a crash, and the
+// HA asks for restart 1.
+::testing::AssertionResult HpFliesThenCrashes(Timeline* t) {
+  if (t->ReachHp() <= 0) return ::testing::AssertionFailure() << "the HP never got control";
+  t->Step();
+  t->Step();
+  if (t->out().restart_count == 1u) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << "restarts after the crash: " << t->out().restart_count;
+}
+
 TEST(HaDecision, HpThatBootsWithinTheTimeoutIsNotResetAgain) {
   Timeline t;
-  ASSERT_GT(t.ReachHp(), 0);
-  t.Step();
-  t.Step();  // crash: reset 1
-  ASSERT_EQ(t.out().restart_count, 1u);
+  ASSERT_TRUE(HpFliesThenCrashes(&t));
   // A slow boot, just inside the timeout, then a healthy HP.
   const int boot_periods =
       static_cast<int>((t.cfg.hp_reset_pulse_us + t.cfg.hp_boot_timeout_us) / t.cfg.period_us);
@@ -468,10 +475,7 @@ TEST(HaDecision, HpThatKeepsFailingWhileRecoveringIsLatchedAtTheCap) {
   Timeline t;
   const uint32_t k = t.cfg.max_restarts;
   const int half_window = static_cast<int>(t.cfg.stable_window_us / t.cfg.period_us / 2u);
-  ASSERT_GT(t.ReachHp(), 0);
-  t.Step();
-  t.Step();  // crash: reset 1
-  ASSERT_EQ(t.out().restart_count, 1u);
+  ASSERT_TRUE(HpFliesThenCrashes(&t));
   for (uint32_t attempt = 1; attempt <= k; ++attempt) {
     // The HP reboots and sends good commands for half the stable window: watched, not used...
     for (int i = 0; i < 50; ++i) t.Step();
@@ -896,10 +900,7 @@ TEST(HaDecision, HpStillConvergingAtPowerUpIsNotRestarted) {
 // One reset pulse is one restart, however many reasons asked for it in that period.
 TEST(HaDecision, OperatorRestartDuringAFailedRecoveryCountsOnce) {
   Timeline t;
-  ASSERT_GT(t.ReachHp(), 0);
-  t.Step();
-  t.Step();  // crash: reset 1
-  ASSERT_EQ(t.out().restart_count, 1u);
+  ASSERT_TRUE(HpFliesThenCrashes(&t));
   for (int i = 0; i < 50; ++i) t.Step();
   for (int i = 0; i < 20; ++i) t.StepWithGood();
   ASSERT_EQ(t.controller(), HA_CONTROLLER_RECOVERING);

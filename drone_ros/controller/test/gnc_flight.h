@@ -42,6 +42,11 @@ class Flight {
   }
   ~Flight() { DG808_GNC_terminate(); }
 
+  // In level flight at the design speed, height_ft above home, heading psi_rad.
+  void start_trimmed(double height_ft, double psi_rad = 0.0) {
+    sim_.set_trimmed_flight(params_.gnc.vt_trim_ftps, height_ft, psi_rad);
+  }
+
   void set_plan(const double (*wps)[3], int count) {
     for (int i = 0; i < count; ++i) {
       in_.wp_north_ft[i] = wps[i][0];

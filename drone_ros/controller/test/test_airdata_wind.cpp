@@ -139,7 +139,7 @@ TEST(AirdataInWind, ParkedInWindThenFlyingTheSquareNeverClaimsAWrongAngleOfAttac
       j.observe(f);
     }
     const double airborne_s = f.t();
-    f.sim().set_trimmed_flight(f.params().gnc.vt_trim_ftps, 200.0, psi);
+    f.start_trimmed(200.0, psi);
     double converged_s = -1.0, max_bank_deg = 0.0;
     long after = 0, claimed = 0;
     while (f.t() < 150.0) {
@@ -255,7 +255,7 @@ TEST(AirdataInWind, StartedOnAWrongBranchInFlightRecoversWithoutClaimingIt) {
       wrong.alpha0_rad = 80.0 / kRadToDeg;
       wrong.beta0_rad = beta0_deg / kRadToDeg;
       ASSERT_EQ(DG808_GNC_initialize(&wrong), 0);
-      f.sim().set_trimmed_flight(f.params().gnc.vt_trim_ftps, 200.0, kStartHeadingDeg / kRadToDeg);
+      f.start_trimmed(200.0, kStartHeadingDeg / kRadToDeg);
       f.set_plan(kFarAheadFt, 1);
       f.step();
       ASSERT_GT(std::fabs(f.out().alpha_est_rad - f.sim().alpha_rad()) * kRadToDeg, 45.0)
@@ -284,7 +284,7 @@ TEST(AirdataInWind, APitotReadingZeroForAMomentInFlightKeepsAlphaAndBetaOnTheTru
     for (double dropout_len_s : {0.3, 2.0}) {
       SCOPED_TRACE(name(w) + (dropout_len_s < 1.0 ? ", 0.3 s" : ", 2 s"));
       Flight f({}, in_wind(w));
-      f.sim().set_trimmed_flight(f.params().gnc.vt_trim_ftps, 200.0, kStartHeadingDeg / kRadToDeg);
+      f.start_trimmed(200.0, kStartHeadingDeg / kRadToDeg);
       f.set_plan(kFarAheadFt, 1);
       Judge j;
       double unused = -1.0;

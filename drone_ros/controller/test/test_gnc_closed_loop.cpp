@@ -57,16 +57,22 @@ Bands fly_and_measure_bands(Flight *f, double until_s, double settle_s, double h
   return b;
 }
 
+// The bands flying plan from trim at 200 ft in the sim cfg describes.
+Bands bands_from_trim(const dg808sim::SimConfig &cfg, const double (*plan)[3], int count,
+                      double until_s, double settle_s) {
+  Flight f({}, cfg);
+  f.start_trimmed(200.0);
+  f.set_plan(plan, count);
+  return fly_and_measure_bands(&f, until_s, settle_s, 200.0);
+}
+
 // Altitude band +/-10 ft and airspeed band +/-2 ft/s, after 5 s, over 60 s of straight flight
 // towards a far waypoint at the trim height, in a 3 m/s crosswind with sensor noise.
 TEST(GncClosedLoop, FromTrimHoldsAltitudeAndAirspeedWithinBands) {
   dg808sim::SimConfig cfg;
   cfg.wind_ned_mps = Eigen::Vector3d(0.0, 3.0, 0.0);
-  Flight f({}, cfg);
-  f.sim().set_trimmed_flight(f.params().gnc.vt_trim_ftps, 200.0, 0.0);
   const double plan[1][3] = {{30000.0, 0.0, 200.0}};
-  f.set_plan(plan, 1);
-  const Bands b = fly_and_measure_bands(&f, 60.0, 5.0, 200.0);
+  const Bands b = bands_from_trim(cfg, plan, 1, 60.0, 5.0);
   EXPECT_LT(b.worst_alt_ft, 10.0);
   EXPECT_LT(b.worst_vt_ftps, 2.0);
 }
@@ -80,10 +86,7 @@ TEST(GncClosedLoop, HoldsAltitudeAndAirspeedWithModelErrors) {
   cfg.drag_scale = 1.25;
   cfg.control_power_scale = 0.8;
   cfg.wind_ned_mps = Eigen::Vector3d(0.0, 3.0, 0.0);
-  Flight f({}, cfg);
-  f.sim().set_trimmed_flight(f.params().gnc.vt_trim_ftps, 200.0, 0.0);
-  f.set_plan(kSquareFt, 4);
-  const Bands b = fly_and_measure_bands(&f, 150.0, 10.0, 200.0);
+  const Bands b = bands_from_trim(cfg, kSquareFt, 4, 150.0, 10.0);
   EXPECT_LT(b.worst_alt_ft, 15.0);
   EXPECT_LT(b.worst_vt_ftps, 4.0);
 }
@@ -95,7 +98,7 @@ TEST(GncClosedLoop, FliesFourWaypointSquareWithinCrossTrackBand) {
   dg808sim::SimConfig cfg;
   cfg.wind_ned_mps = Eigen::Vector3d(-2.0, 2.0, 0.0);
   Flight f({}, cfg);
-  f.sim().set_trimmed_flight(f.params().gnc.vt_trim_ftps, 200.0, 0.0);
+  f.start_trimmed(200.0);
   const auto &square = kSquareFt;
   f.set_plan(square, 4);
   bool captured = false;
@@ -142,7 +145,7 @@ TEST(GncClosedLoop, ReturnHomeCommandCirclesHomeAtTheMpfRadius) {
   dg808sim::SimConfig cfg;
   cfg.wind_ned_mps = Eigen::Vector3d(-2.0, 2.0, 0.0);
   Flight f({}, cfg);
-  f.sim().set_trimmed_flight(f.params().gnc.vt_trim_ftps, 200.0, 0.0);
+  f.start_trimmed(200.0);
   f.in().home_cmd = 1;
   const double radius_ft = f.params().gnc.mpf_radius_ft;
   double worst_radius_ft = 0.0, worst_alt_ft = 0.0;
@@ -163,7 +166,7 @@ TEST(GncClosedLoop, ReturnHomeCommandCirclesHomeAtTheMpfRadius) {
 // Releasing the return-home command resumes the flight plan where it was left.
 TEST(GncClosedLoop, ReleasingReturnHomeResumesThePlan) {
   Flight f;
-  f.sim().set_trimmed_flight(f.params().gnc.vt_trim_ftps, 200.0, 0.0);
+  f.start_trimmed(200.0);
   const double plan[2][3] = {{3000.0, 0.0, 200.0}, {3000.0, 3000.0, 200.0}};
   f.set_plan(plan, 2);
   f.in().home_cmd = 1;
@@ -185,7 +188,7 @@ TEST(GncClosedLoop, ReleasingReturnHomeResumesThePlan) {
 // path_select 1: after the last waypoint the aircraft circles home instead of starting over.
 TEST(GncClosedLoop, PathSelectOneCirclesHomeAfterTheLastWaypoint) {
   Flight f({{"path_select", 1.0}});
-  f.sim().set_trimmed_flight(f.params().gnc.vt_trim_ftps, 200.0, 0.0);
+  f.start_trimmed(200.0);
   const double plan[2][3] = {{800.0, 0.0, 200.0}, {800.0, 800.0, 220.0}};
   f.set_plan(plan, 2);
   bool circled = false;
@@ -206,7 +209,7 @@ TEST(GncClosedLoop, EstimatorConvergesFromWrongInitialAlphaBeta) {
   dg808sim::SimConfig cfg;
   cfg.wind_ned_mps = Eigen::Vector3d(2.0, -3.0, 0.0);
   Flight f({{"alpha", 10.0 / kRadToDeg}, {"beta", -8.0 / kRadToDeg}}, cfg);
-  f.sim().set_trimmed_flight(f.params().gnc.vt_trim_ftps, 200.0, 0.5);
+  f.start_trimmed(200.0, 0.5);
   const double plan[1][3] = {{30000.0, 20000.0, 200.0}};
   f.set_plan(plan, 1);
   f.step();
@@ -266,7 +269,7 @@ TEST(GncClosedLoop, ZeroAirspeedOnTheGroundGivesFiniteCommandFlaggedInvalid) {
 // last finite command flagged invalid, and the GNC flies on normally with the next good input.
 TEST(GncClosedLoop, NanInputGivesFiniteCommandFlaggedInvalidAndIsCounted) {
   Flight f;
-  f.sim().set_trimmed_flight(f.params().gnc.vt_trim_ftps, 200.0, 0.0);
+  f.start_trimmed(200.0);
   const double plan[1][3] = {{30000.0, 0.0, 200.0}};
   f.set_plan(plan, 1);
   while (f.t() < 3.0) {
@@ -311,7 +314,7 @@ TEST(GncClosedLoop, NanInputGivesFiniteCommandFlaggedInvalidAndIsCounted) {
 // first step), and it converges and flies on from there.
 TEST(GncClosedLoop, RestartMidFlightReinitializesAndRecovers) {
   Flight f;
-  f.sim().set_trimmed_flight(f.params().gnc.vt_trim_ftps, 200.0, 0.0);
+  f.start_trimmed(200.0);
   const double plan[1][3] = {{30000.0, 0.0, 200.0}};
   f.set_plan(plan, 1);
   while (f.t() < 3.0) {
@@ -335,7 +338,7 @@ TEST(GncClosedLoop, InvalidParametersAreRefusedAndCommandStaysInvalid) {
   GncParams bad = f.params().gnc;
   bad.mpf_radius_ft = std::numeric_limits<double>::quiet_NaN();
   EXPECT_EQ(DG808_GNC_initialize(&bad), -1);
-  f.sim().set_trimmed_flight(f.params().gnc.vt_trim_ftps, 200.0, 0.0);
+  f.start_trimmed(200.0);
   f.step();
   EXPECT_FALSE(f.out().command_valid);
   EXPECT_TRUE(all_finite(f.out()));
@@ -367,7 +370,7 @@ int main(int argc, char **argv) {
 double peak_after_hand_back(double attitude_cmd_rate_deg_s, double *peak_aileron_deg) {
   Flight f({{"attitude_cmd_rate_deg_s", attitude_cmd_rate_deg_s}});
   const double aileron_limit_rad = f.value("limits/actuators/aileron_limit_deg") / kRadToDeg;
-  f.sim().set_trimmed_flight(f.params().gnc.vt_trim_ftps, 200.0, 0.0);
+  f.start_trimmed(200.0);
   const double west[1][3] = {{0.0, -30000.0, 200.0}};
   f.set_plan(west, 1);
   f.in().ha_in_control = 1;
@@ -475,7 +478,7 @@ namespace {
 // The elevator the GNC commands over 2 s in a 30 deg dive at the trim airspeed (the INS's
 // attitude and velocity overwritten on the trimmed sim's): the loops ask for a hard pull-out.
 double most_nose_up_in_a_dive_deg(Flight *f) {
-  f->sim().set_trimmed_flight(f->params().gnc.vt_trim_ftps, 200.0, 0.0);
+  f->start_trimmed(200.0);
   const double plan[1][3] = {{30000.0, 0.0, 200.0}};
   f->set_plan(plan, 1);
   while (f->t() < 3.0) f->step();
