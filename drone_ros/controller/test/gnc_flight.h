@@ -65,6 +65,11 @@ class Flight {
     t_s_ += params_.gnc.dt_s;
   }
 
+  // Steps until the clock reads t_s.
+  void fly_until(double t_s) {
+    while (t_s_ < t_s) step();
+  }
+
   double dt() const { return params_.gnc.dt_s; }
   void advance_clock() { t_s_ += params_.gnc.dt_s; }
   dg808sim::Sim &sim() { return sim_; }

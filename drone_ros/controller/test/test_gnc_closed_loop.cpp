@@ -26,6 +26,8 @@ double segment_distance(double pn, double pe, const double *a, const double *b) 
   return std::hypot(pn - (a[0] + t * dn), pe - (a[1] + t * de));
 }
 
+// One waypoint far north at the trim height: straight and level flight for minutes.
+constexpr double kFarNorthFt[1][3] = {{30000.0, 0.0, 200.0}};
 // A 2000 ft square at 200 ft AGL (north, east, height ft).
 constexpr double kSquareFt[4][3] = {
     {1000.0, 0.0, 200.0}, {1000.0, 2000.0, 200.0}, {-1000.0, 2000.0, 200.0}, {-1000.0, 0.0, 200.0}};
@@ -71,8 +73,7 @@ Bands bands_from_trim(const dg808sim::SimConfig &cfg, const double (*plan)[3], i
 TEST(GncClosedLoop, FromTrimHoldsAltitudeAndAirspeedWithinBands) {
   dg808sim::SimConfig cfg;
   cfg.wind_ned_mps = Eigen::Vector3d(0.0, 3.0, 0.0);
-  const double plan[1][3] = {{30000.0, 0.0, 200.0}};
-  const Bands b = bands_from_trim(cfg, plan, 1, 60.0, 5.0);
+  const Bands b = bands_from_trim(cfg, kFarNorthFt, 1, 60.0, 5.0);
   EXPECT_LT(b.worst_alt_ft, 10.0);
   EXPECT_LT(b.worst_vt_ftps, 2.0);
 }
@@ -170,17 +171,13 @@ TEST(GncClosedLoop, ReleasingReturnHomeResumesThePlan) {
   const double plan[2][3] = {{3000.0, 0.0, 200.0}, {3000.0, 3000.0, 200.0}};
   f.set_plan(plan, 2);
   f.in().home_cmd = 1;
-  while (f.t() < 20.0) {
-    f.step();
-  }
+  f.fly_until(20.0);
   EXPECT_EQ(f.out().guidance_mode, DG808_GNC_MODE_CIRCLE_HOME);
   f.in().home_cmd = 0;
   f.step();
   EXPECT_NE(f.out().guidance_mode, DG808_GNC_MODE_CIRCLE_HOME);
   EXPECT_EQ(f.out().waypoint_index, 0);
-  while (f.t() < 100.0) {
-    f.step();
-  }
+  f.fly_until(100.0);
   EXPECT_EQ(f.out().guidance_mode, DG808_GNC_MODE_FLIGHT_PLAN);
   EXPECT_LT(std::fabs(f.out().cross_track_ft), 30.0);
 }
@@ -215,9 +212,7 @@ TEST(GncClosedLoop, EstimatorConvergesFromWrongInitialAlphaBeta) {
   f.step();
   EXPECT_FALSE(f.out().estimator_converged);
   EXPECT_GT(std::fabs(f.out().alpha_est_rad - f.sim().alpha_rad()) * kRadToDeg, 5.0);
-  while (f.t() < 5.0) {
-    f.step();
-  }
+  f.fly_until(5.0);
   for (int i = 0; i < 100; ++i) {  // and it stays there
     f.step();
     EXPECT_TRUE(f.out().estimator_converged);
@@ -270,11 +265,8 @@ TEST(GncClosedLoop, ZeroAirspeedOnTheGroundGivesFiniteCommandFlaggedInvalid) {
 TEST(GncClosedLoop, NanInputGivesFiniteCommandFlaggedInvalidAndIsCounted) {
   Flight f;
   f.start_trimmed(200.0);
-  const double plan[1][3] = {{30000.0, 0.0, 200.0}};
-  f.set_plan(plan, 1);
-  while (f.t() < 3.0) {
-    f.step();
-  }
+  f.set_plan(kFarNorthFt, 1);
+  f.fly_until(3.0);
   ASSERT_TRUE(f.out().command_valid);
   const double nan = std::numeric_limits<double>::quiet_NaN();
   // NaN, infinity, or a finite value no sensor can produce (a corrupted message).
@@ -315,18 +307,13 @@ TEST(GncClosedLoop, NanInputGivesFiniteCommandFlaggedInvalidAndIsCounted) {
 TEST(GncClosedLoop, RestartMidFlightReinitializesAndRecovers) {
   Flight f;
   f.start_trimmed(200.0);
-  const double plan[1][3] = {{30000.0, 0.0, 200.0}};
-  f.set_plan(plan, 1);
-  while (f.t() < 3.0) {
-    f.step();
-  }
+  f.set_plan(kFarNorthFt, 1);
+  f.fly_until(3.0);
   ASSERT_TRUE(f.out().estimator_converged);
   ASSERT_EQ(DG808_GNC_initialize(&f.params().gnc), 0);
   f.step();
   EXPECT_FALSE(f.out().estimator_converged);
-  while (f.t() < 20.0) {
-    f.step();
-  }
+  f.fly_until(20.0);
   EXPECT_TRUE(f.out().command_valid);
   EXPECT_NEAR(f.sim().height_ft(), 200.0, 15.0);
 }
@@ -479,9 +466,8 @@ namespace {
 // attitude and velocity overwritten on the trimmed sim's): the loops ask for a hard pull-out.
 double most_nose_up_in_a_dive_deg(Flight *f) {
   f->start_trimmed(200.0);
-  const double plan[1][3] = {{30000.0, 0.0, 200.0}};
-  f->set_plan(plan, 1);
-  while (f->t() < 3.0) f->step();
+  f->set_plan(kFarNorthFt, 1);
+  f->fly_until(3.0);
   const double dive_rad = -30.0 / kRadToDeg;
   const double v_mps = f->params().gnc.vt_trim_ftps * 0.3048;
   double most_nose_up_deg = 0.0;
