@@ -109,6 +109,18 @@ void ControllerNode::take_way(const drone_ros::way &m) {
   }
 }
 
+// A VN-200 topic: the board takes each message as it arrives, and it counts for the lockstep step
+// that declared it.
+template <typename Msg>
+void ControllerNode::subscribe_sensor(ros::NodeHandle &nh, const std::string &topic, uint32_t q,
+                                      bool (SensorBoard::*take)(const Msg &, double),
+                                      LockstepInput input) {
+  subs_.push_back(nh.subscribe<Msg>(topic, q, [this, take, input](const typename Msg::ConstPtr &m) {
+    (board_.*take)(*m, now_s());
+    on_input(input);
+  }));
+}
+
 // The sensors and the HA's reports: each counts for the lockstep's step that declared it.
 void ControllerNode::subscribe_inputs(ros::NodeHandle &nh) {
   const uint32_t q = lockstep_ ? 100 : 1;
@@ -118,30 +130,13 @@ void ControllerNode::subscribe_inputs(ros::NodeHandle &nh) {
       on_input(kInPwm);  // the HA's report; the node's own link-down /pwm is nobody's step
     }
   }));
-  subs_.push_back(nh.subscribe<drone_ros::ins>("ins", q, [this](const drone_ros::ins::ConstPtr &m) {
-    board_.on_ins(*m, now_s());
-    on_input(kInIns);
-  }));
-  subs_.push_back(nh.subscribe<sensor_msgs::NavSatFix>(
-      "gps_position", q, [this](const sensor_msgs::NavSatFix::ConstPtr &m) {
-        board_.on_gps_position(*m, now_s());
-        on_input(kInGpsPosition);
-      }));
-  subs_.push_back(nh.subscribe<geometry_msgs::Twist>(
-      "gps_velocity", q, [this](const geometry_msgs::Twist::ConstPtr &m) {
-        board_.on_gps_velocity(*m, now_s());
-        on_input(kInGpsVelocity);
-      }));
-  subs_.push_back(nh.subscribe<sensor_msgs::Imu>("imu_PQR_acceleration", q,
-                                                 [this](const sensor_msgs::Imu::ConstPtr &m) {
-                                                   board_.on_imu(*m, now_s());
-                                                   on_input(kInImu);
-                                                 }));
-  subs_.push_back(nh.subscribe<geometry_msgs::Point>(
-      "attitude", q, [this](const geometry_msgs::Point::ConstPtr &m) {
-        board_.on_attitude(*m, now_s());
-        on_input(kInAttitude);
-      }));
+  subscribe_sensor<drone_ros::ins>(nh, "ins", q, &SensorBoard::on_ins, kInIns);
+  subscribe_sensor<sensor_msgs::NavSatFix>(nh, "gps_position", q, &SensorBoard::on_gps_position,
+                                           kInGpsPosition);
+  subscribe_sensor<geometry_msgs::Twist>(nh, "gps_velocity", q, &SensorBoard::on_gps_velocity,
+                                         kInGpsVelocity);
+  subscribe_sensor<sensor_msgs::Imu>(nh, "imu_PQR_acceleration", q, &SensorBoard::on_imu, kInImu);
+  subscribe_sensor<geometry_msgs::Point>(nh, "attitude", q, &SensorBoard::on_attitude, kInAttitude);
   subs_.push_back(nh.subscribe<sensor_msgs::FluidPressure>(
       "pressure", 1, [this](const sensor_msgs::FluidPressure::ConstPtr &m) {
         board_.on_pressure(m->fluid_pressure);

@@ -43,6 +43,9 @@ class ControllerNode {
   // The constructor's parts, in its order.
   void subscribe_home_and_plan(ros::NodeHandle &nh);
   void subscribe_inputs(ros::NodeHandle &nh);
+  template <typename Msg>
+  void subscribe_sensor(ros::NodeHandle &nh, const std::string &topic, uint32_t q,
+                        bool (SensorBoard::*take)(const Msg &, double), LockstepInput input);
   void take_home(const drone_ros::HomePosition &m);
   void take_way(const drone_ros::way &m);
   void start_diagnostics();

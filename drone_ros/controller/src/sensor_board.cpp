@@ -68,6 +68,17 @@ bool SensorBoard::drop() {
   return false;
 }
 
+template <typename Msg>
+bool SensorBoard::take(const Msg &msg, std::initializer_list<double> values, Msg *slot, Link link,
+                       double now_s) {
+  if (!finite(values)) {
+    return drop();
+  }
+  *slot = msg;
+  arrived(link, now_s);
+  return true;
+}
+
 bool SensorBoard::on_pwm(const drone_ros::pwm &msg, double now_s) {
   if (!finite({msg.Throttle, msg.Elevator, msg.Aileron, msg.Rudder, msg.velocity, msg.tach})) {
     return drop();
@@ -85,12 +96,7 @@ bool SensorBoard::on_pwm(const drone_ros::pwm &msg, double now_s) {
 }
 
 bool SensorBoard::on_ins(const drone_ros::ins &msg, double now_s) {
-  if (!finite({msg.time})) {
-    return drop();
-  }
-  ins_ = msg;
-  arrived(kLinkIns, now_s);
-  return true;
+  return take(msg, {msg.time}, &ins_, kLinkIns, now_s);
 }
 
 bool SensorBoard::all_seen() const {
@@ -123,40 +129,24 @@ bool SensorBoard::on_home(double lat_deg, double lon_deg, double alt_m) {
 }
 
 bool SensorBoard::on_gps_position(const sensor_msgs::NavSatFix &msg, double now_s) {
-  if (!finite({msg.latitude, msg.longitude, msg.altitude})) {
-    return drop();
-  }
-  gps_position_ = msg;
-  arrived(kLinkGpsPosition, now_s);
-  return true;
+  return take(msg, {msg.latitude, msg.longitude, msg.altitude}, &gps_position_, kLinkGpsPosition,
+              now_s);
 }
 
 bool SensorBoard::on_gps_velocity(const geometry_msgs::Twist &msg, double now_s) {
-  if (!finite({msg.linear.x, msg.linear.y, msg.linear.z})) {
-    return drop();
-  }
-  gps_velocity_ = msg;
-  arrived(kLinkGpsVelocity, now_s);
-  return true;
+  return take(msg, {msg.linear.x, msg.linear.y, msg.linear.z}, &gps_velocity_, kLinkGpsVelocity,
+              now_s);
 }
 
 bool SensorBoard::on_imu(const sensor_msgs::Imu &msg, double now_s) {
-  if (!finite({msg.angular_velocity.x, msg.angular_velocity.y, msg.angular_velocity.z,
-               msg.linear_acceleration.x, msg.linear_acceleration.y, msg.linear_acceleration.z})) {
-    return drop();
-  }
-  imu_ = msg;
-  arrived(kLinkImu, now_s);
-  return true;
+  return take(msg,
+              {msg.angular_velocity.x, msg.angular_velocity.y, msg.angular_velocity.z,
+               msg.linear_acceleration.x, msg.linear_acceleration.y, msg.linear_acceleration.z},
+              &imu_, kLinkImu, now_s);
 }
 
 bool SensorBoard::on_attitude(const geometry_msgs::Point &msg, double now_s) {
-  if (!finite({msg.x, msg.y, msg.z})) {
-    return drop();
-  }
-  attitude_ = msg;
-  arrived(kLinkAttitude, now_s);
-  return true;
+  return take(msg, {msg.x, msg.y, msg.z}, &attitude_, kLinkAttitude, now_s);
 }
 
 bool SensorBoard::on_way(const drone_ros::way &msg) {

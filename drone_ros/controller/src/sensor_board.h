@@ -15,6 +15,7 @@
 
 #include <array>
 #include <cstdint>
+#include <initializer_list>
 
 #include "controller_params.h"
 
@@ -90,6 +91,10 @@ class SensorBoard {
  private:
   void arrived(Link link, double now_s);
   bool drop();
+  // msg into slot as link's arrival at now_s if every one of values is finite, else dropped.
+  template <typename Msg>
+  bool take(const Msg &msg, std::initializer_list<double> values, Msg *slot, Link link,
+            double now_s);
 
   ControllerParams params_;
   std::array<double, kLinkCount> arrival_s_{};
