@@ -374,24 +374,13 @@ void ArduinoLinkNode::on_log(const Frame &f) {
     refuse("log", "not a rosserial_msgs/Log");
     return;
   }
-  const std::string text = "[HA] " + log.text;
-  switch (log.level) {
-    case ROSSERIAL_MSGS_LOG_ROSDEBUG:
-      ROS_DEBUG("%s", text.c_str());
-      break;
-    case ROSSERIAL_MSGS_LOG_INFO:
-      ROS_INFO("%s", text.c_str());
-      break;
-    case ROSSERIAL_MSGS_LOG_WARN:
-      ROS_WARN("%s", text.c_str());
-      break;
-    case ROSSERIAL_MSGS_LOG_ERROR:
-      ROS_ERROR("%s", text.c_str());
-      break;
-    default:
-      ROS_FATAL("%s", text.c_str());
-      break;  // FATAL, or a level from a newer device
-  }
+  // rosserial's levels in order (ROSDEBUG 0 .. FATAL 4); a level from a newer device is FATAL.
+  static const ros::console::levels::Level kLevels[] = {
+      ros::console::levels::Debug, ros::console::levels::Info, ros::console::levels::Warn,
+      ros::console::levels::Error, ros::console::levels::Fatal};
+  const auto level =
+      log.level <= ROSSERIAL_MSGS_LOG_FATAL ? kLevels[log.level] : ros::console::levels::Fatal;
+  ROS_LOG(level, ROSCONSOLE_DEFAULT_NAME, "[HA] %s", log.text.c_str());
 }
 
 bool ArduinoLinkNode::send(uint16_t topic_id, const std::vector<uint8_t> &payload) {
