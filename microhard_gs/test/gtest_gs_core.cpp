@@ -648,58 +648,55 @@ TEST(MissionUpload, GcsThatAnswersOnlyMissionRequestGetsItsUploadThrough) {
   EXPECT_EQ(ack_of(acks[0]), MAV_MISSION_ACCEPTED);
 }
 
+// A waypoint uploaded in frame (as a MISSION_ITEM if legacy, else a MISSION_ITEM_INT), 200 ft
+// above home, is flown at 200 ft and downloads in its frame: frame as a MISSION_ITEM_INT,
+// float_frame as a MISSION_ITEM (which carries degrees).
+void expect_item_round_trip(uint8_t frame, bool legacy, uint8_t float_frame) {
+  Bench b;
+  Gcs gcs;
+  const bool absolute = frame == MAV_FRAME_GLOBAL || frame == MAV_FRAME_GLOBAL_INT;
+  const float z_m = static_cast<float>((absolute ? kHome.alt_m : 0.0) + 200.0 * 0.3048);
+  b.feed(gcs.count(1));
+  const auto acks =
+      of_type(b.feed(gcs.waypoint_in(0, frame, lat_of(300), kHome.lon_deg, z_m, legacy)),
+              MAVLINK_MSG_ID_MISSION_ACK);
+  ASSERT_EQ(acks.size(), 1u);
+  ASSERT_EQ(ack_of(acks[0]), MAV_MISSION_ACCEPTED);
+  const auto plans = b.core.take_way_plans();
+  ASSERT_EQ(plans.size(), 1u);
+  EXPECT_NEAR(plans[0].height_ft[0], 200.0, 0.01);
+  EXPECT_NEAR(plans[0].north_ft[0], 300.0, legacy ? 3.0 : 0.5);
+
+  const auto as_int = of_type(b.feed(gcs.request_item(0, false)), MAVLINK_MSG_ID_MISSION_ITEM_INT);
+  ASSERT_EQ(as_int.size(), 1u);
+  EXPECT_EQ(mavlink_msg_mission_item_int_get_frame(&as_int[0]), frame);
+  EXPECT_FLOAT_EQ(mavlink_msg_mission_item_int_get_z(&as_int[0]), z_m);
+  EXPECT_NEAR(mavlink_msg_mission_item_int_get_x(&as_int[0]), lat_of(300) * 1e7, legacy ? 40 : 1);
+  const auto as_float = of_type(b.feed(gcs.request_item(0, true)), MAVLINK_MSG_ID_MISSION_ITEM);
+  ASSERT_EQ(as_float.size(), 1u);
+  EXPECT_EQ(mavlink_msg_mission_item_get_frame(&as_float[0]), float_frame);
+  EXPECT_NEAR(mavlink_msg_mission_item_get_x(&as_float[0]), lat_of(300), 1e-5);
+}
+
 TEST(MissionDownload, EachItemComesBackInTheFrameItWasUploadedIn) {
   // Every global frame, in both item messages, 200 ft above home; downloads answer in the
   // uploaded frame (a MISSION_ITEM, which carries degrees, gives 5 and 6 as 0 and 3).
   struct Case {
     uint8_t frame;
-    bool legacy;
-    uint8_t int_frame;
     uint8_t float_frame;
   };
-  const Case cases[] = {
-      {MAV_FRAME_GLOBAL, false, MAV_FRAME_GLOBAL, MAV_FRAME_GLOBAL},
-      {MAV_FRAME_GLOBAL_RELATIVE_ALT, false, MAV_FRAME_GLOBAL_RELATIVE_ALT,
-       MAV_FRAME_GLOBAL_RELATIVE_ALT},
-      {MAV_FRAME_GLOBAL_INT, false, MAV_FRAME_GLOBAL_INT, MAV_FRAME_GLOBAL},
-      {MAV_FRAME_GLOBAL_RELATIVE_ALT_INT, false, MAV_FRAME_GLOBAL_RELATIVE_ALT_INT,
-       MAV_FRAME_GLOBAL_RELATIVE_ALT},
-      {MAV_FRAME_GLOBAL, true, MAV_FRAME_GLOBAL, MAV_FRAME_GLOBAL},
-      {MAV_FRAME_GLOBAL_RELATIVE_ALT, true, MAV_FRAME_GLOBAL_RELATIVE_ALT,
-       MAV_FRAME_GLOBAL_RELATIVE_ALT},
-      {MAV_FRAME_GLOBAL_INT, true, MAV_FRAME_GLOBAL_INT, MAV_FRAME_GLOBAL},
-      {MAV_FRAME_GLOBAL_RELATIVE_ALT_INT, true, MAV_FRAME_GLOBAL_RELATIVE_ALT_INT,
-       MAV_FRAME_GLOBAL_RELATIVE_ALT},
+  const Case frames[] = {
+      {MAV_FRAME_GLOBAL, MAV_FRAME_GLOBAL},
+      {MAV_FRAME_GLOBAL_RELATIVE_ALT, MAV_FRAME_GLOBAL_RELATIVE_ALT},
+      {MAV_FRAME_GLOBAL_INT, MAV_FRAME_GLOBAL},
+      {MAV_FRAME_GLOBAL_RELATIVE_ALT_INT, MAV_FRAME_GLOBAL_RELATIVE_ALT},
   };
-  for (const Case& c : cases) {
-    SCOPED_TRACE(testing::Message()
-                 << "frame " << int(c.frame) << (c.legacy ? " MISSION_ITEM" : " MISSION_ITEM_INT"));
-    Bench b;
-    Gcs gcs;
-    const bool absolute = c.frame == MAV_FRAME_GLOBAL || c.frame == MAV_FRAME_GLOBAL_INT;
-    const float z_m = static_cast<float>((absolute ? kHome.alt_m : 0.0) + 200.0 * 0.3048);
-    b.feed(gcs.count(1));
-    const auto acks =
-        of_type(b.feed(gcs.waypoint_in(0, c.frame, lat_of(300), kHome.lon_deg, z_m, c.legacy)),
-                MAVLINK_MSG_ID_MISSION_ACK);
-    ASSERT_EQ(acks.size(), 1u);
-    ASSERT_EQ(ack_of(acks[0]), MAV_MISSION_ACCEPTED);
-    const auto plans = b.core.take_way_plans();
-    ASSERT_EQ(plans.size(), 1u);
-    EXPECT_NEAR(plans[0].height_ft[0], 200.0, 0.01);
-    EXPECT_NEAR(plans[0].north_ft[0], 300.0, c.legacy ? 3.0 : 0.5);
-
-    const auto as_int =
-        of_type(b.feed(gcs.request_item(0, false)), MAVLINK_MSG_ID_MISSION_ITEM_INT);
-    ASSERT_EQ(as_int.size(), 1u);
-    EXPECT_EQ(mavlink_msg_mission_item_int_get_frame(&as_int[0]), c.int_frame);
-    EXPECT_FLOAT_EQ(mavlink_msg_mission_item_int_get_z(&as_int[0]), z_m);
-    EXPECT_NEAR(mavlink_msg_mission_item_int_get_x(&as_int[0]), lat_of(300) * 1e7,
-                c.legacy ? 40 : 1);
-    const auto as_float = of_type(b.feed(gcs.request_item(0, true)), MAVLINK_MSG_ID_MISSION_ITEM);
-    ASSERT_EQ(as_float.size(), 1u);
-    EXPECT_EQ(mavlink_msg_mission_item_get_frame(&as_float[0]), c.float_frame);
-    EXPECT_NEAR(mavlink_msg_mission_item_get_x(&as_float[0]), lat_of(300), 1e-5);
+  for (const bool legacy : {false, true}) {
+    for (const Case& c : frames) {
+      SCOPED_TRACE(testing::Message()
+                   << "frame " << int(c.frame) << (legacy ? " MISSION_ITEM" : " MISSION_ITEM_INT"));
+      expect_item_round_trip(c.frame, legacy, c.float_frame);
+    }
   }
 }
 
