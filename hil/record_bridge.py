@@ -12,7 +12,7 @@ import sys
 import time
 import zlib
 
-import yaml
+from hil.aircraft_period import decision_rate_hz
 
 SYNC = b"\xa5\x5a"
 REPLY_LEN = 100
@@ -179,8 +179,7 @@ def board_period_refused(name, rate_hz, aircraft_dir):
     """The board's image runs its aircraft's period (limits.yaml's decision.rate_hz, from which
     the image's configuration is generated): for another rate, says so on stderr and returns the
     exit code 2; None for the period itself."""
-    with open(os.path.join(aircraft_dir, "limits.yaml")) as f:
-        period_hz = float(yaml.safe_load(f)["decision"]["rate_hz"])
+    period_hz = decision_rate_hz(aircraft_dir)
     if rate_hz is not None and abs(rate_hz - period_hz) > 1e-6:
         print("%s: the image runs the aircraft's period (%g Hz in %s); --rate-hz %g is not it" %
               (name, period_hz, aircraft_dir, rate_hz), file=sys.stderr)

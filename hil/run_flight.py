@@ -37,6 +37,8 @@ import xmlrpc.client
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 from hil import faults  # noqa: E402
+from hil.aircraft_period import decision_rate_hz  # noqa: E402
+from stack_tools.paths import ROOT  # noqa: E402  (aircraft/ of the source tree or the install)
 from stack_tools.ports import free_port  # noqa: E402  (below the ephemeral range: nothing autobinds there)
 BAG_TOPICS = ["/hil/truth", "/decision_status", "/servo_op", "/pwm", "/ins", "/data", "/to_hil",
               "/way", "/home", "/rosout_agg", "/diagnostics"]
@@ -178,7 +180,8 @@ def argument_parser():
     ap.add_argument("--turbulence", choices=("none", "light", "moderate"), default="none",
                     help="Dryden turbulence on top of the mean wind (MIL-F-8785C low altitude)")
     ap.add_argument("--timeout-s", type=float, default=None, help="wall-clock limit: stop the flight past it (status timeout)")
-    ap.add_argument("--rate-hz", type=float, default=100.0, help="the HA's control rate")
+    ap.add_argument("--rate-hz", type=float, default=None,
+                    help="the HA's control rate (default: the aircraft's, its limits.yaml decision.rate_hz)")
     ap.add_argument("--controller-hz", type=float, default=None, help="default: the HA's rate")
     ap.add_argument("--out", default=os.path.join(HERE, "out"), help="parent of the flight folder")
     ap.add_argument("--folder", default=None, help="exact output folder (default: dated name)")
@@ -263,11 +266,14 @@ def parse_args(argv):
 
 def launch_command(args, d, run_dir, out, gs_bind, gs_remote):
     """The roslaunch of the flight's HiL launch file, with its arguments."""
-    controller_hz = args.controller_hz or args.rate_hz
+    # Unless asked for another rate, the HA runs the aircraft's own period, and the controller
+    # runs at the HA's rate.
+    controller_hz = args.controller_hz or args.rate_hz or \
+        decision_rate_hz(os.path.join(ROOT, "aircraft", args.aircraft))
+    rates = (["rate_hz:=%g" % args.rate_hz] if args.rate_hz else []) + ["dt:=%g" % (1.0 / controller_hz)]
     launch = ["roslaunch", "--wait", "drone_ros", "%s_hil.launch" % args.aircraft,
               "run_dir:=" + run_dir, "out_dir:=" + out, "seed:=%d" % args.seed,
               "mode:=" + ("realtime" if args.realtime else "lockstep"),
-              "rate_hz:=%g" % args.rate_hz, "dt:=%g" % (1.0 / controller_hz),
               "duration_s:=%g" % args.duration, "crash_at_s:=%g" % args.crash_at, "fault:=" + args.fault,
               "fault_at_s:=%g" % d.fault_at, "fault_duration_s:=%g" % args.fault_duration,
               "fault_params:=" + " ".join("%s=%s" % kv for kv in sorted(d.fault_params.items())),
@@ -281,7 +287,7 @@ def launch_command(args, d, run_dir, out, gs_bind, gs_remote):
               "gs_monitor:=%s" % ("false" if d.external_gcs else "true"),
               "wait_for_recorder:=%s" % ("false" if args.no_bag else "true"),
               # The vehicle side of the ground link, beside the bag (microhard_gs/README.md).
-              "gs_tlog_path:=" + ("" if args.no_bag else os.path.join(os.path.abspath(out), "flight.tlog"))]
+              "gs_tlog_path:=" + ("" if args.no_bag else os.path.join(os.path.abspath(out), "flight.tlog"))] + rates
     if args.ha == "qemu":
         launch += ["ha:=qemu", "ha_image:=" + build_pil_image(os.path.join(out, "pil"), args.realtime)]
     elif args.ha == "due":

@@ -44,6 +44,7 @@ from stack_tools.paths import ROOT  # noqa: E402  (aircraft/ of the source tree 
 from supervisor_core import node_query  # noqa: E402  (the supervisor's node queries: the same PID lookup)
 from hil import faults, gs_monitor, ha_channel, link_relay, mission, sensors, verdicts  # noqa: E402
 from hil.faults.base import RC_NEUTRAL, Board  # noqa: E402
+from hil.aircraft_period import decision_rate_hz  # noqa: E402
 from hil.design_wind import DesignWind  # noqa: E402
 from hil.flight_record import FlightRecord, Period, World  # noqa: E402
 from hil.fdm import Fdm, FdmCrash, Surfaces, Wind  # noqa: E402
@@ -279,7 +280,8 @@ class Simulation:
             raise RuntimeError("~mode must be lockstep or realtime, not %r" % self.mode)
         self.realtime = self.mode == "realtime"
         self.last_reply = None
-        self.rate_hz = float(p("rate_hz", 100.0))
+        # The HA's rate: the aircraft's own unless the run asks for another (a benchmark at 20 Hz).
+        self.rate_hz = float(p("rate_hz", 0.0)) or decision_rate_hz(self.aircraft_dir)
         self.controller_node = rospy.resolve_name(p("controller_node", "controller_DG808"))
         self.arduino_node = rospy.resolve_name("arduino")
         self.controller_inputs = [rospy.resolve_name(t) for t in CONTROLLER_INPUTS]

@@ -3,8 +3,11 @@
  * is published under --port (a symlink, like /dev/ttyACM0), so the `arduino` node opens it as
  * it would open the Due.
  *
- *   ha_sil --port PATH [--rate-hz 100] [--unplug-ms 500] [--latency-log FILE] [--param NAME]
+ *   ha_sil --port PATH [--rate-hz HZ] [--unplug-ms 500] [--latency-log FILE] [--param NAME]
  *          [--vn200 PATH] [--lockstep SOCKET [--realtime]]
+ *
+ * --rate-hz runs the control loop at another rate than the aircraft's own (limits.yaml's
+ * decision.rate_hz, compiled in), as a benchmark at 20 Hz does; without it, the aircraft's.
  *
  * SIGUSR1 unplugs the USB cable: the pty is closed and the symlink removed for --unplug-ms while
  * the control loop keeps running (as the Due does), then a fresh pty is plugged in under the same
@@ -280,7 +283,7 @@ static void run_realtime(Sil *sil, uint32_t unplug_us) {
 
 /* The command line: what the SIL serves and how. */
 typedef struct {
-  double rate_hz;
+  double rate_hz; /* 0: the aircraft's own period (its limits.yaml, compiled in) */
   uint32_t unplug_us;
   const char *vn200_path;
   const char *channel_path;
@@ -290,7 +293,7 @@ typedef struct {
 /* Parses argv into args and the board's port; 0 when the command line is usable. */
 static int parse_args(int argc, char **argv, Sil *sil, SilArgs *args) {
   int i;
-  args->rate_hz = 100.0;
+  args->rate_hz = 0.0;
   args->unplug_us = 500000u;
   args->vn200_path = NULL;
   args->channel_path = NULL;
@@ -322,7 +325,8 @@ static int parse_args(int argc, char **argv, Sil *sil, SilArgs *args) {
       }
     }
   }
-  if ((sil->board.port_path == NULL) || !(args->rate_hz >= 1.0 && args->rate_hz <= 1000.0)) {
+  if ((sil->board.port_path == NULL) ||
+      !(args->rate_hz == 0.0 || (args->rate_hz >= 1.0 && args->rate_hz <= 1000.0))) {
     fprintf(stderr,
             "usage: ha_sil --port PATH [--rate-hz 1..1000] [--unplug-ms N] [--latency-log FILE]\n"
             "              [--param NAME] [--vn200 PATH] [--lockstep SOCKET [--realtime]]\n");
@@ -390,7 +394,7 @@ int main(int argc, char **argv) {
   signal(SIGPIPE, SIG_IGN);
 
   sil.opts.link_up_text = "HA SIL link up";
-  sil.opts.period_us = (uint32_t)(1e6 / args.rate_hz);
+  sil.opts.period_us = args.rate_hz > 0.0 ? (uint32_t)(1e6 / args.rate_hz) : 0u;
   sil.opts.reads_per_pass = 8u; /* 512 bytes a port per pass, 200 us apart */
   sil.opts.command_tap = on_command;
   sil.opts.tap_ctx = &sil;
@@ -404,7 +408,7 @@ int main(int argc, char **argv) {
     fprintf(stderr, "ha_sil: up on %s, lockstep with %s\n", b->port_path, args.channel_path);
     run_lockstep(&sil);
   } else {
-    fprintf(stderr, "ha_sil: up on %s at %.0f Hz%s\n", b->port_path, args.rate_hz,
+    fprintf(stderr, "ha_sil: up on %s at %.0f Hz%s\n", b->port_path, 1e6 / sil.fw.period_us,
             args.channel_path != NULL ? " (board inputs from the simulator)" : "");
     run_realtime(&sil, args.unplug_us);
   }

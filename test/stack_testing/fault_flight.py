@@ -5,12 +5,10 @@ import json
 import os
 import sys
 
-import yaml
-
 from stack_tools.paths import ROOT  # noqa: E402
 from hil.campaigns.flight import run_once_per_test_run  # noqa: E402  (killed whole if out of time; shared)
-with open(os.path.join(ROOT, "aircraft", "DG808", "limits.yaml")) as _f:
-    HA_PERIOD_S = 1.0 / float(yaml.safe_load(_f)["decision"]["rate_hz"])
+from hil.aircraft_period import decision_rate_hz  # noqa: E402
+HA_PERIOD_S = 1.0 / decision_rate_hz(os.path.join(ROOT, "aircraft", "DG808"))
 
 
 def fly(fault, at_s=15.0, duration_s=-1.0, params=(), flight_s=35.0, seed=11, extra=(), bag=False):
