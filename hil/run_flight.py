@@ -264,13 +264,23 @@ def parse_args(argv):
                                     external_gcs=external_gcs)
 
 
+def controller_rate_hz(args):
+    """The controller's rate: --controller-hz, else the HA's (--rate-hz, else the aircraft's own,
+    as the HA runs it). None for an aircraft with no limits.yaml: the launch then refuses the
+    aircraft in check_config's words, which the run reports."""
+    if args.controller_hz or args.rate_hz:
+        return args.controller_hz or args.rate_hz
+    try:
+        return decision_rate_hz(os.path.join(ROOT, "aircraft", args.aircraft))
+    except OSError:
+        return None
+
+
 def launch_command(args, d, run_dir, out, gs_bind, gs_remote):
     """The roslaunch of the flight's HiL launch file, with its arguments."""
-    # Unless asked for another rate, the HA runs the aircraft's own period, and the controller
-    # runs at the HA's rate.
-    controller_hz = args.controller_hz or args.rate_hz or \
-        decision_rate_hz(os.path.join(ROOT, "aircraft", args.aircraft))
-    rates = (["rate_hz:=%g" % args.rate_hz] if args.rate_hz else []) + ["dt:=%g" % (1.0 / controller_hz)]
+    controller_hz = controller_rate_hz(args)
+    rates = (["rate_hz:=%g" % args.rate_hz] if args.rate_hz else []) + \
+        (["dt:=%g" % (1.0 / controller_hz)] if controller_hz else [])
     launch = ["roslaunch", "--wait", "drone_ros", "%s_hil.launch" % args.aircraft,
               "run_dir:=" + run_dir, "out_dir:=" + out, "seed:=%d" % args.seed,
               "mode:=" + ("realtime" if args.realtime else "lockstep"),

@@ -72,3 +72,9 @@ def test_run_flight_at_20_hz_runs_the_ha_and_the_controller_at_20_hz():
     assert "rate_hz:=20" in cmd and "dt:=0.05" in cmd
     cmd = flight_command("--rate-hz", "20", "--controller-hz", "10")
     assert "rate_hz:=20" in cmd and "dt:=0.1" in cmd
+
+
+def test_an_aircraft_with_no_folder_is_left_to_the_launch_to_refuse():
+    # run_flight.py does not fail first with a traceback of its own: roslaunch says which
+    # aircraft is missing, and the run reports it (test_campaign's launch that fails).
+    assert not [a for a in flight_command("--aircraft", "NO_SUCH_AIRCRAFT") if a.startswith("dt:=")]
