@@ -17,6 +17,11 @@ def state(pid):
     return fields[0] if fields else None
 
 
+# The states of a process that runs no more: gone (None), a zombie (listed until its parent reaps
+# it) or exiting.
+DEAD = (None, "Z", "X")
+
+
 def dead(pid):
-    """Gone, a zombie or exiting: it runs no more (a zombie is listed until its parent reaps it)."""
-    return state(pid) in (None, "Z", "X")
+    """It runs no more."""
+    return state(pid) in DEAD

@@ -5,9 +5,7 @@ import signal
 import time
 
 from hil.faults.base import Fault
-from hil.proc_stat import state
-
-GONE = (None, "Z")  # reaped, or a zombie: the controller runs no more
+from hil.proc_stat import DEAD, state
 
 
 def silence_hp(fault, t_s, verb):
@@ -50,7 +48,7 @@ class Crash(Fault):
             self.signal_controller(t_s, self.pid)
 
     def signal_controller(self, t_s, pid):
-        self.confirmed = signal_until(pid, signal.SIGKILL, GONE) in GONE
+        self.confirmed = signal_until(pid, signal.SIGKILL, DEAD) in DEAD
         self.note(t_s, "SIGKILL to controller_DG808 (pid %d): %s" % (pid, "gone" if self.confirmed else "still running"))
         self.ctx.event(t_s, "HP crash injected: SIGKILL to controller_DG808 (pid %d)" % pid)
 

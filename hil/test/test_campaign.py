@@ -40,7 +40,7 @@ def my_children():
     out = []
     for pid in os.listdir("/proc"):
         fields = proc_stat.stat_fields(pid) if pid.isdigit() else None
-        if fields is None or fields[1] != me or fields[0] in ("Z", "X"):
+        if fields is None or fields[1] != me or fields[0] in proc_stat.DEAD:
             continue
         try:
             with open("/proc/%s/cmdline" % pid, "rb") as f:

@@ -23,7 +23,8 @@ from std_msgs.msg import String
 # environment, so even a fresh workspace's `run_tests` finds the messages.
 from drone_ros.msg import DecisionStatus, ServoCommand, pwm
 
-from story_wait import LinkDiagnostics, wait_for  # noqa: E402
+from link_diagnostics import LinkDiagnostics  # noqa: E402
+from stack_testing.story_wait import wait_for  # noqa: E402
 from stack_testing.processes import end_process  # noqa: E402
 from stack_testing.wire_tap import WireTap, frame, topic_info  # noqa: E402
 

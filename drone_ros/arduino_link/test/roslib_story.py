@@ -13,7 +13,8 @@ from roscpp.srv import SetLoggerLevel
 from std_msgs.msg import Bool, Float32, Int32, String
 
 from roslib_device import RoslibDevice, Sketch, ser_string  # noqa: E402
-from story_wait import LinkDiagnostics, wait_for  # noqa: E402
+from link_diagnostics import LinkDiagnostics  # noqa: E402
+from stack_testing.story_wait import wait_for  # noqa: E402
 from stack_testing.kept_messages import KeptMessages  # noqa: E402
 
 

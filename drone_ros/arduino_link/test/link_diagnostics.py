@@ -1,13 +1,9 @@
-"""What the link rostests share (not named test_*.py: pytest must not collect it)."""
+"""The arduino node's link diagnostics as the link rostests read them (not named test_*.py:
+pytest must not collect it)."""
 import threading
 
 import rospy
 from diagnostic_msgs.msg import DiagnosticArray
-
-# Shared with the markers story; link_story.py and roslib_story.py import it from here.
-from stack_testing.story_wait import wait_for
-
-__all__ = ["LinkDiagnostics", "wait_for"]
 
 
 class LinkDiagnostics:
