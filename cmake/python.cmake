@@ -43,6 +43,7 @@ set(${PROJECT_NAME}_CONFIG_CHECK_DEPENDS
   ${PROJECT_SOURCE_DIR}/tools/stack_tools/paths.py
   ${PROJECT_SOURCE_DIR}/aircraft/schema/airframe.schema.json
   ${PROJECT_SOURCE_DIR}/aircraft/schema/controller_param.schema.json
+  ${PROJECT_SOURCE_DIR}/aircraft/schema/gains.schema.json
   ${PROJECT_SOURCE_DIR}/aircraft/schema/ground_station.schema.json
   ${PROJECT_SOURCE_DIR}/aircraft/schema/limits.schema.json
   ${PROJECT_SOURCE_DIR}/aircraft/schema/tunables.schema.json)

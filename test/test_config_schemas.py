@@ -126,13 +126,13 @@ def test_the_hil_airframe_refuses_a_misspelt_key_it_used_to_default(tmp_path):
 
 
 def test_the_gain_design_refuses_a_misspelt_airframe_key(tmp_path):
-    # The design is per aircraft, run from its folder (python3 design_gains.py), not a package.
+    # The design is a script (drone_ros/gnc/design/design_gains.py aircraft/<name>), not a package.
     folder = aircraft_copy(tmp_path)
     misspell(folder / "airframe.yaml", "cl_alpha_per_rad", "cl_alpha_per_radian")
     load = ("import sys, airframe_model\ntry:\n    airframe_model.load_airframe(sys.argv[1])\n"
             "except ValueError as error:\n    sys.exit('refused: %s' % error)")
     result = subprocess.run([sys.executable, "-c", load, str(folder / "airframe.yaml")],
-                            cwd=DG808 / "design", capture_output=True, text=True)
+                            cwd=ROOT / "drone_ros" / "gnc" / "design", capture_output=True, text=True)
     assert result.returncode == 1
     assert re.search(r"^refused: .*aero\.cl_alpha_per_radian: unknown key", result.stderr, re.M), result.stderr
 

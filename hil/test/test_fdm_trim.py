@@ -1,7 +1,6 @@
 """Trimmed starts: the JSBSim model trims where the LQR design trims, and holds level flight."""
 import math
 import os
-import re
 
 import pytest
 import yaml
@@ -14,11 +13,10 @@ FT = 0.3048
 
 
 def design_trim():
-    """The design trim the checked-in gain header was generated with."""
-    with open(os.path.join(AIRCRAFT, "gnc", "dg808_gnc_data.h"), encoding="utf-8") as f:
-        text = f.read()
-    return {k: float(re.search(r"#define DG808_TRIM_%s \(([^)]+)\)" % k, text).group(1))
-            for k in ("AIRSPEED_M_S", "ALPHA_RAD", "ELEVATOR_RAD", "THROTTLE")}
+    """The design trim the aircraft's checked-in gains were designed at."""
+    with open(os.path.join(AIRCRAFT, "gains.yaml"), encoding="utf-8") as f:
+        trim = yaml.safe_load(f)["trim"]
+    return {k.upper(): float(trim[k]) for k in ("airspeed_m_s", "alpha_rad", "elevator_rad", "throttle")}
 
 
 def test_trims_where_the_lqr_design_trims_at_the_design_point():

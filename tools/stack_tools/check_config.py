@@ -34,6 +34,7 @@ KINDS = {
     "ground_station.yaml": "ground_station",
     "tunables.yaml": "tunables",
     "vn200_mount.yaml": "vn200_mount",
+    "gains.yaml": "gains",
     "limits_ranges.yaml": "limits_ranges",
 }
 

@@ -1,5 +1,5 @@
-// GNC step time on this host: the DG808 GNC flying the closed-loop model around a square,
-// each DG808_GNC_step timed alone. Prints `metric: value unit` lines.
+// GNC step time on this host: the GNC flying the closed-loop model around a square,
+// each gnc_step timed alone. Prints `metric: value unit` lines.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "controller_params.h"
-#include "sim/dg808_sim.h"
+#include "sim/airframe_sim.h"
 #include "yaml_lookup.h"
 
 int main() {
@@ -18,13 +18,13 @@ int main() {
     std::fprintf(stderr, "bad parameters: %s\n", error.c_str());
     return 1;
   }
-  if (DG808_GNC_initialize(&params.gnc) != 0) {
+  if (gnc_initialize(&params.gnc) != 0) {
     return 1;
   }
-  dg808sim::Sim sim{dg808sim::SimConfig{}};
+  airframe_sim::Sim sim{airframe_sim::SimConfig{}};
   sim.set_trimmed_flight(params.gnc.vt_trim_ftps, 200.0, 0.0);
-  DG808_GNC_Input in{};
-  DG808_GNC_Output out{};
+  GncInput in{};
+  GncOutput out{};
   in.piccic = 1;
   in.throttle_trim = params.throttle_trim;
   in.elevator_trim_rad = params.elevator_trim_rad;
@@ -43,7 +43,7 @@ int main() {
   for (int i = 0; i < steps; ++i) {
     sim.sense(in);
     const auto t0 = std::chrono::steady_clock::now();
-    DG808_GNC_step(&in, &out);
+    gnc_step(&in, &out);
     const auto t1 = std::chrono::steady_clock::now();
     us.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count());
     sim.advance(out, params.gnc.dt_s);
@@ -52,6 +52,6 @@ int main() {
   std::printf("gnc_step_p50: %.2f us\n", us[us.size() / 2]);
   std::printf("gnc_step_p99: %.2f us\n", us[us.size() * 99 / 100]);
   std::printf("gnc_step_max: %.2f us\n", us.back());
-  DG808_GNC_terminate();
+  gnc_terminate();
   return 0;
 }

@@ -8,7 +8,8 @@
 #include <drone_ros/hil_data.h>
 #include <ros/time.h>
 
-#include "gnc_binding.h"
+#include "gnc.h"
+#include "gnc_aircraft.h"
 #include "sensor_board.h"
 
 namespace controller {

@@ -175,7 +175,7 @@ void read_estimator_and_node(Reader &r, ControllerParams &p) {
   p.q_weight = r.get_tunable("Q_weight");
   r.require(p.q_weight == GNC_DESIGN_Q_WEIGHT,
             "Q_weight differs from the weight the checked-in gains were designed with: rerun "
-            "aircraft/" GNC_AIRCRAFT_NAME "/design/design_gains.py");
+            "drone_ros/gnc/design/design_gains.py aircraft/" GNC_AIRCRAFT_NAME);
   p.sensor_timeout_s = r.get_tunable("sensor_timeout_s");
   r.require(p.sensor_timeout_s >= 2.0 * g.dt_s, "sensor_timeout_s must cover at least two periods");
 }

@@ -9,7 +9,8 @@
 #include <map>
 #include <string>
 
-#include "gnc_binding.h"
+#include "gnc.h"
+#include "gnc_aircraft.h"
 
 namespace controller {
 

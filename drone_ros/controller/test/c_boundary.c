@@ -4,17 +4,17 @@
 
 #include <string.h>
 
-#include "dg808_gnc.h"
+#include "gnc.h"
 
 int c_boundary_step_uninitialized(double *throttle_out) {
-  DG808_GNC_Input in;
-  DG808_GNC_Output out;
+  GncInput in;
+  GncOutput out;
   memset(&in, 0, sizeof(in));
   memset(&out, 0, sizeof(out));
-  DG808_GNC_terminate();
-  DG808_GNC_step(&in, &out);
+  gnc_terminate();
+  gnc_step(&in, &out);
   *throttle_out = out.throttle;
   return out.command_valid;
 }
 
-int c_boundary_initialize_null(void) { return DG808_GNC_initialize(NULL); }
+int c_boundary_initialize_null(void) { return gnc_initialize(NULL); }

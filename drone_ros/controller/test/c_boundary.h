@@ -7,7 +7,7 @@ extern "C" {
 
 /* Steps a terminated GNC from C: returns command_valid, writes the throttle. */
 int c_boundary_step_uninitialized(double *throttle_out);
-/* DG808_GNC_initialize(NULL) from C. */
+/* gnc_initialize(NULL) from C. */
 int c_boundary_initialize_null(void);
 
 #ifdef __cplusplus

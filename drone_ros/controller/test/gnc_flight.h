@@ -14,7 +14,7 @@
 #include <string>
 
 #include "controller_params.h"
-#include "sim/dg808_sim.h"
+#include "sim/airframe_sim.h"
 #include "yaml_lookup.h"
 
 namespace controller_test {
@@ -25,22 +25,22 @@ constexpr double kRadToDeg = 180.0 / kPi;
 class Flight {
  public:
   explicit Flight(const std::map<std::string, double> &overrides = {},
-                  const dg808sim::SimConfig &sim_config = dg808sim::SimConfig{})
+                  const airframe_sim::SimConfig &sim_config = airframe_sim::SimConfig{})
       : sim_(sim_config) {
     values_ = controller_test::aircraft_params(AIRCRAFT_DIR, overrides);
     std::string error;
     ok_ =
         controller::build_controller_params(controller_test::lookup_in(values_), &params_, &error);
     EXPECT_TRUE(ok_) << error;
-    EXPECT_EQ(DG808_GNC_initialize(&params_.gnc), 0);
-    in_ = DG808_GNC_Input{};
+    EXPECT_EQ(gnc_initialize(&params_.gnc), 0);
+    in_ = GncInput{};
     in_.piccic = 1;  // computer in command
     in_.throttle_trim = params_.throttle_trim;
     in_.elevator_trim_rad = params_.elevator_trim_rad;
     in_.aileron_trim_rad = params_.aileron_trim_rad;
     in_.rudder_trim_rad = params_.rudder_trim_rad;
   }
-  ~Flight() { DG808_GNC_terminate(); }
+  ~Flight() { gnc_terminate(); }
 
   // In level flight at the design speed, height_ft above home, heading psi_rad.
   void start_trimmed(double height_ft, double psi_rad = 0.0) {
@@ -60,7 +60,7 @@ class Flight {
 
   void step() {
     sim_.sense(in_);
-    DG808_GNC_step(&in_, &out_);
+    gnc_step(&in_, &out_);
     sim_.advance(out_, params_.gnc.dt_s);
     t_s_ += params_.gnc.dt_s;
   }
@@ -72,11 +72,11 @@ class Flight {
 
   double dt() const { return params_.gnc.dt_s; }
   void advance_clock() { t_s_ += params_.gnc.dt_s; }
-  dg808sim::Sim &sim() { return sim_; }
-  DG808_GNC_Input &in() { return in_; }
-  const DG808_GNC_Output &out() const { return out_; }
+  airframe_sim::Sim &sim() { return sim_; }
+  GncInput &in() { return in_; }
+  const GncOutput &out() const { return out_; }
   // For a caller that steps the GNC itself (a pilot or the HA flying the sim).
-  void set_out(const DG808_GNC_Output &out) { out_ = out; }
+  void set_out(const GncOutput &out) { out_ = out; }
   const controller::ControllerParams &params() const { return params_; }
   double t() const { return t_s_; }
   // A value of controller_param.yaml or limits.yaml ("limits/actuators/aileron_limit_deg").
@@ -90,13 +90,13 @@ class Flight {
   std::map<std::string, double> values_;
   controller::ControllerParams params_{};
   bool ok_ = false;
-  dg808sim::Sim sim_;
-  DG808_GNC_Input in_{};
-  DG808_GNC_Output out_{};
+  airframe_sim::Sim sim_;
+  GncInput in_{};
+  GncOutput out_{};
   double t_s_ = 0.0;
 };
 
-inline bool all_finite(const DG808_GNC_Output &o) {
+inline bool all_finite(const GncOutput &o) {
   const double v[] = {o.throttle,           o.elevator_rad,  o.aileron_rad,  o.rudder_rad,
                       o.vt_est_ftps,        o.alpha_est_rad, o.beta_est_rad, o.wind_north_ftps,
                       o.wind_east_ftps,     o.wind_up_ftps,  o.phi_cmd_rad,  o.theta_cmd_rad,

@@ -50,8 +50,8 @@ std::string name(const Wind &w) {
 }
 
 // Meteorological: a wind from the north blows south.
-dg808sim::SimConfig in_wind(const Wind &w) {
-  dg808sim::SimConfig cfg;
+airframe_sim::SimConfig in_wind(const Wind &w) {
+  airframe_sim::SimConfig cfg;
   const double from = w.from_deg / kRadToDeg;
   cfg.wind_ned_mps = Eigen::Vector3d(-w.mps * std::cos(from), -w.mps * std::sin(from), 0.0);
   return cfg;
@@ -66,7 +66,7 @@ struct Judge {
   std::string first_wrong;
 
   void observe(Flight &f) {
-    const DG808_GNC_Output &o = f.out();
+    const GncOutput &o = f.out();
     if (!o.estimator_converged) {
       return;
     }
@@ -197,8 +197,8 @@ TEST(AirdataInWind, TakeoffRollInWindNeverClaimsAWrongAngleAndConvergesOnceAirbo
       }
       // The pilot: full power and 8 deg nose up to 150 ft, then level at trim power; wings level.
       const bool climbing = f.sim().height_ft() < 150.0;
-      const double theta_cmd = climbing ? 8.0 / kRadToDeg : DG808_TRIM_THETA_RAD;
-      DG808_GNC_Input &in = f.in();
+      const double theta_cmd = climbing ? 8.0 / kRadToDeg : GNC_TRIM_THETA_RAD;
+      GncInput &in = f.in();
       in.elevator_trim_rad =
           f.sim().on_ground()
               ? f.params().elevator_trim_rad
@@ -209,10 +209,10 @@ TEST(AirdataInWind, TakeoffRollInWindNeverClaimsAWrongAngleAndConvergesOnceAirbo
       in.rudder_trim_rad = 0.0;
       in.throttle_trim = climbing ? 1.0 : f.params().throttle_trim;
       f.sim().sense(in);
-      DG808_GNC_Output out{};
-      DG808_GNC_step(&in, &out);
+      GncOutput out{};
+      gnc_step(&in, &out);
       f.set_out(out);
-      DG808_GNC_Output pilot = out;
+      GncOutput pilot = out;
       pilot.elevator_rad = in.elevator_trim_rad;
       pilot.aileron_rad = in.aileron_trim_rad;
       pilot.rudder_rad = in.rudder_trim_rad;
@@ -254,7 +254,7 @@ TEST(AirdataInWind, StartedOnAWrongBranchInFlightRecoversWithoutClaimingIt) {
       GncParams wrong = f.params().gnc;
       wrong.alpha0_rad = 80.0 / kRadToDeg;
       wrong.beta0_rad = beta0_deg / kRadToDeg;
-      ASSERT_EQ(DG808_GNC_initialize(&wrong), 0);
+      ASSERT_EQ(gnc_initialize(&wrong), 0);
       f.start_trimmed(200.0, kStartHeadingDeg / kRadToDeg);
       f.set_plan(kFarAheadFt, 1);
       f.step();
@@ -294,14 +294,14 @@ TEST(AirdataInWind, APitotReadingZeroForAMomentInFlightKeepsAlphaAndBetaOnTheTru
       double converged_again_s = -1.0, worst_alpha_deg = 0.0, worst_beta_deg = 0.0;
       int lost_claim = 0, claim_past_hold = 0;
       while (f.t() < back_s + 5.0) {
-        DG808_GNC_Input &in = f.in();
+        GncInput &in = f.in();
         f.sim().sense(in);
         const bool dropped = f.t() < back_s;
         if (dropped) {
           in.airspeed_ftps = 0.0;
         }
-        DG808_GNC_Output out{};
-        DG808_GNC_step(&in, &out);
+        GncOutput out{};
+        gnc_step(&in, &out);
         f.set_out(out);
         const double into_s = f.t() - dropout_s;
         f.sim().advance(out, f.dt());

@@ -1,4 +1,4 @@
-// Closed-loop tests of the DG808 GNC without ROS: the generated controller flies the nonlinear
+// Closed-loop tests of the GNC (for the build's aircraft) without ROS: the generated controller flies the nonlinear
 // 6-DOF model built from the same airframe data (test/sim). Bands are stated with each test.
 #include <gtest/gtest.h>
 
@@ -60,7 +60,7 @@ Bands fly_and_measure_bands(Flight *f, double until_s, double settle_s, double h
 }
 
 // The bands flying plan from trim at 200 ft in the sim cfg describes.
-Bands bands_from_trim(const dg808sim::SimConfig &cfg, const double (*plan)[3], int count,
+Bands bands_from_trim(const airframe_sim::SimConfig &cfg, const double (*plan)[3], int count,
                       double until_s, double settle_s) {
   Flight f({}, cfg);
   f.start_trimmed(200.0);
@@ -71,7 +71,7 @@ Bands bands_from_trim(const dg808sim::SimConfig &cfg, const double (*plan)[3], i
 // Altitude band +/-10 ft and airspeed band +/-2 ft/s, after 5 s, over 60 s of straight flight
 // towards a far waypoint at the trim height, in a 3 m/s crosswind with sensor noise.
 TEST(GncClosedLoop, FromTrimHoldsAltitudeAndAirspeedWithinBands) {
-  dg808sim::SimConfig cfg;
+  airframe_sim::SimConfig cfg;
   cfg.wind_ned_mps = Eigen::Vector3d(0.0, 3.0, 0.0);
   const Bands b = bands_from_trim(cfg, kFarNorthFt, 1, 60.0, 5.0);
   EXPECT_LT(b.worst_alt_ft, 10.0);
@@ -82,7 +82,7 @@ TEST(GncClosedLoop, FromTrimHoldsAltitudeAndAirspeedWithinBands) {
 // 20 % less control power. Flying the square from trim it still holds altitude within 15 ft and
 // airspeed within 4 ft/s after the first 10 s.
 TEST(GncClosedLoop, HoldsAltitudeAndAirspeedWithModelErrors) {
-  dg808sim::SimConfig cfg;
+  airframe_sim::SimConfig cfg;
   cfg.mass_scale = 1.15;
   cfg.drag_scale = 1.25;
   cfg.control_power_scale = 0.8;
@@ -96,7 +96,7 @@ TEST(GncClosedLoop, HoldsAltitudeAndAirspeedWithModelErrors) {
 // four corners, the aircraft stays within 80 ft of the square's edges (RMS within 25 ft) and
 // within 15 ft of its height through the 35 deg banked turns.
 TEST(GncClosedLoop, FliesFourWaypointSquareWithinCrossTrackBand) {
-  dg808sim::SimConfig cfg;
+  airframe_sim::SimConfig cfg;
   cfg.wind_ned_mps = Eigen::Vector3d(-2.0, 2.0, 0.0);
   Flight f({}, cfg);
   f.start_trimmed(200.0);
@@ -143,7 +143,7 @@ TEST(GncClosedLoop, FliesFourWaypointSquareWithinCrossTrackBand) {
 // Return home (hmcmd): from 30 s on the aircraft circles home at mpf_radius within +/-30 ft and
 // holds its height within +/-10 ft, in a 2.8 m/s wind.
 TEST(GncClosedLoop, ReturnHomeCommandCirclesHomeAtTheMpfRadius) {
-  dg808sim::SimConfig cfg;
+  airframe_sim::SimConfig cfg;
   cfg.wind_ned_mps = Eigen::Vector3d(-2.0, 2.0, 0.0);
   Flight f({}, cfg);
   f.start_trimmed(200.0);
@@ -153,7 +153,7 @@ TEST(GncClosedLoop, ReturnHomeCommandCirclesHomeAtTheMpfRadius) {
   while (f.t() < 150.0) {
     f.step();
     ASSERT_TRUE(all_finite(f.out()));
-    EXPECT_EQ(f.out().guidance_mode, DG808_GNC_MODE_CIRCLE_HOME);
+    EXPECT_EQ(f.out().guidance_mode, GNC_MODE_CIRCLE_HOME);
     if (f.t() > 30.0) {
       const double r = std::hypot(f.sim().north_ft(), f.sim().east_ft());
       worst_radius_ft = std::max(worst_radius_ft, std::fabs(r - radius_ft));
@@ -172,13 +172,13 @@ TEST(GncClosedLoop, ReleasingReturnHomeResumesThePlan) {
   f.set_plan(plan, 2);
   f.in().home_cmd = 1;
   f.fly_until(20.0);
-  EXPECT_EQ(f.out().guidance_mode, DG808_GNC_MODE_CIRCLE_HOME);
+  EXPECT_EQ(f.out().guidance_mode, GNC_MODE_CIRCLE_HOME);
   f.in().home_cmd = 0;
   f.step();
-  EXPECT_NE(f.out().guidance_mode, DG808_GNC_MODE_CIRCLE_HOME);
+  EXPECT_NE(f.out().guidance_mode, GNC_MODE_CIRCLE_HOME);
   EXPECT_EQ(f.out().waypoint_index, 0);
   f.fly_until(100.0);
-  EXPECT_EQ(f.out().guidance_mode, DG808_GNC_MODE_FLIGHT_PLAN);
+  EXPECT_EQ(f.out().guidance_mode, GNC_MODE_FLIGHT_PLAN);
   EXPECT_LT(std::fabs(f.out().cross_track_ft), 30.0);
 }
 
@@ -191,7 +191,7 @@ TEST(GncClosedLoop, PathSelectOneCirclesHomeAfterTheLastWaypoint) {
   bool circled = false;
   while (f.t() < 120.0 && !circled) {
     f.step();
-    circled = f.out().guidance_mode == DG808_GNC_MODE_CIRCLE_HOME;
+    circled = f.out().guidance_mode == GNC_MODE_CIRCLE_HOME;
   }
   EXPECT_TRUE(circled);
   EXPECT_EQ(f.out().waypoint_index, 1);
@@ -203,7 +203,7 @@ TEST(GncClosedLoop, PathSelectOneCirclesHomeAfterTheLastWaypoint) {
 // Started with alpha 10 deg and beta -8 deg off, the estimator reports not converged at first,
 // then within 5 s reports converged with alpha and beta within 1 deg of the truth.
 TEST(GncClosedLoop, EstimatorConvergesFromWrongInitialAlphaBeta) {
-  dg808sim::SimConfig cfg;
+  airframe_sim::SimConfig cfg;
   cfg.wind_ned_mps = Eigen::Vector3d(2.0, -3.0, 0.0);
   Flight f({{"alpha", 10.0 / kRadToDeg}, {"beta", -8.0 / kRadToDeg}}, cfg);
   f.start_trimmed(200.0, 0.5);
@@ -229,7 +229,7 @@ TEST(GncClosedLoop, EstimatorConvergesFromWrongInitialAlphaBeta) {
 TEST(GncFrame, NorthAndEastFromLatLonUseTheWgs84RadiiAtHome) {
   Flight f;
   f.step();
-  DG808_GNC_Input in = f.in();
+  GncInput in = f.in();
   in.home_valid = 1;
   in.home_lat_deg = 45.0;
   in.home_lon_deg = 7.0;
@@ -237,8 +237,8 @@ TEST(GncFrame, NorthAndEastFromLatLonUseTheWgs84RadiiAtHome) {
   in.lat_deg = 45.001;
   in.lon_deg = 7.001;
   in.alt_m = 330.48;
-  DG808_GNC_Output out{};
-  DG808_GNC_step(&in, &out);
+  GncOutput out{};
+  gnc_step(&in, &out);
   EXPECT_NEAR(111.13295 / 0.3048, out.north_ft, 0.05);
   EXPECT_NEAR(78.84680 / 0.3048, out.east_ft, 0.05);
   EXPECT_NEAR(100.0, out.height_ft, 1e-6);
@@ -287,8 +287,8 @@ TEST(GncClosedLoop, NanInputGivesFiniteCommandFlaggedInvalidAndIsCounted) {
     f.sim().sense(f.in());
     const double saved = *field;
     *field = c.value;
-    DG808_GNC_Output out{};
-    DG808_GNC_step(&f.in(), &out);
+    GncOutput out{};
+    gnc_step(&f.in(), &out);
     ++expected_rejects;
     EXPECT_TRUE(all_finite(out));
     EXPECT_FALSE(out.command_valid);
@@ -310,7 +310,7 @@ TEST(GncClosedLoop, RestartMidFlightReinitializesAndRecovers) {
   f.set_plan(kFarNorthFt, 1);
   f.fly_until(3.0);
   ASSERT_TRUE(f.out().estimator_converged);
-  ASSERT_EQ(DG808_GNC_initialize(&f.params().gnc), 0);
+  ASSERT_EQ(gnc_initialize(&f.params().gnc), 0);
   f.step();
   EXPECT_FALSE(f.out().estimator_converged);
   f.fly_until(20.0);
@@ -324,7 +324,7 @@ TEST(GncClosedLoop, InvalidParametersAreRefusedAndCommandStaysInvalid) {
   Flight f;
   GncParams bad = f.params().gnc;
   bad.mpf_radius_ft = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_EQ(DG808_GNC_initialize(&bad), -1);
+  EXPECT_EQ(gnc_initialize(&bad), -1);
   f.start_trimmed(200.0);
   f.step();
   EXPECT_FALSE(f.out().command_valid);
@@ -364,9 +364,9 @@ double peak_after_hand_back(double attitude_cmd_rate_deg_s, double *peak_aileron
   const double bank_rad = 30.0 / kRadToDeg;
   while (f.t() < 20.0) {  // the HA: bank and pitch holds of its own on the same sim
     f.sim().sense(f.in());
-    DG808_GNC_Output hp{};
-    DG808_GNC_step(&f.in(), &hp);
-    DG808_GNC_Output ha = hp;
+    GncOutput hp{};
+    gnc_step(&f.in(), &hp);
+    GncOutput ha = hp;
     ha.aileron_rad = std::clamp(0.8 * (bank_rad - f.sim().phi_rad()) - 0.15 * f.sim().p_radps(),
                                 -aileron_limit_rad, aileron_limit_rad);
     ha.elevator_rad = f.params().elevator_trim_rad - 0.8 * (0.05 - f.sim().theta_rad());
@@ -476,8 +476,8 @@ double most_nose_up_in_a_dive_deg(Flight *f) {
     f->in().theta_rad = dive_rad;
     f->in().vel_north_mps = v_mps * std::cos(dive_rad);
     f->in().vel_down_mps = -v_mps * std::sin(dive_rad);
-    DG808_GNC_Output out{};
-    DG808_GNC_step(&f->in(), &out);
+    GncOutput out{};
+    gnc_step(&f->in(), &out);
     most_nose_up_deg = std::max(most_nose_up_deg, -out.elevator_rad * kRadToDeg);
   }
   return most_nose_up_deg;

@@ -1,15 +1,15 @@
-// A small nonlinear 6-DOF model of the DG808 for closed-loop tests and benchmarks of the GNC
-// without ROS. Same equations as aircraft/DG808/design/airframe_model.py, same data (through the
-// generated dg808_gnc_data.h), plus wind and sensor noise. Flat earth, NED, SI inside.
-#ifndef DG808_SIM_H
-#define DG808_SIM_H
+// A small nonlinear 6-DOF model of the build's aircraft for closed-loop tests and benchmarks of
+// the GNC without ROS. Same equations as drone_ros/gnc/design/airframe_model.py, same data (through
+// the generated gnc_aircraft.h), plus wind and sensor noise. Flat earth, NED, SI inside.
+#ifndef AIRFRAME_SIM_H
+#define AIRFRAME_SIM_H
 
 #include <Eigen/Dense>
 #include <random>
 
-#include "dg808_gnc.h"
+#include "gnc.h"
 
-namespace dg808sim {
+namespace airframe_sim {
 
 struct SimConfig {
   double home_lat_deg = 40.0;
@@ -38,9 +38,9 @@ class Sim {
   void start_takeoff_roll(double accel_mps2, double liftoff_ftps);
   bool on_ground() const { return on_ground_; }
   // Advance by dt_s holding the command (surfaces in rad, throttle 0..1).
-  void advance(const DG808_GNC_Output &cmd, double dt_s);
+  void advance(const GncOutput &cmd, double dt_s);
   // Fills the sensor part of a GNC input (trims, plan and PIC left to the caller).
-  void sense(DG808_GNC_Input &in);
+  void sense(GncInput &in);
 
   double north_ft() const { return pos_ned_m_.x() / 0.3048; }
   double east_ft() const { return pos_ned_m_.y() / 0.3048; }
@@ -55,7 +55,7 @@ class Sim {
 
  private:
   using State = Eigen::Matrix<double, 12, 1>;  // pos NED, v body (ground), pqr, euler
-  State derivatives(const State &x, const DG808_GNC_Output &cmd,
+  State derivatives(const State &x, const GncOutput &cmd,
                     Eigen::Vector3d *specific_force) const;
   void unpack(const State &x);
   State pack() const;
@@ -75,6 +75,6 @@ class Sim {
   std::normal_distribution<double> unit_{0.0, 1.0};
 };
 
-}  // namespace dg808sim
+}  // namespace airframe_sim
 
 #endif

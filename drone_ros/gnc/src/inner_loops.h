@@ -1,10 +1,10 @@
-// LQR inner loops around the generated gains (dg808_gnc_data.h): longitudinal (airspeed and
+// LQR inner loops around the generated gains (gnc_aircraft.h, from the aircraft's gains.yaml): longitudinal (airspeed and
 // pitch tracking with elevator and throttle) and lateral-directional (roll tracking and sideslip
 // suppression with aileron and rudder), each with integral action on its tracked errors.
-#ifndef DG808_INNER_LOOPS_H
-#define DG808_INNER_LOOPS_H
+#ifndef GNC_INNER_LOOPS_H
+#define GNC_INNER_LOOPS_H
 
-namespace dg808 {
+namespace gnc {
 
 struct LoopState {
   double vt_mps, alpha_rad, beta_rad;
@@ -43,6 +43,6 @@ class InnerLoops {
   double int_phi_rad_s_ = 0.0;
 };
 
-}  // namespace dg808
+}  // namespace gnc
 
 #endif

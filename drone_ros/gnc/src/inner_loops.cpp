@@ -2,9 +2,9 @@
 
 #include <algorithm>
 
-#include "dg808_gnc_data.h"
+#include "gnc_aircraft.h"
 
-namespace dg808 {
+namespace gnc {
 
 Surfaces clamp_to_limits(const Surfaces &u, const SurfaceLimits &lim) {
   Surfaces c;
@@ -26,20 +26,20 @@ Surfaces InnerLoops::step(const LoopState &x, const LoopReference &ref, const Su
   const double e_vt = x.vt_mps - ref.vt_mps;
   const double e_theta = x.theta_rad - ref.theta_rad;
   const double e_phi = x.phi_rad - ref.phi_rad;
-  const double lon[DG808_K_LON_COLS] = {
-      e_vt, x.alpha_rad - DG808_TRIM_ALPHA_RAD, x.q_radps, e_theta, int_vt_m_, int_theta_rad_s_};
-  const double lat[DG808_K_LAT_COLS] = {x.beta_rad, x.p_radps, x.r_radps - ref.r_radps, e_phi,
+  const double lon[GNC_K_LON_COLS] = {
+      e_vt, x.alpha_rad - GNC_TRIM_ALPHA_RAD, x.q_radps, e_theta, int_vt_m_, int_theta_rad_s_};
+  const double lat[GNC_K_LAT_COLS] = {x.beta_rad, x.p_radps, x.r_radps - ref.r_radps, e_phi,
                                         int_phi_rad_s_};
-  double u_lon[DG808_K_LON_ROWS] = {0.0, 0.0};
-  double u_lat[DG808_K_LAT_ROWS] = {0.0, 0.0};
-  for (int i = 0; i < DG808_K_LON_ROWS; ++i) {
-    for (int j = 0; j < DG808_K_LON_COLS; ++j) {
-      u_lon[i] -= DG808_K_LON[i][j] * lon[j];
+  double u_lon[GNC_K_LON_ROWS] = {0.0, 0.0};
+  double u_lat[GNC_K_LAT_ROWS] = {0.0, 0.0};
+  for (int i = 0; i < GNC_K_LON_ROWS; ++i) {
+    for (int j = 0; j < GNC_K_LON_COLS; ++j) {
+      u_lon[i] -= GNC_K_LON[i][j] * lon[j];
     }
   }
-  for (int i = 0; i < DG808_K_LAT_ROWS; ++i) {
-    for (int j = 0; j < DG808_K_LAT_COLS; ++j) {
-      u_lat[i] -= DG808_K_LAT[i][j] * lat[j];
+  for (int i = 0; i < GNC_K_LAT_ROWS; ++i) {
+    for (int j = 0; j < GNC_K_LAT_COLS; ++j) {
+      u_lat[i] -= GNC_K_LAT[i][j] * lat[j];
     }
   }
   Surfaces u;
@@ -61,4 +61,4 @@ Surfaces InnerLoops::step(const LoopState &x, const LoopReference &ref, const Su
   return c;
 }
 
-}  // namespace dg808
+}  // namespace gnc

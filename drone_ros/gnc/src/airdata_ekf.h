@@ -25,12 +25,12 @@
 //   the direct solution; leaving the ground starts from it too.
 // - Converged is claimed only airborne, with the 1-sigma of alpha and beta below the configured
 //   bound and the estimate agreeing with the direct solution.
-#ifndef DG808_AIRDATA_EKF_H
-#define DG808_AIRDATA_EKF_H
+#ifndef GNC_AIRDATA_EKF_H
+#define GNC_AIRDATA_EKF_H
 
 #include <Eigen/Dense>
 
-namespace dg808 {
+namespace gnc {
 
 struct AirdataMeasurement {
   Eigen::Vector3d vel_ned_mps;
@@ -108,6 +108,6 @@ bool direct_air_angles(const AirdataMeasurement &m, double stall_speed_mps, doub
 
 Eigen::Matrix3d body_to_ned(double phi, double theta, double psi);
 
-}  // namespace dg808
+}  // namespace gnc
 
 #endif

@@ -1,5 +1,5 @@
 // The LQR gains are generated, not typed: rerunning the design script on the checked-in airframe
-// data must reproduce the checked-in header byte for byte.
+// data must reproduce the aircraft's checked-in gains.yaml byte for byte.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -17,24 +17,25 @@ std::string read_all(const std::string &path) {
   return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
 }
 
-TEST(DesignGains, RerunningTheDesignScriptReproducesTheCheckedInHeader) {
+TEST(DesignGains, RerunningTheDesignReproducesTheAircraftsCheckedInGains) {
   char dir_template[] = "/tmp/design_gains_XXXXXX";
   const char *dir = mkdtemp(dir_template);
   ASSERT_NE(dir, nullptr);
-  const std::string out = std::string(dir) + "/dg808_gnc_data.h";
-  const std::string cmd = std::string(DESIGN_PYTHON) + " " + DESIGN_SCRIPT + " --out " + out +
+  const std::string out = std::string(dir) + "/gains.yaml";
+  const std::string cmd = std::string(DESIGN_PYTHON) + " " + DESIGN_SCRIPT + " " + AIRCRAFT_DIR + " --out " + out +
                           " > " + dir + "/log.txt 2>&1";
   const int rc = std::system(cmd.c_str());
   const std::string log = read_all(std::string(dir) + "/log.txt");
   ASSERT_EQ(rc, 0) << log;
   const std::string generated = read_all(out);
-  const std::string checked_in = read_all(CHECKED_IN_HEADER);
+  const std::string checked_in = read_all(std::string(AIRCRAFT_DIR) + "/gains.yaml");
   std::remove(out.c_str());
   std::remove((std::string(dir) + "/log.txt").c_str());
   rmdir(dir);
   ASSERT_FALSE(generated.empty());
   EXPECT_EQ(generated, checked_in)
-      << "aircraft data or design script changed: rerun design_gains.py and check in the header";
+      << "aircraft data or design script changed: rerun design_gains.py " AIRCRAFT_DIR
+         " and check in its gains.yaml";
 }
 
 }  // namespace

@@ -1,12 +1,12 @@
-#include "dg808_sim.h"
+#include "airframe_sim.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "dg808_gnc_data.h"
+#include "gnc_aircraft.h"
 #include "geo_wgs84.h"
 
-namespace dg808sim {
+namespace airframe_sim {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -30,12 +30,12 @@ void Sim::set_trimmed_flight(double airspeed_ftps, double height_ft, double psi_
   on_ground_ = false;
   const double vt = airspeed_ftps / kFtPerM;
   pos_ned_m_ = Eigen::Vector3d(0.0, 0.0, -height_ft / kFtPerM);
-  euler_ = Eigen::Vector3d(0.0, DG808_TRIM_THETA_RAD, psi_rad);
+  euler_ = Eigen::Vector3d(0.0, GNC_TRIM_THETA_RAD, psi_rad);
   rates_radps_.setZero();
-  const Eigen::Vector3d va(vt * std::cos(DG808_TRIM_ALPHA_RAD), 0.0,
-                           vt * std::sin(DG808_TRIM_ALPHA_RAD));
+  const Eigen::Vector3d va(vt * std::cos(GNC_TRIM_ALPHA_RAD), 0.0,
+                           vt * std::sin(GNC_TRIM_ALPHA_RAD));
   vel_body_mps_ = va + body_to_ned(euler_).transpose() * config_.wind_ned_mps;
-  specific_force_mps2_ = Eigen::Vector3d(0.0, 0.0, -DG808_GRAVITY_M_S2);
+  specific_force_mps2_ = Eigen::Vector3d(0.0, 0.0, -AIRFRAME_GRAVITY_M_S2);
 }
 
 void Sim::set_on_ground(double psi_rad) {
@@ -45,7 +45,7 @@ void Sim::set_on_ground(double psi_rad) {
   vel_body_mps_.setZero();
   rates_radps_.setZero();
   euler_ = Eigen::Vector3d(0.0, 0.0, psi_rad);
-  specific_force_mps2_ = Eigen::Vector3d(0.0, 0.0, -DG808_GRAVITY_M_S2);
+  specific_force_mps2_ = Eigen::Vector3d(0.0, 0.0, -AIRFRAME_GRAVITY_M_S2);
 }
 
 void Sim::start_takeoff_roll(double accel_mps2, double liftoff_ftps) {
@@ -60,7 +60,7 @@ void Sim::roll_on_ground(double dt_s) {
   const Eigen::Matrix3d r_nb = body_to_ned(euler_);
   vel_body_mps_ = Eigen::Vector3d(vel_body_mps_.x() + roll_accel_mps2_ * dt_s, 0.0, 0.0);
   pos_ned_m_ += r_nb * vel_body_mps_ * dt_s;
-  specific_force_mps2_ = Eigen::Vector3d(roll_accel_mps2_, 0.0, -DG808_GRAVITY_M_S2);
+  specific_force_mps2_ = Eigen::Vector3d(roll_accel_mps2_, 0.0, -AIRFRAME_GRAVITY_M_S2);
   const Eigen::Vector3d va_ned = r_nb * vel_body_mps_ - config_.wind_ned_mps;
   const double vt = va_ned.norm();
   if (vt < liftoff_mps_) {
@@ -68,15 +68,15 @@ void Sim::roll_on_ground(double dt_s) {
   }
   // Off the wheels: level, the nose into the relative wind (the ground track is kept), at the
   // angle of attack whose lift carries the weight at this airspeed.
-  const double cl = 2.0 * DG808_MASS_KG * config_.mass_scale * DG808_GRAVITY_M_S2 /
-                    (DG808_AIR_DENSITY_KG_M3 * DG808_WING_AREA_M2 * vt * vt);
-  const double alpha = (cl - DG808_CL0) / DG808_CL_ALPHA_PER_RAD;
+  const double cl = 2.0 * AIRFRAME_MASS_KG * config_.mass_scale * AIRFRAME_GRAVITY_M_S2 /
+                    (AIRFRAME_AIR_DENSITY_KG_M3 * AIRFRAME_WING_AREA_M2 * vt * vt);
+  const double alpha = (cl - AIRFRAME_CL0) / AIRFRAME_CL_ALPHA_PER_RAD;
   on_ground_ = false;
   roll_accel_mps2_ = 0.0;
   euler_ = Eigen::Vector3d(0.0, alpha, std::atan2(va_ned.y(), va_ned.x()));
   vel_body_mps_ = vt * Eigen::Vector3d(std::cos(alpha), 0.0, std::sin(alpha)) +
                   body_to_ned(euler_).transpose() * config_.wind_ned_mps;
-  specific_force_mps2_ = Eigen::Vector3d(0.0, 0.0, -DG808_GRAVITY_M_S2);
+  specific_force_mps2_ = Eigen::Vector3d(0.0, 0.0, -AIRFRAME_GRAVITY_M_S2);
 }
 
 Eigen::Vector3d Sim::air_velocity_body() const {
@@ -109,7 +109,7 @@ void Sim::unpack(const State &x) {
   euler_ = x.segment<3>(9);
 }
 
-Sim::State Sim::derivatives(const State &x, const DG808_GNC_Output &cmd,
+Sim::State Sim::derivatives(const State &x, const GncOutput &cmd,
                             Eigen::Vector3d *specific_force) const {
   const Eigen::Vector3d v = x.segment<3>(3);
   const Eigen::Vector3d w = x.segment<3>(6);
@@ -119,41 +119,41 @@ Sim::State Sim::derivatives(const State &x, const DG808_GNC_Output &cmd,
   const double vt = va.norm();
   const double alpha = std::atan2(va.z(), va.x());
   const double beta = std::asin(va.y() / vt);
-  const double qbar = 0.5 * DG808_AIR_DENSITY_KG_M3 * vt * vt;
-  const double phat = w.x() * DG808_WING_SPAN_M / (2.0 * vt);
-  const double qhat = w.y() * DG808_MEAN_CHORD_M / (2.0 * vt);
-  const double rhat = w.z() * DG808_WING_SPAN_M / (2.0 * vt);
+  const double qbar = 0.5 * AIRFRAME_AIR_DENSITY_KG_M3 * vt * vt;
+  const double phat = w.x() * AIRFRAME_WING_SPAN_M / (2.0 * vt);
+  const double qhat = w.y() * AIRFRAME_MEAN_CHORD_M / (2.0 * vt);
+  const double rhat = w.z() * AIRFRAME_WING_SPAN_M / (2.0 * vt);
   const double k = config_.control_power_scale;
   const double de = k * cmd.elevator_rad, da = k * cmd.aileron_rad, dr = k * cmd.rudder_rad;
-  const double cl = DG808_CL0 + DG808_CL_ALPHA_PER_RAD * alpha + DG808_CL_Q_PER_RAD * qhat +
-                    DG808_CL_ELEVATOR_PER_RAD * de;
-  const double cd = config_.drag_scale * (DG808_CD0 + DG808_CD_K * cl * cl);
-  const double cy = DG808_CY_BETA_PER_RAD * beta + DG808_CY_RUDDER_PER_RAD * dr;
-  const double croll = DG808_CL_BETA_PER_RAD * beta + DG808_CL_P_PER_RAD * phat +
-                       DG808_CL_R_PER_RAD * rhat + DG808_CL_AILERON_PER_RAD * da +
-                       DG808_CL_RUDDER_PER_RAD * dr;
-  const double cm = DG808_CM0 + DG808_CM_ALPHA_PER_RAD * alpha + DG808_CM_Q_PER_RAD * qhat +
-                    DG808_CM_ELEVATOR_PER_RAD * de;
-  const double cn = DG808_CN_BETA_PER_RAD * beta + DG808_CN_P_PER_RAD * phat +
-                    DG808_CN_R_PER_RAD * rhat + DG808_CN_AILERON_PER_RAD * da +
-                    DG808_CN_RUDDER_PER_RAD * dr;
-  const double s = DG808_WING_AREA_M2;
+  const double cl = AIRFRAME_CL0 + AIRFRAME_CL_ALPHA_PER_RAD * alpha + AIRFRAME_CL_Q_PER_RAD * qhat +
+                    AIRFRAME_CL_ELEVATOR_PER_RAD * de;
+  const double cd = config_.drag_scale * (AIRFRAME_CD0 + AIRFRAME_CD_K * cl * cl);
+  const double cy = AIRFRAME_CY_BETA_PER_RAD * beta + AIRFRAME_CY_RUDDER_PER_RAD * dr;
+  const double croll = AIRFRAME_CL_BETA_PER_RAD * beta + AIRFRAME_CL_P_PER_RAD * phat +
+                       AIRFRAME_CL_R_PER_RAD * rhat + AIRFRAME_CL_AILERON_PER_RAD * da +
+                       AIRFRAME_CL_RUDDER_PER_RAD * dr;
+  const double cm = AIRFRAME_CM0 + AIRFRAME_CM_ALPHA_PER_RAD * alpha + AIRFRAME_CM_Q_PER_RAD * qhat +
+                    AIRFRAME_CM_ELEVATOR_PER_RAD * de;
+  const double cn = AIRFRAME_CN_BETA_PER_RAD * beta + AIRFRAME_CN_P_PER_RAD * phat +
+                    AIRFRAME_CN_R_PER_RAD * rhat + AIRFRAME_CN_AILERON_PER_RAD * da +
+                    AIRFRAME_CN_RUDDER_PER_RAD * dr;
+  const double s = AIRFRAME_WING_AREA_M2;
   const double lift = qbar * s * cl, drag = qbar * s * cd;
   const double thrust =
-      cmd.throttle * DG808_MAX_THRUST_N * (1.0 - vt / DG808_ZERO_THRUST_SPEED_M_S);
+      cmd.throttle * AIRFRAME_MAX_THRUST_N * (1.0 - vt / AIRFRAME_ZERO_THRUST_SPEED_M_S);
   const Eigen::Vector3d force(-drag * std::cos(alpha) + lift * std::sin(alpha) + thrust,
                               qbar * s * cy, -drag * std::sin(alpha) - lift * std::cos(alpha));
-  const Eigen::Vector3d moment(qbar * s * DG808_WING_SPAN_M * croll,
-                               qbar * s * DG808_MEAN_CHORD_M * cm,
-                               qbar * s * DG808_WING_SPAN_M * cn);
-  const double mass_kg = DG808_MASS_KG * config_.mass_scale;
+  const Eigen::Vector3d moment(qbar * s * AIRFRAME_WING_SPAN_M * croll,
+                               qbar * s * AIRFRAME_MEAN_CHORD_M * cm,
+                               qbar * s * AIRFRAME_WING_SPAN_M * cn);
+  const double mass_kg = AIRFRAME_MASS_KG * config_.mass_scale;
   const Eigen::Vector3d f = force / mass_kg;
   if (specific_force != nullptr) {
     *specific_force = f;
   }
-  const Eigen::Vector3d g_body = r_nb.transpose() * Eigen::Vector3d(0.0, 0.0, DG808_GRAVITY_M_S2);
+  const Eigen::Vector3d g_body = r_nb.transpose() * Eigen::Vector3d(0.0, 0.0, AIRFRAME_GRAVITY_M_S2);
   const Eigen::Vector3d inertia =
-      config_.mass_scale * Eigen::Vector3d(DG808_IXX_KG_M2, DG808_IYY_KG_M2, DG808_IZZ_KG_M2);
+      config_.mass_scale * Eigen::Vector3d(AIRFRAME_IXX_KG_M2, AIRFRAME_IYY_KG_M2, AIRFRAME_IZZ_KG_M2);
   const Eigen::Vector3d iw = inertia.cwiseProduct(w);
   const Eigen::Vector3d wdot = (moment - w.cross(iw)).cwiseQuotient(inertia);
   const double sf = std::sin(e.x()), cf = std::cos(e.x()), ct = std::cos(e.y()),
@@ -167,12 +167,12 @@ Sim::State Sim::derivatives(const State &x, const DG808_GNC_Output &cmd,
   return d;
 }
 
-void Sim::advance(const DG808_GNC_Output &cmd_in, double dt_s) {
+void Sim::advance(const GncOutput &cmd_in, double dt_s) {
   if (on_ground_) {
     roll_on_ground(dt_s);
     return;
   }
-  DG808_GNC_Output cmd = cmd_in;
+  GncOutput cmd = cmd_in;
   // RK4 in sub-steps no longer than 5 ms: the short period of this airframe is about 1 s.
   const int n = std::max(1, static_cast<int>(std::ceil(dt_s / 0.005)));
   const double h = dt_s / n;
@@ -189,7 +189,7 @@ void Sim::advance(const DG808_GNC_Output &cmd_in, double dt_s) {
   derivatives(pack(), cmd, &specific_force_mps2_);
 }
 
-void Sim::sense(DG808_GNC_Input &in) {
+void Sim::sense(GncInput &in) {
   const double k = config_.noise_scale;
   auto noise = [this, k](double sigma) { return k * sigma * unit_(rng_); };
   const Eigen::Matrix3d r_nb = body_to_ned(euler_);
@@ -224,4 +224,4 @@ void Sim::sense(DG808_GNC_Input &in) {
   in.home_alt_m = config_.home_alt_m;
 }
 
-}  // namespace dg808sim
+}  // namespace airframe_sim

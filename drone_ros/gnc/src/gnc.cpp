@@ -1,6 +1,6 @@
-// The DG808 GNC entry points: input checking, unit conversion, and the estimator -> guidance ->
+// The GNC entry points: input checking, unit conversion, and the estimator -> guidance ->
 // inner-loop chain. All persistent state lives in one static instance, as in generated code.
-#include "dg808_gnc.h"
+#include "gnc.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include <initializer_list>
 
 #include "airdata_ekf.h"
-#include "dg808_gnc_data.h"
+#include "gnc_aircraft.h"
 #include "geo_wgs84.h"
 #include "guidance.h"
 #include "inner_loops.h"
@@ -30,14 +30,14 @@ constexpr double kMaxWaypointFt = 1.0e6;
 
 struct Gnc {
   bool initialized = false;
-  DG808_GNC_Params params{};
-  dg808::SurfaceLimits limits{};
-  dg808::AirdataEkf ekf;
+  GncParams params{};
+  gnc::SurfaceLimits limits{};
+  gnc::AirdataEkf ekf;
   bool ekf_started = false;
   bool wing_borne = false;
-  dg808::Guidance guidance;
-  dg808::InnerLoops loops;
-  DG808_GNC_Output last{};
+  gnc::Guidance guidance;
+  gnc::InnerLoops loops;
+  GncOutput last{};
   uint32_t rejected = 0;
   // The attitude the loops are asked for (slewed towards the guidance's), rad.
   double phi_ref_rad = 0.0, theta_ref_rad = 0.0;
@@ -50,7 +50,7 @@ struct Gnc {
 // the square root of the load factor of the bank commanded. (HiL, moderate turbulence in a
 // 16 ft/s headwind: the HP slowed to 49.5 ft/s in a 32 deg bank and lost the servos for STALL
 // until latched.)
-void stall_prevention(const DG808_GNC_Params &p, double vt_ftps, dg808::GuidanceCommand *gc) {
+void stall_prevention(const GncParams &p, double vt_ftps, gnc::GuidanceCommand *gc) {
   const double floor_sq = p.min_airspeed_cmd_ftps * p.min_airspeed_cmd_ftps;
   const double cos_min = vt_ftps > 0.0 ? std::min(1.0, floor_sq / (vt_ftps * vt_ftps)) : 1.0;
   const double max_bank = std::max(p.stall_prevention_min_bank_deg * kDegToRad, std::acos(cos_min));
@@ -82,7 +82,7 @@ bool finite_columns(std::initializer_list<const double *> columns, size_t n) {
   return true;
 }
 
-bool input_finite(const DG808_GNC_Input &in) {
+bool input_finite(const GncInput &in) {
   const double scalars[] = {
       in.airspeed_ftps,   in.throttle_trim, in.elevator_trim_rad, in.aileron_trim_rad,
       in.rudder_trim_rad, in.lat_deg,       in.lon_deg,           in.alt_m,
@@ -92,12 +92,12 @@ bool input_finite(const DG808_GNC_Input &in) {
       in.home_lat_deg,    in.home_lon_deg,  in.home_alt_m};
   return finite_all(scalars, sizeof(scalars) / sizeof(scalars[0])) &&
          finite_columns({in.wp_north_ft, in.wp_east_ft, in.wp_height_ft, in.wp_velocity_ftps},
-                        DG808_GNC_MAX_WAYPOINTS);
+                        GNC_MAX_WAYPOINTS);
 }
 
 bool within(double v, double limit) { return v >= -limit && v <= limit; }
 
-bool input_plausible(const DG808_GNC_Input &in) {
+bool input_plausible(const GncInput &in) {
   bool ok = within(in.airspeed_ftps, kMaxAirspeedFtps) && within(in.lat_deg, 90.0) &&
             within(in.lon_deg, 180.0) && within(in.home_lat_deg, 90.0) &&
             within(in.home_lon_deg, 180.0) && within(in.vel_north_mps, kMaxVelocityMps) &&
@@ -110,7 +110,7 @@ bool input_plausible(const DG808_GNC_Input &in) {
             within(in.alt_m - in.home_alt_m, 1.0e5) && within(in.throttle_trim, 1.0) &&
             within(in.elevator_trim_rad, kMaxAngleRad) &&
             within(in.aileron_trim_rad, kMaxAngleRad) && within(in.rudder_trim_rad, kMaxAngleRad);
-  for (int i = 0; ok && i < DG808_GNC_MAX_WAYPOINTS; ++i) {
+  for (int i = 0; ok && i < GNC_MAX_WAYPOINTS; ++i) {
     ok = within(in.wp_north_ft[i], kMaxWaypointFt) && within(in.wp_east_ft[i], kMaxWaypointFt) &&
          within(in.wp_height_ft[i], kMaxWaypointFt) &&
          within(in.wp_velocity_ftps[i], kMaxAirspeedFtps);
@@ -118,7 +118,7 @@ bool input_plausible(const DG808_GNC_Input &in) {
   return ok;
 }
 
-bool output_finite(const DG808_GNC_Output &o) {
+bool output_finite(const GncOutput &o) {
   const double v[] = {o.throttle,       o.elevator_rad,    o.aileron_rad,    o.rudder_rad,
                       o.vt_est_ftps,    o.alpha_est_rad,   o.beta_est_rad,   o.alpha_sigma_rad,
                       o.beta_sigma_rad, o.wind_north_ftps, o.wind_east_ftps, o.wind_up_ftps,
@@ -128,10 +128,10 @@ bool output_finite(const DG808_GNC_Output &o) {
                       o.n_op_ft,        o.e_op_ft,         o.h_op_ft};
   return finite_all(v, sizeof(v) / sizeof(v[0])) &&
          finite_columns({o.mw_north_ft, o.mw_east_ft, o.mw_height_ft, o.mw_velocity_ftps},
-                        DG808_GNC_PREVIEW_WAYPOINTS);
+                        GNC_PREVIEW_WAYPOINTS);
 }
 
-bool params_valid(const DG808_GNC_Params &p) {
+bool params_valid(const GncParams &p) {
   const double v[] = {p.dt_s,
                       p.elevator_limit_deg,
                       p.elevator_pull_limit_deg,
@@ -184,7 +184,7 @@ bool params_valid(const DG808_GNC_Params &p) {
 // a pitot reading zero at 200 ft is a dropout (the HA sends 0 while its own state is lost), not
 // a landing. Without a home, on the airspeed alone.
 bool wing_borne(bool was, double airspeed_ftps, bool home, double height_ft,
-                const DG808_GNC_Params &p) {
+                const GncParams &p) {
   const bool low = home && height_ft <= p.airborne_agl_ft;
   if (was) {
     return home ? !(low && airspeed_ftps < p.stall_speed_ftps)
@@ -194,19 +194,19 @@ bool wing_borne(bool was, double airspeed_ftps, bool home, double height_ft,
 }
 
 // A neutral command, flagged invalid: what the GNC says when it has nothing to fly.
-DG808_GNC_Output neutral_output(double throttle_min) {
-  DG808_GNC_Output o;
+GncOutput neutral_output(double throttle_min) {
+  GncOutput o;
   std::memset(&o, 0, sizeof(o));
   o.throttle = throttle_min;
   o.alpha_sigma_rad = kPi;
   o.beta_sigma_rad = kPi;
-  o.guidance_mode = DG808_GNC_MODE_CIRCLE_HOME;
+  o.guidance_mode = GNC_MODE_CIRCLE_HOME;
   return o;
 }
 
 }  // namespace
 
-extern "C" int DG808_GNC_initialize(const DG808_GNC_Params *params) {
+extern "C" int gnc_initialize(const GncParams *params) {
   g_gnc = Gnc{};
   g_gnc.last = neutral_output(0.0);
   if (params == nullptr || !params_valid(*params)) {
@@ -220,20 +220,20 @@ extern "C" int DG808_GNC_initialize(const DG808_GNC_Params *params) {
                   params->throttle_min,
                   params->throttle_max};
   g_gnc.last = neutral_output(params->throttle_min);
-  g_gnc.guidance.reset(*params, DG808_TRIM_THETA_RAD);
+  g_gnc.guidance.reset(*params, GNC_TRIM_THETA_RAD);
   g_gnc.loops.reset();
   g_gnc.initialized = true;
   return 0;
 }
 
-extern "C" void DG808_GNC_terminate(void) { g_gnc.initialized = false; }
+extern "C" void gnc_terminate(void) { g_gnc.initialized = false; }
 
 namespace {
 
 // What the estimator measures this step. The surfaces actually deflected: the pilot's (captured
 // as trims every step while the pilot flies) or our last command.
-dg808::AirdataMeasurement measurement(const DG808_GNC_Input &in) {
-  dg808::AirdataMeasurement m;
+gnc::AirdataMeasurement measurement(const GncInput &in) {
+  gnc::AirdataMeasurement m;
   m.vel_ned_mps = {in.vel_north_mps, in.vel_east_mps, in.vel_down_mps};
   m.rates_radps = {in.p_radps, in.q_radps, in.r_radps};
   m.specific_force_mps2 = {in.fx_mps2, in.fy_mps2, in.fz_mps2};
@@ -248,7 +248,7 @@ dg808::AirdataMeasurement measurement(const DG808_GNC_Input &in) {
 // (geo_wgs84.h, gnc.cmake links it): waypoints the operator places, the HA's safety region and
 // this guidance agree on where a latitude/longitude is relative to home. A home the module
 // refuses (an absurd height) is no home. Whether there is one.
-bool locate(const DG808_GNC_Input &in, DG808_GNC_Output *o) {
+bool locate(const GncInput &in, GncOutput *o) {
   GeoRef ref{};
   const bool home = in.home_valid != 0 &&
                     geo_ref_init(&ref, in.home_lat_deg, in.home_lon_deg, in.home_alt_m) != 0;
@@ -264,11 +264,11 @@ bool locate(const DG808_GNC_Input &in, DG808_GNC_Output *o) {
 
 // The air data: the filter started on its first step and stepped after, started over when its
 // state breaks.
-dg808::AirdataEstimate estimate(const dg808::AirdataMeasurement &m, DG808_GNC_Output *o) {
-  const DG808_GNC_Params &p = g_gnc.params;
-  dg808::AirdataEstimate est;
+gnc::AirdataEstimate estimate(const gnc::AirdataMeasurement &m, GncOutput *o) {
+  const GncParams &p = g_gnc.params;
+  gnc::AirdataEstimate est;
   if (!g_gnc.ekf_started) {
-    const dg808::AirdataEkf::Config cfg{p.airspeed_valid_min_ftps * kMPerFt,
+    const gnc::AirdataEkf::Config cfg{p.airspeed_valid_min_ftps * kMPerFt,
                                         p.converged_sigma_deg * kDegToRad,
                                         p.stall_speed_ftps * kMPerFt};
     g_gnc.ekf.reset(cfg, m, p.alpha0_rad, p.beta0_rad);
@@ -282,7 +282,7 @@ dg808::AirdataEstimate estimate(const dg808::AirdataMeasurement &m, DG808_GNC_Ou
     // Cannot happen with plausible inputs; if it does, start the filter over next step rather
     // than carry a broken state.
     g_gnc.ekf_started = false;
-    est = dg808::AirdataEstimate{};
+    est = gnc::AirdataEstimate{};
   }
   o->vt_est_ftps = est.vt_mps * kFtPerM;
   o->alpha_est_rad = est.alpha_rad;
@@ -298,13 +298,13 @@ dg808::AirdataEstimate estimate(const dg808::AirdataMeasurement &m, DG808_GNC_Ou
 
 // Guidance, stall prevention and the attitude references the loops follow; the guidance's
 // figures and the next waypoints into the output.
-dg808::GuidanceCommand guide(const DG808_GNC_Input &in, const dg808::AirdataEstimate &est,
-                             bool flying, DG808_GNC_Output *o) {
-  const DG808_GNC_Params &p = g_gnc.params;
-  const dg808::GuidanceState gs{
+gnc::GuidanceCommand guide(const GncInput &in, const gnc::AirdataEstimate &est,
+                             bool flying, GncOutput *o) {
+  const GncParams &p = g_gnc.params;
+  const gnc::GuidanceState gs{
       o->north_ft, o->east_ft, o->height_ft, in.vel_north_mps * kFtPerM, in.vel_east_mps * kFtPerM,
       in.psi_rad};
-  dg808::GuidanceCommand gc = g_gnc.guidance.step(in, gs, flying);
+  gnc::GuidanceCommand gc = g_gnc.guidance.step(in, gs, flying);
   if (est.converged) {
     stall_prevention(p, est.vt_mps * kFtPerM, &gc);
   }
@@ -335,8 +335,8 @@ dg808::GuidanceCommand guide(const DG808_GNC_Input &in, const dg808::AirdataEsti
   const int32_t count =
       in.wp_count < 0
           ? 0
-          : (in.wp_count > DG808_GNC_MAX_WAYPOINTS ? DG808_GNC_MAX_WAYPOINTS : in.wp_count);
-  for (int32_t k = 0; k < DG808_GNC_PREVIEW_WAYPOINTS && count > 0; ++k) {
+          : (in.wp_count > GNC_MAX_WAYPOINTS ? GNC_MAX_WAYPOINTS : in.wp_count);
+  for (int32_t k = 0; k < GNC_PREVIEW_WAYPOINTS && count > 0; ++k) {
     const int32_t w = (gc.waypoint_index + k) % count;
     o->mw_north_ft[k] = in.wp_north_ft[w];
     o->mw_east_ft[k] = in.wp_east_ft[w];
@@ -347,27 +347,27 @@ dg808::GuidanceCommand guide(const DG808_GNC_Input &in, const dg808::AirdataEsti
 }
 
 // The inner loops on the air data, or, without it, the trims held.
-dg808::Surfaces fly_loops(const DG808_GNC_Input &in, const dg808::AirdataEstimate &est,
-                          const dg808::GuidanceCommand &gc, bool flying) {
-  const dg808::Surfaces trim{in.elevator_trim_rad, in.aileron_trim_rad, in.rudder_trim_rad,
+gnc::Surfaces fly_loops(const GncInput &in, const gnc::AirdataEstimate &est,
+                          const gnc::GuidanceCommand &gc, bool flying) {
+  const gnc::Surfaces trim{in.elevator_trim_rad, in.aileron_trim_rad, in.rudder_trim_rad,
                              in.throttle_trim};
   if (!est.converged) {
     // No air data to close the loops on: hold the trims, forget the integrators.
     g_gnc.loops.reset();
-    return dg808::clamp_to_limits(trim, g_gnc.limits);
+    return gnc::clamp_to_limits(trim, g_gnc.limits);
   }
-  const dg808::LoopState x{est.vt_mps, est.alpha_rad, est.beta_rad, in.p_radps,
+  const gnc::LoopState x{est.vt_mps, est.alpha_rad, est.beta_rad, in.p_radps,
                            in.q_radps, in.r_radps,    in.phi_rad,   in.theta_rad};
   // est.converged implies vt >= airspeed_valid_min > 0.
   const double vt_cmd_mps = gc.vt_cmd_ftps * kMPerFt;
-  const dg808::LoopReference ref{vt_cmd_mps, g_gnc.theta_ref_rad, g_gnc.phi_ref_rad,
-                                 DG808_GRAVITY_M_S2 / est.vt_mps * std::sin(g_gnc.phi_ref_rad)};
+  const gnc::LoopReference ref{vt_cmd_mps, g_gnc.theta_ref_rad, g_gnc.phi_ref_rad,
+                                 AIRFRAME_GRAVITY_M_S2 / est.vt_mps * std::sin(g_gnc.phi_ref_rad)};
   return g_gnc.loops.step(x, ref, trim, g_gnc.limits, g_gnc.params.dt_s, flying);
 }
 
 }  // namespace
 
-extern "C" void DG808_GNC_step(const DG808_GNC_Input *in, DG808_GNC_Output *out) {
+extern "C" void gnc_step(const GncInput *in, GncOutput *out) {
   if (out == nullptr) {
     return;
   }
@@ -385,19 +385,19 @@ extern "C" void DG808_GNC_step(const DG808_GNC_Input *in, DG808_GNC_Output *out)
     out->rejected_inputs = g_gnc.rejected;
     return;
   }
-  const DG808_GNC_Params &p = g_gnc.params;
-  DG808_GNC_Output o = neutral_output(p.throttle_min);
+  const GncParams &p = g_gnc.params;
+  GncOutput o = neutral_output(p.throttle_min);
   o.inputs_finite = 1;
   o.rejected_inputs = g_gnc.rejected;
 
-  dg808::AirdataMeasurement m = measurement(*in);
+  gnc::AirdataMeasurement m = measurement(*in);
   const bool home = locate(*in, &o);
   g_gnc.wing_borne = wing_borne(g_gnc.wing_borne, in->airspeed_ftps, home, o.height_ft, p);
   m.wing_borne = g_gnc.wing_borne;
-  const dg808::AirdataEstimate est = estimate(m, &o);
+  const gnc::AirdataEstimate est = estimate(m, &o);
   const bool flying = in->piccic == 1 && est.converged && home;
-  const dg808::GuidanceCommand gc = guide(*in, est, flying, &o);
-  const dg808::Surfaces u = fly_loops(*in, est, gc, flying);
+  const gnc::GuidanceCommand gc = guide(*in, est, flying, &o);
+  const gnc::Surfaces u = fly_loops(*in, est, gc, flying);
   o.elevator_rad = u.elevator_rad;
   o.aileron_rad = u.aileron_rad;
   o.rudder_rad = u.rudder_rad;

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "dg808_gnc_data.h"
+#include "gnc_aircraft.h"
 
-namespace dg808 {
+namespace gnc {
 namespace {
 
 // Measurement and process noise of the VN-200 and AMS5812 class sensors this airframe carries.
@@ -48,7 +48,7 @@ Eigen::Matrix3d skew(const Eigen::Vector3d &v) {
 
 // k = rho S / (2 m): specific force per (lift coefficient x airspeed^2).
 constexpr double kLiftPerClV2 =
-    DG808_AIR_DENSITY_KG_M3 * DG808_WING_AREA_M2 / (2.0 * DG808_MASS_KG);
+    AIRFRAME_AIR_DENSITY_KG_M3 * AIRFRAME_WING_AREA_M2 / (2.0 * AIRFRAME_MASS_KG);
 
 double wrap_pi(double a) { return std::atan2(std::sin(a), std::cos(a)); }
 
@@ -63,12 +63,12 @@ bool direct_air_angles(const AirdataMeasurement &m, double stall_speed_mps, doub
   const double kv2 = kLiftPerClV2 * vt * vt;
   // fz = -k V^2 (CL0 + CLde de + CLa alpha) - k CLq (c/2) q V, solved for alpha.
   const double cl = -m.specific_force_mps2.z() / kv2;
-  const double alpha = (cl - DG808_CL0 - DG808_CL_ELEVATOR_PER_RAD * m.elevator_rad -
-                        DG808_CL_Q_PER_RAD * 0.5 * DG808_MEAN_CHORD_M * m.rates_radps.y() / vt) /
-                       DG808_CL_ALPHA_PER_RAD;
+  const double alpha = (cl - AIRFRAME_CL0 - AIRFRAME_CL_ELEVATOR_PER_RAD * m.elevator_rad -
+                        AIRFRAME_CL_Q_PER_RAD * 0.5 * AIRFRAME_MEAN_CHORD_M * m.rates_radps.y() / vt) /
+                       AIRFRAME_CL_ALPHA_PER_RAD;
   // fy = k V^2 (CYb beta + CYdr dr), solved for beta.
-  const double beta = (m.specific_force_mps2.y() / kv2 - DG808_CY_RUDDER_PER_RAD * m.rudder_rad) /
-                      DG808_CY_BETA_PER_RAD;
+  const double beta = (m.specific_force_mps2.y() / kv2 - AIRFRAME_CY_RUDDER_PER_RAD * m.rudder_rad) /
+                      AIRFRAME_CY_BETA_PER_RAD;
   *alpha_rad = std::clamp(alpha, -kDirectClampRad, kDirectClampRad);
   *beta_rad = std::clamp(beta, -kDirectClampRad, kDirectClampRad);
   return true;
@@ -132,7 +132,7 @@ AirdataEstimate AirdataEkf::step(const AirdataMeasurement &m, double dt_s) {
   const Eigen::Vector3d &w = m.rates_radps;
 
   // Predict: rigid-body kinematics driven by the IMU; the wind is a random walk.
-  const Eigen::Vector3d g_body = r_nb.transpose() * Eigen::Vector3d(0.0, 0.0, DG808_GRAVITY_M_S2);
+  const Eigen::Vector3d g_body = r_nb.transpose() * Eigen::Vector3d(0.0, 0.0, AIRFRAME_GRAVITY_M_S2);
   const Eigen::Vector3d v = x_.head<3>();
   x_.head<3>() = v + dt_s * (m.specific_force_mps2 + g_body - w.cross(v));
   Mat6 f = Mat6::Identity();
@@ -209,7 +209,7 @@ void AirdataEkf::airborne_updates(const Eigen::Matrix3d &r_nb, const AirdataMeas
   // polynomial forms (vx vz, vx vy) folded at 45 deg. The angles need the airflow's x-z part to
   // be more than the valid minimum; below it there is no direction to measure.
   const double k = kLiftPerClV2;
-  const double half_c = 0.5 * DG808_MEAN_CHORD_M;
+  const double half_c = 0.5 * AIRFRAME_MEAN_CHORD_M;
   const double vmin2 = config_.airspeed_valid_min_mps * config_.airspeed_valid_min_mps;
   {
     const Eigen::Vector3d va = x_.head<3>() - r_nb.transpose() * x_.tail<3>();
@@ -220,12 +220,12 @@ void AirdataEkf::airborne_updates(const Eigen::Matrix3d &r_nb, const AirdataMeas
     const double v2 = va.squaredNorm();
     const double alpha = std::atan2(va.z(), va.x());
     const Eigen::Vector3d dalpha = Eigen::Vector3d(-va.z(), 0.0, va.x()) / sxz;
-    const double cl0 = DG808_CL0 + DG808_CL_ELEVATOR_PER_RAD * m.elevator_rad;
-    const double fz = -k * (cl0 * v2 + DG808_CL_ALPHA_PER_RAD * v2 * alpha +
-                            DG808_CL_Q_PER_RAD * half_c * m.rates_radps.y() * va.x());
+    const double cl0 = AIRFRAME_CL0 + AIRFRAME_CL_ELEVATOR_PER_RAD * m.elevator_rad;
+    const double fz = -k * (cl0 * v2 + AIRFRAME_CL_ALPHA_PER_RAD * v2 * alpha +
+                            AIRFRAME_CL_Q_PER_RAD * half_c * m.rates_radps.y() * va.x());
     const Eigen::Vector3d dfz =
-        -k * (2.0 * cl0 * va + DG808_CL_ALPHA_PER_RAD * (2.0 * alpha * va + v2 * dalpha) +
-              DG808_CL_Q_PER_RAD * half_c * m.rates_radps.y() * Eigen::Vector3d::UnitX());
+        -k * (2.0 * cl0 * va + AIRFRAME_CL_ALPHA_PER_RAD * (2.0 * alpha * va + v2 * dalpha) +
+              AIRFRAME_CL_Q_PER_RAD * half_c * m.rates_radps.y() * Eigen::Vector3d::UnitX());
     scalar_update(to_state(dfz), m.specific_force_mps2.z() - fz, kAeroZSigmaMps2 * kAeroZSigmaMps2);
   }
   {
@@ -239,10 +239,10 @@ void AirdataEkf::airborne_updates(const Eigen::Matrix3d &r_nb, const AirdataMeas
     const double beta = std::atan2(va.y(), rxz);
     const Eigen::Vector3d dbeta =
         Eigen::Vector3d(-va.x() * va.y(), sxz, -va.z() * va.y()) / (v2 * rxz);
-    const double cydr = DG808_CY_RUDDER_PER_RAD * m.rudder_rad;
-    const double fy = k * (DG808_CY_BETA_PER_RAD * v2 * beta + cydr * v2);
+    const double cydr = AIRFRAME_CY_RUDDER_PER_RAD * m.rudder_rad;
+    const double fy = k * (AIRFRAME_CY_BETA_PER_RAD * v2 * beta + cydr * v2);
     const Eigen::Vector3d dfy =
-        k * (DG808_CY_BETA_PER_RAD * (2.0 * beta * va + v2 * dbeta) + 2.0 * cydr * va);
+        k * (AIRFRAME_CY_BETA_PER_RAD * (2.0 * beta * va + v2 * dbeta) + 2.0 * cydr * va);
     scalar_update(to_state(dfy), m.specific_force_mps2.y() - fy, kAeroYSigmaMps2 * kAeroYSigmaMps2);
   }
 }
@@ -327,4 +327,4 @@ AirdataEstimate AirdataEkf::estimate(const Eigen::Matrix3d &r_nb,
   return e;
 }
 
-}  // namespace dg808
+}  // namespace gnc

@@ -1,14 +1,14 @@
 // Waypoint guidance over the /way flight plan: moving-point (L1) path following on each leg,
 // direct-to-waypoint when far off track, circling home at the end of the plan or on command.
 // Local frame: North-East-Up from home, ft, as /way is.
-#ifndef DG808_GUIDANCE_H
-#define DG808_GUIDANCE_H
+#ifndef GNC_GUIDANCE_H
+#define GNC_GUIDANCE_H
 
 #include <cstdint>
 
-#include "dg808_gnc.h"
+#include "gnc.h"
 
-namespace dg808 {
+namespace gnc {
 
 struct GuidanceState {
   double north_ft, east_ft, height_ft;
@@ -17,7 +17,7 @@ struct GuidanceState {
 };
 
 struct GuidanceCommand {
-  int32_t mode = DG808_GNC_MODE_CIRCLE_HOME;
+  int32_t mode = GNC_MODE_CIRCLE_HOME;
   int32_t waypoint_index = 0;
   double dist_to_waypoint_ft = 0.0;
   double cross_track_ft = 0.0;
@@ -32,25 +32,25 @@ struct GuidanceCommand {
 
 class Guidance {
  public:
-  void reset(const DG808_GNC_Params &params, double theta_trim_rad);
+  void reset(const GncParams &params, double theta_trim_rad);
   // integrate: false while the command is not flown (holds the altitude integrator).
-  GuidanceCommand step(const DG808_GNC_Input &in, const GuidanceState &s, bool integrate);
+  GuidanceCommand step(const GncInput &in, const GuidanceState &s, bool integrate);
 
  private:
   // The waypoint after index, or -1 when the plan ends there (path_select 1).
   int32_t next_index(int32_t index, int32_t count) const;
-  void start_leg(const DG808_GNC_Input &in, const GuidanceState &s, int32_t index, bool from_here);
+  void start_leg(const GncInput &in, const GuidanceState &s, int32_t index, bool from_here);
   // The steps of step(), in its order.
-  void advance_plan(const DG808_GNC_Input &in, const GuidanceState &s, int32_t count,
+  void advance_plan(const GncInput &in, const GuidanceState &s, int32_t count,
                     GuidanceCommand &c);
-  void follow_leg(const DG808_GNC_Input &in, const GuidanceState &s, int32_t count,
+  void follow_leg(const GncInput &in, const GuidanceState &s, int32_t count,
                   GuidanceCommand &c);
   void circle_home(const GuidanceState &s, GuidanceCommand &c);
   void altitude_cmd(const GuidanceState &s, bool integrate, GuidanceCommand &c);
   double lateral_accel_cmd(const GuidanceState &s, double n_op, double e_op,
                            GuidanceCommand &c) const;
 
-  DG808_GNC_Params params_{};
+  GncParams params_{};
   double theta_trim_rad_ = 0.0;
   bool have_plan_ = false;
   uint32_t plan_revision_ = 0;
@@ -62,6 +62,6 @@ class Guidance {
   double alt_integral_ft_s_ = 0.0;
 };
 
-}  // namespace dg808
+}  // namespace gnc
 
 #endif

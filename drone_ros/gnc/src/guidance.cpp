@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace dg808 {
+namespace gnc {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -14,7 +14,7 @@ double wrap_pi(double a) { return std::atan2(std::sin(a), std::cos(a)); }
 
 }  // namespace
 
-void Guidance::reset(const DG808_GNC_Params &params, double theta_trim_rad) {
+void Guidance::reset(const GncParams &params, double theta_trim_rad) {
   params_ = params;
   theta_trim_rad_ = theta_trim_rad;
   have_plan_ = false;
@@ -33,7 +33,7 @@ int32_t Guidance::next_index(int32_t index, int32_t count) const {
   return params_.path_select == 0 ? 0 : -1;  // -1: the plan ends here
 }
 
-void Guidance::start_leg(const DG808_GNC_Input &in, const GuidanceState &s, int32_t index,
+void Guidance::start_leg(const GncInput &in, const GuidanceState &s, int32_t index,
                          bool from_here) {
   if (from_here) {
     leg_start_n_ft_ = s.north_ft;
@@ -64,7 +64,7 @@ double Guidance::lateral_accel_cmd(const GuidanceState &s, double n_op, double e
 
 // Advances past every waypoint already reached; bounded so coincident waypoints cannot loop.
 // The plan ends (and the circling starts) after its last waypoint with path_select 1.
-void Guidance::advance_plan(const DG808_GNC_Input &in, const GuidanceState &s, int32_t count,
+void Guidance::advance_plan(const GncInput &in, const GuidanceState &s, int32_t count,
                             GuidanceCommand &c) {
   for (int32_t hop = 0; hop <= count && !plan_done_; ++hop) {
     const double wn = in.wp_north_ft[index_], we = in.wp_east_ft[index_];
@@ -106,7 +106,7 @@ void Guidance::advance_plan(const DG808_GNC_Input &in, const GuidanceState &s, i
 }
 
 // The moving point on the leg (L1 path following), or the waypoint itself when off the track.
-void Guidance::follow_leg(const DG808_GNC_Input &in, const GuidanceState &s, int32_t count,
+void Guidance::follow_leg(const GncInput &in, const GuidanceState &s, int32_t count,
                           GuidanceCommand &c) {
   circling_ = false;
   const double wn = in.wp_north_ft[index_], we = in.wp_east_ft[index_],
@@ -118,7 +118,7 @@ void Guidance::follow_leg(const DG808_GNC_Input &in, const GuidanceState &s, int
   const bool on_track = params_.mpf_switch == 1 && leg_ft > 0.0 &&
                         std::fabs(c.cross_track_ft) <= params_.max_allow_error_ft;
   if (on_track) {
-    c.mode = DG808_GNC_MODE_FLIGHT_PLAN;
+    c.mode = GNC_MODE_FLIGHT_PLAN;
     const double r = params_.mpf_radius_ft;
     const double xt = c.cross_track_ft;
     const double ahead_ft = xt * xt < r * r ? std::sqrt(r * r - xt * xt) : 0.0;
@@ -140,7 +140,7 @@ void Guidance::follow_leg(const DG808_GNC_Input &in, const GuidanceState &s, int
       }
     }
   } else {
-    c.mode = DG808_GNC_MODE_DIRECT;
+    c.mode = GNC_MODE_DIRECT;
     c.n_op_ft = wn;
     c.e_op_ft = we;
     c.h_op_ft = wh;
@@ -153,7 +153,7 @@ void Guidance::follow_leg(const DG808_GNC_Input &in, const GuidanceState &s, int
 
 // Circle home, clockwise, radius mpf_radius, the moving point one radian ahead.
 void Guidance::circle_home(const GuidanceState &s, GuidanceCommand &c) {
-  c.mode = DG808_GNC_MODE_CIRCLE_HOME;
+  c.mode = GNC_MODE_CIRCLE_HOME;
   if (!circling_) {
     circling_ = true;
     circle_height_ft_ = s.height_ft;
@@ -184,9 +184,9 @@ void Guidance::altitude_cmd(const GuidanceState &s, bool integrate, GuidanceComm
   }
 }
 
-GuidanceCommand Guidance::step(const DG808_GNC_Input &in, const GuidanceState &s, bool integrate) {
+GuidanceCommand Guidance::step(const GncInput &in, const GuidanceState &s, bool integrate) {
   GuidanceCommand c;
-  const int32_t count = std::clamp<int32_t>(in.wp_count, 0, DG808_GNC_MAX_WAYPOINTS);
+  const int32_t count = std::clamp<int32_t>(in.wp_count, 0, GNC_MAX_WAYPOINTS);
   const bool fly_plan = params_.guidance_selection == 0 && in.home_cmd == 0 && count > 0;
 
   if (fly_plan && (!have_plan_ || in.wp_revision != plan_revision_)) {
@@ -218,4 +218,4 @@ GuidanceCommand Guidance::step(const DG808_GNC_Input &in, const GuidanceState &s
   return c;
 }
 
-}  // namespace dg808
+}  // namespace gnc

@@ -1,10 +1,10 @@
-/* The DG808 guidance, navigation and control law behind Simulink-Coder style entry points:
+/* The guidance, navigation and control law behind Simulink-Coder style entry points:
  * initialize / step / terminate over plain input, output and parameter structs. The boundary is
  * C so a lab can drop in its own generated controller; the inside is C++17 with Eigen.
  * Units are in the names; angles in rad unless _deg. One instance per process, as generated
- * code is (DG808_GNC_initialize() resets it: the HP restart). */
-#ifndef DG808_GNC_H
-#define DG808_GNC_H
+ * code is (gnc_initialize() resets it: the HP restart). */
+#ifndef GNC_H
+#define GNC_H
 
 #include <stdint.h>
 
@@ -12,13 +12,13 @@
 extern "C" {
 #endif
 
-#define DG808_GNC_MAX_WAYPOINTS 32
-#define DG808_GNC_PREVIEW_WAYPOINTS 6
+#define GNC_MAX_WAYPOINTS 32
+#define GNC_PREVIEW_WAYPOINTS 6
 
-/* Guidance modes (DG808_GNC_Output.guidance_mode). */
-#define DG808_GNC_MODE_FLIGHT_PLAN 0 /* following the /way legs */
-#define DG808_GNC_MODE_DIRECT 1      /* beyond max_allow_error: heading straight for the waypoint */
-#define DG808_GNC_MODE_CIRCLE_HOME 2 /* return home / end of plan / no plan: circle home */
+/* Guidance modes (GncOutput.guidance_mode). */
+#define GNC_MODE_FLIGHT_PLAN 0 /* following the /way legs */
+#define GNC_MODE_DIRECT 1      /* beyond max_allow_error: heading straight for the waypoint */
+#define GNC_MODE_CIRCLE_HOME 2 /* return home / end of plan / no plan: circle home */
 
 typedef struct {
   double dt_s; /* step period */
@@ -47,7 +47,7 @@ typedef struct {
   /* limits.yaml state/airborne_agl_ft (the HA's alt0): with a home, the estimator takes the wing
    * to carry the aircraft (lift and side force measure alpha and beta) only above this height */
   double airborne_agl_ft;
-} DG808_GNC_Params;
+} GncParams;
 
 typedef struct {
   /* HA computer (/pwm): pilot switch and pitot */
@@ -68,12 +68,12 @@ typedef struct {
   uint8_t home_cmd; /* 1 = return home commanded */
   /* flight plan (/way), local North-East-Up from home */
   int32_t wp_count;
-  double wp_north_ft[DG808_GNC_MAX_WAYPOINTS];
-  double wp_east_ft[DG808_GNC_MAX_WAYPOINTS];
-  double wp_height_ft[DG808_GNC_MAX_WAYPOINTS];
-  double wp_velocity_ftps[DG808_GNC_MAX_WAYPOINTS];
+  double wp_north_ft[GNC_MAX_WAYPOINTS];
+  double wp_east_ft[GNC_MAX_WAYPOINTS];
+  double wp_height_ft[GNC_MAX_WAYPOINTS];
+  double wp_velocity_ftps[GNC_MAX_WAYPOINTS];
   uint32_t wp_revision; /* changes when a new plan arrives: guidance restarts at leg 0 */
-} DG808_GNC_Input;
+} GncInput;
 
 typedef struct {
   /* commands, always finite and inside the limits */
@@ -96,20 +96,20 @@ typedef struct {
   double vt_cmd_ftps, phi_cmd_rad, theta_cmd_rad, beta_cmd_rad;
   double eta_lat_rad, eta_lon_rad, delta_psi_rad;
   double n_op_ft, e_op_ft, h_op_ft; /* moving point */
-  double mw_north_ft[DG808_GNC_PREVIEW_WAYPOINTS];
-  double mw_east_ft[DG808_GNC_PREVIEW_WAYPOINTS];
-  double mw_height_ft[DG808_GNC_PREVIEW_WAYPOINTS];
-  double mw_velocity_ftps[DG808_GNC_PREVIEW_WAYPOINTS];
-} DG808_GNC_Output;
+  double mw_north_ft[GNC_PREVIEW_WAYPOINTS];
+  double mw_east_ft[GNC_PREVIEW_WAYPOINTS];
+  double mw_height_ft[GNC_PREVIEW_WAYPOINTS];
+  double mw_velocity_ftps[GNC_PREVIEW_WAYPOINTS];
+} GncOutput;
 
 /* Returns 0 on success, -1 if a parameter is out of range (then the GNC stays uninitialized and
  * every step returns a neutral command flagged invalid). */
-int DG808_GNC_initialize(const DG808_GNC_Params *params);
-void DG808_GNC_step(const DG808_GNC_Input *in, DG808_GNC_Output *out);
-void DG808_GNC_terminate(void);
+int gnc_initialize(const GncParams *params);
+void gnc_step(const GncInput *in, GncOutput *out);
+void gnc_terminate(void);
 
 #ifdef __cplusplus
 }
 #endif
 
-#endif /* DG808_GNC_H */
+#endif /* GNC_H */

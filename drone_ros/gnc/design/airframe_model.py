@@ -1,4 +1,4 @@
-"""Nonlinear rigid-body model of the DG808 built from airframe.yaml, used to trim and linearise.
+"""Nonlinear rigid-body model of an aircraft built from its airframe.yaml, used to trim and linearise.
 
 The C++ closed-loop test model (drone_ros/controller/test/sim/) implements the same equations
 from the same data (through the generated header), so the gains are designed on the plant they
