@@ -63,8 +63,9 @@ test: build lint
 test-each: build
 	@$(ROSENV) $(ROOT)/tools/run_tests_each.sh $(WS) $(VENV)
 
+# The build's aircraft flies its own case study (make run AIRCRAFT=<name>).
 run: build
-	@$(ROSENV) $(ROOT)/tools/run_main.sh $(WS)
+	@$(ROSENV) $(ROOT)/tools/run_main.sh $(WS) --aircraft $(AIRCRAFT)
 
 verify: $(VERIFY_TARGETS)
 bench: $(BENCH_TARGETS)

@@ -281,7 +281,7 @@ def launch_command(args, d, run_dir, out, gs_bind, gs_remote):
     controller_hz = controller_rate_hz(args)
     rates = (["rate_hz:=%g" % args.rate_hz] if args.rate_hz else []) + \
         (["dt:=%g" % (1.0 / controller_hz)] if controller_hz else [])
-    launch = ["roslaunch", "--wait", "drone_ros", "%s_hil.launch" % args.aircraft,
+    launch = ["roslaunch", "--wait", "drone_ros", "hil.launch", "aircraft:=" + args.aircraft,
               "run_dir:=" + run_dir, "out_dir:=" + out, "seed:=%d" % args.seed,
               "mode:=" + ("realtime" if args.realtime else "lockstep"),
               "duration_s:=%g" % args.duration, "crash_at_s:=%g" % args.crash_at, "fault:=" + args.fault,

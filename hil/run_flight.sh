@@ -5,4 +5,5 @@
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 shift || true  # the workspace path tools/run_main.sh passes
-exec python3 "$here/run_flight.py" ${ARGS:-} "$@"  # the venv first on PATH (cmake/python.cmake)
+# make run's own options (the build's --aircraft) first, so ARGS may still override them.
+exec python3 "$here/run_flight.py" "$@" ${ARGS:-}  # the venv first on PATH (cmake/python.cmake)

@@ -282,7 +282,7 @@ class Simulation:
         self.last_reply = None
         # The HA's rate: the aircraft's own unless the run asks for another (a benchmark at 20 Hz).
         self.rate_hz = float(p("rate_hz", 0.0)) or decision_rate_hz(self.aircraft_dir)
-        self.controller_node = rospy.resolve_name(p("controller_node", "controller_DG808"))
+        self.controller_node = rospy.resolve_name(p("controller_node", "controller_" + self.aircraft))
         self.arduino_node = rospy.resolve_name("arduino")
         self.controller_inputs = [rospy.resolve_name(t) for t in CONTROLLER_INPUTS]
         self.servo_op_topic = rospy.resolve_name("servo_op")

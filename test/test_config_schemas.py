@@ -192,7 +192,7 @@ def test_every_launch_file_that_loads_aircraft_yaml_checks_it_first():
         checks = [i for i, e in enumerate(elements)
                   if e.tag == "include" and e.get("file", "").endswith("/launch/check_config.launch")]
         assert checks and checks[0] < loads[0], "%s loads aircraft YAML without checking it first" % path
-    assert {"DG808_flight.launch", "microhard_gs.launch", "view.launch"} <= set(loaders)
+    assert {"flight.launch", "microhard_gs.launch", "view.launch"} <= set(loaders)
 
 
 @pytest.fixture

@@ -115,7 +115,7 @@ def test_every_path_the_launch_files_find_is_installed_where_find_drone_ros_look
 
 def test_the_flight_launch_is_among_what_is_checked():
     """The parser finds what the flight launch needs (a guard that it reads the real files)."""
-    flight = referenced_paths(ROOT / "launch" / "DG808_flight.launch")
+    flight = referenced_paths(ROOT / "launch" / "flight.launch")
     assert {"launch/check_config.launch", "aircraft/DG808/limits.yaml",
             "microhard_gs/launch/microhard_gs.launch"} <= flight
     check = referenced_paths(ROOT / "launch" / "check_config.launch")

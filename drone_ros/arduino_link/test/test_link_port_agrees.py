@@ -30,7 +30,7 @@ def test_the_sketch_talks_on_the_programming_port_unless_built_for_the_native_on
 def test_the_sketchs_rate_is_the_flight_launchs_and_the_nodes():
     due_baud = int(due_define("DUE_HP_LINK_BAUD").rstrip("uU"))
     assert due_baud == 250000, "the link budget (drone_ros/arduino_link/README.md) assumes 250000"
-    assert int(launch_arg_default(ROOT / "launch" / "DG808_flight.launch", "arduino_baud")) == due_baud
+    assert int(launch_arg_default(ROOT / "launch" / "flight.launch", "arduino_baud")) == due_baud
     assert int(launch_arg_default(ROOT / "drone_ros" / "arduino_link" / "launch" / "arduino.launch", "baud")) == due_baud
     params = (ROOT / "drone_ros" / "arduino_link" / "src" / "link_params.h").read_text()
     assert re.search(r"int baud = %d;" % due_baud, params), "LinkParams' default baud differs"
