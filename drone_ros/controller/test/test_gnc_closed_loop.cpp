@@ -1,5 +1,6 @@
-// Closed-loop tests of the GNC (for the build's aircraft) without ROS: the generated controller flies the nonlinear
-// 6-DOF model built from the same airframe data (test/sim). Bands are stated with each test.
+// Closed-loop tests of the GNC (for the build's aircraft) without ROS: the generated controller
+// flies the nonlinear 6-DOF model built from the same airframe data (test/sim). Bands are stated
+// with each test.
 #include <gtest/gtest.h>
 
 #include <algorithm>

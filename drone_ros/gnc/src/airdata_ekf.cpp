@@ -63,12 +63,14 @@ bool direct_air_angles(const AirdataMeasurement &m, double stall_speed_mps, doub
   const double kv2 = kLiftPerClV2 * vt * vt;
   // fz = -k V^2 (CL0 + CLde de + CLa alpha) - k CLq (c/2) q V, solved for alpha.
   const double cl = -m.specific_force_mps2.z() / kv2;
-  const double alpha = (cl - AIRFRAME_CL0 - AIRFRAME_CL_ELEVATOR_PER_RAD * m.elevator_rad -
-                        AIRFRAME_CL_Q_PER_RAD * 0.5 * AIRFRAME_MEAN_CHORD_M * m.rates_radps.y() / vt) /
-                       AIRFRAME_CL_ALPHA_PER_RAD;
+  const double alpha =
+      (cl - AIRFRAME_CL0 - AIRFRAME_CL_ELEVATOR_PER_RAD * m.elevator_rad -
+       AIRFRAME_CL_Q_PER_RAD * 0.5 * AIRFRAME_MEAN_CHORD_M * m.rates_radps.y() / vt) /
+      AIRFRAME_CL_ALPHA_PER_RAD;
   // fy = k V^2 (CYb beta + CYdr dr), solved for beta.
-  const double beta = (m.specific_force_mps2.y() / kv2 - AIRFRAME_CY_RUDDER_PER_RAD * m.rudder_rad) /
-                      AIRFRAME_CY_BETA_PER_RAD;
+  const double beta =
+      (m.specific_force_mps2.y() / kv2 - AIRFRAME_CY_RUDDER_PER_RAD * m.rudder_rad) /
+      AIRFRAME_CY_BETA_PER_RAD;
   *alpha_rad = std::clamp(alpha, -kDirectClampRad, kDirectClampRad);
   *beta_rad = std::clamp(beta, -kDirectClampRad, kDirectClampRad);
   return true;
@@ -132,7 +134,8 @@ AirdataEstimate AirdataEkf::step(const AirdataMeasurement &m, double dt_s) {
   const Eigen::Vector3d &w = m.rates_radps;
 
   // Predict: rigid-body kinematics driven by the IMU; the wind is a random walk.
-  const Eigen::Vector3d g_body = r_nb.transpose() * Eigen::Vector3d(0.0, 0.0, AIRFRAME_GRAVITY_M_S2);
+  const Eigen::Vector3d g_body =
+      r_nb.transpose() * Eigen::Vector3d(0.0, 0.0, AIRFRAME_GRAVITY_M_S2);
   const Eigen::Vector3d v = x_.head<3>();
   x_.head<3>() = v + dt_s * (m.specific_force_mps2 + g_body - w.cross(v));
   Mat6 f = Mat6::Identity();

@@ -8,8 +8,8 @@
 #include <initializer_list>
 
 #include "airdata_ekf.h"
-#include "gnc_aircraft.h"
 #include "geo_wgs84.h"
+#include "gnc_aircraft.h"
 #include "guidance.h"
 #include "inner_loops.h"
 
@@ -183,8 +183,7 @@ bool params_valid(const GncParams &p) {
 // wheels. With a home it is left only low and below the stall speed again (landed, rolling out):
 // a pitot reading zero at 200 ft is a dropout (the HA sends 0 while its own state is lost), not
 // a landing. Without a home, on the airspeed alone.
-bool wing_borne(bool was, double airspeed_ftps, bool home, double height_ft,
-                const GncParams &p) {
+bool wing_borne(bool was, double airspeed_ftps, bool home, double height_ft, const GncParams &p) {
   const bool low = home && height_ft <= p.airborne_agl_ft;
   if (was) {
     return home ? !(low && airspeed_ftps < p.stall_speed_ftps)
@@ -269,8 +268,8 @@ gnc::AirdataEstimate estimate(const gnc::AirdataMeasurement &m, GncOutput *o) {
   gnc::AirdataEstimate est;
   if (!g_gnc.ekf_started) {
     const gnc::AirdataEkf::Config cfg{p.airspeed_valid_min_ftps * kMPerFt,
-                                        p.converged_sigma_deg * kDegToRad,
-                                        p.stall_speed_ftps * kMPerFt};
+                                      p.converged_sigma_deg * kDegToRad,
+                                      p.stall_speed_ftps * kMPerFt};
     g_gnc.ekf.reset(cfg, m, p.alpha0_rad, p.beta0_rad);
     g_gnc.ekf_started = true;
     est = g_gnc.ekf.peek(m);
@@ -298,8 +297,8 @@ gnc::AirdataEstimate estimate(const gnc::AirdataMeasurement &m, GncOutput *o) {
 
 // Guidance, stall prevention and the attitude references the loops follow; the guidance's
 // figures and the next waypoints into the output.
-gnc::GuidanceCommand guide(const GncInput &in, const gnc::AirdataEstimate &est,
-                             bool flying, GncOutput *o) {
+gnc::GuidanceCommand guide(const GncInput &in, const gnc::AirdataEstimate &est, bool flying,
+                           GncOutput *o) {
   const GncParams &p = g_gnc.params;
   const gnc::GuidanceState gs{
       o->north_ft, o->east_ft, o->height_ft, in.vel_north_mps * kFtPerM, in.vel_east_mps * kFtPerM,
@@ -333,9 +332,7 @@ gnc::GuidanceCommand guide(const GncInput &in, const gnc::AirdataEstimate &est,
   o->e_op_ft = gc.e_op_ft;
   o->h_op_ft = gc.h_op_ft;
   const int32_t count =
-      in.wp_count < 0
-          ? 0
-          : (in.wp_count > GNC_MAX_WAYPOINTS ? GNC_MAX_WAYPOINTS : in.wp_count);
+      in.wp_count < 0 ? 0 : (in.wp_count > GNC_MAX_WAYPOINTS ? GNC_MAX_WAYPOINTS : in.wp_count);
   for (int32_t k = 0; k < GNC_PREVIEW_WAYPOINTS && count > 0; ++k) {
     const int32_t w = (gc.waypoint_index + k) % count;
     o->mw_north_ft[k] = in.wp_north_ft[w];
@@ -348,20 +345,20 @@ gnc::GuidanceCommand guide(const GncInput &in, const gnc::AirdataEstimate &est,
 
 // The inner loops on the air data, or, without it, the trims held.
 gnc::Surfaces fly_loops(const GncInput &in, const gnc::AirdataEstimate &est,
-                          const gnc::GuidanceCommand &gc, bool flying) {
+                        const gnc::GuidanceCommand &gc, bool flying) {
   const gnc::Surfaces trim{in.elevator_trim_rad, in.aileron_trim_rad, in.rudder_trim_rad,
-                             in.throttle_trim};
+                           in.throttle_trim};
   if (!est.converged) {
     // No air data to close the loops on: hold the trims, forget the integrators.
     g_gnc.loops.reset();
     return gnc::clamp_to_limits(trim, g_gnc.limits);
   }
   const gnc::LoopState x{est.vt_mps, est.alpha_rad, est.beta_rad, in.p_radps,
-                           in.q_radps, in.r_radps,    in.phi_rad,   in.theta_rad};
+                         in.q_radps, in.r_radps,    in.phi_rad,   in.theta_rad};
   // est.converged implies vt >= airspeed_valid_min > 0.
   const double vt_cmd_mps = gc.vt_cmd_ftps * kMPerFt;
   const gnc::LoopReference ref{vt_cmd_mps, g_gnc.theta_ref_rad, g_gnc.phi_ref_rad,
-                                 AIRFRAME_GRAVITY_M_S2 / est.vt_mps * std::sin(g_gnc.phi_ref_rad)};
+                               AIRFRAME_GRAVITY_M_S2 / est.vt_mps * std::sin(g_gnc.phi_ref_rad)};
   return g_gnc.loops.step(x, ref, trim, g_gnc.limits, g_gnc.params.dt_s, flying);
 }
 

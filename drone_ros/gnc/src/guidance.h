@@ -41,10 +41,8 @@ class Guidance {
   int32_t next_index(int32_t index, int32_t count) const;
   void start_leg(const GncInput &in, const GuidanceState &s, int32_t index, bool from_here);
   // The steps of step(), in its order.
-  void advance_plan(const GncInput &in, const GuidanceState &s, int32_t count,
-                    GuidanceCommand &c);
-  void follow_leg(const GncInput &in, const GuidanceState &s, int32_t count,
-                  GuidanceCommand &c);
+  void advance_plan(const GncInput &in, const GuidanceState &s, int32_t count, GuidanceCommand &c);
+  void follow_leg(const GncInput &in, const GuidanceState &s, int32_t count, GuidanceCommand &c);
   void circle_home(const GuidanceState &s, GuidanceCommand &c);
   void altitude_cmd(const GuidanceState &s, bool integrate, GuidanceCommand &c);
   double lateral_accel_cmd(const GuidanceState &s, double n_op, double e_op,

@@ -29,7 +29,7 @@ Surfaces InnerLoops::step(const LoopState &x, const LoopReference &ref, const Su
   const double lon[GNC_K_LON_COLS] = {
       e_vt, x.alpha_rad - GNC_TRIM_ALPHA_RAD, x.q_radps, e_theta, int_vt_m_, int_theta_rad_s_};
   const double lat[GNC_K_LAT_COLS] = {x.beta_rad, x.p_radps, x.r_radps - ref.r_radps, e_phi,
-                                        int_phi_rad_s_};
+                                      int_phi_rad_s_};
   double u_lon[GNC_K_LON_ROWS] = {0.0, 0.0};
   double u_lat[GNC_K_LAT_ROWS] = {0.0, 0.0};
   for (int i = 0; i < GNC_K_LON_ROWS; ++i) {

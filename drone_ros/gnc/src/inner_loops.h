@@ -1,6 +1,7 @@
-// LQR inner loops around the generated gains (gnc_aircraft.h, from the aircraft's gains.yaml): longitudinal (airspeed and
-// pitch tracking with elevator and throttle) and lateral-directional (roll tracking and sideslip
-// suppression with aileron and rudder), each with integral action on its tracked errors.
+// LQR inner loops around the generated gains (gnc_aircraft.h, from the aircraft's gains.yaml):
+// longitudinal (airspeed and pitch tracking with elevator and throttle) and lateral-directional
+// (roll tracking and sideslip suppression with aileron and rudder), each with integral action on
+// its tracked errors.
 #ifndef GNC_INNER_LOOPS_H
 #define GNC_INNER_LOOPS_H
 

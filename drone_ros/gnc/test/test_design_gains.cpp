@@ -22,8 +22,8 @@ TEST(DesignGains, RerunningTheDesignReproducesTheAircraftsCheckedInGains) {
   const char *dir = mkdtemp(dir_template);
   ASSERT_NE(dir, nullptr);
   const std::string out = std::string(dir) + "/gains.yaml";
-  const std::string cmd = std::string(DESIGN_PYTHON) + " " + DESIGN_SCRIPT + " " + AIRCRAFT_DIR + " --out " + out +
-                          " > " + dir + "/log.txt 2>&1";
+  const std::string cmd = std::string(DESIGN_PYTHON) + " " + DESIGN_SCRIPT + " " + AIRCRAFT_DIR +
+                          " --out " + out + " > " + dir + "/log.txt 2>&1";
   const int rc = std::system(cmd.c_str());
   const std::string log = read_all(std::string(dir) + "/log.txt");
   ASSERT_EQ(rc, 0) << log;

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "gnc_aircraft.h"
 #include "geo_wgs84.h"
+#include "gnc_aircraft.h"
 
 namespace airframe_sim {
 namespace {
@@ -125,15 +125,15 @@ Sim::State Sim::derivatives(const State &x, const GncOutput &cmd,
   const double rhat = w.z() * AIRFRAME_WING_SPAN_M / (2.0 * vt);
   const double k = config_.control_power_scale;
   const double de = k * cmd.elevator_rad, da = k * cmd.aileron_rad, dr = k * cmd.rudder_rad;
-  const double cl = AIRFRAME_CL0 + AIRFRAME_CL_ALPHA_PER_RAD * alpha + AIRFRAME_CL_Q_PER_RAD * qhat +
-                    AIRFRAME_CL_ELEVATOR_PER_RAD * de;
+  const double cl = AIRFRAME_CL0 + AIRFRAME_CL_ALPHA_PER_RAD * alpha +
+                    AIRFRAME_CL_Q_PER_RAD * qhat + AIRFRAME_CL_ELEVATOR_PER_RAD * de;
   const double cd = config_.drag_scale * (AIRFRAME_CD0 + AIRFRAME_CD_K * cl * cl);
   const double cy = AIRFRAME_CY_BETA_PER_RAD * beta + AIRFRAME_CY_RUDDER_PER_RAD * dr;
   const double croll = AIRFRAME_CL_BETA_PER_RAD * beta + AIRFRAME_CL_P_PER_RAD * phat +
                        AIRFRAME_CL_R_PER_RAD * rhat + AIRFRAME_CL_AILERON_PER_RAD * da +
                        AIRFRAME_CL_RUDDER_PER_RAD * dr;
-  const double cm = AIRFRAME_CM0 + AIRFRAME_CM_ALPHA_PER_RAD * alpha + AIRFRAME_CM_Q_PER_RAD * qhat +
-                    AIRFRAME_CM_ELEVATOR_PER_RAD * de;
+  const double cm = AIRFRAME_CM0 + AIRFRAME_CM_ALPHA_PER_RAD * alpha +
+                    AIRFRAME_CM_Q_PER_RAD * qhat + AIRFRAME_CM_ELEVATOR_PER_RAD * de;
   const double cn = AIRFRAME_CN_BETA_PER_RAD * beta + AIRFRAME_CN_P_PER_RAD * phat +
                     AIRFRAME_CN_R_PER_RAD * rhat + AIRFRAME_CN_AILERON_PER_RAD * da +
                     AIRFRAME_CN_RUDDER_PER_RAD * dr;
@@ -151,9 +151,11 @@ Sim::State Sim::derivatives(const State &x, const GncOutput &cmd,
   if (specific_force != nullptr) {
     *specific_force = f;
   }
-  const Eigen::Vector3d g_body = r_nb.transpose() * Eigen::Vector3d(0.0, 0.0, AIRFRAME_GRAVITY_M_S2);
+  const Eigen::Vector3d g_body =
+      r_nb.transpose() * Eigen::Vector3d(0.0, 0.0, AIRFRAME_GRAVITY_M_S2);
   const Eigen::Vector3d inertia =
-      config_.mass_scale * Eigen::Vector3d(AIRFRAME_IXX_KG_M2, AIRFRAME_IYY_KG_M2, AIRFRAME_IZZ_KG_M2);
+      config_.mass_scale *
+      Eigen::Vector3d(AIRFRAME_IXX_KG_M2, AIRFRAME_IYY_KG_M2, AIRFRAME_IZZ_KG_M2);
   const Eigen::Vector3d iw = inertia.cwiseProduct(w);
   const Eigen::Vector3d wdot = (moment - w.cross(iw)).cwiseQuotient(inertia);
   const double sf = std::sin(e.x()), cf = std::cos(e.x()), ct = std::cos(e.y()),

@@ -55,8 +55,7 @@ class Sim {
 
  private:
   using State = Eigen::Matrix<double, 12, 1>;  // pos NED, v body (ground), pqr, euler
-  State derivatives(const State &x, const GncOutput &cmd,
-                    Eigen::Vector3d *specific_force) const;
+  State derivatives(const State &x, const GncOutput &cmd, Eigen::Vector3d *specific_force) const;
   void unpack(const State &x);
   State pack() const;
   void roll_on_ground(double dt_s);
