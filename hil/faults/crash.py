@@ -1,11 +1,17 @@
-"""HP controller crash: SIGKILL of controller_DG808 at at_s (duration ignored: hp_supervisor
-restarts it when the HA asks). Took effect when the process is gone (reaped or a zombie)."""
+"""HP controller crash: SIGKILL of the controller (controller_<aircraft>) at at_s (duration ignored:
+hp_supervisor restarts it when the HA asks). Took effect when the process is gone (reaped or a
+zombie)."""
 import os
 import signal
 import time
 
 from hil.faults.base import Fault
 from hil.proc_stat import DEAD, state
+
+
+def controller_name(ctx):
+    """The controller node's name as the log says it (controller_<aircraft>)."""
+    return ctx.controller_node.lstrip("/")
 
 
 def silence_hp(fault, t_s, verb):
@@ -16,7 +22,7 @@ def silence_hp(fault, t_s, verb):
     ctx.hp_alive = False
     ctx.crashed_at = t_s
     if pid is None:
-        fault.note(t_s, "controller_DG808 not running: nothing to %s" % verb)
+        fault.note(t_s, "%s not running: nothing to %s" % (controller_name(ctx), verb))
     return pid
 
 
@@ -49,8 +55,8 @@ class Crash(Fault):
 
     def signal_controller(self, t_s, pid):
         self.confirmed = signal_until(pid, signal.SIGKILL, DEAD) in DEAD
-        self.note(t_s, "SIGKILL to controller_DG808 (pid %d): %s" % (pid, "gone" if self.confirmed else "still running"))
-        self.ctx.event(t_s, "HP crash injected: SIGKILL to controller_DG808 (pid %d)" % pid)
+        self.note(t_s, "SIGKILL to %s (pid %d): %s" % (controller_name(self.ctx), pid, "gone" if self.confirmed else "still running"))
+        self.ctx.event(t_s, "HP crash injected: SIGKILL to %s (pid %d)" % (controller_name(self.ctx), pid))
 
     def effect(self):
         if not self.confirmed:

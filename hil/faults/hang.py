@@ -1,12 +1,12 @@
-"""HP controller hang: SIGSTOP of controller_DG808 at at_s (its process and ROS connections stay
-up, it only stops answering). With a duration >= 0 it gets SIGCONT after it (if it still exists:
-hp_supervisor kills a hung controller when the HA asks for a restart); negative: never.
-Took effect when /proc shows the process stopped (state T)."""
+"""HP controller hang: SIGSTOP of the controller (controller_<aircraft>) at at_s (its process and
+ROS connections stay up, it only stops answering). With a duration >= 0 it gets SIGCONT after it
+(if it still exists: hp_supervisor kills a hung controller when the HA asks for a restart);
+negative: never. Took effect when /proc shows the process stopped (state T)."""
 import os
 import signal
 
 from hil.faults.base import Fault
-from hil.faults.crash import signal_until, silence_hp, silent_hp_due_s
+from hil.faults.crash import controller_name, signal_until, silence_hp, silent_hp_due_s
 from hil.proc_stat import state
 
 STOPPED = ("T", "t")  # proc(5): stopped by a signal, or by a tracer
@@ -28,13 +28,13 @@ class Hang(Fault):
                 return
             st = signal_until(pid, signal.SIGSTOP, STOPPED + (None,))
             self.confirmed = st in STOPPED
-            self.note(t_s, "SIGSTOP to controller_DG808 (pid %d): state %s" % (pid, st))
-            self.ctx.event(t_s, "HP hang injected: SIGSTOP to controller_DG808 (pid %d)" % pid)
+            self.note(t_s, "SIGSTOP to %s (pid %d): state %s" % (controller_name(self.ctx), pid, st))
+            self.ctx.event(t_s, "HP hang injected: SIGSTOP to %s (pid %d)" % (controller_name(self.ctx), pid))
         elif self.done and self.pid and not self.resumed and self.ended(t_s):
             self.resumed = True
             if state(self.pid) in STOPPED:
                 os.kill(self.pid, signal.SIGCONT)
-                self.note(t_s, "SIGCONT to controller_DG808 (pid %d)" % self.pid)
+                self.note(t_s, "SIGCONT to %s (pid %d)" % (controller_name(self.ctx), self.pid))
             else:
                 self.note(t_s, "no SIGCONT: pid %d is gone (hp_supervisor restarted it)" % self.pid)
 

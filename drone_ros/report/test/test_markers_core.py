@@ -70,7 +70,7 @@ def test_text_before_any_decision_says_so():
 def test_saved_rviz_view_shows_the_markers_node_and_the_aircraft_pose():
     import yaml
     root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..")
-    with open(os.path.join(root, "rviz", "DG808.rviz")) as f:
+    with open(os.path.join(root, "rviz", "flight.rviz")) as f:
         config = yaml.safe_load(f)["Visualization Manager"]
     assert config["Global Options"]["Fixed Frame"] == "map"
     displays = {d["Class"]: d for d in config["Displays"]}
