@@ -1,0 +1,107 @@
+"""Every folder of aircraft/ is an aircraft the stack can be built for: its gains are the design's
+own (a rerun reproduces gains.yaml byte for byte), its sampled inner loops are stable, its limits
+agree with its airframe (the HA generator's stall and elevator checks), and its design wind is one
+the airframe can fly. Parametrised over the folders, so a new aircraft is tested by being added."""
+import json
+import math
+import os
+import subprocess
+import sys
+
+import pytest
+import yaml
+
+from stack_tools.paths import ROOT
+
+DESIGN = os.path.join(ROOT, "drone_ros", "gnc", "design")
+# The closed loop's largest pole real part per axis, computed where the design's modules are (the
+# design is a script folder, not a package: run from it, as test_config_schemas does).
+POLES = """
+import sys, json
+import numpy as np, yaml
+import design_gains
+from airframe_model import Airframe, load_airframe
+folder = sys.argv[1]
+af = Airframe(load_airframe(folder + "/airframe.yaml"))
+gains = yaml.safe_load(open(folder + "/gains.yaml"))
+t = gains["trim"]
+x0 = np.array([t["airspeed_m_s"], t["alpha_rad"], 0, 0, 0, 0, 0, t["theta_rad"]], dtype=float)
+a, b = design_gains.jacobians(af, x0, [t["elevator_rad"], 0.0, 0.0, t["throttle"]])
+lon, lat = [0, 1, 4, 7], [2, 3, 5, 6]
+a_lon = np.block([[a[np.ix_(lon, lon)], np.zeros((4, 2))], [np.array([[1.0, 0, 0, 0], [0, 0, 0, 1.0]]), np.zeros((2, 2))]])
+b_lon = np.vstack([b[np.ix_(lon, [0, 3])], np.zeros((2, 2))])
+a_lat = np.block([[a[np.ix_(lat, lat)], np.zeros((4, 1))], [np.array([[0, 0, 0, 1.0]]), np.zeros((1, 1))]])
+b_lat = np.vstack([b[np.ix_(lat, [1, 2])], np.zeros((1, 2))])
+out = {}
+for axis, aa, bb, k in (("lon", a_lon, b_lon, gains["k_lon"]), ("lat", a_lat, b_lat, gains["k_lat"])):
+    poles = np.linalg.eigvals(aa - bb @ np.array(k))
+    out[axis] = [[p.real, p.imag] for p in poles]
+print(json.dumps(out))
+"""
+
+AIRCRAFT = sorted(name for name in os.listdir(os.path.join(ROOT, "aircraft"))
+                  if os.path.isfile(os.path.join(ROOT, "aircraft", name, "limits.yaml")))
+
+
+def folder(name):
+    return os.path.join(ROOT, "aircraft", name)
+
+
+def test_there_is_more_than_one_aircraft():
+    assert {"DG808", "Aerosonde"} <= set(AIRCRAFT)
+
+
+@pytest.mark.parametrize("name", AIRCRAFT)
+def test_rerunning_the_design_reproduces_the_checked_in_gains(name, tmp_path):
+    out = tmp_path / "gains.yaml"
+    done = subprocess.run([sys.executable, os.path.join(DESIGN, "design_gains.py"), folder(name),
+                           "--out", str(out)], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    with open(os.path.join(folder(name), "gains.yaml"), encoding="utf-8") as f:
+        assert out.read_text() == f.read(), (
+            "aircraft/%s's data or the design changed: rerun design_gains.py aircraft/%s" % (name, name))
+
+
+@pytest.mark.parametrize("name", AIRCRAFT)
+def test_the_inner_loops_are_stable_about_the_design_trim(name):
+    """The closed loop of the linearised airframe with the checked-in gains: every pole in the
+    left half plane, in both axes (the integrators included)."""
+    done = subprocess.run([sys.executable, "-c", POLES, folder(name)], cwd=DESIGN,
+                          capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stderr
+    for axis, poles in json.loads(done.stdout).items():
+        assert max(re for re, _im in poles) < -0.01, "%s %s poles: %s" % (name, axis, poles)
+
+
+@pytest.mark.parametrize("name", AIRCRAFT)
+def test_the_design_trims_inside_the_aircrafts_limits(name):
+    with open(os.path.join(folder(name), "gains.yaml"), encoding="utf-8") as f:
+        trim = yaml.safe_load(f)["trim"]
+    with open(os.path.join(folder(name), "limits.yaml"), encoding="utf-8") as f:
+        limits = yaml.safe_load(f)
+    act, state = limits["actuators"], limits["state"]
+    assert abs(math.degrees(trim["elevator_rad"])) < act["elevator_limit_deg"]
+    assert act["throttle_min"] < trim["throttle"] < act["throttle_max"]
+    assert math.degrees(trim["alpha_rad"]) < state["stall_alpha_deg"]
+    assert trim["airspeed_m_s"] / 0.3048 > state["stall_speed_ftps"] * state["handback_stall_multiple"]
+
+
+@pytest.mark.parametrize("name", AIRCRAFT)
+def test_the_limits_agree_with_the_airframe(name, tmp_path):
+    """The HA's generator refuses a stall speed, stall angle or elevator stop its airframe
+    contradicts; each aircraft's limits pass it."""
+    done = subprocess.run([sys.executable, os.path.join(ROOT, "tools", "gen_aircraft_config.py"),
+                           os.path.join(folder(name), "limits.yaml"), str(tmp_path / "config.h")],
+                          capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stderr
+    assert '.aircraft = "%s"' % name in (tmp_path / "config.h").read_text()
+
+
+@pytest.mark.parametrize("name", AIRCRAFT)
+def test_the_design_wind_is_one_the_airframe_flies(name):
+    from hil.design_wind import DesignWind
+    with open(os.path.join(folder(name), "limits.yaml"), encoding="utf-8") as f:
+        limits = yaml.safe_load(f)
+    with open(os.path.join(folder(name), "airframe.yaml"), encoding="utf-8") as f:
+        airframe = yaml.safe_load(f)
+    DesignWind.load(limits, airframe)  # raises with the reason when it cannot
