@@ -25,6 +25,8 @@ from hil.campaigns import report as report_mod  # noqa: E402
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--flights", type=int, default=10)
+    ap.add_argument("--aircraft", default="DG808",
+                    help="aircraft/<name>/ flown: the build's (make campaign AIRCRAFT=<name> passes it)")
     ap.add_argument("--seed", type=int, default=1, help="the campaign seed")
     ap.add_argument("--classes", default=None, help="comma-separated fault classes (default: every one)")
     ap.add_argument("--scheduler", default=None, help="a Dask scheduler (tcp://HOST:8786); default: a LocalCluster")
@@ -55,7 +57,8 @@ def main(argv=None):
             ap.error("unknown fault class %s (available: %s)" % (", ".join(unknown), ", ".join(iface.classes)))
     lo, hi = (float(v) for v in args.fault_window.split(","))
     plan = plan_mod.make_plan(args.flights, args.seed, classes, duration_s=args.duration,
-                              fault_window_s=(lo, hi), interface=iface, ha=args.ha)
+                              fault_window_s=(lo, hi), interface=iface, ha=args.ha,
+                              aircraft=args.aircraft)
     out = args.out or os.path.join(ROOT, "hil", "out", "campaign-%s-%d" % (
         datetime.datetime.utcnow().strftime("%Y-%m-%d_%H%M%S"), args.seed))
     if args.plan_only:

@@ -16,12 +16,12 @@ bench-fdm: deps
 BENCH_TARGETS += bench-hil
 
 bench-hil: build bench-pil
-	@$(ROSENV) $(VENV)/bin/python $(HIL_DIR)/bench/bench_hil.py
+	@$(ROSENV) $(VENV)/bin/python $(HIL_DIR)/bench/bench_hil.py --aircraft $(AIRCRAFT)
 
 #   make campaign ARGS="--flights 200 --seed 7"   a seeded fault campaign on Dask (hil/campaign.py)
 .PHONY: campaign
 campaign: build
-	@$(ROSENV) $(VENV)/bin/python $(HIL_DIR)/campaign.py $(ARGS)
+	@$(ROSENV) $(VENV)/bin/python $(HIL_DIR)/campaign.py --aircraft $(AIRCRAFT) $(ARGS)
 
 #   make bench-flight-overhead   what one lockstep flight costs besides its steps, phase by phase
 #                                (hil/bench/bench_flight_overhead.py; BENCH_FLIGHT_RUNS=N flights)

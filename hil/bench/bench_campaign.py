@@ -75,10 +75,10 @@ def _f(v, scale=1.0):
     return "-" if v is None else "%.1f" % (v * scale) if scale != 1.0 else "%.2f" % v
 
 
-def run():
+def run(aircraft="DG808"):
     iface = plan_mod.discover()
     plan = plan_mod.make_plan(FLIGHTS, SEED, iface.classes, duration_s=SECONDS, fault_window_s=(8.0, 16.0),
-                              interface=iface)
+                              interface=iface, aircraft=aircraft)
     out = tempfile.mkdtemp(prefix="bench_hil_campaign_")
     sys.stderr.write("bench-hil: campaign of %d flights of %g s over %d classes in %s\n" % (
         FLIGHTS, SECONDS, len(iface.classes), out))

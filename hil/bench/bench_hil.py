@@ -6,7 +6,7 @@ each step's wall time goes, from the simulator's own phase timers:
   scenario        crash injection check, progress, loop overhead
   sensors         VN-200 packets built and written to both ptys
   wait_hp_inputs  until the vn200 node has published them and the HA's status of the last step is out
-  wait_controller /clock published until controller_DG808's /servo_op came back (its periods only)
+  wait_controller /clock published until the controller's /servo_op came back (its periods only)
   ha_step         the HA: command taken from the arduino node over the link, one core period, reply
   truth           /hil/truth built and published
   fdm             JSBSim advanced by one period (2 steps of 5 ms at 100 Hz)
@@ -16,12 +16,13 @@ the work, which on a loaded machine the wall time hides.
 
 One flight per rate, SECONDS of simulated time with the HP crash at a third of it and no bag.
 Then one flight of REALTIME_SECONDS in real time (no crash) for the latency through the whole
-chain: a VN-200 packet written to the HP's pty, the vn200 node, controller_DG808 (its timer),
+chain: a VN-200 packet written to the HP's pty, the vn200 node, the controller (its timer),
 the arduino node, the HA's link and its next period driving the servos with that command.
 Then a seeded fault campaign of 150 flights over every fault class on Dask (bench_campaign.py:
 the Simplex property over all of them, flights per hour, the campaign's speed).
 Wall time on a shared machine measures the neighbours too. Prints `metric: value unit` lines,
 then `machine: ...`."""
+import argparse
 import json
 import os
 import subprocess
@@ -36,13 +37,14 @@ SECONDS = 60
 REALTIME_SECONDS = 30
 
 
-def flight(rate_hz, realtime=False):
+def flight(aircraft, rate_hz, realtime=False):
     d = tempfile.mkdtemp(prefix="bench_hil_")
     folder = os.path.join(d, "flight")
     args = ["--duration", str(REALTIME_SECONDS), "--crash-at", "-1", "--realtime"] if realtime else \
         ["--duration", str(SECONDS), "--crash-at", str(SECONDS // 3)]
     r = subprocess.run([sys.executable, os.path.join(HERE, "..", "run_flight.py"), "--quiet", "--no-bag",
-                        "--rate-hz", str(rate_hz), "--controller-hz", str(rate_hz), "--folder", folder] + args,
+                        "--aircraft", aircraft, "--rate-hz", str(rate_hz), "--controller-hz", str(rate_hz),
+                        "--folder", folder] + args,
                        stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
     if r.returncode != 0:
         sys.stdout.write(r.stdout.decode(errors="replace")[-2000:])
@@ -52,9 +54,13 @@ def flight(rate_hz, realtime=False):
 
 
 def main():
+    ap = argparse.ArgumentParser(description="the HiL stack's speed, latency and campaign throughput")
+    ap.add_argument("--aircraft", default="DG808", help="the build's (make bench-hil AIRCRAFT=<name>)")
+    aircraft = ap.parse_args().aircraft
     header = machine()
+    sys.stderr.write("bench-hil: aircraft %s\n" % aircraft)
     for rate in (100, 20):
-        s = flight(rate)
+        s = flight(aircraft, rate)
         steps_per_s = s["x_real_time"] * rate
         print("hil_lockstep_speed_%dhz: %.2f x_realtime" % (rate, s["x_real_time"]))
         print("hil_lockstep_steps_%dhz: %.0f steps/s" % (rate, steps_per_s))
@@ -62,12 +68,12 @@ def main():
         total = sum(s["step_time_ms"].values())
         for phase, ms in sorted(s["step_time_ms"].items(), key=lambda kv: -kv[1]):
             print("hil_step_%dhz_%s: %.3f ms (%.0f %%)" % (rate, phase, ms, 100.0 * ms / total if total else 0.0))
-    lat = flight(100, realtime=True)["sensor_to_servo_latency"]
+    lat = flight(aircraft, 100, realtime=True)["sensor_to_servo_latency"]
     print("hil_sensor_to_servo_latency_p50: %.2f ms" % lat["p50_ms"])
     print("hil_sensor_to_servo_latency_p99: %.2f ms" % lat["p99_ms"])
     print("hil_sensor_to_servo_latency_max: %.2f ms (%d packets, real time, 100 Hz)" % (lat["max_ms"], lat["packets"]))
     sys.stdout.flush()
-    for name, value in bench_campaign.run():
+    for name, value in bench_campaign.run(aircraft):
         print("hil_campaign_%s: %s" % (name, value))
     print("machine: %s" % header)
 

@@ -43,6 +43,8 @@ class Flight:
     # The HA in the loop (run_flight.py's --ha): its host build, or its Cortex-M3 machine code
     # in QEMU.
     ha: str = "sil"
+    # aircraft/<name>/ flown (run_flight.py's --aircraft): the build's (make campaign AIRCRAFT=).
+    aircraft: str = "DG808"
 
     def params_dict(self):
         return dict(self.params)
@@ -116,14 +118,14 @@ def _duration(fault_class, rng, window):
     return round(rng.uniform(*window), 2)
 
 
-def _limits():
-    """aircraft/DG808/limits.yaml, checked against its schema."""
+def _limits(aircraft):
+    """aircraft/<aircraft>/limits.yaml, checked against its schema."""
     from stack_tools import check_config
-    return check_config.load(os.path.join(ROOT, "aircraft", "DG808", "limits.yaml"))
+    return check_config.load(os.path.join(ROOT, "aircraft", aircraft, "limits.yaml"))
 
 
-def max_wind_ftps():
-    return float(_limits()["sensors"]["max_wind_ftps"])
+def max_wind_ftps(aircraft):
+    return float(_limits(aircraft)["sensors"]["max_wind_ftps"])
 
 
 def beyond_design_wind(flight):
@@ -131,9 +133,9 @@ def beyond_design_wind(flight):
     ([]: within), as the simulator judges its world; for a flight that died or timed out before
     its summary said so. A wind fault's change is the simulator's to judge: not known here."""
     from hil.design_wind import DesignWind
-    with open(os.path.join(ROOT, "aircraft", "DG808", "airframe.yaml")) as f:
+    with open(os.path.join(ROOT, "aircraft", flight.aircraft, "airframe.yaml")) as f:
         airframe = yaml.safe_load(f)
-    return DesignWind.load(_limits(), airframe).steady(flight.wind_mps, flight.turbulence)
+    return DesignWind.load(_limits(flight.aircraft), airframe).steady(flight.wind_mps, flight.turbulence)
 
 
 WIND_OVER_LIMIT = 1.5   # winds drawn up to this x sensors.max_wind_ftps: and beyond what the HA allows
@@ -143,10 +145,10 @@ WIND_OVER_LIMIT = 1.5   # winds drawn up to this x sensors.max_wind_ftps: and be
 LAUNCHABLE_WIND_OF_STALL = 0.9
 
 
-def wind_draw_limit_ftps():
-    """The strongest wind a campaign draws: WIND_OVER_LIMIT x max_wind_ftps, below
-    LAUNCHABLE_WIND_OF_STALL x the stall speed."""
-    limits = _limits()
+def wind_draw_limit_ftps(aircraft):
+    """The strongest wind a campaign of the aircraft draws: WIND_OVER_LIMIT x max_wind_ftps,
+    below LAUNCHABLE_WIND_OF_STALL x the stall speed."""
+    limits = _limits(aircraft)
     return min(WIND_OVER_LIMIT * float(limits["sensors"]["max_wind_ftps"]),
                LAUNCHABLE_WIND_OF_STALL * float(limits["state"]["stall_speed_ftps"]))
 TURBULENCE = (("none", 0.5), ("light", 0.35), ("moderate", 0.15))
@@ -175,7 +177,7 @@ def _fmt(v):
 
 
 def make_plan(flights, seed, classes, duration_s=45.0, fault_window_s=(8.0, 20.0),
-              fault_duration_s=(0.5, 6.0), interface=None, wind=True, ha="sil"):
+              fault_duration_s=(0.5, 6.0), interface=None, wind=True, ha="sil", aircraft="DG808"):
     """flights: how many; seed: the campaign seed; classes: the fault classes to deal from.
     A fault starts in fault_window_s (after the HP has taken control, leaving time for the
     recovery) on the HA's 10 ms grid; a fault lasts fault_duration_s (steering faults 8-20 s; a
@@ -191,7 +193,7 @@ def make_plan(flights, seed, classes, duration_s=45.0, fault_window_s=(8.0, 20.0
     has_params = interface is None or interface.has_params
     # Wind per flight, every class, when run_flight.py can fly it (else every flight is calm).
     windy = wind and (interface is None or interface.has_wind)
-    limit_ftps = wind_draw_limit_ftps() if windy else None
+    limit_ftps = wind_draw_limit_ftps(aircraft) if windy else None
     plan = []
     for i in range(flights):
         cls = order[i % len(order)]
@@ -201,7 +203,8 @@ def make_plan(flights, seed, classes, duration_s=45.0, fault_window_s=(8.0, 20.0
         dur = _duration(cls, frng, fault_duration_s) if has_duration else -1.0
         params = _class_params(cls, frng) if has_params else ()
         fl = Flight(flight_id=i, fault_class=cls, seed=frng.randrange(1, 2 ** 31 - 1),
-                    fault_at_s=at, fault_duration_s=dur, params=params, duration_s=duration_s, ha=ha)
+                    fault_at_s=at, fault_duration_s=dur, params=params, duration_s=duration_s, ha=ha,
+                    aircraft=aircraft)
         if windy:
             w = draw_wind(seed, i, limit_ftps)
             fl = dataclasses.replace(fl, wind_mps=w[0], wind_from_deg=w[1], turbulence=w[2])
@@ -223,6 +226,7 @@ def command(flight, folder, interface, run_flight=RUN_FLIGHT, python=None):
                  "--turbulence", flight.turbulence]
     if getattr(flight, "ha", "sil") != "sil":
         argv += ["--ha", flight.ha]
+    argv += ["--aircraft", flight.aircraft]
     argv += ["--duration", "%g" % flight.duration_s, "--folder", folder, "--no-bag", "--quiet"]
     return argv
 

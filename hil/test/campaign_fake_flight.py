@@ -49,6 +49,7 @@ def main():
     ap.add_argument("--fault-param", action="append", default=[])
     ap.add_argument("--folder")
     ap.add_argument("--ha", choices=("sil", "qemu"), default="sil")
+    ap.add_argument("--aircraft")
     ap.add_argument("--no-bag", action="store_true")
     ap.add_argument("--quiet", action="store_true")
     args = ap.parse_args()

@@ -109,10 +109,10 @@ def test_every_flight_of_every_class_flies_its_own_wind_up_to_beyond_the_has_lim
     windy = plan_mod.Interface(classes=("crash", "stall"), fault_at_flag="--fault-at", has_duration=True,
                                has_params=True, has_wind=True)
     plan = plan_mod.make_plan(80, 3, windy.classes, interface=windy)
-    limit_mps = plan_mod.max_wind_ftps() * 0.3048
+    limit_mps = plan_mod.max_wind_ftps("DG808") * 0.3048
     speeds = [f.wind_mps for f in plan]
-    assert all(0.0 <= v <= min(1.5 * limit_mps, plan_mod.wind_draw_limit_ftps() * 0.3048) for v in speeds)
-    assert plan_mod.wind_draw_limit_ftps() < 42.0  # limits.yaml's stall speed, DG808's
+    assert all(0.0 <= v <= min(1.5 * limit_mps, plan_mod.wind_draw_limit_ftps("DG808") * 0.3048) for v in speeds)
+    assert plan_mod.wind_draw_limit_ftps("DG808") < 42.0  # limits.yaml's stall speed, DG808's
     assert max(speeds) > limit_mps and sum(v == 0.0 for v in speeds) >= 1   # beyond the limit; some calm
     assert {c for c in windy.classes} == {f.fault_class for f in plan if f.wind_mps > 0.0}
     assert max(f.wind_from_deg for f in plan) - min(f.wind_from_deg for f in plan) > 270.0
@@ -143,6 +143,24 @@ def test_a_campaign_with_ha_qemu_flies_every_flight_with_the_ha_in_qemu_and_the_
     folder = str(tmp_path)
     row = flight_mod.run(fl, plan_mod.command(fl, folder, AGREED, run_flight=FAKE), folder, 60.0)
     assert row["status"] == "ok" and row["ha"] == "qemu" and " --ha qemu " in row["command"]
+
+
+def test_a_campaign_of_another_aircraft_flies_it_and_draws_its_winds_from_its_own_limits():
+    """campaign.py --aircraft (make campaign AIRCRAFT=<name>): every flight flies that aircraft,
+    and the winds are drawn up to its own limit (the Aerosonde's 55 ft/s stall launches in more
+    wind than the DG808's 42)."""
+    argv = [sys.executable, os.path.join(ROOT, "hil", "campaign.py"), "--flights", "40", "--seed", "5",
+            "--classes", "crash,hang", "--plan-only", "--out", "/tmp/c"]
+    lines = subprocess.run(argv + ["--aircraft", "Aerosonde"], stdout=subprocess.PIPE,
+                           check=True).stdout.decode().splitlines()
+    assert len(lines) == 40 and all(" --aircraft Aerosonde " in line for line in lines)
+    own, dg808 = plan_mod.wind_draw_limit_ftps("Aerosonde"), plan_mod.wind_draw_limit_ftps("DG808")
+    assert own > dg808
+    windy = plan_mod.Interface(classes=("crash",), fault_at_flag="--fault-at", has_duration=True,
+                               has_params=True, has_wind=True)
+    speeds = [f.wind_mps / 0.3048 for f in plan_mod.make_plan(200, 5, ("crash",), interface=windy,
+                                                             aircraft="Aerosonde")]
+    assert max(speeds) <= own and max(speeds) > dg808
 
 
 def test_a_flight_judged_ok_reaches_its_row_with_its_own_verdict(tmp_path):
