@@ -4,7 +4,8 @@
 #                    with flash/RAM/stack figures, and the Due sketch built against an Arduino
 #                    API shim (-Werror) and run on the host with a fake Arduino. Deterministic;
 #                    fails on any alarm, unproven assertion, warning or failed check.
-#   make sketch-ha   assemble the sketch arduino-cli compiles into .build/sketch/arduino_ha
+#   make sketch-ha   assemble the sketch arduino-cli compiles into .build/sketch/arduino_ha, with
+#                    the limits of the build's aircraft (AIRCRAFT=<name>; also due-image, pil-image)
 #   make due-image   build that sketch into the Due's .elf and .bin (.build/due_image) the way
 #                    arduino-cli does, against the real SAM core 1.6.12, Wire and Servo; prints
 #                    flash, RAM and the largest stack frame. Part of `make verify`.
@@ -79,7 +80,7 @@ bench-ha: deps
 HA_SKETCH_OUT := $(ROOT)/.build/sketch
 .PHONY: sketch-ha
 sketch-ha:
-	@echo "sketch-ha: assembled $$(bash $(HA_DIR)/tools/assemble_sketch.sh $(HA_SKETCH_OUT))"
+	@echo "sketch-ha: assembled $$(AIRCRAFT=$(AIRCRAFT) bash $(HA_DIR)/tools/assemble_sketch.sh $(HA_SKETCH_OUT))"
 
 # The genuine Due image: platform.txt's recipes against the SAM core where arduino-cli installs it,
 # else shared/vendor beside the repository (tools/build_due_image.sh). test/test_due_image.py
@@ -88,7 +89,7 @@ sketch-ha:
 VERIFY_TARGETS += due-image
 .PHONY: due-image
 due-image: deps
-	@JOBS=$(JOBS) DUE_EXTRA_FLAGS='$(DUE_EXTRA_FLAGS)' bash $(HA_DIR)/tools/build_due_image.sh $(ROOT)/.build/due_image
+	@AIRCRAFT=$(AIRCRAFT) JOBS=$(JOBS) DUE_EXTRA_FLAGS='$(DUE_EXTRA_FLAGS)' bash $(HA_DIR)/tools/build_due_image.sh $(ROOT)/.build/due_image
 
 # The Due's HIL build (src/board_due/due_hil_board.h: the pins' inputs from the simulator's step
 # records on the native USB port, the outputs back in reply records) against the same real core:
@@ -96,7 +97,7 @@ due-image: deps
 VERIFY_TARGETS += due-hil-image
 .PHONY: due-hil-image
 due-hil-image: deps
-	@JOBS=$(JOBS) DUE_EXTRA_FLAGS='-DHA_DUE_HIL=1 $(DUE_EXTRA_FLAGS)' bash $(HA_DIR)/tools/build_due_image.sh $(ROOT)/.build/due_hil_image
+	@AIRCRAFT=$(AIRCRAFT) JOBS=$(JOBS) DUE_EXTRA_FLAGS='-DHA_DUE_HIL=1 $(DUE_EXTRA_FLAGS)' bash $(HA_DIR)/tools/build_due_image.sh $(ROOT)/.build/due_hil_image
 
 # Processor in the loop: the firmware loop as Cortex-M3 machine code for QEMU's mps2-an385
 # (pil/pil_main.c: the HP link, the VN-200 and the simulator's control records on three UARTs),
@@ -104,7 +105,7 @@ due-hil-image: deps
 PIL_OUT := $(ROOT)/.build/pil
 .PHONY: pil-image
 pil-image: deps
-	@bash $(HA_DIR)/pil/build_pil_image.sh $(PIL_OUT)
+	@AIRCRAFT=$(AIRCRAFT) bash $(HA_DIR)/pil/build_pil_image.sh $(PIL_OUT)
 
 # The firmware's instructions per period in the loop, counted in QEMU (-icount), printed as
 # metric: lines against the budget (hil/bench/bench_pil.py). Its VN-200 packets come from the

@@ -299,7 +299,7 @@ def launch_command(args, d, run_dir, out, gs_bind, gs_remote):
               # The vehicle side of the ground link, beside the bag (microhard_gs/README.md).
               "gs_tlog_path:=" + ("" if args.no_bag else os.path.join(os.path.abspath(out), "flight.tlog"))] + rates
     if args.ha == "qemu":
-        launch += ["ha:=qemu", "ha_image:=" + build_pil_image(os.path.join(out, "pil"), args.realtime)]
+        launch += ["ha:=qemu", "ha_image:=" + build_pil_image(os.path.join(out, "pil"), args.aircraft, args.realtime)]
     elif args.ha == "due":
         launch += ["ha:=due", "due_port:=" + args.due_port, "due_native_port:=" + args.due_native_port,
                    "due_ins_port:=" + args.due_ins_port]
@@ -431,12 +431,14 @@ def main(argv=None):
     return code
 
 
-def build_pil_image(folder, realtime=False):
-    """The firmware for QEMU's mps2-an385 (make pil-image's script), built for this flight so the
-    flight's folder holds the very image that flew; realtime: the board that keeps its own clock
-    (pil_main.c, PIL_REALTIME)."""
+def build_pil_image(folder, aircraft, realtime=False):
+    """The firmware for QEMU's mps2-an385 (make pil-image's script) with the aircraft's limits,
+    built for this flight so the flight's folder holds the very image that flew; realtime: the
+    board that keeps its own clock (pil_main.c, PIL_REALTIME)."""
     script = os.path.join(HERE, "..", "arduino_ha", "pil", "build_pil_image.sh")
-    env = dict(os.environ, PIL_CFLAGS="-DPIL_REALTIME=1") if realtime else None
+    env = dict(os.environ, AIRCRAFT=aircraft)
+    if realtime:
+        env["PIL_CFLAGS"] = "-DPIL_REALTIME=1"
     r = subprocess.run(["bash", script, folder], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
                        env=env)
     if r.returncode != 0:

@@ -24,7 +24,8 @@ gen=$sketch/src/link/generated
 
 m3_cflags=(-mcpu=cortex-m3 -mthumb -Os -std=c99 -ffunction-sections -fdata-sections -fstack-usage
   -Wall -Wextra -Werror -pedantic -I"$ha/src/core" -I"$ha/src/link" -I"$ha/src/vn200"
-  -I"$root/common/src" -I"$root/common/vn200" -I"$root/common/link" -I"$ha/bench" -DHA_LINK_GENERATED_HEADER="\"$gen/ha_msgs.h\"" ${PIL_CFLAGS:-})
+  -I"$root/common/src" -I"$root/common/vn200" -I"$root/common/link" -I"$ha/bench" -DHA_LINK_GENERATED_HEADER="\"$gen/ha_msgs.h\""
+  -DHA_AIRCRAFT_CONFIG_HEADER="\"$sketch/src/generated/aircraft_config.h\"" ${PIL_CFLAGS:-})
 sources=("$ha"/src/core/*.c "$ha"/src/firmware/*.c "$ha"/src/link/*.c "$gen"/*.c
   "$ha"/src/vn200/*.c "$root"/common/vn200/*.c "$root"/common/src/{geo_wgs84,hp_command}.c
   "$ha"/src/hil/*.c "$here"/*.c

@@ -54,6 +54,14 @@ if [ -e "$gen" ]; then
   echo "assemble_sketch: arduino_ha/src/link/generated/ would hide the generated message code" >&2
   exit 1
 fi
+# The aircraft the firmware is for (make due-image AIRCRAFT=<name>, run_flight.py --aircraft):
+# its limits.yaml generated into the sketch in place of the checked-in header, which is the
+# default aircraft's (test_ha_core keeps it equal to its generation) and what arduino-cli users
+# compile as it is.
+if [ -n "${AIRCRAFT:-}" ]; then
+  python3 "$root/tools/gen_aircraft_config.py" "$root/aircraft/$AIRCRAFT/limits.yaml" \
+    "$sketch/src/generated/aircraft_config.h" >&2
+fi
 link_gen=$root/common/link/gen
 python3 "$link_gen/make_c99_msgs.py" "$gen" drone_ros="$root/msg" std_msgs=/usr/share/std_msgs/msg \
   geometry_msgs=/usr/share/geometry_msgs/msg rosserial_msgs="$link_gen/rosserial_msgs/msg" \
