@@ -29,7 +29,7 @@ FUZZ_SMOKE_TARGETS :=
 # fuzz-smoke-<c> (before the aggregate targets below, which list them).
 include $(ROOT)/tools/kit.mk
 
-.PHONY: help deps build test test-each run lint verify bench fuzz fuzz-smoke check-user-ws check-install clean
+.PHONY: help deps build test test-each run lint verify bench fuzz fuzz-smoke check-user-ws check-install check-aircraft-folder clean
 help:
 	@echo "make run    set up and fly the main job"
 	@echo "make test   set up, build and run every test"
@@ -76,6 +76,11 @@ fuzz-smoke: $(FUZZ_SMOKE_TARGETS)
 # plain catkin_make in a new workspace (tools/check_user_workspace.sh). CI runs it.
 check-user-ws:
 	@$(ROOT)/tools/check_user_workspace.sh
+
+# An aircraft is a folder: a fresh clone with a new aircraft folder (a changed copy of the DG808)
+# designs, builds and flies it, and nothing else in its tree changes (tools/check_aircraft_folder.sh).
+check-aircraft-folder:
+	@JOBS=$(JOBS) $(ROOT)/tools/check_aircraft_folder.sh
 
 # The install space alone (a fresh clone's `catkin_make install`) resolves the flight launch.
 check-install:
