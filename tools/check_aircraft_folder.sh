@@ -37,7 +37,7 @@ build_workspace check-aircraft-folder -j"${JOBS:-2}" -DPYTHON_EXECUTABLE=/usr/bi
 
 flight=$ws/flight
 (cd "$ws" && "${login_env[@]}" ROS_HOME="$ws/ros_home" bash -c "source '$ws/devel/setup.bash' && \
-  export PATH='$root/.venv/bin':\$PATH && python3 '$clone/hil/run_flight.py' --aircraft Testbird \
+  export PATH='$root/.venv/bin':\$PATH DRONE_ROS_VENV='$root/.venv' && python3 '$clone/hil/run_flight.py' --aircraft Testbird \
   --duration 60 --crash-at 30 --no-bag --quiet --folder '$flight'") > "$ws/flight.log" 2>&1 || true
 verdict=$("$venv_python" -c "
 import json, sys
