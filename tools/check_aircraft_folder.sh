@@ -5,7 +5,9 @@
 # the stack for it (-Ddrone_ros_AIRCRAFT=Testbird: its controller, its GNC header, the HA's
 # limits), and it flies 60 s of its case study in the lockstep HiL with the controller killed at
 # 30 s; the verdict must be ok. Then nothing but the new folder may differ in the clone's tree
-# (git status): adding an aircraft takes no edit anywhere else. Leaves nothing behind unless KEEP=1.
+# (git status): adding an aircraft takes no edit anywhere else. Then the workspace is rebuilt for
+# each other aircraft of the repository, which flies its own case study (make test flies the
+# default's). Leaves nothing behind unless KEEP=1.
 # usage: check_aircraft_folder.sh [WORKSPACE_DIR]   (default: a new folder under /tmp)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -35,21 +37,29 @@ build_workspace check-aircraft-folder -j"${JOBS:-2}" -DPYTHON_EXECUTABLE=/usr/bi
 [ -x "$ws/devel/lib/drone_ros/controller_Testbird" ] \
   || { echo "check-aircraft-folder: the build made no controller_Testbird"; exit 1; }
 
-flight=$ws/flight
-(cd "$ws" && "${login_env[@]}" ROS_HOME="$ws/ros_home" bash -c "source '$ws/devel/setup.bash' && \
-  export PATH='$root/.venv/bin':\$PATH DRONE_ROS_VENV='$root/.venv' && python3 '$clone/hil/run_flight.py' --aircraft Testbird \
-  --duration 60 --crash-at 30 --no-bag --quiet --folder '$flight'") > "$ws/flight.log" 2>&1 || true
-verdict=$("$venv_python" -c "
+# fly AIRCRAFT SECONDS CRASH_AT: its case study in the lockstep HiL (run_flight.py) in $ws/flight-AIRCRAFT;
+# sets verdict to "ok" when the flight's verdict is ok and it reached every waypoint it had time for
+# (all of them in a full case study), else to why not, and reached to "N of M".
+fly() {
+  local name=$1 seconds=$2 crash_at=$3 flight=$ws/flight-$1
+  (cd "$ws" && "${login_env[@]}" ROS_HOME="$ws/ros_home" bash -c "source '$ws/devel/setup.bash' && \
+    export PATH='$root/.venv/bin':\$PATH DRONE_ROS_VENV='$root/.venv' && python3 '$clone/hil/run_flight.py' \
+    --aircraft $name --duration $seconds --crash-at $crash_at --no-bag --quiet --folder '$flight'") \
+    > "$ws/flight-$name.log" 2>&1 || true
+  read -r verdict reached < <("$venv_python" -c "
 import json, sys
 s = json.load(open(sys.argv[1]))
-v = s.get('verdict') or {}
-print('ok' if v.get('ok') and s.get('aircraft', 'Testbird') == 'Testbird' else 'not ok: %s' % s.get('status'))
-" "$flight/summary.json" 2>&1) || verdict="no summary"
-if [ "$verdict" != ok ]; then
-  tail -n 30 "$ws/flight.log"
-  echo "check-aircraft-folder: Testbird's flight: $verdict"
-  exit 1
-fi
+v, m = s.get('verdict') or {}, s.get('mission') or {}
+ok = v.get('ok') and s.get('aircraft') == sys.argv[2]
+print('ok' if ok else 'not-ok:%s' % s.get('status'), '%s/%s' % (m.get('reached'), m.get('waypoints')))
+" "$flight/summary.json" "$name" 2>/dev/null || echo "no-summary -")
+  if [ "$verdict" != ok ]; then
+    tail -n 30 "$ws/flight-$name.log"
+    echo "check-aircraft-folder: $name's flight: $verdict"
+    exit 1
+  fi
+}
+fly Testbird 60 30
 
 changed=$(git -C "$clone" status --porcelain --untracked-files=normal)
 if [ "$changed" != "?? aircraft/Testbird/" ]; then
@@ -58,3 +68,19 @@ if [ "$changed" != "?? aircraft/Testbird/" ]; then
   exit 1
 fi
 echo "check-aircraft-folder: Testbird designed, built in ${build_s} s and flown 60 s (crash at 30 s): verdict ok; only aircraft/Testbird/ is new"
+
+# Every aircraft of the repository flies its own case study (make test flies the default's): the
+# workspace rebuilt for it, 240 s with the controller killed at 100 s, every waypoint reached.
+for folder in "$clone"/aircraft/*/; do
+  name=$(basename "$folder")
+  case "$name" in DG808|Testbird|schema) continue ;; esac
+  [ -f "$folder/limits.yaml" ] || continue
+  build_workspace check-aircraft-folder -j"${JOBS:-2}" -Ddrone_ros_AIRCRAFT="$name"
+  fly "$name" 240 100
+  total=${reached#*/}
+  if [ "${reached%/*}" != "$total" ] || [ "$total" = None ]; then
+    echo "check-aircraft-folder: $name's case study reached $reached waypoints"
+    exit 1
+  fi
+  echo "check-aircraft-folder: $name rebuilt in ${build_s} s and flew its case study (240 s, crash at 100 s): verdict ok, $reached waypoints"
+done

@@ -19,8 +19,13 @@ build_workspace check-user-ws -j2
 # The executables the launch files start (<node pkg="drone_ros" type="...">), built into devel/.
 mapfile -t types < <(cd "$root" && git ls-files '*.launch' | grep -v '/test/' | xargs cat | tr '\n' ' ' \
   | grep -o '<node [^>]*>' | grep 'pkg="drone_ros"' | sed 's/.* type="\([^"]*\)".*/\1/' | sort -u)
+# A launch file that takes the aircraft starts controller_$(arg aircraft): plain catkin_make builds
+# it for the default aircraft (CMakeLists.txt's drone_ros_AIRCRAFT).
+aircraft=$(sed -n 's/^set(${PROJECT_NAME}_AIRCRAFT "\([^"]*\)".*/\1/p' "$root/CMakeLists.txt")
+[ -n "$aircraft" ] || { echo "check-user-ws: no default aircraft found in CMakeLists.txt"; exit 1; }
 missing=0
 for t in "${types[@]}"; do
+  t=${t//\$(arg aircraft)/$aircraft}
   if [ ! -x "$ws/devel/lib/drone_ros/$t" ]; then
     echo "check-user-ws: $t (a launch file starts it) was not built into $ws/devel/lib/drone_ros"
     missing=1
