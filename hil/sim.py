@@ -44,7 +44,7 @@ from stack_tools.paths import ROOT  # noqa: E402  (aircraft/ of the source tree 
 from supervisor_core import node_query  # noqa: E402  (the supervisor's node queries: the same PID lookup)
 from hil import faults, gs_monitor, ha_channel, link_relay, mission, sensors, verdicts  # noqa: E402
 from hil.faults.base import RC_NEUTRAL, Board  # noqa: E402
-from hil.aircraft_period import decision_rate_hz  # noqa: E402
+from hil.aircraft_period import decision_rate_hz, design_airspeed_ftps  # noqa: E402
 from hil.design_wind import DesignWind  # noqa: E402
 from hil.flight_record import FlightRecord, Period, World  # noqa: E402
 from hil.fdm import Fdm, FdmCrash, Surfaces, Wind  # noqa: E402
@@ -304,7 +304,9 @@ class Simulation:
         self.relay_topic = rospy.resolve_name(relay_topic) if relay_topic else None
         self.ground_s = float(p("ground_s", 2.0))
         self.start_height_ft = float(p("start_height_ft", 200.0))
-        self.start_airspeed_ftps = float(p("start_airspeed_ftps", 60.0))
+        # The aircraft's own cruise (a DG808's 60 ft/s start put the Aerosonde, which stalls at
+        # 55, at its HA's stall switch from the first period).
+        self.start_airspeed_ftps = float(p("start_airspeed_ftps", 0.0)) or design_airspeed_ftps(self.aircraft_dir)
         self.wait_s = float(p("wait_s", 10.0))
         self.restart_wait_s = float(p("restart_wait_s", 60.0))
         self.mission_file = p("mission", os.path.join(self.aircraft_dir, "missions", "case_study.waypoints"))
