@@ -91,6 +91,23 @@ def check_discrete(a, b, k, dt, name):
     return radius
 
 
+def loop_models(a, b):
+    """The two inner loops' plants (A, B) from the airframe's linearisation, each with the
+    integrals of its tracked errors appended to the state (the gains' column order)."""
+    # Longitudinal: x = [V, alpha, q, theta], u = [elevator, throttle], plus integrals of the
+    # airspeed and pitch tracking errors so steady winds and trim errors leave no offset.
+    lon = [0, 1, 4, 7]
+    c_lon = np.array([[1.0, 0, 0, 0], [0, 0, 0, 1.0]])
+    a_lon = np.block([[a[np.ix_(lon, lon)], np.zeros((4, 2))], [c_lon, np.zeros((2, 2))]])
+    b_lon = np.vstack([b[np.ix_(lon, [0, 3])], np.zeros((2, 2))])
+    # Lateral-directional: x = [beta, p, r, phi], u = [aileron, rudder], plus the roll error integral.
+    lat = [2, 3, 5, 6]
+    c_lat = np.array([[0, 0, 0, 1.0]])
+    a_lat = np.block([[a[np.ix_(lat, lat)], np.zeros((4, 1))], [c_lat, np.zeros((1, 1))]])
+    b_lat = np.vstack([b[np.ix_(lat, [1, 2])], np.zeros((1, 2))])
+    return (a_lon, b_lon), (a_lat, b_lat)
+
+
 def design(af, data, q_weight, dt_max):
     """The design trim, the LQR gains of both axes and their worst sampled-loop spectral radii."""
     vt = float(data["design_point"]["airspeed_ftps"]) / FT_PER_M
@@ -99,23 +116,8 @@ def design(af, data, q_weight, dt_max):
     u0 = [de, 0.0, 0.0, dt]
     a, b = jacobians(af, x0, u0)
 
-    # Longitudinal: x = [V, alpha, q, theta], u = [elevator, throttle], plus integrals of the
-    # airspeed and pitch tracking errors so steady winds and trim errors leave no offset.
-    lon = [0, 1, 4, 7]
-    a_lon = a[np.ix_(lon, lon)]
-    b_lon = b[np.ix_(lon, [0, 3])]
-    c_lon = np.array([[1.0, 0, 0, 0], [0, 0, 0, 1.0]])
-    a_lon_aug = np.block([[a_lon, np.zeros((4, 2))], [c_lon, np.zeros((2, 2))]])
-    b_lon_aug = np.vstack([b_lon, np.zeros((2, 2))])
+    (a_lon_aug, b_lon_aug), (a_lat_aug, b_lat_aug) = loop_models(a, b)
     k_lon = lqr(a_lon_aug, b_lon_aug, LON_STATE_MAX, LON_INPUT_MAX, q_weight)
-
-    # Lateral-directional: x = [beta, p, r, phi], u = [aileron, rudder], plus the roll error integral.
-    lat = [2, 3, 5, 6]
-    a_lat = a[np.ix_(lat, lat)]
-    b_lat = b[np.ix_(lat, [1, 2])]
-    c_lat = np.array([[0, 0, 0, 1.0]])
-    a_lat_aug = np.block([[a_lat, np.zeros((4, 1))], [c_lat, np.zeros((1, 1))]])
-    b_lat_aug = np.vstack([b_lat, np.zeros((1, 2))])
     k_lat = lqr(a_lat_aug, b_lat_aug, LAT_STATE_MAX, LAT_INPUT_MAX, q_weight)
 
     # 100 Hz is the fastest rate the node allows; dt is the slowest the parameters allow.

@@ -27,11 +27,7 @@ gains = yaml.safe_load(open(folder + "/gains.yaml"))
 t = gains["trim"]
 x0 = np.array([t["airspeed_m_s"], t["alpha_rad"], 0, 0, 0, 0, 0, t["theta_rad"]], dtype=float)
 a, b = design_gains.jacobians(af, x0, [t["elevator_rad"], 0.0, 0.0, t["throttle"]])
-lon, lat = [0, 1, 4, 7], [2, 3, 5, 6]
-a_lon = np.block([[a[np.ix_(lon, lon)], np.zeros((4, 2))], [np.array([[1.0, 0, 0, 0], [0, 0, 0, 1.0]]), np.zeros((2, 2))]])
-b_lon = np.vstack([b[np.ix_(lon, [0, 3])], np.zeros((2, 2))])
-a_lat = np.block([[a[np.ix_(lat, lat)], np.zeros((4, 1))], [np.array([[0, 0, 0, 1.0]]), np.zeros((1, 1))]])
-b_lat = np.vstack([b[np.ix_(lat, [1, 2])], np.zeros((1, 2))])
+(a_lon, b_lon), (a_lat, b_lat) = design_gains.loop_models(a, b)
 out = {}
 for axis, aa, bb, k in (("lon", a_lon, b_lon, gains["k_lon"]), ("lat", a_lat, b_lat, gains["k_lat"])):
     poles = np.linalg.eigvals(aa - bb @ np.array(k))
