@@ -213,8 +213,12 @@ class LiveSensor(unittest.TestCase, ValueChecks):
         rec = make_recorder()
         self.assertTrue(rec.wait_for(lambda: len(rec.get("/attitude")) >= 20, 15.0),
                         "no attitude stream: the node did not configure the fake sensor")
+        # Every topic check_values reads, not only the 50 Hz ones: the GPS topics come at a lower
+        # rate, and 20 attitude messages can arrive before the first of them (fresh-clone make test).
         self.assertTrue(rec.wait_for(lambda: all(rec.get(t) for t in [
-            "/vn200/imu/mag", "/vn200/pressure", "/vn200/temperature", "/vn200/velocity"]), 3.0))
+            "/vn200/imu/mag", "/vn200/pressure", "/vn200/temperature", "/vn200/velocity",
+            "/gps_position", "/gps_velocity", "/imu_PQR_acceleration", "/ins", "/vn200/fix",
+            "/vn200/imu/data"]), 3.0))
         self.check_values(rec)
         # Stamps come from the sensor clock: evenly spaced at 20 ms, close to now.
         stamps = [m.header.stamp.to_sec() for m in rec.get("/vn200/imu/data")[-15:]]
