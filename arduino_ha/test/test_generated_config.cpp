@@ -135,6 +135,25 @@ int GenerateWithMessage(const std::string& key, const std::string& value, std::s
   return status;
 }
 
+// The safety controller flies about limits.yaml's elevator trim, and a blind HA holds it: a trim
+// the airframe does not fly level with at the target speed would hold a climb or a dive.
+TEST(HaGeneratedConfig, GeneratorRefusesAnElevatorTrimTheAirframeDoesNotFlyLevelWith) {
+  std::string message;
+  EXPECT_NE(GenerateWithMessage("elevator_trim_deg", "2.0", &message), 0);
+  EXPECT_NE(message.find("elevator_trim_deg = 2"), std::string::npos) << message;
+  EXPECT_NE(message.find("airframe.yaml"), std::string::npos) << message;
+  // A trim its own elevator stop would not let the HA fly.
+  EXPECT_NE(GenerateWithMessage("elevator_trim_deg", "-3.0", &message), 0);
+  EXPECT_NE(message.find("elevator stop"), std::string::npos) << message;
+  EXPECT_NE(GenerateWith("elevator_trim_deg", "21.0"), 0);  // past the surface's limit
+  std::string fine;
+  EXPECT_EQ(
+      GenerateWithMessage("elevator_trim_deg",
+                          std::to_string(ha_aircraft_config.sc_elevator_trim_deg + 0.1f), &fine),
+      0)
+      << fine;
+}
+
 TEST(HaGeneratedConfig, GeneratorRefusesWhatTheCoreCannotHoldNamingKeyAndReason) {
   struct Case {
     const char* key;

@@ -2,6 +2,7 @@
 // aircraft inside its safety region indefinitely, circling home in its altitude band.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -156,9 +157,8 @@ TEST(HaSafetyCtrl, TakenOverLowAndFarOutTheHaClimbsOnPowerAndTurnsHomeNoSteeperT
   EXPECT_LT(f.ac.DistanceFt(), 1.3f * cfg.sc_circle_radius_ft);
 }
 
-// A blind HA (its INS feed gone) does not hold the HP's last surfaces: they fade to the trims.
-TEST(HaSafetyCtrl, BlindHaFadesTheHpsLastSurfacesToTrim) {
-  Timeline t;
+void BlindHaFadesTheHpsLastSurfacesTo(const HaAircraftConfig& cfg) {
+  Timeline t(cfg);
   ASSERT_GT(t.ReachHp(), 0);
   for (int i = 0; i < 100; ++i) t.StepWithGood(10.0f, -8.0f, 2.0f, 0.7f);  // the HP banks
   t.refresh_state = false;  // the HA's VN-200 feed drops, and the HP dies with it
@@ -166,11 +166,25 @@ TEST(HaSafetyCtrl, BlindHaFadesTheHpsLastSurfacesToTrim) {
   for (int i = 0; i < periods; ++i) t.Step();
   ASSERT_NE(t.controller(), HA_CONTROLLER_HP);
   EXPECT_NEAR(t.servos().aileron_deg, 0.0f, 0.01f);
-  EXPECT_NEAR(t.servos().elevator_deg, 0.0f, 0.01f);
+  EXPECT_NEAR(t.servos().elevator_deg, cfg.sc_elevator_trim_deg, 0.01f);
   EXPECT_NEAR(t.servos().rudder_deg, 0.0f, 0.01f);
   EXPECT_NEAR(t.servos().throttle, t.cfg.sc_throttle_trim, 0.01f);
   // And the ground station is not told "ceiling" or "state region" for a missing INS.
   EXPECT_EQ(t.out().reasons & (HA_REASON_CEILING | HA_REASON_STATE_REGION), 0u);
+}
+
+// A blind HA (its INS feed gone) does not hold the HP's last surfaces: they fade to the trims,
+// the airframe's: an aircraft whose cruise needs 7.6 deg of up elevator (the Aerosonde's) gets
+// that, not a neutral surface that would pitch it into a dive.
+TEST(HaSafetyCtrl, BlindHaFadesTheHpsLastSurfacesToTheAirframesTrim) {
+  for (const float trim_deg : {ha_aircraft_config.sc_elevator_trim_deg, -7.6f}) {
+    HaAircraftConfig cfg = ha_aircraft_config;
+    cfg.sc_elevator_trim_deg = trim_deg;
+    // The Aerosonde's own stop, 12 deg nose up: a trim is always inside it (the generator's rule).
+    cfg.sc_elevator_pull_max_deg = std::max(cfg.sc_elevator_pull_max_deg, 12.0f);
+    SCOPED_TRACE(trim_deg);
+    BlindHaFadesTheHpsLastSurfacesTo(cfg);
+  }
 }
 
 // Slow beats low, as a table over altitude x airspeed: below the stall margin the safety

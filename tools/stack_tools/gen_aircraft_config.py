@@ -165,6 +165,46 @@ def trim_alpha_deg(airframe, nose_up_deg):
     return math.degrees(-(cm0 - cm_de * math.radians(nose_up_deg)) / cm_alpha)
 
 
+# What limits.yaml's elevator trim may differ from the airframe's: a figure rounded to a tenth,
+# not another trim.
+ELEVATOR_TRIM_AGREEMENT_DEG = 0.3
+
+
+def level_trim_elevator_deg(airframe, airspeed_ftps):
+    """The elevator (deg, trailing edge down positive) with which airframe.yaml flies level at
+    this airspeed, pitch rate zero: its lift equal to its weight, its pitching moment zero."""
+    try:
+        aero = airframe["aero"]
+        v_m_s = airspeed_ftps / FT_PER_M
+        qbar_s = 0.5 * float(airframe["air_density_kg_m3"]) * v_m_s * v_m_s \
+            * float(airframe["geometry"]["wing_area_m2"])
+        cl_needed = float(airframe["mass_kg"]) * float(airframe["gravity_m_s2"]) / qbar_s
+        cl_a, cl_de = float(aero["cl_alpha_per_rad"]), float(aero["cl_elevator_per_rad"])
+        cm_a, cm_de = float(aero["cm_alpha_per_rad"]), float(aero["cm_elevator_per_rad"])
+        lift, moment = cl_needed - float(aero["cl0"]), -float(aero["cm0"])
+    except (KeyError, TypeError, ValueError, ZeroDivisionError) as err:
+        raise ConfigError("airframe.yaml: cannot trim it (%s)" % err)
+    det = cl_a * cm_de - cl_de * cm_a
+    if det == 0.0:
+        raise ConfigError("airframe.yaml: its lift and pitching moment cannot be trimmed together")
+    return math.degrees((cl_a * moment - cm_a * lift) / det)
+
+
+def check_trim_against_airframe(c, airframe):
+    """The safety controller flies about limits.yaml's elevator trim (a blind HA holds it): it
+    must be the one airframe.yaml trims level at the throttle loop's target speed."""
+    if -c["sc_elevator_trim_deg"] >= c["sc_elevator_pull_max_deg"]:
+        raise ConfigError("elevator_trim_deg = %g is at or past the HA's own elevator stop "
+                          "(elevator_pull_max_deg %g nose up): it could not fly its own trim"
+                          % (c["sc_elevator_trim_deg"], c["sc_elevator_pull_max_deg"]))
+    trim_deg = level_trim_elevator_deg(airframe, c["sc_target_ftps"])
+    if abs(c["sc_elevator_trim_deg"] - trim_deg) > ELEVATOR_TRIM_AGREEMENT_DEG:
+        raise ConfigError("elevator_trim_deg = %g contradicts airframe.yaml, which trims level at "
+                          "the %.1f ft/s target with %.2f deg (more than %g deg apart)"
+                          % (c["sc_elevator_trim_deg"], c["sc_target_ftps"], trim_deg,
+                             ELEVATOR_TRIM_AGREEMENT_DEG))
+
+
 def check_against_airframe(c, airframe):
     """One source for the stall: limits.yaml's stall speed and stall alpha must be airframe.yaml's.
     The HA judges the stall by both (ha_checks.c), so an alpha limit past the wing's stall or a
@@ -408,6 +448,8 @@ def _safety_controller_speeds(c, sc, st):
     if c["sc_circle_bank_ff_deg"] >= c["sc_bank_limit_deg"]:
         raise ConfigError("circle_radius_ft too small: its turn needs more bank than bank_limit_deg")
     c["sc_throttle_trim"] = need(sc, "throttle_trim", c["throttle_min"], c["throttle_max"])
+    c["sc_elevator_trim_deg"] = need(sc, "elevator_trim_deg", -c["elevator_limit_deg"],
+                                     c["elevator_limit_deg"])
     # Pitch and power's throttle: the trim at the band's middle, full at its floor.
     c["sc_power_throttle_per_ft"] = ((c["throttle_max"] - c["sc_throttle_trim"])
                                      / (0.5 * (c["sc_alt_max_ft"] - c["sc_alt_min_ft"])))
@@ -454,6 +496,8 @@ def build(doc, airframe=None):
     _safety_controller_speeds(c, sc, doc["state"])
     _self_test(c, doc["self_test"])
     build_airdata(c, doc)
+    if airframe is not None:
+        check_trim_against_airframe(c, airframe)
     for key, value in c.items():
         if isinstance(value, float):
             fits_f32(key, value, "derived value")

@@ -132,7 +132,7 @@ static void attitude_terms(const HaAircraftConfig *cfg, const HaStateView *s, fl
    * proportion, and the integrator may not pull against the push (HiL: pitching up to hold
    * height in the 47 deg bank it inherited, the HA stalled the wing at 61 ft/s). */
   const float excess_g = lift_excess_g(cfg, s);
-  t->pitch_pd = cfg->sc_pitch_kp * pitch_err - cfg->sc_pitch_kd * s->x[HA_X_Q_DEG_S];
+  t->pitch_pd += cfg->sc_pitch_kp * pitch_err - cfg->sc_pitch_kd * s->x[HA_X_Q_DEG_S];
   t->pitch_step = cfg->sc_pitch_ki * pitch_err * dt_s;
   if (ha_greater(excess_g, 0.0f)) {
     t->pitch_pd -= cfg->sc_lift_push_deg_per_g * excess_g;
@@ -216,6 +216,10 @@ void ha_safety_ctrl_step(HaSafetyCtrlState *st, const HaAircraftConfig *cfg, con
   const float throttle_half = cfg->sc_throttle_half;
   const float throttle_mid = cfg->sc_throttle_mid;
   LoopTerms t = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
+  /* Both loops fly about the airframe's trim, so what an integrator holds (and a blind HA fades
+   * to zero) is the departure from it: the elevator is not neutral at the cruise of every
+   * airframe (HiL: the Aerosonde's -7.6 deg faded to 0 dived it into the ground). */
+  t.pitch_pd = -cfg->sc_elevator_trim_deg;
   t.thr_pd = cfg->sc_throttle_trim_offset;
   if (!s->attitude_ok && in_control) {
     /* Blind: nothing to close a loop on. What the integrators hold fades to the trims. */

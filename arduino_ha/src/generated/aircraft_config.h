@@ -97,6 +97,7 @@
     .stall_switch_airspeed_ftps = 46.2f, \
     .sc_circle_bank_ff_deg = 17.139825f, \
     .sc_throttle_trim = 0.4f, \
+    .sc_elevator_trim_deg = 0.7f, \
     .sc_power_throttle_per_ft = 0.012f, \
     .sc_integrator_authority = 0.25f, \
     .sc_blind_fade_per_s = 0.5f, \
