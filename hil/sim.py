@@ -43,7 +43,7 @@ from sensor_msgs.msg import Temperature
 from stack_tools.paths import ROOT  # noqa: E402  (aircraft/ of the source tree or the install)
 from supervisor_core import node_query  # noqa: E402  (the supervisor's node queries: the same PID lookup)
 from hil import faults, gs_monitor, ha_channel, link_relay, mission, sensors, verdicts  # noqa: E402
-from hil.faults.base import RC_NEUTRAL, Board  # noqa: E402
+from hil.faults.base import Board, rc_trimmed  # noqa: E402
 from hil.aircraft_period import decision_rate_hz, design_airspeed_ftps  # noqa: E402
 from hil.design_wind import DesignWind  # noqa: E402
 from hil.flight_record import FlightRecord, Period, World  # noqa: E402
@@ -334,6 +334,7 @@ class Simulation:
         field's elevation and temperature."""
         with open(os.path.join(self.aircraft_dir, "limits.yaml")) as f:
             self.limits = yaml.safe_load(f)
+        self.rc_trimmed = rc_trimmed(self.limits)
         self.regions = verdicts.Regions(self.limits)
         with open(os.path.join(self.aircraft_dir, "airframe.yaml")) as f:
             self.design_wind = DesignWind.load(self.limits, yaml.safe_load(f))
@@ -789,7 +790,7 @@ class Simulation:
 
     def board_inputs(self, t_s, tr):
         """What the Due's board layer reads this period; a fault may change it."""
-        b = Board(RC_NEUTRAL, True, self.ams.read_ftps(sensors.probe_airspeed_mps(tr)), True,
+        b = Board(self.rc_trimmed, True, self.ams.read_ftps(sensors.probe_airspeed_mps(tr)), True,
                   self.battery.read_v(t_s, tr.servo.throttle), True)
         return b if self.fault is None else self.fault.board(t_s, b)
 

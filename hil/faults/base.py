@@ -23,7 +23,20 @@ from collections import namedtuple
 from stack_common import crc
 
 Board = namedtuple("Board", "rc_pulses_us rc_valid airspeed_ftps airspeed_ok battery_v battery_ok")
-RC_NEUTRAL = (1100, 1500, 1500, 1500, 1000)  # throttle low, sticks centred, PIC switch: computer
+
+
+def rc_trimmed(limits):
+    """The pilot's receiver as the HA reads it when nobody touches the sticks: throttle low,
+    aileron and rudder centred, the elevator at the transmitter's trim (the airframe's level trim,
+    limits.yaml's safety_controller.elevator_trim_deg: a pilot trims the aircraft to fly hands
+    off, and a centred elevator dives one whose cruise needs up elevator), PIC switch: computer."""
+    rc = limits["rc"]
+    low, high = int(rc["pulse_min_us"]), int(rc["pulse_max_us"])
+    limit_deg = float(limits["actuators"]["elevator_limit_deg"])
+    trim_deg = float(limits["safety_controller"]["elevator_trim_deg"])
+    elevator_us = low + round((trim_deg + limit_deg) / (2.0 * limit_deg) * (high - low))
+    middle = (low + high) // 2
+    return (low + (high - low) // 10, elevator_us, middle, middle, low)
 SURFACES = ("elevator", "aileron", "rudder", "throttle")
 
 

@@ -1,8 +1,8 @@
 """The pilot's PIC switch mid-fault: the HP crashes at at_s (SIGKILL), the HA takes over, and
 switch_after_s later (default 1.0) the pilot sets the PIC/CIC switch to pilot for switch_s
-(default 3.0) with the sticks centred, then back to computer. The pilot always wins: MANUAL is due
-the period the switch reads pilot. Took effect when the crash did and the HA stepped on the
-switch in the pilot position."""
+(default 3.0) with the sticks hands off (at the transmitter's trims: hil.faults.base.rc_trimmed),
+then back to computer. The pilot always wins: MANUAL is due the period the switch reads pilot.
+Took effect when the crash did and the HA stepped on the switch in the pilot position."""
 from hil.faults.base import Fault
 from hil.faults.crash import Crash
 
