@@ -232,7 +232,7 @@ def check_against_airframe(c, airframe):
 
 
 def _surfaces_state_sensors(c, doc, airframe):
-    """The surfaces' and the state's limits, the sensors' bounds; (roll, pitch, body rate) limits."""
+    """The surfaces' and the state's limits, the sensors' bounds; (roll, pitch, (roll rate, pitch and yaw rate)) limits."""
     act, st, sen, sc = doc["actuators"], doc["state"], doc["sensors"], doc["safety_controller"]
     c["elevator_limit_deg"] = ranged(doc, "actuators/elevator_limit_deg")
     c["aileron_limit_deg"] = ranged(doc, "actuators/aileron_limit_deg")
@@ -261,7 +261,7 @@ def _surfaces_state_sensors(c, doc, airframe):
     c["beta_limit_deg"] = ranged(doc, "state/beta_limit_deg")
     roll = ranged(doc, "state/roll_limit_deg")
     pitch = ranged(doc, "state/pitch_limit_deg")
-    rate = positive(st, "body_rate_limit_deg_per_s")
+    rate = (positive(st, "roll_rate_limit_deg_per_s"), positive(st, "body_rate_limit_deg_per_s"))
     c["stall_speed_ftps"] = ranged(doc, "state/stall_speed_ftps")
     c["ceiling_agl_ft"] = ranged(doc, "state/ceiling_agl_ft")
     c["airborne_agl_ft"] = ranged(doc, "state/airborne_agl_ft")
@@ -292,8 +292,8 @@ def _regions(c, roll, pitch, rate):
     # S_x (x - x0) <= 1: symmetric boxes on the angles and rates, and the ceiling on altitude
     # (the HA needs no lower altitude bound here: the stall and airborne checks cover it).
     limits = [("alpha_limit_deg", c["alpha_limit_deg"]), ("beta_limit_deg", c["beta_limit_deg"]),
-              ("roll_limit_deg", roll), ("pitch_limit_deg", pitch)] + \
-        [("body_rate_limit_deg_per_s", rate)] * 3
+              ("roll_limit_deg", roll), ("pitch_limit_deg", pitch),
+              ("roll_rate_limit_deg_per_s", rate[0])] + [("body_rate_limit_deg_per_s", rate[1])] * 2
     sx = []
     for i, (key, lim) in enumerate(limits):
         sx += symmetric_rows(len(X_NAMES), i, lim, key)

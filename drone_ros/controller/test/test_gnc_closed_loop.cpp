@@ -352,7 +352,7 @@ int main(int argc, char **argv) {
 // holding a 30 deg right bank, while the guidance wants a hard left turn towards a waypoint in
 // the west. Handed back, the loops start from the 30 deg the HA hands over and reverse the bank
 // at attitude_cmd_rate_deg_s: the aileron never reaches full travel and the roll rate stays
-// inside the HA's switching region (switch_region_fraction x body_rate_limit_deg_per_s). A 65 deg
+// inside the HA's switching region (switch_region_fraction x roll_rate_limit_deg_per_s). A 65 deg
 // step of bank command, as before, is answered with full aileron (HiL: a tip stall and 148 deg/s,
 // taken over by the HA).
 double peak_after_hand_back(double attitude_cmd_rate_deg_s, double *peak_aileron_deg) {
@@ -392,7 +392,7 @@ TEST(GncClosedLoop, AHandBackIntoTheOppositeBankReversesItWithoutAFullAileronSna
   const auto limits = controller_test::aircraft_params(AIRCRAFT_DIR);
   const double aileron_limit_deg = limits.at("limits/actuators/aileron_limit_deg");
   const double switch_rate_deg_s = limits.at("limits/state/switch_region_fraction") *
-                                   limits.at("limits/state/body_rate_limit_deg_per_s");
+                                   limits.at("limits/state/roll_rate_limit_deg_per_s");
   double aileron_deg = 0.0, step_aileron_deg = 0.0;
   const double p_deg_s = peak_after_hand_back(20.0, &aileron_deg);
   const double step_p_deg_s = peak_after_hand_back(360.0, &step_aileron_deg);

@@ -101,3 +101,26 @@ def test_the_design_wind_is_one_the_airframe_flies(name):
     with open(os.path.join(folder(name), "airframe.yaml"), encoding="utf-8") as f:
         airframe = yaml.safe_load(f)
     DesignWind.load(limits, airframe)  # raises with the reason when it cannot
+
+
+@pytest.mark.parametrize("name", AIRCRAFT)
+def test_the_roll_rate_bound_is_the_wings_own(name):
+    """S_x bounds the roll rate on a row of its own (limits.yaml's roll_rate_limit_deg_per_s; pitch
+    and yaw on body_rate_limit_deg_per_s), and that bound is judged by the wing it sweeps: p b / 2V
+    at the design airspeed, the tips' change of angle of attack, is at most 0.3 (17 deg: past any
+    small wing's stall)."""
+    from stack_tools import gen_aircraft_config
+    with open(os.path.join(folder(name), "limits.yaml"), encoding="utf-8") as f:
+        limits = yaml.safe_load(f)
+    with open(os.path.join(folder(name), "airframe.yaml"), encoding="utf-8") as f:
+        airframe = yaml.safe_load(f)
+    state = limits["state"]
+    c = gen_aircraft_config.build(limits, airframe)
+    p, q, r = (gen_aircraft_config.X_NAMES.index(k) for k in ("p_deg_s", "q_deg_s", "r_deg_s"))
+    rows = c["sx"]
+    assert max(row[p] for row in rows) == pytest.approx(1.0 / state["roll_rate_limit_deg_per_s"])
+    for k in (q, r):
+        assert max(row[k] for row in rows) == pytest.approx(1.0 / state["body_rate_limit_deg_per_s"])
+    v_m_s = airframe["design_point"]["airspeed_ftps"] * 0.3048
+    pb_2v = math.radians(state["roll_rate_limit_deg_per_s"]) * airframe["geometry"]["wing_span_m"] / (2 * v_m_s)
+    assert pb_2v <= 0.3, "%s: p b / 2V %.2f at %.1f m/s" % (name, pb_2v, v_m_s)
