@@ -169,7 +169,7 @@ def argument_parser():
     ap.add_argument("--duration", type=float, default=240.0)
     ap.add_argument("--crash-at", type=float, default=100.0, help="when the HP fails (negative: never)")
     ap.add_argument("--fault", choices=faults.CLASSES + ("none",), default="crash",
-                    help="a fault class of hil/faults (crash: SIGKILL of controller_DG808; hang: SIGSTOP, ...)")
+                    help="a fault class of hil/faults (crash: SIGKILL of controller_<aircraft>; hang: SIGSTOP, ...)")
     ap.add_argument("--fault-at", type=float, default=None, help="when the fault starts (default: --crash-at)")
     ap.add_argument("--fault-duration", type=float, default=-1.0, help="how long it lasts (negative: to the end)")
     ap.add_argument("--fault-param", action="append", default=[], metavar="KEY=VALUE",

@@ -299,7 +299,7 @@ class Simulation:
         self.fault_duration_s = float(p("fault_duration_s", -1.0))
         self.fault_params = faults.parse_params(str(p("fault_params", "")).split())
         # Commands the HP corrupts pass through here: the arduino node then forwards
-        # ~servo_relay_topic instead of servo_op (DG808_hil.launch's servo_relay).
+        # ~servo_relay_topic instead of servo_op (hil.launch's servo_relay).
         relay_topic = p("servo_relay_topic", "")
         self.relay_topic = rospy.resolve_name(relay_topic) if relay_topic else None
         self.ground_s = float(p("ground_s", 2.0))
@@ -432,7 +432,7 @@ class Simulation:
         fault itself."""
         p = self._param
         # A man in the middle on the HP-HA link: the arduino node opens ~ha_link, ha_sil serves
-        # ~ha_link_sil (DG808_hil.launch's link_relay).
+        # ~ha_link_sil (hil.launch's link_relay).
         self.link_relay = None
         if p("ha_link_sil", ""):
             self.link_relay = link_relay.LinkRelay(p("ha_link", ""), p("ha_link_sil", ""))

@@ -1,5 +1,5 @@
 /* The ONE latitude/longitude <-> north/east/up conversion of the whole stack: the HA core (Due),
- * the DG808 GNC, the VN-200 tf, the ground station, the controller's test model and, through
+ * the GNC, the VN-200 tf, the ground station, the controller's test model and, through
  * libstack_common.so, the HiL's Python all call this file. It is part of the HA's trusted code:
  * the sketch carries it in src/core and the core's checks (Frama-C EVA, Cortex-M3 size and step
  * cost, branch coverage) take it with the core; HP builds link the CMake target geo_wgs84.

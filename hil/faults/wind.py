@@ -1,5 +1,5 @@
 """The wind changes in flight: a gust front, a shear or a wind shift, onto whatever wind the
-flight started in (DG808_hil.launch's wind_mps, wind_from_deg, turbulence).
+flight started in (hil.launch's wind_mps, wind_from_deg, turbulence).
 
 At the fault the wind swings from the flight's to mps (default 9 m/s, 29.5 ft/s: just inside
 sensors.max_wind_ftps) from from_rel_deg relative to the aircraft's heading at that moment

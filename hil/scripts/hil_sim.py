@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The HiL simulator node (hil/sim.py); started by launch/DG808_hil.launch. The hil package is on
+"""The HiL simulator node (hil/sim.py); started by launch/hil.launch. The hil package is on
 PYTHONPATH once the devel or install space is sourced (setup.py, catkin_python_setup).
 
 catkin gives this script ROS's Python (cmake/python.cmake, rule 3), but its PyPI dependencies
