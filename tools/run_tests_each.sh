@@ -14,7 +14,7 @@ cd "$root" || exit 2
 mapfile -t files < <(for d in test */test */*/test; do [ -d "$d" ] && ls "$d"/test_*.py 2> /dev/null; done)
 # Processes a test may start and must stop: an executable path ending in one of these names.
 leftovers() {
-  pgrep -f '(^|/)(rosmaster|roslaunch|rosout|hil_sim\.py|ha_sil|controller_DG808|arduino|vn200|microhard_gs)( |$)' | wc -l
+  pgrep -f '(^|/)(rosmaster|roslaunch|rosout|hil_sim\.py|ha_sil|controller_[A-Za-z0-9_]+|arduino|vn200|microhard_gs)( |$)' | wc -l
 }
 before=$(leftovers)
 failed=0

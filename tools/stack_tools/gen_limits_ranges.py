@@ -3,7 +3,7 @@ the keys more than one component reads.
 
 As a module: ranges() -> {"state/roll_limit_deg": (1.0, 89.0), ...} (max None: unbounded), for
 tools/stack_tools/gen_aircraft_config.py.
-As a script: writes the C++ header controller_DG808 and microhard_gs check their parameters
+As a script: writes the C++ header controller_<aircraft> and microhard_gs check their parameters
 with (CMake runs it at build time; never checked in).
 
 usage: python3 -m stack_tools.gen_limits_ranges LIMITS_RANGES_YAML OUTPUT_HEADER
