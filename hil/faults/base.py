@@ -37,6 +37,8 @@ def rc_trimmed(limits):
     elevator_us = low + round((trim_deg + limit_deg) / (2.0 * limit_deg) * (high - low))
     middle = (low + high) // 2
     return (low + (high - low) // 10, elevator_us, middle, middle, low)
+
+
 SURFACES = ("elevator", "aileron", "rudder", "throttle")
 
 

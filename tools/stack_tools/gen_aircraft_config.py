@@ -232,7 +232,8 @@ def check_against_airframe(c, airframe):
 
 
 def _surfaces_state_sensors(c, doc, airframe):
-    """The surfaces' and the state's limits, the sensors' bounds; (roll, pitch, (roll rate, pitch and yaw rate)) limits."""
+    """The surfaces' and the state's limits, the sensors' bounds; the roll and pitch limits and
+    the rate limits (roll; pitch and yaw)."""
     act, st, sen, sc = doc["actuators"], doc["state"], doc["sensors"], doc["safety_controller"]
     c["elevator_limit_deg"] = ranged(doc, "actuators/elevator_limit_deg")
     c["aileron_limit_deg"] = ranged(doc, "actuators/aileron_limit_deg")

@@ -162,8 +162,7 @@ typedef struct {
   float sc_speed_to_pitch_gain_deg_per_ftps;
   float sc_cruise_margin; /* the throttle loop's target airspeed = stall_speed_ftps * this */
   float sc_throttle_trim;
-  float
-      sc_elevator_trim_deg; /* the airframe's level trim at the target speed (generator-checked) */
+  float sc_elevator_trim_deg; /* airframe.yaml's level trim at sc_target_ftps (generator) */
   float sc_throttle_kp_per_ftps;
   float sc_throttle_ki_per_ft;
   float sc_integrator_authority; /* integrator range as a fraction of the actuator half range */

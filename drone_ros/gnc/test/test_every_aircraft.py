@@ -2,6 +2,7 @@
 own (a rerun reproduces gains.yaml byte for byte), its sampled inner loops are stable, its limits
 agree with its airframe (the HA generator's stall and elevator checks), and its design wind is one
 the airframe can fly. Parametrised over the folders, so a new aircraft is tested by being added."""
+import functools
 import json
 import math
 import os
@@ -14,59 +15,51 @@ import yaml
 from stack_tools.paths import ROOT
 
 DESIGN = os.path.join(ROOT, "drone_ros", "gnc", "design")
-# The closed loop's largest pole real part per axis, computed where the design's modules are (the
-# design is a script folder, not a package: run from it, as test_config_schemas does).
+# The closed loops' poles per axis, computed where the design's modules are (the design is a
+# script folder, not a package: run from it, as test_config_schemas does). One linearisation about
+# the design trim (design_gains.loop_models: each axis with its error integrals, +phi, +V, +theta)
+# closed twice: by the LQR gains of gains.yaml ("lqr") and by the HA's safety controller with
+# limits.yaml's gains ("ha", ha_safety_ctrl.c's loops: aileron = kp (phi_cmd - phi) - kd p + ki
+# int(phi_cmd - phi), rudder = yaw damper x r, nose-up elevator likewise on theta and q, throttle
+# = kp (V_cmd - V) + ki int; degrees for degrees, so radians serve as well).
 POLES = """
-import sys, json
-import numpy as np, yaml
-import design_gains
-from airframe_model import Airframe, load_airframe
-folder = sys.argv[1]
-af = Airframe(load_airframe(folder + "/airframe.yaml"))
-gains = yaml.safe_load(open(folder + "/gains.yaml"))
-t = gains["trim"]
-x0 = np.array([t["airspeed_m_s"], t["alpha_rad"], 0, 0, 0, 0, 0, t["theta_rad"]], dtype=float)
-a, b = design_gains.jacobians(af, x0, [t["elevator_rad"], 0.0, 0.0, t["throttle"]])
-(a_lon, b_lon), (a_lat, b_lat) = design_gains.loop_models(a, b)
-out = {}
-for axis, aa, bb, k in (("lon", a_lon, b_lon, gains["k_lon"]), ("lat", a_lat, b_lat, gains["k_lat"])):
-    poles = np.linalg.eigvals(aa - bb @ np.array(k))
-    out[axis] = [[p.real, p.imag] for p in poles]
-print(json.dumps(out))
-"""
-
-# The HA's safety controller (limits.yaml's safety_controller gains, ha_safety_ctrl.c's loops) on
-# the same linearisation: aileron = kp (phi_cmd - phi) - kd p + ki int, rudder = yaw damper x r,
-# nose-up elevator = kp (theta_cmd - theta) - kd q + ki int, throttle = kp (V_cmd - V) + ki int.
-# Degrees for degrees: the gains are ratios, so radians serve as well. Prints the closed-loop poles.
-HA_POLES = """
 import sys, json
 import numpy as np, yaml
 import design_gains
 from airframe_model import Airframe, FT_PER_M, load_airframe
 folder = sys.argv[1]
 af = Airframe(load_airframe(folder + "/airframe.yaml"))
+gains = yaml.safe_load(open(folder + "/gains.yaml"))
 g = yaml.safe_load(open(folder + "/limits.yaml"))["safety_controller"]
-t = yaml.safe_load(open(folder + "/gains.yaml"))["trim"]
+t = gains["trim"]
 x0 = np.array([t["airspeed_m_s"], t["alpha_rad"], 0, 0, 0, 0, 0, t["theta_rad"]], dtype=float)
 a, b = design_gains.jacobians(af, x0, [t["elevator_rad"], 0.0, 0.0, t["throttle"]])
-lat = [2, 3, 5, 6]                      # beta, p, r, phi; u = aileron, rudder; + int(-phi)
-a_lat = np.zeros((5, 5)); a_lat[:4, :4] = a[np.ix_(lat, lat)]; a_lat[4, 3] = -1.0
-b_lat = np.vstack([b[np.ix_(lat, [1, 2])], np.zeros((1, 2))])
-k_lat = np.zeros((2, 5))
-k_lat[0, 3], k_lat[0, 1], k_lat[0, 4] = -g["roll_kp"], -g["roll_kd"], g["roll_ki"]
-k_lat[1, 2] = g["yaw_damper_gain"]      # rudder trailing edge left (yaw left) against a yaw right
-lon = [0, 1, 4, 7]                      # V, alpha, q, theta; u = elevator (TE down), throttle
-a_lon = np.zeros((6, 6)); a_lon[:4, :4] = a[np.ix_(lon, lon)]; a_lon[4, 3] = -1.0; a_lon[5, 0] = -1.0
-b_lon = np.vstack([b[np.ix_(lon, [0, 3])], np.zeros((2, 2))])
-k_lon = np.zeros((2, 6))
-k_lon[0, 3], k_lon[0, 2], k_lon[0, 4] = g["pitch_kp"], g["pitch_kd"], -g["pitch_ki"]
-k_lon[1, 0], k_lon[1, 5] = -g["throttle_kp_per_ftps"] * FT_PER_M, g["throttle_ki_per_ft"] * FT_PER_M
+(a_lon, b_lon), (a_lat, b_lat) = design_gains.loop_models(a, b)
+# u = -k x: lon x = [V, alpha, q, theta, int V, int theta], u = [elevator (TE down), throttle];
+# lat x = [beta, p, r, phi, int phi], u = [aileron, rudder (TE left: yaw left against a yaw right)].
+ha_lon = np.zeros((2, 6))
+ha_lon[0, 3], ha_lon[0, 2], ha_lon[0, 5] = -g["pitch_kp"], -g["pitch_kd"], -g["pitch_ki"]
+ha_lon[1, 0], ha_lon[1, 4] = g["throttle_kp_per_ftps"] * FT_PER_M, g["throttle_ki_per_ft"] * FT_PER_M
+ha_lat = np.zeros((2, 5))
+ha_lat[0, 3], ha_lat[0, 1], ha_lat[0, 4] = g["roll_kp"], g["roll_kd"], g["roll_ki"]
+ha_lat[1, 2] = -g["yaw_damper_gain"]
 out = {}
-for axis, aa, bb, k in (("lat", a_lat, b_lat, k_lat), ("lon", a_lon, b_lon, k_lon)):
-    out[axis] = [[p.real, p.imag] for p in np.linalg.eigvals(aa + bb @ k)]
+for law, k_lon, k_lat in (("lqr", gains["k_lon"], gains["k_lat"]), ("ha", ha_lon, ha_lat)):
+    out[law] = {}
+    for axis, aa, bb, k in (("lon", a_lon, b_lon, k_lon), ("lat", a_lat, b_lat, k_lat)):
+        poles = np.linalg.eigvals(aa - bb @ np.array(k))
+        out[law][axis] = [[p.real, p.imag] for p in poles]
 print(json.dumps(out))
 """
+
+
+@functools.lru_cache(maxsize=None)
+def closed_loop_poles(name):
+    done = subprocess.run([sys.executable, "-c", POLES, folder(name)], cwd=DESIGN,
+                          capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stderr
+    return json.loads(done.stdout)
+
 
 AIRCRAFT = sorted(name for name in os.listdir(os.path.join(ROOT, "aircraft"))
                   if os.path.isfile(os.path.join(ROOT, "aircraft", name, "limits.yaml")))
@@ -95,10 +88,7 @@ def test_rerunning_the_design_reproduces_the_checked_in_gains(name, tmp_path):
 def test_the_inner_loops_are_stable_about_the_design_trim(name):
     """The closed loop of the linearised airframe with the checked-in gains: every pole in the
     left half plane, in both axes (the integrators included)."""
-    done = subprocess.run([sys.executable, "-c", POLES, folder(name)], cwd=DESIGN,
-                          capture_output=True, text=True, timeout=60)
-    assert done.returncode == 0, done.stderr
-    for axis, poles in json.loads(done.stdout).items():
+    for axis, poles in closed_loop_poles(name)["lqr"].items():
         assert max(re for re, _im in poles) < -0.01, "%s %s poles: %s" % (name, axis, poles)
 
 
@@ -154,8 +144,9 @@ def test_the_roll_rate_bound_is_the_wings_own(name):
     assert max(row[p] for row in rows) == pytest.approx(1.0 / state["roll_rate_limit_deg_per_s"])
     for k in (q, r):
         assert max(row[k] for row in rows) == pytest.approx(1.0 / state["body_rate_limit_deg_per_s"])
-    v_m_s = airframe["design_point"]["airspeed_ftps"] * 0.3048
-    pb_2v = math.radians(state["roll_rate_limit_deg_per_s"]) * airframe["geometry"]["wing_span_m"] / (2 * v_m_s)
+    v_m_s = airframe["design_point"]["airspeed_ftps"] / gen_aircraft_config.FT_PER_M
+    span_m = airframe["geometry"]["wing_span_m"]
+    pb_2v = math.radians(state["roll_rate_limit_deg_per_s"]) * span_m / (2 * v_m_s)
     assert pb_2v <= 0.3, "%s: p b / 2V %.2f at %.1f m/s" % (name, pb_2v, v_m_s)
 
 
@@ -165,10 +156,7 @@ def test_the_has_safety_controller_is_stable_and_damped_on_the_airframe(name):
     every pole in the left half plane and every oscillation damped at least 0.4 (the DG808's short
     period 0.47, its roll and dutch roll 0.44). The DG808's gains on the Aerosonde, whose pitch
     damping is a quarter of the DG808's (cm_q -3.6 against -14), left its short period at 0.29."""
-    done = subprocess.run([sys.executable, "-c", HA_POLES, folder(name)], cwd=DESIGN,
-                          capture_output=True, text=True, timeout=60)
-    assert done.returncode == 0, done.stderr
-    for axis, poles in json.loads(done.stdout).items():
+    for axis, poles in closed_loop_poles(name)["ha"].items():
         for re, im in poles:
             zeta = -re / math.hypot(re, im)
             assert re < -0.01 and (abs(im) < 1e-9 or zeta >= 0.4), (
