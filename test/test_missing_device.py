@@ -3,36 +3,18 @@ wrong port or the adapter unplugged: the log names the port and the fix (the /de
 path), never a stack trace, and the node keeps trying, so a device plugged in late is found.
 (Permission denied and its dialout-group fix: drone_ros/common's test_serial_port.)"""
 import os
-import socket
 import subprocess
 import threading
 import time
 
 import pytest
-from stack_tools import ports
-
-
-def free_port():
-    return ports.free_port()
+from stack_testing.ros_master import private_master
 
 
 @pytest.fixture(scope="module")
 def master():
-    port = free_port()
-    env = dict(os.environ, ROS_MASTER_URI="http://127.0.0.1:%d" % port, ROS_IP="127.0.0.1")
-    env.pop("ROS_HOSTNAME", None)
-    proc = subprocess.Popen(["rosmaster", "--core", "-p", str(port)], env=env, stdout=subprocess.DEVNULL,
-                            stderr=subprocess.DEVNULL, start_new_session=True)
-    deadline = time.time() + 30
-    while time.time() < deadline:
-        try:
-            socket.create_connection(("127.0.0.1", port), timeout=0.5).close()
-            break
-        except OSError:
-            time.sleep(0.1)
-    yield env
-    proc.kill()
-    proc.wait()
+    with private_master() as env:
+        yield env
 
 
 def node_log_until(env, node, args, wanted, timeout_s=30.0):

@@ -5,17 +5,12 @@ loopback port; DRONE_ROS_WS points at the catkin workspace."""
 import fcntl
 import os
 import select
-import socket
 import struct
 import subprocess
 import time
 
 import pytest
-from stack_tools import ports
-
-
-def _free_port():
-    return ports.free_port()
+from stack_testing.ros_master import private_master
 
 
 @pytest.fixture(scope="module")
@@ -24,24 +19,8 @@ def ros_env():
     assert ws, "DRONE_ROS_WS must point at the catkin workspace (tools/run_tests.sh sets it)"
     exe = os.path.join(ws, "devel", "lib", "drone_ros", "vn200")
     assert os.access(exe, os.X_OK), exe + " not built"
-    port = _free_port()
-    env = dict(os.environ, ROS_MASTER_URI="http://127.0.0.1:%d" % port, ROS_IP="127.0.0.1",
-               ROS_HOSTNAME="127.0.0.1", ROS_LOG_DIR=os.path.join(ws, "..", "vn200_test_logs"))
-    master = subprocess.Popen(["rosmaster", "--core", "-p", str(port)], env=env,
-                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    try:
-        deadline = time.monotonic() + 20
-        while True:
-            try:
-                socket.create_connection(("127.0.0.1", port), timeout=0.5).close()
-                break
-            except OSError:
-                assert time.monotonic() < deadline, "rosmaster did not start"
-                time.sleep(0.1)
+    with private_master(log_dir=os.path.join(ws, "..", "vn200_test_logs")) as env:
         yield exe, env
-    finally:
-        master.terminate()
-        master.wait(timeout=10)
 
 
 @pytest.mark.parametrize("arg, named", [

@@ -1,21 +1,29 @@
 // controller_<aircraft> entry point: load and validate parameters, then spin.
+#include <drone_ros_common/node_main.h>
 #include <ros/ros.h>
 
 #include "controller_node.h"
 
-int main(int argc, char **argv) {
-  ros::init(argc, argv, std::string("controller_") + GNC_AIRCRAFT_NAME);
-  ros::NodeHandle nh;
-  ros::NodeHandle pnh("~");
+namespace {
+
+struct Loaded {
   controller::ControllerParams params;
-  controller::ParamValues values;
+  controller::ParamValues values;  // the base later tunable changes are checked against
   std::string frame_id;
-  std::string error;
-  if (!controller::load_params(pnh, &params, &values, &frame_id, &error)) {
-    ROS_FATAL("controller_%s: bad parameter: %s", GNC_AIRCRAFT_NAME, error.c_str());
-    return 1;
-  }
-  controller::ControllerNode node(nh, pnh, params, values, frame_id);
-  ros::spin();
-  return 0;
+};
+
+bool load(const ros::NodeHandle &pnh, Loaded *out, std::string *error) {
+  return controller::load_params(pnh, &out->params, &out->values, &out->frame_id, error);
+}
+
+}  // namespace
+
+int main(int argc, char **argv) {
+  return drone_ros_common::node_main<Loaded>(
+      argc, argv, std::string("controller_") + GNC_AIRCRAFT_NAME, load,
+      [](ros::NodeHandle &nh, ros::NodeHandle &pnh, const Loaded &l) {
+        controller::ControllerNode node(nh, pnh, l.params, l.values, l.frame_id);
+        ros::spin();
+        return 0;
+      });
 }

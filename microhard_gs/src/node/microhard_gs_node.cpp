@@ -7,6 +7,7 @@
 #include <drone_ros/SetTunable.h>
 #include <drone_ros/data.h>
 #include <drone_ros/way.h>
+#include <drone_ros_common/node_main.h>
 #include <ros/ros.h>
 #include <ros/serialization.h>
 
@@ -400,25 +401,20 @@ class Node {
 }  // namespace
 }  // namespace microhard_gs
 
-int main(int argc, char** argv) {
-  ros::init(argc, argv, "microhard_gs");
-  ros::NodeHandle nh;
-  ros::NodeHandle pnh("~");
-  microhard_gs::NodeConfig config;
-  std::string error;
-  if (!microhard_gs::read_node_config(pnh, &config, &error)) {
-    ROS_FATAL("microhard_gs: %s", error.c_str());
-    return 2;
-  }
+namespace {
+
+// The node's life once its parameters are good: the link (a bad UDP bind is fatal; a modem
+// missing at start is an outage the node reports and waits out), then the node until shutdown.
+int run_node(ros::NodeHandle& nh, ros::NodeHandle&, microhard_gs::NodeConfig config) {
   if (!config.missing_params.empty()) {
     ROS_INFO("microhard_gs: %zu known tunables not on the server under %s; not served",
              config.missing_params.size(), config.controller_param_ns.c_str());
   }
+  std::string error;
   std::unique_ptr<microhard_gs::Transport> link;
   if (config.transport == "udp") {
     link = microhard_gs::UdpTransport::open(config.udp, &error);
   } else {
-    // Never fails: a modem missing at start is an outage the node reports and waits out.
     link = std::make_unique<microhard_gs::SerialTransport>(
         config.serial_port, config.serial_baud,
         static_cast<uint64_t>(std::llround(config.reopen_period_s * 1000.0)));
@@ -432,4 +428,11 @@ int main(int argc, char** argv) {
   microhard_gs::Node node(nh, std::move(config), std::move(link));
   node.run();
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return drone_ros_common::node_main<microhard_gs::NodeConfig>(
+      argc, argv, "microhard_gs", microhard_gs::read_node_config, run_node);
 }
