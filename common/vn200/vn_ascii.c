@@ -88,58 +88,64 @@ static double scaled(uint64_t mant, int exp10) {
   return v;
 }
 
-static int parse_f64_range(const char *s, size_t begin, size_t len, double *out) {
+/* Reads the digits from *i on into *mant, the first 18 significant ones (more than a double
+ * holds): *kept counts the digits read into it, *dropped those read past them. Returns whether
+ * any digit was read. The caller's 40-character bound keeps every count small. */
+static int read_digits(const char *s, size_t *i, size_t end, uint64_t *mant, int *mant_digits,
+                       int *kept, int *dropped) {
+  size_t k = *i;
+  *kept = 0;
+  *dropped = 0;
+  for (; k < end && s[k] >= '0' && s[k] <= '9'; ++k) {
+    if (*mant_digits < 18) {
+      *mant = *mant * 10u + (uint64_t)(s[k] - '0');
+      if (*mant != 0u) {
+        ++*mant_digits;
+      }
+      ++*kept;
+    } else {
+      ++*dropped;
+    }
+  }
+  *i = k;
+  return *kept + *dropped > 0;
+}
+
+static int parse_f64_range(const char *s, size_t begin, size_t end, double *out) {
   size_t i = begin;
   int neg = 0;
   uint64_t mant = 0u;
   int mant_digits = 0;
   int exp10 = 0;
   int any_digit = 0;
+  int kept = 0;
+  int dropped = 0;
   int e = 0;
   double v;
-  if (len <= begin || len - begin > 40u) {
+  if (end <= begin || end - begin > 40u) {
     return 0;
   }
   if (s[i] == '+' || s[i] == '-') {
     neg = s[i] == '-';
     ++i;
   }
-  for (; i < len && s[i] >= '0' && s[i] <= '9'; ++i) {
-    any_digit = 1;
-    if (mant_digits < 18) {
-      mant = mant * 10u + (uint64_t)(s[i] - '0');
-      if (mant != 0u) {
-        ++mant_digits;
-      }
-    } else if (exp10 < 64) {
-      ++exp10; /* digits beyond double precision only scale; at most 40 of them */
-    }
-  }
-  if (i < len && s[i] == '.') {
+  any_digit = read_digits(s, &i, end, &mant, &mant_digits, &kept, &dropped);
+  exp10 += dropped; /* integer digits beyond double precision only scale */
+  if (i < end && s[i] == '.') {
     ++i;
-    for (; i < len && s[i] >= '0' && s[i] <= '9'; ++i) {
-      any_digit = 1;
-      if (mant_digits < 18) {
-        mant = mant * 10u + (uint64_t)(s[i] - '0');
-        if (mant != 0u) {
-          ++mant_digits;
-        }
-        if (exp10 > -64) {
-          --exp10; /* at most 40 digits, so the bound never bites */
-        }
-      }
-    }
+    any_digit |= read_digits(s, &i, end, &mant, &mant_digits, &kept, &dropped);
+    exp10 -= kept; /* fraction digits beyond it are dropped */
   }
   if (!any_digit) {
     return 0;
   }
-  if (i < len && (s[i] == 'e' || s[i] == 'E')) {
-    if (!read_exponent(s, &i, len, &e)) {
+  if (i < end && (s[i] == 'e' || s[i] == 'E')) {
+    if (!read_exponent(s, &i, end, &e)) {
       return 0;
     }
     exp10 += e;
   }
-  if (i != len) {
+  if (i != end) {
     return 0;
   }
   /* The sensor never sends numbers beyond 1e38 (the float range its fields have); refusing
@@ -210,35 +216,29 @@ int vn_ascii_checksum_ok(const char *s, size_t len) {
   return vn_crc16((const uint8_t *)(s + 1), star - 1u) == (uint16_t)sent;
 }
 
+/* Field idx's [*begin, *end) in s; 0 for a field the message does not have. */
+static int field_range(const char *s, const VnAsciiMsg *m, unsigned idx, size_t *begin,
+                       size_t *end) {
+  if (s == NULL || m == NULL || idx >= m->field_count || idx >= VN_ASCII_MAX_FIELDS) {
+    return 0;
+  }
+  *begin = m->field_off[idx];
+  *end = *begin + m->field_len[idx];
+  return *end <= m->len;
+}
+
 int vn_ascii_field_u32(const char *s, const VnAsciiMsg *m, unsigned idx, unsigned base,
                        uint32_t *out) {
-  size_t begin;
-  size_t end;
-  if (s == NULL || m == NULL || out == NULL || idx >= m->field_count ||
-      idx >= VN_ASCII_MAX_FIELDS) {
-    return 0;
-  }
-  begin = m->field_off[idx];
-  end = begin + m->field_len[idx];
-  if (end > m->len) {
-    return 0;
-  }
-  return parse_u32_range(s, begin, end, base, out);
+  size_t begin = 0u;
+  size_t end = 0u;
+  return out != NULL && field_range(s, m, idx, &begin, &end) &&
+         parse_u32_range(s, begin, end, base, out);
 }
 
 int vn_ascii_field_f64(const char *s, const VnAsciiMsg *m, unsigned idx, double *out) {
-  size_t begin;
-  size_t end;
-  if (s == NULL || m == NULL || out == NULL || idx >= m->field_count ||
-      idx >= VN_ASCII_MAX_FIELDS) {
-    return 0;
-  }
-  begin = m->field_off[idx];
-  end = begin + m->field_len[idx];
-  if (end > m->len) {
-    return 0;
-  }
-  return parse_f64_range(s, begin, end, out);
+  size_t begin = 0u;
+  size_t end = 0u;
+  return out != NULL && field_range(s, m, idx, &begin, &end) && parse_f64_range(s, begin, end, out);
 }
 
 static int field_f32(const char *s, const VnAsciiMsg *m, unsigned idx, float *out) {
