@@ -91,24 +91,34 @@ class HardwareSerial {
   virtual size_t write(const uint8_t *buffer, size_t size) = 0;
 };
 
-class UARTClass : public HardwareSerial {
+/* The fake board's ports share one implementation (fake_arduino.cpp), told apart by the port
+ * each object is; the Due's class names stay, as the sketch declares them. */
+class FakeSerialPort : public HardwareSerial {
  public:
+  explicit FakeSerialPort(int port) : port_(port) {}
   void begin(unsigned long baud) override;
   int available(void) override;
   int read(void) override;
   size_t write(uint8_t c) override;
   size_t write(const uint8_t *buffer, size_t size) override;
+
+ private:
+  int port_;
 };
 
-class USARTClass : public UARTClass {};
-
-class Serial_ : public HardwareSerial {
+class UARTClass : public FakeSerialPort {
  public:
-  void begin(unsigned long baud) override;
-  int available(void) override;
-  int read(void) override;
-  size_t write(uint8_t c) override;
-  size_t write(const uint8_t *buffer, size_t size) override;
+  using FakeSerialPort::FakeSerialPort;
+};
+
+class USARTClass : public UARTClass {
+ public:
+  using UARTClass::UARTClass;
+};
+
+class Serial_ : public FakeSerialPort {
+ public:
+  using FakeSerialPort::FakeSerialPort;
 };
 
 extern UARTClass Serial;

@@ -86,57 +86,30 @@ void watchdogReset(void) { fake::state.watchdog_kicks++; }
 Gpbr fake_gpbr = {};
 
 /* Serial delivers what fake::serial0_feed() queued, Serial1 (the VN-200) what fake::serial1_feed()
- * queued, SerialUSB what fake::usb_feed() queued; Serial2 and Serial3 see silence. */
+ * queued, SerialUSB what fake::usb_feed() queued; Serial2 and Serial3 (port -1) see silence. */
 namespace {
 struct Ring {
   uint8_t *bytes;
   size_t *len;
   size_t *pos;
 };
-bool uart_ring(const UARTClass *port, Ring *ring) {
-  if (port == &Serial) {
-    *ring = Ring{fake::state.serial0_rx, &fake::state.serial0_len, &fake::state.serial0_pos};
-    return true;
+bool port_ring(int port, Ring *ring) {
+  switch (port) {
+    case fake::kSerial:
+      *ring = Ring{fake::state.serial0_rx, &fake::state.serial0_len, &fake::state.serial0_pos};
+      return true;
+    case fake::kSerial1:
+      *ring = Ring{fake::state.serial1_rx, &fake::state.serial1_len, &fake::state.serial1_pos};
+      return true;
+    case fake::kSerialUsb:
+      *ring = Ring{fake::state.usb_rx, &fake::state.usb_len, &fake::state.usb_pos};
+      return true;
+    default:
+      return false;
   }
-  if (port == &Serial1) {
-    *ring = Ring{fake::state.serial1_rx, &fake::state.serial1_len, &fake::state.serial1_pos};
-    return true;
-  }
-  return false;
 }
-}  // namespace
-void UARTClass::begin(unsigned long baud) { (void)baud; }
-int UARTClass::available(void) {
-  Ring r;
-  return uart_ring(this, &r) ? static_cast<int>(*r.len - *r.pos) : 0;
-}
-int UARTClass::read(void) {
-  Ring r;
-  if (!uart_ring(this, &r) || *r.pos >= *r.len) {
-    return -1;
-  }
-  return r.bytes[(*r.pos)++];
-}
-size_t UARTClass::write(uint8_t c) { return write(&c, 1u); }
-size_t UARTClass::write(const uint8_t *buffer, size_t size) {
-  if (fake::state.tx_sink != nullptr && (this == &Serial || this == &Serial1)) {
-    return fake::state.tx_sink(this == &Serial ? fake::kSerial : fake::kSerial1, buffer, size);
-  }
-  return size;
-}
-void Serial_::begin(unsigned long baud) { (void)baud; }
-int Serial_::available(void) { return static_cast<int>(fake::state.usb_len - fake::state.usb_pos); }
-int Serial_::read(void) {
-  if (fake::state.usb_pos >= fake::state.usb_len) {
-    return -1;
-  }
-  return fake::state.usb_rx[fake::state.usb_pos++];
-}
-size_t Serial_::write(uint8_t c) { return write(&c, 1u); }
-size_t Serial_::write(const uint8_t *buffer, size_t size) {
-  if (fake::state.tx_sink != nullptr) {
-    return fake::state.usb_open ? fake::state.tx_sink(fake::kSerialUsb, buffer, size) : 0u;
-  }
+/* What the sketch wrote to SerialUSB while the host had it open, kept for the test to read. */
+size_t usb_keep(const uint8_t *buffer, size_t size) {
   if (!fake::state.usb_open || size > sizeof fake::state.usb_tx - fake::state.usb_tx_len) {
     return 0u;
   }
@@ -144,11 +117,37 @@ size_t Serial_::write(const uint8_t *buffer, size_t size) {
   fake::state.usb_tx_len += size;
   return size;
 }
-UARTClass Serial;
-USARTClass Serial1;
-USARTClass Serial2;
-USARTClass Serial3;
-Serial_ SerialUSB;
+}  // namespace
+void FakeSerialPort::begin(unsigned long baud) { (void)baud; }
+int FakeSerialPort::available(void) {
+  Ring r;
+  return port_ring(port_, &r) ? static_cast<int>(*r.len - *r.pos) : 0;
+}
+int FakeSerialPort::read(void) {
+  Ring r;
+  if (!port_ring(port_, &r) || *r.pos >= *r.len) {
+    return -1;
+  }
+  return r.bytes[(*r.pos)++];
+}
+size_t FakeSerialPort::write(uint8_t c) { return write(&c, 1u); }
+size_t FakeSerialPort::write(const uint8_t *buffer, size_t size) {
+  const bool usb = port_ == fake::kSerialUsb;
+  if (port_ < 0) {
+    return size;
+  }
+  if (fake::state.tx_sink != nullptr) {
+    return !usb || fake::state.usb_open
+               ? fake::state.tx_sink(static_cast<fake::Port>(port_), buffer, size)
+               : 0u;
+  }
+  return usb ? usb_keep(buffer, size) : size;
+}
+UARTClass Serial(fake::kSerial);
+USARTClass Serial1(fake::kSerial1);
+USARTClass Serial2(-1);
+USARTClass Serial3(-1);
+Serial_ SerialUSB(fake::kSerialUsb);
 
 Servo::Servo() : servoIndex(255u), min(0), max(0) {}
 uint8_t Servo::attach(int pin) { return attach(pin, MIN_PULSE_WIDTH, MAX_PULSE_WIDTH); }
