@@ -11,6 +11,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from stack_tools import check_config  # noqa: E402  (aircraft/schema/: no unknown, missing or mistyped key)
+from stack_tools.airframe_body import AirframeBody
 
 LBF_PER_N = 0.2248089430997105
 
@@ -35,30 +36,15 @@ def _load(path):
     return check_config.load(path)  # the schema by the file's name (airframe.yaml, limits.yaml)
 
 
-class Airframe:
+class Airframe(AirframeBody):
     """airframe.yaml + limits.yaml of one aircraft folder, with the derived stall figures."""
 
     def __init__(self, aircraft_dir):
         self.dir = os.path.abspath(aircraft_dir)
         data = _load(os.path.join(self.dir, "airframe.yaml"))
         limits = _load(os.path.join(self.dir, "limits.yaml"))
+        super().__init__(data)
         self.name = str(data["aircraft"])
-        self.mass_kg = float(data["mass_kg"])
-        inertia = data["inertia_kg_m2"]
-        self.ixx, self.iyy, self.izz = (float(inertia[k]) for k in ("ixx", "iyy", "izz"))
-        self.ixz = float(inertia.get("ixz", 0.0))
-        geo = data["geometry"]
-        self.wing_area_m2 = float(geo["wing_area_m2"])
-        self.span_m = float(geo["wing_span_m"])
-        self.chord_m = float(geo["mean_chord_m"])
-        self.aero = {k: float(v) for k, v in data["aero"].items()}
-        # The design model's constant atmosphere; the simulation itself uses ISA and WGS84.
-        self.design_air_density_kg_m3 = float(data["air_density_kg_m3"])
-        self.design_gravity_m_s2 = float(data["gravity_m_s2"])
-        prop = data["propulsion"]
-        self.max_thrust_n = float(prop["max_thrust_n"])
-        self.zero_thrust_speed_mps = float(prop["zero_thrust_speed_m_s"])
-
         sim = data["simulation"]
         stall = sim["stall"]
         self.cl_min = float(stall["cl_min"])

@@ -9,6 +9,7 @@ import math
 import numpy as np
 
 from stack_tools import check_config  # noqa: E402  (aircraft/schema/: no unknown, missing or mistyped key)
+from stack_tools.airframe_body import AirframeBody
 
 FT_PER_M = 1.0 / 0.3048
 
@@ -17,37 +18,23 @@ def load_airframe(path):
     return check_config.load(path, "airframe")
 
 
-class Airframe:
-    def __init__(self, data):
-        self.m = float(data["mass_kg"])
-        inertia = data["inertia_kg_m2"]
-        self.ixx = float(inertia["ixx"])
-        self.iyy = float(inertia["iyy"])
-        self.izz = float(inertia["izz"])
-        geo = data["geometry"]
-        self.s = float(geo["wing_area_m2"])
-        self.b = float(geo["wing_span_m"])
-        self.c = float(geo["mean_chord_m"])
-        self.rho = float(data["air_density_kg_m3"])
-        self.g = float(data["gravity_m_s2"])
-        self.a = {k: float(v) for k, v in data["aero"].items()}
-        prop = data["propulsion"]
-        self.t_max = float(prop["max_thrust_n"])
-        self.v_zero_thrust = float(prop["zero_thrust_speed_m_s"])
+class Airframe(AirframeBody):
+    """The equations of motion on airframe.yaml's body, in its design atmosphere (still air)."""
 
     def body_derivatives(self, x, u):
         """x = [u, v, w, p, q, r, phi, theta, psi] (m/s, rad/s, rad);
         u = [elevator, aileron, rudder, throttle] (rad, rad, rad, 0..1). Still air."""
         ub, vb, wb, p, q, r, phi, theta, _psi = x
         de, da, dr, dt = u
-        a = self.a
+        a = self.aero
+        m, s, b, c = self.mass_kg, self.wing_area_m2, self.span_m, self.chord_m
         vt = math.sqrt(ub * ub + vb * vb + wb * wb)
         alpha = math.atan2(wb, ub)
         beta = math.asin(vb / vt)
-        qbar = 0.5 * self.rho * vt * vt
-        phat = p * self.b / (2.0 * vt)
-        qhat = q * self.c / (2.0 * vt)
-        rhat = r * self.b / (2.0 * vt)
+        qbar = 0.5 * self.design_air_density_kg_m3 * vt * vt
+        phat = p * b / (2.0 * vt)
+        qhat = q * c / (2.0 * vt)
+        rhat = r * b / (2.0 * vt)
         cl = a["cl0"] + a["cl_alpha_per_rad"] * alpha + a["cl_q_per_rad"] * qhat \
             + a["cl_elevator_per_rad"] * de
         cd = a["cd0"] + a["cd_k"] * cl * cl
@@ -58,21 +45,21 @@ class Airframe:
             + a["cm_elevator_per_rad"] * de
         cn = a["cn_beta_per_rad"] * beta + a["cn_p_per_rad"] * phat + a["cn_r_per_rad"] * rhat \
             + a["cn_aileron_per_rad"] * da + a["cn_rudder_per_rad"] * dr
-        lift = qbar * self.s * cl
-        drag = qbar * self.s * cd
-        thrust = dt * self.t_max * (1.0 - vt / self.v_zero_thrust)
+        lift = qbar * s * cl
+        drag = qbar * s * cd
+        thrust = dt * self.max_thrust_n * (1.0 - vt / self.zero_thrust_speed_mps)
         fx = -drag * math.cos(alpha) + lift * math.sin(alpha) + thrust
-        fy = qbar * self.s * cy
+        fy = qbar * s * cy
         fz = -drag * math.sin(alpha) - lift * math.cos(alpha)
-        mx = qbar * self.s * self.b * croll
-        my = qbar * self.s * self.c * cm
-        mz = qbar * self.s * self.b * cn
-        g = self.g
+        mx = qbar * s * b * croll
+        my = qbar * s * c * cm
+        mz = qbar * s * b * cn
+        g = self.design_gravity_m_s2
         sphi, cphi = math.sin(phi), math.cos(phi)
         sth, cth = math.sin(theta), math.cos(theta)
-        du = r * vb - q * wb + fx / self.m - g * sth
-        dv = p * wb - r * ub + fy / self.m + g * sphi * cth
-        dw = q * ub - p * vb + fz / self.m + g * cphi * cth
+        du = r * vb - q * wb + fx / m - g * sth
+        dv = p * wb - r * ub + fy / m + g * sphi * cth
+        dw = q * ub - p * vb + fz / m + g * cphi * cth
         dp = (mx + (self.iyy - self.izz) * q * r) / self.ixx
         dq = (my + (self.izz - self.ixx) * p * r) / self.iyy
         dr_ = (mz + (self.ixx - self.iyy) * p * q) / self.izz
