@@ -50,8 +50,8 @@ build: deps $(WS)/src/drone_ros
 
 # uninstalled_script is ignored on purpose: the executables it names are developer tools
 # (verify, bench, install and test-summary scripts) that have no place in an install space.
-# tools/lint.sh: clang-format on the listed files and clang-tidy naming on the C++ nodes (it
-# reads the build's compile_commands.json).
+# tools/lint.sh: clang-format on the listed files, clang-tidy naming on the C++ nodes (it
+# reads the build's compile_commands.json), pyflakes, and function length (lizard).
 lint: build
 	@cd $(WS)/src && ROS_PACKAGE_PATH=$(WS)/src $(VENV)/bin/catkin_lint --strict -W2 --offline --ignore uninstalled_script drone_ros 2>&1 | grep -v rosdep; exit $${PIPESTATUS[0]}
 	@$(ROOT)/tools/lint.sh $(WS)

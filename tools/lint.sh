@@ -6,7 +6,9 @@
 #  2. naming: clang-tidy's readability-identifier-naming (.clang-tidy) over the C++ nodes, with
 #     the workspace's compile_commands.json (`make build` exports it);
 #  3. Python: pyflakes (requirements.txt) over every tracked .py file: unused imports and
-#     variables, undefined names.
+#     variables, undefined names;
+#  4. size: no function over 80 lines (lizard) in the C, C++ and Python outside tests (test/,
+#     test_*, *_test.*) and generated/ folders: a longer one is split into the steps it does.
 # usage: lint.sh WS
 set -uo pipefail
 ws=${1:?usage: lint.sh WS}
@@ -70,6 +72,21 @@ if out=$("$pyflakes" "${pyfiles[@]}" 2>&1); then
 else
   echo "$out"
   echo "lint: pyflakes failed"
+  status=1
+fi
+
+lizard=$root/.venv/bin/lizard
+if [ ! -x "$lizard" ]; then
+  echo "lint: $lizard not found; run 'make deps' (requirements.txt)" >&2
+  exit 2
+fi
+mapfile -t sources < <(git ls-files '*.c' '*.cpp' '*.h' '*.py' |
+  grep -vE '(^|/)(test|tests|generated)/|(^|/)test_[^/]*$|_test\.[a-z]+$')
+if out=$("$lizard" --length 80 --CCN 1000 --warnings_only "${sources[@]}" 2>&1); then
+  echo "lint: lizard: no function over 80 lines in ${#sources[@]} source files"
+else
+  echo "$out" | sed "s|^$root/||"
+  echo "lint: functions over 80 lines (split each into the steps it does)"
   status=1
 fi
 exit $status
