@@ -43,32 +43,33 @@ bool height_above_home_ft(uint8_t frame, float z_m, const GeoPoint& home, double
   return false;
 }
 
-// The fields both item messages carry alike; only x/y (x1e7 or degrees) differ.
-template <typename Item>
-MissionItem common_fields(const Item& m) {
-  MissionItem it;
-  it.seq = m.seq;
-  it.frame = m.frame;
-  it.command = m.command;
-  it.current = m.current;
-  it.autocontinue = m.autocontinue;
-  it.param1 = m.param1;
-  it.param2 = m.param2;
-  it.param3 = m.param3;
-  it.param4 = m.param4;
-  return it;
+// The fields MissionItem and both item messages carry alike, either way; x and y differ (x1e7
+// or degrees), and z is the same float in all three.
+template <typename From, typename To>
+void copy_common_fields(const From& from, To* to) {
+  to->seq = from.seq;
+  to->frame = from.frame;
+  to->command = from.command;
+  to->current = from.current;
+  to->autocontinue = from.autocontinue;
+  to->param1 = from.param1;
+  to->param2 = from.param2;
+  to->param3 = from.param3;
+  to->param4 = from.param4;
+  to->z = from.z;
 }
 
 MissionItem from_item_int(const mavlink_mission_item_int_t& m) {
-  MissionItem it = common_fields(m);
+  MissionItem it;
+  copy_common_fields(m, &it);
   it.x = m.x;
   it.y = m.y;
-  it.z = m.z;
   return it;
 }
 
 MissionItem from_item_float(const mavlink_mission_item_t& m) {
-  MissionItem it = common_fields(m);
+  MissionItem it;
+  copy_common_fields(m, &it);
   if (is_global_frame(m.frame)) {
     it.x = degrees_to_e7(static_cast<double>(m.x));
     it.y = degrees_to_e7(static_cast<double>(m.y));
@@ -76,24 +77,14 @@ MissionItem from_item_float(const mavlink_mission_item_t& m) {
     it.x = to_i32(m.x);
     it.y = to_i32(m.y);
   }
-  it.z = m.z;
   return it;
 }
 
 mavlink_mission_item_int_t to_item_int(const MissionItem& it) {
   mavlink_mission_item_int_t m{};
-  m.seq = it.seq;
-  m.frame = it.frame;
-  m.command = it.command;
-  m.current = it.current;
-  m.autocontinue = it.autocontinue;
-  m.param1 = it.param1;
-  m.param2 = it.param2;
-  m.param3 = it.param3;
-  m.param4 = it.param4;
+  copy_common_fields(it, &m);
   m.x = it.x;
   m.y = it.y;
-  m.z = it.z;
   m.mission_type = MAV_MISSION_TYPE_MISSION;
   return m;
 }
@@ -101,18 +92,10 @@ mavlink_mission_item_int_t to_item_int(const MissionItem& it) {
 mavlink_mission_item_t to_item_float(const MissionItem& it) {
   mavlink_mission_item_t m{};
   const bool global = is_global_frame(it.frame);
-  m.seq = it.seq;
+  copy_common_fields(it, &m);
   m.frame = float_twin(it.frame);
-  m.command = it.command;
-  m.current = it.current;
-  m.autocontinue = it.autocontinue;
-  m.param1 = it.param1;
-  m.param2 = it.param2;
-  m.param3 = it.param3;
-  m.param4 = it.param4;
   m.x = global ? static_cast<float>(it.x * 1e-7) : static_cast<float>(it.x);
   m.y = global ? static_cast<float>(it.y * 1e-7) : static_cast<float>(it.y);
-  m.z = it.z;
   m.mission_type = MAV_MISSION_TYPE_MISSION;
   return m;
 }
