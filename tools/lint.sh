@@ -61,32 +61,30 @@ else
   status=1
 fi
 
-pyflakes=$root/.venv/bin/pyflakes
-if [ ! -x "$pyflakes" ]; then
-  echo "lint: $pyflakes not found; run 'make deps' (requirements.txt)" >&2
-  exit 2
-fi
-mapfile -t pyfiles < <(git ls-files '*.py')
-if out=$("$pyflakes" "${pyfiles[@]}" 2>&1); then
-  echo "lint: pyflakes: ${#pyfiles[@]} Python files clean"
-else
-  echo "$out"
-  echo "lint: pyflakes failed"
-  status=1
-fi
+# venv_check TOOL OK_LINE FAIL_LINE ARGS...: runs the venv's TOOL (requirements.txt) over ARGS;
+# prints OK_LINE, or TOOL's findings and FAIL_LINE.
+venv_check() {
+  local tool=$root/.venv/bin/$1 ok=$2 fail=$3 out
+  shift 3
+  if [ ! -x "$tool" ]; then
+    echo "lint: $tool not found; run 'make deps' (requirements.txt)" >&2
+    exit 2
+  fi
+  if out=$("$tool" "$@" 2>&1); then
+    echo "lint: $ok"
+  else
+    echo "$out" | sed "s|^$root/||"
+    echo "lint: $fail"
+    status=1
+  fi
+}
 
-lizard=$root/.venv/bin/lizard
-if [ ! -x "$lizard" ]; then
-  echo "lint: $lizard not found; run 'make deps' (requirements.txt)" >&2
-  exit 2
-fi
+mapfile -t pyfiles < <(git ls-files '*.py')
+venv_check pyflakes "pyflakes: ${#pyfiles[@]} Python files clean" "pyflakes failed" "${pyfiles[@]}"
+
 mapfile -t sources < <(git ls-files '*.c' '*.cpp' '*.h' '*.py' |
   grep -vE '(^|/)(test|tests|generated)/|(^|/)test_[^/]*$|_test\.[a-z]+$')
-if out=$("$lizard" --length 80 --CCN 1000 --warnings_only "${sources[@]}" 2>&1); then
-  echo "lint: lizard: no function over 80 lines in ${#sources[@]} source files"
-else
-  echo "$out" | sed "s|^$root/||"
-  echo "lint: functions over 80 lines (split each into the steps it does)"
-  status=1
-fi
+venv_check lizard "lizard: no function over 80 lines in ${#sources[@]} source files" \
+  "functions over 80 lines (split each into the steps it does)" \
+  --length 80 --CCN 1000 --warnings_only "${sources[@]}"
 exit $status
