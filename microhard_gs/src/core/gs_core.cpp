@@ -85,27 +85,27 @@ bool GsCore::addressed_to_us(uint8_t target_system, uint8_t target_component) {
   return ok;
 }
 
+template <typename Msg, typename Handle>
+bool GsCore::if_addressed(const mavlink_message_t& msg,
+                          void (*decode)(const mavlink_message_t*, Msg*), Handle handle) {
+  Msg m;
+  decode(&msg, &m);
+  if (addressed_to_us(m.target_system, m.target_component)) handle(m);
+  return true;
+}
+
 // The parameter service's messages; false for any other.
 bool GsCore::route_params(const mavlink_message_t& msg, const Clock& now) {
   switch (msg.msgid) {
-    case MAVLINK_MSG_ID_PARAM_REQUEST_LIST: {
-      mavlink_param_request_list_t m;
-      mavlink_msg_param_request_list_decode(&msg, &m);
-      if (addressed_to_us(m.target_system, m.target_component)) params_.on_request_list();
-      return true;
-    }
-    case MAVLINK_MSG_ID_PARAM_REQUEST_READ: {
-      mavlink_param_request_read_t m;
-      mavlink_msg_param_request_read_decode(&msg, &m);
-      if (addressed_to_us(m.target_system, m.target_component)) params_.on_request_read(m);
-      return true;
-    }
-    case MAVLINK_MSG_ID_PARAM_SET: {
-      mavlink_param_set_t m;
-      mavlink_msg_param_set_decode(&msg, &m);
-      if (addressed_to_us(m.target_system, m.target_component)) params_.on_set(m, now);
-      return true;
-    }
+    case MAVLINK_MSG_ID_PARAM_REQUEST_LIST:
+      return if_addressed(msg, mavlink_msg_param_request_list_decode,
+                          [&](const auto&) { params_.on_request_list(); });
+    case MAVLINK_MSG_ID_PARAM_REQUEST_READ:
+      return if_addressed(msg, mavlink_msg_param_request_read_decode,
+                          [&](const auto& m) { params_.on_request_read(m); });
+    case MAVLINK_MSG_ID_PARAM_SET:
+      return if_addressed(msg, mavlink_msg_param_set_decode,
+                          [&](const auto& m) { params_.on_set(m, now); });
     default:
       return false;
   }
@@ -114,54 +114,31 @@ bool GsCore::route_params(const mavlink_message_t& msg, const Clock& now) {
 // The mission service's messages; false for any other.
 bool GsCore::route_mission(const mavlink_message_t& msg, const Clock& now) {
   switch (msg.msgid) {
-    case MAVLINK_MSG_ID_MISSION_COUNT: {
-      mavlink_mission_count_t m;
-      mavlink_msg_mission_count_decode(&msg, &m);
-      if (addressed_to_us(m.target_system, m.target_component)) missions_.on_count(msg, m, now);
-      return true;
-    }
-    case MAVLINK_MSG_ID_MISSION_ITEM_INT: {
-      mavlink_mission_item_int_t m;
-      mavlink_msg_mission_item_int_decode(&msg, &m);
-      if (addressed_to_us(m.target_system, m.target_component))
+    case MAVLINK_MSG_ID_MISSION_COUNT:
+      return if_addressed(msg, mavlink_msg_mission_count_decode,
+                          [&](const auto& m) { missions_.on_count(msg, m, now); });
+    case MAVLINK_MSG_ID_MISSION_ITEM_INT:
+      return if_addressed(msg, mavlink_msg_mission_item_int_decode, [&](const auto& m) {
         missions_.on_item(msg, from_item_int(m), m.mission_type, false, now);
-      return true;
-    }
-    case MAVLINK_MSG_ID_MISSION_ITEM: {
-      mavlink_mission_item_t m;
-      mavlink_msg_mission_item_decode(&msg, &m);
-      if (addressed_to_us(m.target_system, m.target_component))
+      });
+    case MAVLINK_MSG_ID_MISSION_ITEM:
+      return if_addressed(msg, mavlink_msg_mission_item_decode, [&](const auto& m) {
         missions_.on_item(msg, from_item_float(m), m.mission_type, true, now);
-      return true;
-    }
-    case MAVLINK_MSG_ID_MISSION_REQUEST_LIST: {
-      mavlink_mission_request_list_t m;
-      mavlink_msg_mission_request_list_decode(&msg, &m);
-      if (addressed_to_us(m.target_system, m.target_component))
-        missions_.on_request_list(msg, m.mission_type);
-      return true;
-    }
-    case MAVLINK_MSG_ID_MISSION_REQUEST_INT: {
-      mavlink_mission_request_int_t r;
-      mavlink_msg_mission_request_int_decode(&msg, &r);
-      if (addressed_to_us(r.target_system, r.target_component))
+      });
+    case MAVLINK_MSG_ID_MISSION_REQUEST_LIST:
+      return if_addressed(msg, mavlink_msg_mission_request_list_decode,
+                          [&](const auto& m) { missions_.on_request_list(msg, m.mission_type); });
+    case MAVLINK_MSG_ID_MISSION_REQUEST_INT:
+      return if_addressed(msg, mavlink_msg_mission_request_int_decode, [&](const auto& r) {
         missions_.on_request(msg, r.seq, r.mission_type, false);
-      return true;
-    }
-    case MAVLINK_MSG_ID_MISSION_REQUEST: {
-      mavlink_mission_request_t r;
-      mavlink_msg_mission_request_decode(&msg, &r);
-      if (addressed_to_us(r.target_system, r.target_component))
+      });
+    case MAVLINK_MSG_ID_MISSION_REQUEST:
+      return if_addressed(msg, mavlink_msg_mission_request_decode, [&](const auto& r) {
         missions_.on_request(msg, r.seq, r.mission_type, true);
-      return true;
-    }
-    case MAVLINK_MSG_ID_MISSION_CLEAR_ALL: {
-      mavlink_mission_clear_all_t m;
-      mavlink_msg_mission_clear_all_decode(&msg, &m);
-      if (addressed_to_us(m.target_system, m.target_component))
-        missions_.on_clear_all(msg, m.mission_type);
-      return true;
-    }
+      });
+    case MAVLINK_MSG_ID_MISSION_CLEAR_ALL:
+      return if_addressed(msg, mavlink_msg_mission_clear_all_decode,
+                          [&](const auto& m) { missions_.on_clear_all(msg, m.mission_type); });
     case MAVLINK_MSG_ID_MISSION_ACK:
       missions_.on_ack(msg);
       return true;

@@ -106,6 +106,11 @@ class GsCore {
   void deny_command(const mavlink_message_t& msg);
   void keep_received_frame(const mavlink_message_t& msg);
   bool addressed_to_us(uint8_t target_system, uint8_t target_component);
+  // Decodes msg as a Msg and calls handle(m) if it is addressed to this vehicle; true (the
+  // message was the caller's to route, addressed here or not).
+  template <typename Msg, typename Handle>
+  bool if_addressed(const mavlink_message_t& msg, void (*decode)(const mavlink_message_t*, Msg*),
+                    Handle handle);
 
   GsConfig config_;
   Counters counters_;
