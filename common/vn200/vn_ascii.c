@@ -90,25 +90,28 @@ static double scaled(uint64_t mant, int exp10) {
 
 /* Reads the digits from *i on into *mant, the first 18 significant ones (more than a double
  * holds): *kept counts the digits read into it, *dropped those read past them. Returns whether
- * any digit was read. The caller's 40-character bound keeps every count small. */
+ * any digit was read. The caller's 40-character bound keeps the counts below 64; the caps say
+ * so to the analysis. */
 static int read_digits(const char *s, size_t *i, size_t end, uint64_t *mant, int *mant_digits,
                        int *kept, int *dropped) {
   size_t k = *i;
-  *kept = 0;
-  *dropped = 0;
+  int in = 0;
+  int out = 0;
   for (; k < end && s[k] >= '0' && s[k] <= '9'; ++k) {
     if (*mant_digits < 18) {
       *mant = *mant * 10u + (uint64_t)(s[k] - '0');
       if (*mant != 0u) {
         ++*mant_digits;
       }
-      ++*kept;
+      in += in < 64;
     } else {
-      ++*dropped;
+      out += out < 64;
     }
   }
   *i = k;
-  return *kept + *dropped > 0;
+  *kept = in;
+  *dropped = out;
+  return in + out > 0;
 }
 
 static int parse_f64_range(const char *s, size_t begin, size_t end, double *out) {
@@ -219,12 +222,19 @@ int vn_ascii_checksum_ok(const char *s, size_t len) {
 /* Field idx's [*begin, *end) in s; 0 for a field the message does not have. */
 static int field_range(const char *s, const VnAsciiMsg *m, unsigned idx, size_t *begin,
                        size_t *end) {
+  size_t b;
+  size_t e;
   if (s == NULL || m == NULL || idx >= m->field_count || idx >= VN_ASCII_MAX_FIELDS) {
     return 0;
   }
-  *begin = m->field_off[idx];
-  *end = *begin + m->field_len[idx];
-  return *end <= m->len;
+  b = m->field_off[idx];
+  e = b + m->field_len[idx];
+  if (e > m->len) {
+    return 0;
+  }
+  *begin = b;
+  *end = e;
+  return 1;
 }
 
 int vn_ascii_field_u32(const char *s, const VnAsciiMsg *m, unsigned idx, unsigned base,
