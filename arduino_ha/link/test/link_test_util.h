@@ -1,5 +1,6 @@
-// Helpers for the device link tests: frames built byte by byte from the rosserial protocol
-// description (not with the code under test), and a capture of what the device writes.
+// Helpers for the link tests of both ends (the device's here, the host framer's in
+// drone_ros/arduino_link): frames built byte by byte from the rosserial protocol description
+// (not with the code under test), and a capture of what the device writes.
 #ifndef HA_LINK_TEST_UTIL_H
 #define HA_LINK_TEST_UTIL_H
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "ha_link.h"
+#include "link_test_util.h"  // arduino_ha/link/test: frames from the protocol description
 #include "rosserial_framer.h"
 
 using arduino_link::encode_frame;
@@ -17,19 +18,9 @@ using Bytes = std::vector<uint8_t>;
 
 namespace {
 
-// Built from the protocol description, independently of both encoders.
-Bytes spec_frame(uint16_t topic, const Bytes &payload) {
-  const unsigned len = static_cast<unsigned>(payload.size());
-  Bytes f{0xFF, 0xFE, static_cast<uint8_t>(len & 0xFF), static_cast<uint8_t>(len >> 8)};
-  f.push_back(static_cast<uint8_t>(255 - ((f[2] + f[3]) % 256)));
-  f.push_back(static_cast<uint8_t>(topic & 0xFF));
-  f.push_back(static_cast<uint8_t>(topic >> 8));
-  unsigned sum = f[5] + f[6];
-  for (uint8_t b : payload) sum += b;
-  f.insert(f.end(), payload.begin(), payload.end());
-  f.push_back(static_cast<uint8_t>(255 - (sum % 256)));
-  return f;
-}
+// Frames built from the protocol description, independently of both encoders (the device
+// link's tests build theirs with the same helper).
+using link_test::frame;
 
 struct Host {
   RosserialFramer framer{1024, 0.05};
@@ -123,7 +114,7 @@ TEST(HostFramer, DocumentedHostFramesAreByteExact) {
   EXPECT_EQ(arduino_link::topic_request_frame(),
             (Bytes{0xFF, 0xFE, 0x00, 0x00, 0xFF, 0x00, 0x00, 0xFF}));
   EXPECT_EQ(arduino_link::tx_stop_frame(), (Bytes{0xFF, 0xFE, 0x00, 0x00, 0xFF, 0x0B, 0x00, 0xF4}));
-  EXPECT_EQ(encode_frame(125, kPayload.data(), kPayload.size()), spec_frame(125, kPayload));
+  EXPECT_EQ(encode_frame(125, kPayload.data(), kPayload.size()), frame(125, kPayload));
 }
 
 TEST(HostFramer, HandshakeBothWaysWithTheDueSide) {
@@ -154,7 +145,7 @@ TEST(HostFramer, HandshakeBothWaysWithTheDueSide) {
   EXPECT_EQ(info[0] | info[1] << 8, 100);
   EXPECT_EQ(std::string(info.begin() + 6, info.begin() + 14), "servo_op");
   // And the host's time reply is accepted by the device.
-  const Bytes reply = spec_frame(10, Bytes{1, 0, 0, 0, 0, 0, 0, 0});
+  const Bytes reply = frame(10, Bytes{1, 0, 0, 0, 0, 0, 0, 0});
   ha_link_receive(&link, reply.data(), reply.size(), 1000u);
   EXPECT_EQ(link.counters.time_syncs, 1u);
 }
@@ -173,9 +164,9 @@ TEST(HostFramer, EveryFrameTheDueEncodesIsReadWhole) {
 
 TEST(HostFramer, GarbageBetweenFramesIsCountedAndSkipped) {
   Host host;
-  Bytes stream = spec_frame(125, kPayload);
+  Bytes stream = frame(125, kPayload);
   for (uint8_t g : {0x00, 0x41, 0x42, 0xFE}) stream.push_back(g);
-  const Bytes second = spec_frame(126, kPayload);
+  const Bytes second = frame(126, kPayload);
   stream.insert(stream.end(), second.begin(), second.end());
   host.feed(stream);
   ASSERT_EQ(host.frames.size(), 2u);
@@ -183,7 +174,7 @@ TEST(HostFramer, GarbageBetweenFramesIsCountedAndSkipped) {
 }
 
 TEST(HostFramer, FramesSplitAtEveryPossibleBoundaryArriveWhole) {
-  const Bytes f = spec_frame(125, kPayload);
+  const Bytes f = frame(125, kPayload);
   for (size_t cut = 1; cut < f.size(); ++cut) {
     Host host;
     host.feed(Bytes(f.begin(), f.begin() + static_cast<long>(cut)));
@@ -196,13 +187,13 @@ TEST(HostFramer, FramesSplitAtEveryPossibleBoundaryArriveWhole) {
 TEST(HostFramer, WrongChecksumAbsurdLengthAndBadLengthChecksumAreCounted) {
   Host host;
   const Bytes plain{1, 2, 3, 4};  // no sync-like bytes: the framer must not resync inside it
-  Bytes bad_sum = spec_frame(125, plain);
+  Bytes bad_sum = frame(125, plain);
   bad_sum.back() ^= 0x80;
-  Bytes bad_len = spec_frame(125, plain);
+  Bytes bad_len = frame(125, plain);
   bad_len[4] ^= 0x01;
   const Bytes absurd{0xFF, 0xFE, 0xFF, 0xFF, 0x01, 125, 0};  // 65535 with a valid length checksum
   for (const Bytes *b : std::vector<const Bytes *>{&bad_sum, &bad_len, &absurd}) host.feed(*b);
-  host.feed(spec_frame(125, plain));
+  host.feed(frame(125, plain));
   EXPECT_EQ(host.frames.size(), 1u);
   EXPECT_EQ(host.framer.counters().bad_checksum, 1u);
   EXPECT_EQ(host.framer.counters().bad_length_checksum, 1u);
@@ -211,7 +202,7 @@ TEST(HostFramer, WrongChecksumAbsurdLengthAndBadLengthChecksumAreCounted) {
 
 TEST(HostFramer, StalledFrameIsDroppedAfterTheTimeout) {
   Host host;
-  const Bytes f = spec_frame(125, kPayload);
+  const Bytes f = frame(125, kPayload);
   host.feed(Bytes(f.begin(), f.begin() + 6), 0.0);
   host.framer.poll(0.2);
   EXPECT_EQ(host.framer.counters().timeouts, 1u);
@@ -221,7 +212,7 @@ TEST(HostFramer, StalledFrameIsDroppedAfterTheTimeout) {
 
 TEST(HostFramer, RosserialVersionOneIsRefusedNotMisread) {
   Host host;
-  Bytes v1 = spec_frame(125, kPayload);
+  Bytes v1 = frame(125, kPayload);
   v1[1] = 0xFF;
   host.feed(v1);
   EXPECT_TRUE(host.frames.empty());
@@ -229,7 +220,7 @@ TEST(HostFramer, RosserialVersionOneIsRefusedNotMisread) {
 }
 
 TEST(HostFramer, EverySingleBitFlipIsDroppedAndTheNextFrameArrives) {
-  const Bytes good = spec_frame(126, Bytes(68, 0x5A));
+  const Bytes good = frame(126, Bytes(68, 0x5A));
   for (size_t i = 0; i < good.size(); ++i) {
     for (int bit = 0; bit < 8; ++bit) {
       Host host;
@@ -306,16 +297,16 @@ TEST(HostFramer, EveryLostByteOfAFrameFromTheDueLosesOnlyThatFrame) {
 TEST(HostFramer, FalseSyncBytesInsideAFrameThatLostAByteAreRejectedAndTheNextFrameArrives) {
   const Bytes tricky{0x01, 0xFF, 0xFE, 0x02, 0xFF, 0xFF, 0xFF, 0xFE, 0x03, 0x00, 0xFC,
                      0x7D, 0x00, 0x20, 0xFF, 0xFE, 0xFF, 0xFE, 0x10, 0x00, 0xEF, 0x42};
-  const Bytes frame = spec_frame(126, tricky);
-  const Bytes whole = spec_frame(125, kPayload);
-  const Bytes after = spec_frame(127, Bytes(20, 0x33));
-  for (std::size_t lost = 0; lost < frame.size(); ++lost) {
+  const Bytes lossy = frame(126, tricky);
+  const Bytes whole = frame(125, kPayload);
+  const Bytes after = frame(127, Bytes(20, 0x33));
+  for (std::size_t lost = 0; lost < lossy.size(); ++lost) {
     // A lost 0xFF after the sync byte is the one loss the 8-bit sum cannot see when the next
     // frame's 0xFF follows (the sum moves by -0xFF + the old checksum): the frame is taken,
     // shifted, and no search begins. A protocol limit, not the framer's (README).
-    if (lost > 0 && frame[lost] == 0xFF) continue;
+    if (lost > 0 && lossy[lost] == 0xFF) continue;
     Host host;
-    host.feed(without_byte(frame, lost), 0.0);
+    host.feed(without_byte(lossy, lost), 0.0);
     // The last false start announces 16 bytes with a right length checksum: it takes the whole
     // frame and fails only once the next frame's bytes arrive; both are then found inside it.
     host.feed(whole, 0.01);
@@ -328,7 +319,7 @@ TEST(HostFramer, FalseSyncBytesInsideAFrameThatLostAByteAreRejectedAndTheNextFra
     host.expect_every_byte_accounted_for();
   }
   Host intact;  // and the frame itself, whole, is read as it is
-  intact.feed(frame);
+  intact.feed(lossy);
   ASSERT_EQ(intact.frames.size(), 1u);
   EXPECT_EQ(intact.frames[0].payload, tricky);
 }
