@@ -409,16 +409,14 @@ static void take_records_realtime(PilBoard *b) {
   while (uart_read(UART_CONTROL, &byte, 1u) == 1u) {
     const uint8_t *payload = NULL;
     const size_t len = pil_frame_rx_byte(&b->control, byte, &payload);
-    HaSilStep st;
+    uint32_t magic;
     if (len == 0u) {
       continue;
     }
-    if (!ha_sil_decode_step(payload, len, &st)) {
+    magic = ha_sil_pins_take_record(&b->pins, payload, len);
+    if (magic == 0u) {
       b->records_undecodable++;
-    } else if (st.magic == HA_SIL_MAGIC_STEP) {
-      b->pins.in = st;
-      b->pins.have_in = 1;
-    } else if (st.magic == HA_SIL_MAGIC_RESET) {
+    } else if (magic == HA_SIL_MAGIC_RESET) {
       start_firmware(b);
     }
   }

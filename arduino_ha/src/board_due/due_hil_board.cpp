@@ -55,16 +55,13 @@ DueHilRequest due_hil_board_take_records(DueHilBoard *hil) {
     const uint8_t *payload = nullptr;
     const size_t len =
         pil_frame_rx_byte(&hil->records, static_cast<uint8_t>(SerialUSB.read()), &payload);
-    HaSilStep st;
     if (len == 0u) {
       continue;
     }
-    if (!ha_sil_decode_step(payload, len, &st)) {
+    const uint32_t magic = ha_sil_pins_take_record(&hil->pins, payload, len);
+    if (magic == 0u) {
       hil->records_undecodable++;
-    } else if (st.magic == HA_SIL_MAGIC_STEP) {
-      hil->pins.in = st;
-      hil->pins.have_in = 1;
-    } else if (st.magic == HA_SIL_MAGIC_RESET) {
+    } else if (magic == HA_SIL_MAGIC_RESET) {
       hil->pins.hp_reset = 0; /* the Due's pins come up low: the HP out of reset */
       return DUE_HIL_RESET;
     }

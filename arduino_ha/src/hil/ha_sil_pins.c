@@ -2,6 +2,8 @@
 
 #include <string.h>
 
+#include "ha_sil_records.h"
+
 static HaSilPins *as_pins(void *ctx) { return (HaSilPins *)ctx; }
 
 static void pins_write_servos(void *ctx, const HaSurfaces *s) {
@@ -77,4 +79,16 @@ void ha_sil_pins_board(HaBoard *board) {
   board->kick_watchdog = pins_kick;
   board->read_retained = pins_read_retained;
   board->write_retained = pins_write_retained;
+}
+
+uint32_t ha_sil_pins_take_record(HaSilPins *pins, const uint8_t *bytes, size_t len) {
+  HaSilStep st;
+  if (!ha_sil_decode_step(bytes, len, &st)) {
+    return 0u;
+  }
+  if (st.magic == HA_SIL_MAGIC_STEP) {
+    pins->in = st;
+    pins->have_in = 1;
+  }
+  return st.magic;
 }

@@ -6,6 +6,7 @@
 #ifndef HA_SIL_PINS_H
 #define HA_SIL_PINS_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "../core/ha_board.h"
@@ -29,6 +30,11 @@ typedef struct {
 /* Fills every Board function but micros() and the two byte ports. The board's ctx must point to
  * a struct whose first member is the HaSilPins (C's first-member rule makes the cast exact). */
 void ha_sil_pins_board(HaBoard *board);
+
+/* A control record as a board in real time takes it: a step record's inputs become the pins'.
+ * Returns the record's magic (HA_SIL_MAGIC_STEP, _POLL or _RESET: the caller restarts the
+ * firmware on a reset), or 0 for bytes that are no record, which the caller counts. */
+uint32_t ha_sil_pins_take_record(HaSilPins *pins, const uint8_t *bytes, size_t len);
 
 #ifdef __cplusplus
 }
