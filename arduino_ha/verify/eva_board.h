@@ -13,16 +13,22 @@
 #include "ha_aircraft.h"
 #include "ha_board.h"
 #include "ha_surfaces.h"
+#include "null_outputs.h"
 
-static float any_float(void) {
+/* any_float() and any_double(): one rule for "any value" of both types, in either mode. */
 #ifdef HA_EVA_ANY_BITS
-  float f;
-  Frama_C_make_unknown((char *)&f, sizeof f);
-  return f;
+#define EVA_ANY_VALUE(type, finite_interval)    \
+  static type any_##type(void) {                \
+    type v;                                     \
+    Frama_C_make_unknown((char *)&v, sizeof v); \
+    return v;                                   \
+  }
 #else
-  return Frama_C_float_interval(-FLT_MAX, FLT_MAX);
+#define EVA_ANY_VALUE(type, finite_interval) \
+  static type any_##type(void) { return (finite_interval); }
 #endif
-}
+EVA_ANY_VALUE(float, Frama_C_float_interval(-FLT_MAX, FLT_MAX))
+EVA_ANY_VALUE(double, Frama_C_double_interval(-DBL_MAX, DBL_MAX))
 
 static uint32_t any_u32(void) { return Frama_C_unsigned_int_interval(0u, UINT32_MAX); }
 
@@ -83,15 +89,6 @@ static int eva_read_battery_v(void *ctx, float *battery_v) {
   *battery_v = any_float();
   return any_reading_ok();
 }
-static void eva_set_hp_reset(void *ctx, int asserted) {
-  (void)ctx;
-  (void)asserted;
-}
-static void eva_set_leds(void *ctx, uint8_t leds) {
-  (void)ctx;
-  (void)leds;
-}
-static void eva_kick_watchdog(void *ctx) { (void)ctx; }
 /* Backup registers holding anything at all: a power-up's random bits, a torn write. */
 static int eva_read_retained(void *ctx, uint32_t words[HA_RETAINED_WORDS]) {
   uint32_t i;
@@ -107,10 +104,11 @@ static void eva_write_retained(void *ctx, const uint32_t words[HA_RETAINED_WORDS
 }
 
 /* The Board's entries above, for a designated initializer. */
-#define HA_EVA_BOARD_ENTRIES                                                                      \
-  .micros = eva_micros, .write_servos = eva_write_servos, .read_rc = eva_read_rc,                 \
-  .read_airspeed_ftps = eva_read_airspeed_ftps, .read_battery_v = eva_read_battery_v,             \
-  .set_hp_reset = eva_set_hp_reset, .set_leds = eva_set_leds, .kick_watchdog = eva_kick_watchdog, \
-  .read_retained = eva_read_retained, .write_retained = eva_write_retained
+#define HA_EVA_BOARD_ENTRIES                                                          \
+  .micros = eva_micros, .write_servos = eva_write_servos, .read_rc = eva_read_rc,     \
+  .read_airspeed_ftps = eva_read_airspeed_ftps, .read_battery_v = eva_read_battery_v, \
+  .set_hp_reset = null_set_hp_reset, .set_leds = null_set_leds,                       \
+  .kick_watchdog = null_kick_watchdog, .read_retained = eva_read_retained,            \
+  .write_retained = eva_write_retained
 
 #endif /* HA_EVA_BOARD_H */

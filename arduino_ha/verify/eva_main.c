@@ -29,16 +29,6 @@
 #define HA_EVA_STEPS 4
 #endif
 
-static double any_double(void) {
-#ifdef HA_EVA_ANY_BITS
-  double d;
-  Frama_C_make_unknown((char *)&d, sizeof d);
-  return d;
-#else
-  return Frama_C_double_interval(-DBL_MAX, DBL_MAX);
-#endif
-}
-
 static void any_hp_command(HaHpCommand *cmd) {
   cmd->seq = any_u32();
   cmd->stamp_sec = any_u32();

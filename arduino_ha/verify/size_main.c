@@ -8,6 +8,7 @@
 
 #include "ha_aircraft.h"
 #include "ha_app.h"
+#include "null_outputs.h"
 
 static volatile uint32_t fake_clock_us;
 
@@ -41,15 +42,6 @@ static int size_read_battery_v(void *ctx, float *battery_v) {
   *battery_v = 0.0f;
   return 0;
 }
-static void size_set_hp_reset(void *ctx, int asserted) {
-  (void)ctx;
-  (void)asserted;
-}
-static void size_set_leds(void *ctx, uint8_t leds) {
-  (void)ctx;
-  (void)leds;
-}
-static void size_kick_watchdog(void *ctx) { (void)ctx; }
 static volatile uint32_t backup_words[HA_RETAINED_WORDS];
 static int size_read_retained(void *ctx, uint32_t words[HA_RETAINED_WORDS]) {
   uint32_t i;
@@ -77,9 +69,9 @@ int main(void) {
       .read_rc = size_read_rc,
       .read_airspeed_ftps = size_read_airspeed_ftps,
       .read_battery_v = size_read_battery_v,
-      .set_hp_reset = size_set_hp_reset,
-      .set_leds = size_set_leds,
-      .kick_watchdog = size_kick_watchdog,
+      .set_hp_reset = null_set_hp_reset,
+      .set_leds = null_set_leds,
+      .kick_watchdog = null_kick_watchdog,
       .read_retained = size_read_retained,
       .write_retained = size_write_retained,
   };
