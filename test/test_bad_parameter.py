@@ -16,7 +16,7 @@ def master():
 
 
 def _built(pattern):
-    return os.path.join(os.environ["DRONE_ROS_WS"], "devel", "lib", "drone_ros", pattern)
+    return os.path.join(os.environ.get("DRONE_ROS_WS", ""), "devel", "lib", "drone_ros", pattern)
 
 
 # controller_<aircraft>: whichever aircraft the workspace was built for.
