@@ -303,8 +303,23 @@ class Fdm:
         psi = math.radians(heading_deg)
         wn, we, wd = self._mean_wind_ned_fps()
         self._apply_servos([trim.elevator_deg, 0.0, 0.0, trim.throttle])
-        self._init_state(ex, (vt_fps * math.cos(psi) + wn, vt_fps * math.sin(psi) + we, wd), alpha, 0.0)
+        air_ned = (vt_fps * math.cos(psi), vt_fps * math.sin(psi), 0.0)
+        self._init_state(ex, tuple(a + w for a, w in zip(air_ned, (wn, we, wd))), alpha, 0.0)
         self._start([trim.elevator_deg, 0.0, 0.0, trim.throttle])
+        # Launched in the air where it starts: the turbulence's gust there (drawn stationary by
+        # _start) joins the mean wind in the start's ground velocity, so the first period flies at
+        # the trim airspeed and angle of attack. In the mean wind alone, the gust at the start
+        # point was a step of up to 16 ft/s on the airspeed and 13 deg on alpha (moderate
+        # turbulence), the launch's doing, which the HA then had to fly out of.
+        if any(self._gust_now):
+            gust = tuple(g * FT_PER_M for g in self._gust_now)
+            self._init_state(ex, tuple(a + w + g for a, w, g in zip(air_ned, (wn, we, wd), gust)), alpha, 0.0)
+            self._set_wind(self._gust_now)
+            # JSBSim's initial condition knows the mean wind only: its models run once without
+            # integrating (time stays at zero) for the start's airspeed and alpha in that air.
+            ex.suspend_integration()
+            ex.run()
+            ex.resume_integration()
         return trim
 
     def reset_on_ground(self, lat_deg, lon_deg, ground_msl_m, heading_deg, held=False):

@@ -32,6 +32,26 @@ def test_headwind_slows_the_ground_speed_not_the_air_speed():
     assert abs(t.ve_mps) < 0.1
 
 
+@pytest.mark.parametrize("seed", range(8))
+def test_an_airborne_start_in_turbulence_flies_at_its_trim_airspeed_in_the_air_where_it_starts(seed):
+    """The gust at the start point is part of the air the aircraft is launched in: the start is
+    the trim airspeed and angle of attack in that air, not in the mean wind (which left a step of
+    up to 16 ft/s and 13 deg for the first period to meet: a campaign's cold start launched at
+    1.04 times the stall speed and stalled under the HA a second later)."""
+    with Fdm(AIRCRAFT, seed=seed, wind=Wind(mean_from_deg=277.6, mean_mps=5.2)) as calm:
+        calm.reset_airborne(47.4, 8.5, 420.0, 61.0, 82.0, 18.3)
+        trim_alpha_deg = calm.truth().alpha_deg
+    with Fdm(AIRCRAFT, seed=seed, wind=Wind(mean_from_deg=277.6, mean_mps=5.2, turbulence="moderate")) as fdm:
+        fdm.reset_airborne(47.4, 8.5, 420.0, 61.0, 82.0, 18.3)
+        start = fdm.truth()
+        fdm.advance(0.01)
+        first = fdm.truth()
+    assert start.airspeed_true_mps == pytest.approx(18.3, abs=0.01)
+    assert start.alpha_deg == pytest.approx(trim_alpha_deg, abs=0.01)
+    assert first.airspeed_true_mps == pytest.approx(18.3, abs=0.15)   # one period of gusts
+    assert first.alpha_deg == pytest.approx(trim_alpha_deg, abs=1.0)
+
+
 def airspeed_spread(turbulence):
     with Fdm(AIRCRAFT, seed=9, wind=Wind(mean_from_deg=200.0, mean_mps=4.0, turbulence=turbulence)) as fdm:
         fdm.reset_airborne(47.4, 8.5, 420.0, 100.0, 0.0, 18.0)
