@@ -6,13 +6,6 @@ import os
 import subprocess
 
 import pytest
-from stack_testing.ros_master import private_master
-
-
-@pytest.fixture(scope="module")
-def master():
-    with private_master() as env:
-        yield env
 
 
 def _built(pattern):

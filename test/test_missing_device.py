@@ -8,13 +8,6 @@ import threading
 import time
 
 import pytest
-from stack_testing.ros_master import private_master
-
-
-@pytest.fixture(scope="module")
-def master():
-    with private_master() as env:
-        yield env
 
 
 def node_log_until(env, node, args, wanted, timeout_s=30.0):
