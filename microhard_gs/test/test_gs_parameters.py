@@ -75,7 +75,7 @@ def test_out_of_range_value_is_echoed_as_the_old_one_with_the_reason(gs):
 def test_rate_and_lqr_weight_cannot_change_in_flight_and_the_operator_learns_why(gs):
     assert set_param(gs, "Q_weight", 99.0) == pytest.approx(1.0)
     assert gh.wait_statustext(gs.conn, "Q_weight refused") is not None
-    assert set_param(gs, "dt", 0.02) == pytest.approx(0.05)
+    assert set_param(gs, "dt", 0.02) == pytest.approx(0.01)
     assert gh.wait_statustext(gs.conn, "dt refused") is not None
 
 

@@ -321,7 +321,7 @@ def _regions(c, roll, pitch, rate):
 
 def _decision(c, dec):
     """The decision's period, timeouts and restart cap, each consistent with the others."""
-    rate_hz = need(dec, "rate_hz", 1.0, 1000.0)
+    rate_hz = ranged({"decision": dec}, "decision/rate_hz")
     c["period_us"] = us(1.0 / rate_hz, "rate_hz")
     c["late_periods_tolerated"] = whole(dec, "late_periods_tolerated", 0.0, 100.0)
     c["no_command_timeout_us"] = us(positive(dec, "no_command_timeout_s"),

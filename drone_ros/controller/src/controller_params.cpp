@@ -197,10 +197,21 @@ bool build_controller_params(const ParamLookup &lookup, ControllerParams *params
   };
   Reader r(recording, error);
   ControllerParams p;
-  // The thesis ran at 20 Hz; the HA decides at up to 100 Hz, so the HP may not step faster.
+  // The thesis ran at 20 Hz; the HA decides at up to 100 Hz, so the HP may not step faster, and
+  // not slower than the HA either (below).
   p.gnc.dt_s = r.get_tunable("dt");
   p.rate_hz = p.gnc.dt_s > 0.0 ? 1.0 / p.gnc.dt_s : 0.0;
   const AttitudeLimits limits = read_limits(r, p.gnc);
+  // The HA counts each of its periods without a new command as late and takes over after
+  // decision.late_periods_tolerated of them in a row: a controller stepping slower than the HA
+  // decides would be taken over at every hand-back and never fly.
+  const double ha_rate_hz = r.get_limit(limits_ranges::kDecisionRateHz);
+  std::ostringstream slower;
+  slower << "dt = " << p.gnc.dt_s << " s is longer than the HA's period (limits' decision.rate_hz = "
+         << ha_rate_hz << " Hz: " << 1.0 / ha_rate_hz
+         << " s): the HA would find a period without a new command every time and never hand "
+            "control to the HP";
+  r.require(p.gnc.dt_s * ha_rate_hz <= 1.0 + 1e-9, slower.str());
   read_trims(r, p);
   read_guidance(r, p, limits);
   read_estimator_and_node(r, p);

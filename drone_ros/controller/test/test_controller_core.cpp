@@ -84,6 +84,18 @@ TEST(ControllerParams, OutOfRangeOrMissingValuesAreRefusedByName) {
   EXPECT_NE(refusal({{"max_bank_deg", 70.0}}).find("max_bank_deg"), std::string::npos);
 }
 
+// controller_param.yaml's dt was the thesis's 20 Hz while the HA decides at 100 Hz: the HA found
+// four periods in five without a new command, took over at every hand-back for DEADLINE_MISS and
+// latched after its restart cap, and the HP never flew (real time, 2026-12-06).
+TEST(ControllerParams, AControllerSlowerThanTheHaIsRefusedBeforeItFlies) {
+  const std::string why = refusal({{"dt", 0.05}});
+  EXPECT_NE(why.find("dt = 0.05 s is longer than the HA's period"), std::string::npos) << why;
+  EXPECT_NE(why.find("decision.rate_hz = 100 Hz"), std::string::npos) << why;
+  EXPECT_DOUBLE_EQ(aircraft({{"dt", 0.05}, {"limits/decision/rate_hz", 20.0}}).rate_hz, 20.0);
+  EXPECT_DOUBLE_EQ(aircraft({{"dt", 0.02}, {"limits/decision/rate_hz", 50.0}}).rate_hz, 50.0);
+  EXPECT_FALSE(refusal({{"dt", 0.02}, {"limits/decision/rate_hz", 51.0}}).empty());
+}
+
 // The set in force after loading the aircraft's files, as the node holds it.
 struct InForce {
   controller::ControllerParams params;
@@ -131,11 +143,11 @@ TEST(Tunables, RateAndLqrWeightAreFixedWhileRunningAndSaySo) {
   auto r = f.set("dt", 0.02);
   EXPECT_FALSE(r.accepted);
   EXPECT_NE(r.reason.find("launch"), std::string::npos) << r.reason;
-  EXPECT_DOUBLE_EQ(f.params.gnc.dt_s, 0.05);
+  EXPECT_DOUBLE_EQ(f.params.gnc.dt_s, 0.01);
   r = f.set("Q_weight", 99.0);
   EXPECT_FALSE(r.accepted);
   EXPECT_NE(r.reason.find("LQR"), std::string::npos) << r.reason;
-  EXPECT_TRUE(f.set("dt", 0.05).accepted);  // the value in force again: a GCS repeating itself
+  EXPECT_TRUE(f.set("dt", 0.01).accepted);  // the value in force again: a GCS repeating itself
 }
 
 TEST(Tunables, LimitsAndCommandsAreNotTunables) {

@@ -6,7 +6,7 @@ machine.
 
 Rates: the HA's /decision_status and /pwm at its 100 Hz (limits.yaml decision.rate_hz), /ins at
 the VN-200's 100 Hz (vn200.launch rate_hz), the controller's /servo_op, /data, /to_hil at its
-control rate (20 Hz, controller_param.yaml dt 0.05; or 100 Hz), /hil/truth once per HA period in
+control rate (100 Hz, controller_param.yaml dt 0.01; or 20 Hz with an HA at 20 Hz), /hil/truth once per HA period in
 HiL, /diagnostics and /rosout_agg at 1 Hz."""
 import io
 import os
