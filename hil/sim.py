@@ -120,18 +120,23 @@ class Waiter:
 
 class LatencyProbe:
     """Real time: from a VN-200 packet written to the HP's port to the HA's servo output driven by
-    the first HP command computed after the `vn200` node delivered it. All times are this
-    machine's clocks: delivery and the command's stamp on the wall clock (in real time
-    ServoCommand.stamp is wall time), the packet's write and the servo output on the monotonic
-    clock, the one ha_sil's micros() counts (its reply's t_us is the period's time). Only while
-    the HP flies."""
+    the first HP command computed from it. Which packet a command came from, the controller says:
+    its /to_hil record of the step carries the stamp of the /ins its GNC held (hil_data.ins_stamp),
+    and the vn200 node stamps a packet's every topic alike, /vn200/temperature's included, so the
+    stamp names the packet. (Before, the packet was the newest whose /vn200/temperature had reached
+    this node before the command's stamp: a controller stepping on the packet computes its command
+    before this Python node has taken the packet in, and was charged a period more.) The packet's
+    write and the servo output are on the monotonic clock, the one ha_sil's micros() counts (its
+    reply's t_us is the period's time). Only while the HP flies."""
 
     def __init__(self):
         self.lock = threading.Lock()
-        self.written = {}    # packet index -> wall time written
-        self.delivered = []  # wall time the vn200 node's last topic of packet i arrived here
-        self.commands = deque(maxlen=2000)  # (seq, stamp wall time, packet index used)
-        self.samples = []
+        self.written = {}     # packet index -> monotonic time written
+        self.delivered = {}   # packet stamp (ns) -> packet index, in the order the node delivered
+        self.n_delivered = 0
+        self.used = {}        # command stamp (ns) -> stamp (ns) of the packet its step held
+        self.commands = deque(maxlen=2000)  # (seq, command stamp ns) not yet seen by the HA
+        self.applied = []     # (command stamp ns, monotonic time the HA's servos took it)
 
     def on_written(self, first, n):
         now = time.monotonic()
@@ -139,20 +144,18 @@ class LatencyProbe:
             for i in range(first, first + n):
                 self.written[i] = now
 
-    def on_delivered(self):
+    def on_delivered(self, msg):
         with self.lock:
-            self.delivered.append(time.time())
+            self.delivered.setdefault(msg.header.stamp.to_nsec(), self.n_delivered)
+            self.n_delivered += 1
 
     def on_command(self, msg):
-        stamp = msg.stamp.to_sec()
         with self.lock:
-            used = None
-            for i in range(len(self.delivered) - 1, -1, -1):
-                if self.delivered[i] <= stamp:
-                    used = i
-                    break
-            if used is not None:
-                self.commands.append((msg.seq, used))
+            self.commands.append((msg.seq, msg.stamp.to_nsec()))
+
+    def on_record(self, msg):
+        with self.lock:
+            self.used[msg.header.stamp.to_nsec()] = msg.ins_stamp.to_nsec()
 
     def on_reply(self, reply, mono_now):
         # ha_sil's period time: CLOCK_MONOTONIC in microseconds, wrapped at 2^32.
@@ -162,13 +165,18 @@ class LatencyProbe:
             # Commands the HA has seen (or, after an HP restart restarted the sequence, never will).
             while self.commands and (self.commands[0][0] <= reply.last_seq or
                                      self.commands[0][0] > reply.last_seq + 100000):
-                seq, used = self.commands.popleft()
-                if (seq <= reply.last_seq and reply.controller == DecisionStatus.CONTROLLER_HP and used in self.written and
-                        (not self.samples or self.samples[-1][0] != used)):
-                    self.samples.append((used, now - self.written[used]))
+                seq, stamp = self.commands.popleft()
+                if seq <= reply.last_seq and reply.controller == DecisionStatus.CONTROLLER_HP:
+                    self.applied.append((stamp, now))
 
     def summary(self):
-        lat = sorted(v for _, v in self.samples)
+        with self.lock:
+            first = {}  # packet index -> when the first command computed from it reached the servos
+            for stamp, t in self.applied:
+                i = self.delivered.get(self.used.get(stamp))
+                if i is not None and i in self.written and (i not in first or t < first[i]):
+                    first[i] = t
+            lat = sorted(t - self.written[i] for i, t in first.items())
         if not lat:
             return None
         q = lambda f: round(lat[min(len(lat) - 1, int(f * len(lat)))] * 1000.0, 2)  # noqa: E731
@@ -450,9 +458,9 @@ class Simulation:
             self.fault = faults.inject(self.fault_name, self, self.fault_at_s, self.fault_duration_s, self.fault_params)
 
     # --- callbacks -------------------------------------------------------------------------
-    def on_vn_delivered(self, _msg):
+    def on_vn_delivered(self, msg):
         if self.latency is not None:
-            self.latency.on_delivered()
+            self.latency.on_delivered(msg)
         self.waiter.hit("vn")
 
     def on_servo_op(self, msg):
@@ -461,6 +469,8 @@ class Simulation:
         self.waiter.hit("servo_op", msg)
 
     def on_to_hil(self, msg):
+        if self.latency is not None:
+            self.latency.on_record(msg)
         if not self.waypoint_log or self.waypoint_log[-1][1] != msg.waypoint_index:
             self.waypoint_log.append((round(self.sim_t_s, 3), int(msg.waypoint_index)))
 

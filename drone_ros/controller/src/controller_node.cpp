@@ -1,5 +1,7 @@
 #include "controller_node.h"
 
+#include <algorithm>
+
 #include <XmlRpcValue.h>
 
 #include <cmath>
@@ -63,7 +65,9 @@ ControllerNode::ControllerNode(ros::NodeHandle &nh, ros::NodeHandle &pnh,
   start_diagnostics();
   start_stepping(nh);
   ROS_INFO("controller_%s stepping at %.1f Hz%s", GNC_AIRCRAFT_NAME, params_.rate_hz,
-           lockstep_ ? " on /hil/lockstep" : "");
+           lockstep_ ? " on /hil/lockstep"
+           : pacer_  ? " on the VN-200's packets"
+                     : " on its timer");
 }
 
 void ControllerNode::subscribe_home_and_plan(ros::NodeHandle &nh) {
@@ -167,6 +171,12 @@ void ControllerNode::start_stepping(ros::NodeHandle &nh) {
     lockstep_wait_timer_ = nh.createSteadyTimer(
         ros::WallDuration(kLockstepWaitS),
         [this](const ros::SteadyTimerEvent &) { on_lockstep_wait_over(); }, true, false);
+  } else if (params_.packets_per_step > 0) {
+    pacer_ = std::make_unique<PacketPacer>(params_.gnc.dt_s, params_.packets_per_step);
+    // One shot, armed again by every step: it fires only when no packet has run one.
+    timer_ = nh.createSteadyTimer(
+        ros::WallDuration(PacketPacer::kFallbackPeriods * params_.gnc.dt_s),
+        [this](const ros::SteadyTimerEvent &) { on_fallback(); }, true);
   } else {
     timer_ =
         nh.createSteadyTimer(ros::WallDuration(params_.gnc.dt_s), &ControllerNode::on_timer, this);
@@ -250,6 +260,26 @@ void ControllerNode::on_timer(const ros::SteadyTimerEvent &event) {
   step(now_s(), ros::Time::now());
 }
 
+void ControllerNode::step_paced(bool on_packet) {
+  const double now = ros::SteadyTime::now().toSec();
+  if (!on_packet) {
+    ++fallback_steps_;
+  }
+  pacer_->stepped(now);
+  step(now, ros::Time::now());
+  timer_.stop();
+  timer_.setPeriod(ros::WallDuration(std::max(pacer_->fallback_at_s() - now, 1e-4)));
+  timer_.start();
+}
+
+void ControllerNode::on_fallback() {
+  // A firing already on its way when a packet's step re-armed the timer is not a late packet.
+  if (ros::SteadyTime::now().toSec() < pacer_->fallback_at_s() - 1e-4) {
+    return;
+  }
+  step_paced(false);
+}
+
 // Lockstep: the simulator publishes one /hil/lockstep per simulation step and waits for this
 // node's /servo_op before it goes on. The step runs once every message the simulator declares
 // has been received here (LockstepGate), whichever connection brings it last.
@@ -289,6 +319,9 @@ void ControllerNode::on_lockstep(const drone_ros::LockstepStep::ConstPtr &msg) {
 
 void ControllerNode::on_input(LockstepInput input) {
   if (!lockstep_) {
+    if (pacer_ && pacer_->on_sensor(input, ros::SteadyTime::now().toSec())) {
+      step_paced(true);
+    }
     return;
   }
   gate_.received(input);
@@ -353,6 +386,7 @@ void ControllerNode::step(double now, const ros::Time &stamp) {
   hil.header.stamp = stamp;
   hil.header.frame_id = frame_id_;
   fill_hil(out_, &hil);
+  hil.ins_stamp = board_.ins().header.stamp;
   hil_pub_.publish(hil);
   diag_.update();
 }
@@ -378,6 +412,10 @@ void ControllerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper &stat)
   stat.add("late_steps", late_steps_);
   if (lockstep_) {
     stat.add("lockstep_wait_timeouts", lockstep_wait_timeouts_);
+  }
+  if (pacer_) {
+    stat.add("vn200_packets_per_step", params_.packets_per_step);
+    stat.add("fallback_steps", fallback_steps_);
   }
   stat.add("invalid_steps", invalid_steps_);
   stat.add("restarts", restarts_);

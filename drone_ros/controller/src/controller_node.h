@@ -1,6 +1,7 @@
-// controller_<aircraft>: steps the aircraft's GNC on a monotonic timer and publishes the HP
-// command (/servo_op), the ground telemetry (/data) and the HiL record (/to_hil). Thin: the
-// sensor bookkeeping is SensorBoard, the message building command_builder, the flying the GNC.
+// controller_<aircraft>: steps the aircraft's GNC on the VN-200's packets (packet_pacer.h; on a
+// monotonic timer when the sensor's rate is not given) and publishes the HP command (/servo_op),
+// the ground telemetry (/data) and the HiL record (/to_hil). Thin: the sensor bookkeeping is
+// SensorBoard, the message building command_builder, the flying the GNC.
 // With ~lockstep (a HiL flight whose simulator owns time) it steps instead each time the
 // simulator's /hil/lockstep crosses a multiple of dt, once that step's declared inputs are in,
 // and measures sensor ages on that clock.
@@ -24,6 +25,7 @@
 
 #include "controller_params.h"
 #include "lockstep_gate.h"
+#include "packet_pacer.h"
 #include "sensor_board.h"
 
 namespace controller {
@@ -54,6 +56,9 @@ class ControllerNode {
   // last step, so that when a message arrived in wall time between two steps changes nothing.
   double now_s() const { return lockstep_ ? lockstep_step_s_ : ros::SteadyTime::now().toSec(); }
   void on_timer(const ros::SteadyTimerEvent &event);
+  // Real time on the VN-200's packets: a step now, on a packet or on the fallback timer.
+  void step_paced(bool on_packet);
+  void on_fallback();
   void on_lockstep(const drone_ros::LockstepStep::ConstPtr &msg);
   // A sensor message arrived (after the board took it): may complete a pending lockstep step.
   void on_input(LockstepInput input);
@@ -74,6 +79,8 @@ class ControllerNode {
   std::vector<ros::Subscriber> subs_;
   ros::Publisher servo_pub_, data_pub_, hil_pub_;
   ros::SteadyTimer timer_;
+  std::unique_ptr<PacketPacer> pacer_;  // real time with ~vn200_rate_hz
+  uint64_t fallback_steps_ = 0;         // steps the fallback ran: a packet late or lost
   bool lockstep_ = false;
   // Longer than any scheduling hiccup, well inside the simulator's wait for a command.
   static constexpr double kLockstepWaitS = 2.0;

@@ -64,6 +64,16 @@ class Reader {
     return whole(key, get(key, 0.0, max_choice));
   }
 
+  // An optional value: false when absent (the caller's default stands), else read as get().
+  bool get_optional(const std::string &key, double lo, double hi, double *v) {
+    double probe = 0.0;
+    if (!ok_ || !lookup_(key, &probe)) {
+      return false;
+    }
+    *v = get(key, lo, hi);
+    return ok_;
+  }
+
   void require(bool condition, const std::string &what) {
     if (ok_ && !condition) {
       fail(what);
@@ -178,6 +188,16 @@ void read_estimator_and_node(Reader &r, ControllerParams &p) {
             "drone_ros/gnc/design/design_gains.py aircraft/" GNC_AIRCRAFT_NAME);
   p.sensor_timeout_s = r.get_tunable("sensor_timeout_s");
   r.require(p.sensor_timeout_s >= 2.0 * g.dt_s, "sensor_timeout_s must cover at least two periods");
+  // Stepping on the VN-200's packets needs a whole number of them per period (the VN-200's rates
+  // divide 800 Hz; 800 is the most it sends).
+  double vn200_rate_hz = 0.0;
+  if (r.get_optional("vn200_rate_hz", 1.0, 800.0, &vn200_rate_hz)) {
+    const double per_step = vn200_rate_hz * g.dt_s;
+    r.require(per_step > 0.5 && std::fabs(per_step - std::round(per_step)) < 1e-6,
+              "vn200_rate_hz x dt must be a whole number of packets a step (the controller steps "
+              "on the VN-200's packets)");
+    p.packets_per_step = static_cast<uint32_t>(std::lround(per_step));
+  }
 }
 
 }  // namespace
@@ -207,8 +227,9 @@ bool build_controller_params(const ParamLookup &lookup, ControllerParams *params
   // decides would be taken over at every hand-back and never fly.
   const double ha_rate_hz = r.get_limit(limits_ranges::kDecisionRateHz);
   std::ostringstream slower;
-  slower << "dt = " << p.gnc.dt_s << " s is longer than the HA's period (limits' decision.rate_hz = "
-         << ha_rate_hz << " Hz: " << 1.0 / ha_rate_hz
+  slower << "dt = " << p.gnc.dt_s
+         << " s is longer than the HA's period (limits' decision.rate_hz = " << ha_rate_hz
+         << " Hz: " << 1.0 / ha_rate_hz
          << " s): the HA would find a period without a new command every time and never hand "
             "control to the HP";
   r.require(p.gnc.dt_s * ha_rate_hz <= 1.0 + 1e-9, slower.str());

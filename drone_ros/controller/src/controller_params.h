@@ -29,6 +29,9 @@ struct ControllerParams {
   double aileron_trim_rad = 0.0;
   double rudder_trim_rad = 0.0;
   bool home_cmd = false;
+  // Real time: a step on every packets_per_step-th VN-200 packet (packet_pacer.h), from the
+  // optional ~vn200_rate_hz (flight.launch gives the sensor's rate); 0 without it: on the timer.
+  uint32_t packets_per_step = 0;
 };
 
 // The raw values a ControllerParams was built from, by key: the set in force.

@@ -14,6 +14,7 @@
 #include "home_vectors.h"
 #include "hp_command.h"
 #include "lockstep_gate.h"
+#include "packet_pacer.h"
 #include "sensor_board.h"
 #include "servo_command_as_ha.h"
 #include "tunables_table.h"
@@ -530,4 +531,68 @@ TEST(SensorBoard, TakesAHomeExactlyWhenTheHasJudgeDoes) {
     EXPECT_EQ(board.home_valid(), v.valid) << v.what;
     EXPECT_EQ(board.dropped_messages(), v.valid ? 0u : 1u) << v.what;
   }
+}
+
+// Real time on the VN-200's packets (packet_pacer.h): the five topics of one packet, in the
+// order the vn200 node publishes them, the last arriving at t_s.
+bool packet(controller::PacketPacer &pacer, double t_s) {
+  using controller::LockstepInput;
+  bool due = false;
+  for (LockstepInput in : {controller::kInIns, controller::kInAttitude, controller::kInGpsPosition,
+                           controller::kInGpsVelocity, controller::kInImu}) {
+    EXPECT_FALSE(due) << "a step before the packet's last message";
+    due = pacer.on_sensor(in, t_s);
+  }
+  return due;
+}
+
+TEST(PacketPacer, TheStepRunsWhenThePacketsLastMessageArrivesNotOnATimer) {
+  controller::PacketPacer pacer(0.01, 1);
+  EXPECT_TRUE(packet(pacer, 1.0000));
+  pacer.stepped(1.0000);
+  EXPECT_DOUBLE_EQ(pacer.fallback_at_s(), 1.0125);
+  EXPECT_TRUE(packet(pacer, 1.0102));  // a little late: stepped on arrival all the same
+  pacer.stepped(1.0102);
+  EXPECT_FALSE(pacer.on_sensor(controller::kInPwm, 1.0150));  // the HA's report is no packet
+}
+
+TEST(PacketPacer, MessagesOfTwoPacketsInterleavedOverTheirConnectionsCountAsTwo) {
+  controller::PacketPacer pacer(0.01, 1);
+  for (auto in : {controller::kInIns, controller::kInAttitude, controller::kInGpsPosition,
+                  controller::kInGpsVelocity}) {
+    EXPECT_FALSE(pacer.on_sensor(in, 1.0));
+  }
+  EXPECT_FALSE(pacer.on_sensor(controller::kInIns, 1.0));  // packet 2's /ins before 1's IMU
+  EXPECT_TRUE(pacer.on_sensor(controller::kInImu, 1.0));
+  pacer.stepped(1.0);
+  EXPECT_EQ(pacer.complete_packets(), 1u);
+}
+
+TEST(PacketPacer, ATwentyHertzControllerStepsOnEveryFifthPacketOfAHundredHertzSensor) {
+  controller::PacketPacer pacer(0.05, 5);
+  int steps = 0;
+  for (int k = 0; k < 20; ++k) {
+    const double t = 1.0 + 0.01 * k;
+    if (packet(pacer, t)) {
+      pacer.stepped(t);
+      ++steps;
+      EXPECT_EQ(k % 5, 4) << "stepped on packet " << k;
+    }
+  }
+  EXPECT_EQ(steps, 4);
+}
+
+TEST(PacketPacer, ALostPacketLeavesTheStepToTheFallbackAndTheLateOneWaitsForTheNext) {
+  controller::PacketPacer pacer(0.01, 1);
+  ASSERT_TRUE(packet(pacer, 1.000));
+  pacer.stepped(1.000);
+  // Packet 2 lost: the node's fallback steps at 1.0125, within 1.25 periods, never two.
+  EXPECT_DOUBLE_EQ(pacer.fallback_at_s(), 1.0125);
+  pacer.stepped(1.0125);
+  // Packet 3 comes 1 ms after that step: not a second step in a millisecond ...
+  EXPECT_FALSE(packet(pacer, 1.0135));
+  // ... the next packet steps, on its own last message.
+  EXPECT_TRUE(packet(pacer, 1.0230));
+  pacer.stepped(1.0230);
+  EXPECT_TRUE(packet(pacer, 1.0330));
 }
