@@ -301,7 +301,8 @@ static const HaFirmwareOptions k_options = {.link_up_text = "HA QEMU link up",
                                             .period_us = 0u,
                                             .reads_per_pass = 1u,
                                             .command_tap = on_command,
-                                            .tap_ctx = &g_pil};
+                                            .tap_ctx = &g_pil,
+                                            .pace_by_command = PIL_REALTIME};
 
 /* ---- the control records ---- */
 

@@ -396,6 +396,9 @@ int main(int argc, char **argv) {
   sil.opts.link_up_text = "HA SIL link up";
   sil.opts.period_us = args.rate_hz > 0.0 ? (uint32_t)(1e6 / args.rate_hz) : 0u;
   sil.opts.reads_per_pass = 8u; /* 512 bytes a port per pass, 200 us apart */
+  /* Real time: on its own clock, as the Due; in lockstep the simulator's records set the periods.
+   */
+  sil.opts.pace_by_command = args.realtime;
   sil.opts.command_tap = on_command;
   sil.opts.tap_ctx = &sil;
   if (open_ports(&sil, &args) != 0) {

@@ -43,6 +43,7 @@ int main(void) {
   HaFirmwareOptions opts = {"HA EVA link up", "rate_hz", 0u, 0u, NULL, NULL};
   opts.period_us = Frama_C_unsigned_int_interval(0u, UINT32_MAX);
   opts.reads_per_pass = Frama_C_unsigned_int_interval(0u, 8u);
+  opts.pace_by_command = Frama_C_interval(0, 1); /* on a clock, or on the command's arrival */
   ha_firmware_start(&fw, &board, &ha_aircraft_config, &opts);
   while (Frama_C_nondet(0, 1)) {
     switch (Frama_C_interval(0, 3)) {

@@ -16,8 +16,9 @@ the work, which on a loaded machine the wall time hides.
 
 One flight per rate, SECONDS of simulated time with the HP crash at a third of it and no bag.
 Then one flight of REALTIME_SECONDS in real time (no crash) for the latency through the whole
-chain: a VN-200 packet written to the HP's pty, the vn200 node, the controller (its timer),
-the arduino node, the HA's link and its next period driving the servos with that command.
+chain: a VN-200 packet written to the HP's pty, the vn200 node, the controller (stepping on the
+packet), the arduino node, the HA's link and the period the command's arrival runs driving the
+servos with it (hil/README.md, "Sensor to servo").
 Then a seeded fault campaign of 150 flights over every fault class on Dask (bench_campaign.py:
 the Simplex property over all of them, flights per hour, the campaign's speed).
 Wall time on a shared machine measures the neighbours too. Prints `metric: value unit` lines,

@@ -25,6 +25,7 @@ HaFirmware g_firmware;
  * SAM3X's backup registers (due_common.cpp). */
 void start_firmware(void) {
   HaFirmwareOptions opts = HaFirmwareOptions();
+  opts.pace_by_command = 1;  // on its own clock: a period runs on the HP command's arrival
 #if HA_DUE_HIL
   opts.link_up_text = "HA Due HIL link up";
   opts.command_tap = due_hil_board_count_command;

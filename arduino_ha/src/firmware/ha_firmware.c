@@ -130,6 +130,8 @@ void ha_firmware_start(HaFirmware *fw, const HaBoard *board, const HaAircraftCon
   ha_app_restore(&fw->app, board, &fw->ins.ins);
   fw->next_period_us = board->micros(board->ctx);
   fw->period_at_us = fw->next_period_us;
+  fw->commands_at_period = 0u;
+  fw->commanded = 0;
 }
 
 /* ---- one pass ---- */
@@ -231,18 +233,53 @@ void ha_firmware_period(HaFirmware *fw, uint32_t now_us) {
   ha_link_report_period(&fw->link, fw->cfg, &fw->app.inputs, &fw->app.outputs, &fw->ins.ins,
                         now_us);
   fw->period_at_us = now_us;
+  fw->commanded = fw->link.counters.commands != fw->commands_at_period;
+  fw->commands_at_period = fw->link.counters.commands;
+}
+
+/* When a period is due: not yet, on the HA's own grid (every period_us from the start, as on a
+ * free clock), or off it. */
+enum { DUE_NOT = 0, DUE_ON_GRID = 1, DUE_OFF_GRID = 2 };
+
+/* Paced by the command: the servos take an HP command when it arrives, not up to a period later
+ * on a clock at any phase to the HP's. Bounded both ways, so the HP cannot set the HA's rate:
+ * never sooner than 3/4 of a period after the last (an HP babbling faster is taken at most at
+ * 4/3 of the rate), and on the clock when no command comes. After a period with a command the
+ * clock waits 5/4 of a period, so a command a little late still runs its own period on arrival
+ * rather than being counted late; after a period without one the HA's own grid runs, exactly as
+ * a free clock's, so the HA flying on its own keeps its rate. A silent HP is thus found late at
+ * 5/4 of a period after its last command's period and missed (late_periods_tolerated = 1) at 9/4,
+ * against up to 3 on a free clock. */
+static int paced_period_due(const HaFirmware *fw, uint32_t now_us) {
+  const uint32_t since_us = now_us - fw->period_at_us;
+  const uint32_t quarter_us = fw->period_us / 4u;
+  if (fw->link.counters.commands != fw->commands_at_period) {
+    return since_us >= fw->period_us - quarter_us ? DUE_OFF_GRID : DUE_NOT;
+  }
+  if (fw->commanded) {
+    return since_us >= fw->period_us + quarter_us ? DUE_OFF_GRID : DUE_NOT;
+  }
+  return (int32_t)(now_us - fw->next_period_us) >= 0 ? DUE_ON_GRID : DUE_NOT;
 }
 
 int ha_firmware_loop(HaFirmware *fw) {
   const uint32_t now_us = fw->board->micros(fw->board->ctx);
+  int due;
   (void)ha_firmware_receive(fw, now_us,
                             fw->opts.reads_per_pass != 0u ? fw->opts.reads_per_pass : 1u);
   ha_firmware_service(fw, now_us);
-  if ((int32_t)(now_us - fw->next_period_us) < 0) {
+  if (fw->opts.pace_by_command) {
+    due = paced_period_due(fw, now_us);
+  } else {
+    due = (int32_t)(now_us - fw->next_period_us) >= 0 ? DUE_ON_GRID : DUE_NOT;
+  }
+  if (due == DUE_NOT) {
     return 0;
   }
   ha_firmware_period(fw, now_us);
-  fw->next_period_us += fw->period_us;
+  /* Off the grid, the grid starts again from this period. */
+  fw->next_period_us =
+      due == DUE_ON_GRID ? fw->next_period_us + fw->period_us : now_us + fw->period_us;
   if ((int32_t)(now_us - fw->next_period_us) >= 0) {
     /* More than a period behind (a long I2C stall, a loaded host): restart the schedule from now
      * instead of running a burst of catch-up periods. The core sees the longer period in its dt. */

@@ -5,7 +5,11 @@
  * What it does, so no board does it again:
  *  - the period schedule: one ha_app_period (the core's step, servos, reset line, LEDs, retained
  *    words, the watchdog kick) when its time has come; a loop more than a period behind starts
- *    the schedule afresh from now instead of running a burst of catch-up periods;
+ *    the schedule afresh from now instead of running a burst of catch-up periods. Paced by the
+ *    command (HaFirmwareOptions.pace_by_command), a period runs when a new HP command has come
+ *    and at least 3/4 of a period has passed since the last, else on the clock: 5/4 of a period
+ *    after a period with a command, and after one without on the grid a free clock keeps
+ *    (hil/README.md, "Sensor to servo");
  *  - the HP link: bytes from the board's HP port into the rosserial device end (link/ha_link.h),
  *    its replies out through the same port, its time sync kept going;
  *  - the INS feed: bytes from the board's INS port into the VN-200 rule (vn200/ha_vn200_feed.h),
@@ -51,6 +55,9 @@ typedef struct {
   uint32_t reads_per_pass;
   HaFirmwareCommandTap command_tap; /* NULL: none */
   void *tap_ctx;
+  /* Nonzero: the period runs on the HP command's arrival (ha_firmware_loop; a board on its own
+   * clock: the Due, the SIL and QEMU in real time). 0: every period_us on the clock. */
+  int pace_by_command;
 } HaFirmwareOptions;
 
 typedef struct {
@@ -62,10 +69,12 @@ typedef struct {
   HaVn200Feed ins;
   uint32_t period_us;
   uint32_t next_period_us;
-  uint32_t period_at_us;      /* the loop's time of the last period it ran */
-  uint32_t negotiations_seen; /* the link's topic requests already answered with link_up_text */
-  uint32_t errors_logged;     /* the sum of the drop counters last reported */
-  uint32_t errors_logged_us;  /* when */
+  uint32_t period_at_us;       /* the loop's time of the last period it ran */
+  uint32_t commands_at_period; /* the link's command count at that period */
+  int commanded;               /* that period had a new command */
+  uint32_t negotiations_seen;  /* the link's topic requests already answered with link_up_text */
+  uint32_t errors_logged;      /* the sum of the drop counters last reported */
+  uint32_t errors_logged_us;   /* when */
 } HaFirmware;
 
 /* Power-up or a reset (what the Due's setup() does): the core, the INS feed and the link afresh,
