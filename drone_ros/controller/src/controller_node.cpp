@@ -1,9 +1,8 @@
 #include "controller_node.h"
 
-#include <algorithm>
-
 #include <XmlRpcValue.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <stdexcept>
