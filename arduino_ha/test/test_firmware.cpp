@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <memory>
 #include <string>
 #include <vector>
 
@@ -259,45 +258,49 @@ TEST(HaFirmwareStories, ABoardWithoutAnInsPortOrAWayBackToTheHpStillRunsItsPerio
 // ---- paced by the command (HaFirmwareOptions.pace_by_command: the Due, and the SIL and QEMU in
 // real time). T is the aircraft's period (10 ms at 100 Hz).
 
-FirmwareOnFakeBoard* PacedHaFlownByTheHp() {
-  static HaFirmwareOptions paced{};
-  paced.pace_by_command = 1;
-  auto* ha = new FirmwareOnFakeBoard(&paced);
-  ha->Negotiate();
-  EXPECT_TRUE(ha->ReachHp(servo_frame));
-  return ha;
-}
+const HaFirmwareOptions kPaced = [] {
+  HaFirmwareOptions o{};
+  o.pace_by_command = 1;
+  return o;
+}();
+
+struct PacedHaFlownByTheHp : FirmwareOnFakeBoard {
+  PacedHaFlownByTheHp() : FirmwareOnFakeBoard(&kPaced) {
+    Negotiate();
+    EXPECT_TRUE(ReachHp(servo_frame));
+  }
+};
 
 // On a free clock the command waited for the HA's next period: up to T, at whatever phase the
 // HP's timer had to it (sensor to servo 12 ms in the HiL, issue 24).
 TEST(HaFirmwarePacing, TheServosTakeTheHpCommandInThePassItArrives) {
-  std::unique_ptr<FirmwareOnFakeBoard> ha(PacedHaFlownByTheHp());
-  const uint32_t T = ha->cfg.period_us;
-  const uint32_t last = ha->fw.period_at_us;
-  for (int i = 0; i < 8; ++i) EXPECT_EQ(ha->Pass(T / 10u), 0) << "no period before a command";
-  ha->Hp(servo_frame(ha->NextCommand(3.5f)));
-  EXPECT_EQ(ha->Pass(T / 50u), 1);
-  EXPECT_EQ(ha->fw.period_at_us - last, 8u * T / 10u + T / 50u);
-  EXPECT_EQ(ha->fw.app.outputs.controller, HA_CONTROLLER_HP);
-  EXPECT_FLOAT_EQ(ha->board.servo_writes.back().aileron_deg, 3.5f);
+  PacedHaFlownByTheHp ha;
+  const uint32_t T = ha.cfg.period_us;
+  const uint32_t last = ha.fw.period_at_us;
+  for (int i = 0; i < 8; ++i) EXPECT_EQ(ha.Pass(T / 10u), 0) << "no period before a command";
+  ha.Hp(servo_frame(ha.NextCommand(3.5f)));
+  EXPECT_EQ(ha.Pass(T / 50u), 1);
+  EXPECT_EQ(ha.fw.period_at_us - last, 8u * T / 10u + T / 50u);
+  EXPECT_EQ(ha.fw.app.outputs.controller, HA_CONTROLLER_HP);
+  EXPECT_FLOAT_EQ(ha.board.servo_writes.back().aileron_deg, 3.5f);
 }
 
 // An HP babbling at five times the rate cannot speed the HA up past 4/3 of it.
 TEST(HaFirmwarePacing, AnHpBabblingFasterIsTakenAtMostEveryThreeQuartersOfAPeriod) {
-  std::unique_ptr<FirmwareOnFakeBoard> ha(PacedHaFlownByTheHp());
-  const uint32_t T = ha->cfg.period_us;
-  uint32_t last = ha->fw.period_at_us;
+  PacedHaFlownByTheHp ha;
+  const uint32_t T = ha.cfg.period_us;
+  uint32_t last = ha.fw.period_at_us;
   int periods = 0;
   for (int i = 0; i < 100; ++i) {  // 2 ms apart: 200 ms
-    ha->Hp(servo_frame(ha->NextCommand()));
-    if (ha->Pass(T / 5u)) {
-      EXPECT_GE(ha->fw.period_at_us - last, 3u * T / 4u);
-      last = ha->fw.period_at_us;
+    ha.Hp(servo_frame(ha.NextCommand()));
+    if (ha.Pass(T / 5u)) {
+      EXPECT_GE(ha.fw.period_at_us - last, 3u * T / 4u);
+      last = ha.fw.period_at_us;
       ++periods;
     }
   }
   EXPECT_EQ(periods, 25);  // every 8 ms: the first pass at or past 7.5 ms
-  EXPECT_EQ(ha->fw.app.outputs.controller, HA_CONTROLLER_HP);
+  EXPECT_EQ(ha.fw.app.outputs.controller, HA_CONTROLLER_HP);
 }
 
 // The deadline, paced: the first period without a command comes 5/4 T after the last with one
@@ -305,23 +308,23 @@ TEST(HaFirmwarePacing, AnHpBabblingFasterIsTakenAtMostEveryThreeQuartersOfAPerio
 // tolerated, that second one takes over for DEADLINE_MISS, 9/4 T after the HP's last command
 // period (a free clock: up to 3 T).
 TEST(HaFirmwarePacing, ASilentHpIsTakenOverNineQuartersOfAPeriodAfterItsLastCommand) {
-  std::unique_ptr<FirmwareOnFakeBoard> ha(PacedHaFlownByTheHp());
-  const uint32_t T = ha->cfg.period_us;
-  const uint32_t last = ha->fw.period_at_us;
-  while (!ha->Pass(T / 20u)) {
+  PacedHaFlownByTheHp ha;
+  const uint32_t T = ha.cfg.period_us;
+  const uint32_t last = ha.fw.period_at_us;
+  while (!ha.Pass(T / 20u)) {
   }
-  EXPECT_EQ(ha->fw.period_at_us - last, 5u * T / 4u);
-  EXPECT_EQ(ha->fw.app.outputs.controller, HA_CONTROLLER_HP) << "one late period is tolerated";
-  while (!ha->Pass(T / 20u)) {
+  EXPECT_EQ(ha.fw.period_at_us - last, 5u * T / 4u);
+  EXPECT_EQ(ha.fw.app.outputs.controller, HA_CONTROLLER_HP) << "one late period is tolerated";
+  while (!ha.Pass(T / 20u)) {
   }
-  EXPECT_EQ(ha->fw.period_at_us - last, 9u * T / 4u);
-  EXPECT_EQ(ha->fw.app.outputs.controller, HA_CONTROLLER_HA);
-  EXPECT_NE(ha->fw.app.outputs.reasons_at_switch & HA_REASON_DEADLINE_MISS, 0u);
+  EXPECT_EQ(ha.fw.period_at_us - last, 9u * T / 4u);
+  EXPECT_EQ(ha.fw.app.outputs.controller, HA_CONTROLLER_HA);
+  EXPECT_NE(ha.fw.app.outputs.reasons_at_switch & HA_REASON_DEADLINE_MISS, 0u);
   // Flying on its own the HA keeps its rate.
   for (int i = 0; i < 5; ++i) {
-    const uint32_t before = ha->fw.period_at_us;
-    ha->Period();
-    EXPECT_EQ(ha->fw.period_at_us - before, T);
+    const uint32_t before = ha.fw.period_at_us;
+    ha.Period();
+    EXPECT_EQ(ha.fw.period_at_us - before, T);
   }
 }
 
@@ -329,9 +332,7 @@ TEST(HaFirmwarePacing, ASilentHpIsTakenOverNineQuartersOfAPeriodAfterItsLastComm
 // first command) run their period on arrival from the fourth on, and none is counted late.
 TEST(HaFirmwarePacing, CommandsAtAnyPhaseAreTakenOnArrivalFromTheFourthOn) {
   for (uint32_t tenths = 1; tenths < 10; ++tenths) {
-    HaFirmwareOptions paced{};
-    paced.pace_by_command = 1;
-    FirmwareOnFakeBoard ha(&paced);
+    FirmwareOnFakeBoard ha(&kPaced);
     const uint32_t T = ha.cfg.period_us;
     ha.Period();
     const uint32_t first = ha.board.now_us + tenths * T / 10u;

@@ -84,9 +84,10 @@ def test_mavproxy_at_another_address_sees_the_vehicle_online_and_downloads_its_m
         flight = on_exit.enter_context(flying_in_background(40, gcs_port, vehicle_port))
         assert mavproxy.wait_for("online system 1", 300) is not None, mavproxy.output()[-3000:]
         # The simulator uploads the case study's mission once the stack is up; listed until then.
-        # Asked again every 2 s: a list that goes unanswered (perhaps asked while the simulator's
-        # upload was in progress) left a 15 s wait that outlived the flight (CI, 2026-12-06, under
-        # load: MAVProxy listed 0 waypoints at connect and printed nothing for the next list).
+        # Asked again every 2 s, as a ground station retries: in CI under load (2026-12-06) MAVProxy
+        # listed 0 waypoints at connect and printed nothing for the next `wp list`, and a 15 s wait
+        # outlived the flight. Why is not known: microhard_gs answers a list at once, upload or not
+        # (MissionService::on_request_list).
         rows = None
         while flight.is_alive() and not rows:
             mark = mavproxy.mark()

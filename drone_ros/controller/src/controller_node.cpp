@@ -2,7 +2,6 @@
 
 #include <XmlRpcValue.h>
 
-#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <stdexcept>
@@ -266,8 +265,8 @@ void ControllerNode::step_paced(bool on_packet) {
   }
   pacer_->stepped(now);
   step(now, ros::Time::now());
+  // Started again, the one-shot counts its period (the fallback's) from now.
   timer_.stop();
-  timer_.setPeriod(ros::WallDuration(std::max(pacer_->fallback_at_s() - now, 1e-4)));
   timer_.start();
 }
 
