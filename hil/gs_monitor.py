@@ -50,6 +50,8 @@ class GsMonitor:
                 continue
             except OSError:
                 return
+            if self._stop.is_set():
+                return
             self.datagrams += 1
             t_s = self.now_s()
             for m in self.parser.parse_buffer(data) or []:
@@ -61,5 +63,10 @@ class GsMonitor:
 
     def stop(self):
         self._stop.set()
+        try:
+            # Wakes the thread's receive now, not at its 0.2 s timeout.
+            self.sock.sendto(b"", self.sock.getsockname())
+        except OSError:
+            pass
         self._thread.join(timeout=2.0)
         self.sock.close()

@@ -74,8 +74,28 @@ class Processes:
             except subprocess.TimeoutExpired:
                 os.killpg(p.pid, signal.SIGKILL)
                 p.wait()
+            # Its whole group, not the leader alone: `rosbag record` passes SIGINT on to its
+            # recorder and exits at once, while the recorder is still closing the bag (a recorder
+            # killed then as a leftover left flight.bag.active, and no flight.bag).
+            while group_alive(p.pid) and time.monotonic() < deadline:
+                time.sleep(0.01)
             log.close()
         self.procs = []
+
+
+def group_alive(pgid):
+    """A process of group pgid still runs (zombies aside: whoever reaps orphans here may not)."""
+    for pid in os.listdir("/proc"):
+        if not pid.isdigit():
+            continue
+        try:
+            with open("/proc/%s/stat" % pid) as f:
+                fields = f.read().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
+        if int(fields[2]) == pgid and fields[0] != "Z":
+            return True
+    return False
 
 
 def master_answers(master_uri):

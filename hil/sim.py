@@ -49,6 +49,7 @@ from hil.design_wind import DesignWind  # noqa: E402
 from hil.flight_record import FlightRecord, Period, World  # noqa: E402
 from hil.fdm import Fdm, FdmCrash, Surfaces, Wind  # noqa: E402
 from stack_common import geo  # noqa: E402
+from stack_common.rospy_shutdown import exit_promptly  # noqa: E402
 from stack_common.units import FT_PER_M  # noqa: E402
 
 # What the controller subscribes to (drone_ros/controller/README.md): connected before a step.
@@ -994,6 +995,7 @@ def main():
     # hil/bench/bench_flight_overhead.py breaks down.
     marks = [("sim_started", process_start_time()), ("sim_imported", time.time())]
     rospy.init_node("hil_sim")
+    exit_promptly()
     marks.append(("node_up", time.time()))
     sim = Simulation()
     marks.append(("sim_set_up", time.time()))

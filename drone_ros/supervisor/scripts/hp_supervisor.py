@@ -31,6 +31,7 @@ import roslib.packages
 import rospy
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 from drone_ros.msg import DecisionStatus
+from stack_common.rospy_shutdown import exit_promptly
 
 # node_query.py lies beside this file (the devel space runs it from the source folder).
 from supervisor_core.node_query import ThreadMasters, ask_pid, node_uri  # noqa: E402
@@ -191,6 +192,7 @@ class Supervisor:
 
 def main():
     rospy.init_node("hp_supervisor")
+    exit_promptly()
     supervisor = Supervisor()
     rospy.on_shutdown(supervisor.shutdown)
     rospy.spin()
