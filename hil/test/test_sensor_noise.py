@@ -1,0 +1,52 @@
+"""The VN-200's noise (hil/sensors.py) is a function of the seed alone: the navigation filter's
+Gauss-Markov errors, drawn nine at a time per 800 Hz grid step in batches, are the very numbers
+that one random.Random.gauss call per draw gives, whatever the batch sizes; a seeded flight flies
+as it did before they were batched (test_determinism holds a flight to itself)."""
+import math
+import random
+
+from hil import sensors
+
+
+def test_batched_unit_normals_are_the_gauss_calls_draw_for_draw_across_every_split():
+    for sizes in ([1], [2], [9], [72, 9, 1, 3, 0, 8], [5, 5, 5, 5, 5, 5, 5]):
+        one_by_one, batched = random.Random("7/x"), random.Random("7/x")
+        one_by_one.gauss(0.0, 1.0)  # a pair cached: the batch starts with its second value
+        batched.gauss(0.0, 1.0)
+        for n in sizes:
+            want = [one_by_one.gauss(0.0, 1.0) for _ in range(n)]
+            got = sensors.unit_normals(batched, n)
+            assert [x.hex() for x in got] == [x.hex() for x in want], sizes
+        # Whatever the batch left cached, the generator goes on as the other does.
+        assert batched.gauss(0.0, 1.0).hex() == one_by_one.gauss(0.0, 1.0).hex()
+        assert batched.random() == one_by_one.random()
+
+
+def per_draw_errors(seed, times_s):
+    """The filter's errors as one GaussMarkov.step per process and grid step gives them."""
+    r = random.Random("%s/ins_solution" % seed)
+    procs = ([sensors.GaussMarkov(r, s, 20.0) for s in (0.2, 0.03, 0.03)] +
+             [sensors.GaussMarkov(r, s, 60.0) for s in (1.0 / math.sqrt(2.0), 1.0 / math.sqrt(2.0), 1.5)] +
+             [sensors.GaussMarkov(r, 0.05, 5.0) for _ in range(3)])
+    index, x, out = None, None, []
+    for t in times_s:
+        k = int(math.floor(t * 800.0 + 1e-6))
+        if index is None:
+            index, x = k, [p.x for p in procs]
+        while index < k:
+            index += 1
+            x = [p.step(1.0 / 800.0) for p in procs]
+        out.append((x[0:3], x[3:6], x[6:9]))
+    return out
+
+
+def test_the_filter_errors_at_packet_times_are_the_per_draw_process_to_the_bit():
+    # Both ports' packets: 100 Hz and 200 Hz sensor times, a packet now and then a grid step
+    # late, and a gap of a lost second.
+    times = sorted([i * 0.01 for i in range(400)] + [i * 0.005 + 0.00125 for i in range(800)] +
+                   [5.0 + i * 0.01 for i in range(100)])
+    for seed in (1, 11, 26):
+        errors = sensors.InsSolutionErrors(seed)
+        got = [errors.at(t) for t in times]
+        assert [[[v.hex() for v in part] for part in e] for e in got] == \
+            [[[v.hex() for v in part] for part in e] for e in per_draw_errors(seed, times)], seed
