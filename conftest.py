@@ -21,10 +21,11 @@ GROUPS = "xdist_groups"  # under $HIL_TEST_FLIGHTS: each worker's {test id: grou
 
 
 def pytest_configure(config):
-    # make test runs these after the rest, one at a time (tools/run_tests.sh): a flight on the
+    # make test runs these after the rest, side by side (tools/run_tests.sh): a flight on the
     # wall clock measures deadlines, which a lockstep flight on the other worker, taking both
     # cores, moves (CI: an HP starved late into a climbing turn, a QEMU HA behind its periods).
-    config.addinivalue_line("markers", "realtime: flies on the wall clock; make test runs it alone")
+    config.addinivalue_line("markers", "realtime: flies on the wall clock; make test runs these after the "
+                                       "others, side by side")
     if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
         signal.signal(signal.SIGINT, signal.default_int_handler)
     # One folder per test run for the flights its tests share (hil/campaigns/flight.py
