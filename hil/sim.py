@@ -703,6 +703,7 @@ class Simulation:
         home and the plan as they went out."""
         clock = rospy.Time(t_us // 1000000, (t_us % 1000000) * 1000)
         self.clock_pub.publish(Clock(clock=clock))
+        rospy.rostime._set_rostime(clock)  # this node's own ROS time (main())
         now = self.delivered()
         packets, reports, homes, ways = (n - d for n, d in zip(now, self.declared))
         self.declared = now
@@ -994,8 +995,13 @@ def main():
     # (run_flight_times.json) and these make the fixed cost of a flight that
     # hil/bench/bench_flight_overhead.py breaks down.
     marks = [("sim_started", process_start_time()), ("sim_imported", time.time())]
-    rospy.init_node("hil_sim")
+    # Its ROS time is the /clock it publishes, set as it publishes it (Simulation.publish_step),
+    # not through a subscription to its own /clock: that one's thread took the GIL from the step
+    # loop at every step to receive and decode a message this node had just sent.
+    rospy.init_node("hil_sim", disable_rostime=True)
     exit_promptly()
+    if rospy.get_param("/use_sim_time", False):
+        rospy.rostime._set_rostime(rospy.Time(0, 0))  # as rospy's own /clock subscription starts it
     marks.append(("node_up", time.time()))
     sim = Simulation()
     marks.append(("sim_set_up", time.time()))
