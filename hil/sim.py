@@ -23,6 +23,7 @@ import io
 import json
 import math
 import os
+import select
 import socket
 import struct
 import sys
@@ -526,6 +527,10 @@ class Simulation:
             return self.last_reply or ha_channel.Reply(*([0, 0, (0.0,) * 4, (0.0,) * 4] + [0] * 15))
         return self.chan.poll()
 
+    def idle(self, timeout_s):
+        """Waits up to timeout_s, or until the vn200 node writes a command to answer."""
+        select.select([self.hp_vn.pty.master], [], [], timeout_s)
+
     def wait_until(self, what, cond, timeout_s):
         deadline = time.monotonic() + timeout_s
         while not rospy.is_shutdown():
@@ -534,7 +539,7 @@ class Simulation:
                 return reply
             if time.monotonic() > deadline:
                 raise RuntimeError("gave up waiting for " + what)
-            time.sleep(0.02)
+            self.idle(0.02)
         raise rospy.ROSInterruptException("shutdown")
 
     def wait_subscribed(self, wanted, timeout_s, reannounce_after_s=10.0):
@@ -564,12 +569,15 @@ class Simulation:
                         done = reannounce_publishers(self.master, n, t)
                         rospy.logwarn("hil_sim: %s has no connection on %s after %.0f s: publishers announced "
                                       "again (%s)", n, t, now - start, "ok" if done else "failed")
-            time.sleep(0.02)
+            self.idle(0.02)
 
     def preflight(self):
         rospy.loginfo("hil_sim: waiting for ha_sil on %s", self.chan.path)
         deadline = time.monotonic() + 120.0
-        while not self.chan.accept(1.0):
+        # The vn200 node configures its sensor meanwhile: a command left unanswered here was
+        # resent only after the node's 0.5 s response timeout.
+        while not self.chan.accept(0.02):
+            self.hp_vn.service_commands()
             if rospy.is_shutdown() or time.monotonic() > deadline:
                 raise RuntimeError("ha_sil never connected to the control channel")
         if self.link_relay is not None:
