@@ -38,6 +38,7 @@ import xmlrpc.client
 HERE = os.path.dirname(os.path.abspath(__file__))
 from hil import faults  # noqa: E402
 from hil.aircraft_period import decision_rate_hz  # noqa: E402
+from hil import proc_stat  # noqa: E402  (a process's /proc/PID/stat fields, one parser)
 from stack_tools.paths import ROOT  # noqa: E402  (aircraft/ of the source tree or the install)
 from stack_tools.ports import free_port  # noqa: E402  (below the ephemeral range: nothing autobinds there)
 BAG_TOPICS = ["/hil/truth", "/decision_status", "/servo_op", "/pwm", "/ins", "/data", "/to_hil",
@@ -86,14 +87,8 @@ class Processes:
 def group_alive(pgid):
     """A process of group pgid still runs (zombies aside: whoever reaps orphans here may not)."""
     for pid in os.listdir("/proc"):
-        if not pid.isdigit():
-            continue
-        try:
-            with open("/proc/%s/stat" % pid) as f:
-                fields = f.read().rsplit(")", 1)[1].split()
-        except OSError:
-            continue
-        if int(fields[2]) == pgid and fields[0] != "Z":
+        fields = proc_stat.stat_fields(pid) if pid.isdigit() else None
+        if fields is not None and int(fields[2]) == pgid and fields[0] not in proc_stat.DEAD:
             return True
     return False
 
