@@ -77,10 +77,11 @@ def hp_alive(t_s):
 
 
 def write(path, with_truth=True, end_s=END_S, t0_s=T0_S, chunk_threshold=768 * 1024,
-          received_after_s=0.0, with_home=False):
+          received_after_s=0.0, with_home=False, ha_clock_steps=()):
     """Writes the flight; returns the number of messages. received_after_s puts the recorder's
     receive times on another clock than the stamps (a lockstep HiL: stamps on the simulator's
-    clock from 0, receive times on the wall clock)."""
+    clock from 0, receive times on the wall clock). ha_clock_steps, (from_s, by_s) pairs, moves
+    the HA's stamps by by_s from from_s on, as a rosserial time sync does to the HA's clock."""
     count = 0
     steps = int(round(end_s * DECISION_HZ))
     last_seq = 0
@@ -108,7 +109,8 @@ def write(path, with_truth=True, end_s=END_S, t0_s=T0_S, chunk_threshold=768 * 1
                 # the restarted controller counts afresh from 0
                 last_seq = k if t_s < HP_BACK_S else k - int(round(HP_BACK_S * DECISION_HZ))
                 put("/servo_op", _servo_command(last_seq, stamp, t_s), t_s)
-            status = DecisionStatus(stamp=rospy.Time.from_sec(t0_s + t_s + 0.002), controller=controller,
+            ha_clock_s = t_s + sum(by_s for from_s, by_s in ha_clock_steps if t_s >= from_s - 1e-9)
+            status = DecisionStatus(stamp=rospy.Time.from_sec(t0_s + ha_clock_s + 0.002), controller=controller,
                                     last_seq=last_seq, airspeed_ftps=60.0, altitude_agl_ft=height,
                                     state_region_max=0.3, actuator_region_max=0.2,
                                     restart_count=0 if t_s < SWITCHES[0][0] else 1)

@@ -150,6 +150,24 @@ def test_lockstep_log_keeps_the_simulators_clock_from_zero(tmp_path):
         "%.1f s" % scripted_flight.END_S in text
 
 
+def test_a_time_sync_that_sets_the_has_clock_back_keeps_one_switch_per_switch(tmp_path):
+    """A loaded lockstep HiL: rosserial's time sync sets the HA's clock back 60 ms just before
+    the takeover and just before the hand-back, so the periods around each step carry the same
+    stamps twice. The page lists the three switches the HA made, each at the time its own stamp
+    says (held while the clock catches up), not the HP/HA flapping a sort by stamp reads."""
+    folder = tmp_path / "2026-12-06_203000-DG808-3"
+    folder.mkdir()
+    scripted_flight.write(str(folder / "flight.bag"), with_truth=True, t0_s=0.0, received_after_s=1.795e9,
+                          ha_clock_steps=((30.02, -0.06), (46.98, -0.06)))
+    result = run(str(folder / "flight.bag"))
+    assert result.returncode == 0, result.stderr
+    _, rows = page(folder / "report" / "index.html")
+    expected = expected_switches()
+    assert [(row[2], row[3]) for row in rows] == [(f, t) for _, f, t, *_ in expected], rows
+    assert [float(row[1]) for row in rows] == pytest.approx(
+        [t_s + 0.002 - 0.06 for t_s, *_ in expected], abs=0.061), rows
+
+
 def test_hil_report_draws_truth_and_names_its_source(hil_flight):
     text, _ = page(hil_flight / "index.html")
     assert "No simulator truth" not in text

@@ -3,7 +3,12 @@ table per topic on a common time axis (seconds from the first message).
 
 A record is a dict of the message's fields (nested messages as dicts, times as float
 seconds) plus "_t_bag", the time the recorder received it. A message's own stamp is its time;
-the receive time stands in only where a message has no stamp or an unset one."""
+the receive time stands in only where a message has no stamp or an unset one.
+
+A topic's messages keep the order they were sent in, and a stamp earlier than the one before it
+is held at that one: the HA stamps on its clock as rosserial's time sync last set it, and a sync
+can set it back by the host's lag (tens of ms in a loaded lockstep HiL). Sorted by stamp, the
+periods on either side of such a step interleave, and one switch reads as a dozen."""
 import math
 from array import array
 
@@ -149,11 +154,10 @@ class LogBuilder:
         columns = self.columns[topic]
         if not columns["t"]:
             return None
-        t = np.frombuffer(columns["t"], dtype=float) - self.t_min
-        order = np.argsort(t, kind="stable")
-        out = {"t": t[order]}
+        t = np.maximum.accumulate(np.frombuffer(columns["t"], dtype=float)) - self.t_min
+        out = {"t": t}
         for name in FIELD_TABLES[topic]:
-            out[name] = np.frombuffer(columns[name], dtype=float)[order]
+            out[name] = np.frombuffer(columns[name], dtype=float)
         return Table(out)
 
 
