@@ -132,6 +132,45 @@ TEST(HaLinkSession, TimeReplySetsRosTimeCorrectedByHalfTheRoundTrip) {
   EXPECT_EQ(d.link.counters.time_syncs, 1u);
 }
 
+namespace {
+double seconds(HaRosTime t) { return t.sec + t.nsec * 1e-9; }
+}  // namespace
+
+// A loaded host (a lockstep HiL on a busy machine) answers a time request with a clock 60 ms
+// behind the one the HA keeps. The HA's stamps stay where they were until its new clock passes
+// them, so /decision_status never runs backwards and a log sorted by stamp keeps its order.
+TEST(HaLinkSession, LateTimeReplyHoldsTheStampsInsteadOfSettingThemBack) {
+  Device d;
+  d.rx(kTopicRequest, 0u);
+  d.rx(d.time_reply(100u, 0u), 0u);
+  const double before = seconds(ha_link_ros_time(&d.link, 1000000u));  // 101.000
+  ha_link_poll(&d.link, 1000000u);                 // the next time request, answered at once
+  d.rx(d.time_reply(100u, 940000000u), 1000000u);  // with 100.940
+  double last = before;
+  for (uint32_t t = 1000000u; t <= 1200000u; t += 10000u) {
+    const double stamp = seconds(ha_link_ros_time(&d.link, t));
+    EXPECT_GE(stamp, last) << t;
+    last = stamp;
+    if (t <= 1060000u) {
+      EXPECT_DOUBLE_EQ(stamp, before) << t;  // held
+    } else {
+      EXPECT_NEAR(stamp, 100.94 + (t - 1000000u) * 1e-6, 1e-9) << t;  // the host's clock again
+    }
+  }
+}
+
+// A host clock that starts again (a restarted simulation from 0, a host stepped by hours) is a
+// new clock, not a late answer: the stamps follow it at once.
+TEST(HaLinkSession, TimeReplyFromAClockThatStartedAgainIsFollowedAtOnce) {
+  Device d;
+  d.rx(kTopicRequest, 0u);
+  d.rx(d.time_reply(1700000000u, 0u), 0u);
+  ha_link_poll(&d.link, 1000000u);
+  d.rx(d.time_reply(5u, 0u), 1000000u);
+  EXPECT_DOUBLE_EQ(seconds(ha_link_ros_time(&d.link, 1000000u)), 5.0);
+  EXPECT_DOUBLE_EQ(seconds(ha_link_ros_time(&d.link, 1500000u)), 5.5);
+}
+
 TEST(HaLinkSession, ServoCommandBuiltFromTheMsgLayoutReachesTheCoreWithItsArrivalTime) {
   Device d;
   link_test::Cmd c;

@@ -78,12 +78,22 @@ static void negotiate_topics(HaLink *link, uint32_t now_us) {
   request_time(link, now_us);
 }
 
+static uint64_t time_ns(HaRosTime t) { return (uint64_t)t.sec * 1000000000u + t.nsec; }
+
 static void apply_time(HaLink *link, const std_msgs_Time *t, uint32_t now_us) {
+  const HaRosTime before = ha_link_ros_time(link, now_us);
   /* The reply left the host about half a round trip ago. */
   const uint32_t half_rtt_us = (uint32_t)(now_us - link->sync_request_sent_us) / 2u;
   uint64_t nsec = (uint64_t)t->data.nsec + (uint64_t)half_rtt_us * 1000u;
   link->ros_at_sync.sec = t->data.sec + (uint32_t)(nsec / 1000000000u);
   link->ros_at_sync.nsec = (uint32_t)(nsec % 1000000000u);
+  /* A host that answers late (a loaded one) sets the clock back by its lag, and stamps that run
+   * backwards reorder every log of them: hold them at the last one until the clock passes it.
+   * A bigger step is a new clock (a restarted simulation, a stepped host clock): follow it. */
+  link->stamp_floor = (link->time_valid && time_ns(before) > time_ns(link->ros_at_sync) &&
+                       time_ns(before) - time_ns(link->ros_at_sync) <= HA_LINK_HOLD_STEP_BACK_NS)
+                          ? before
+                          : link->ros_at_sync;
   link->sync_local_us = now_us;
   link->last_sync_reply_us = now_us;
   link->time_valid = true;
@@ -248,6 +258,7 @@ HaRosTime ha_link_ros_time(const HaLink *link, uint32_t now_us) {
     const uint64_t nsec = (uint64_t)link->ros_at_sync.nsec + elapsed_us * 1000u;
     t.sec = link->ros_at_sync.sec + (uint32_t)(nsec / 1000000000u);
     t.nsec = (uint32_t)(nsec % 1000000000u);
+    if (time_ns(link->stamp_floor) > time_ns(t)) t = link->stamp_floor;
   }
   return t;
 }

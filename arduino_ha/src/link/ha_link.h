@@ -36,6 +36,8 @@ extern "C" {
 /* Home is repeated this often while latched, so a restarted host hears it within a few seconds. */
 #define HA_LINK_HOME_REPEAT_US 2000000u
 #define HA_LINK_SYNC_LOST_US 1500000u
+/* A time sync that sets the clock back by at most this holds the stamps still instead. */
+#define HA_LINK_HOLD_STEP_BACK_NS 1000000000u
 /* A frame taking longer than this from its sync byte is dropped (at 115200 baud, 256 bytes
  * take 22 ms; the clock is in microseconds like the core's). */
 #define HA_LINK_FRAME_TIMEOUT_US 50000u
@@ -86,6 +88,7 @@ typedef struct {
   uint32_t last_sync_reply_us;
   uint32_t sync_request_sent_us;
   HaRosTime ros_at_sync; /* host time at sync_local_us */
+  HaRosTime stamp_floor; /* no stamp earlier than this: the clock before a small step back */
   uint32_t sync_local_us;
   HaLinkCounters counters;
   uint32_t home_sent_seq; /* the home last sent (0: none since the last negotiation) */
@@ -108,7 +111,8 @@ void ha_link_poll(HaLink *link, uint32_t now_us);
 
 bool ha_link_connected(const HaLink *link);
 
-/* Host (ROS) time now, from the last sync; {0, 0} before the first. */
+/* Host (ROS) time now, from the last sync; {0, 0} before the first. It never runs backwards
+ * by up to HA_LINK_HOLD_STEP_BACK_NS across a sync. */
 HaRosTime ha_link_ros_time(const HaLink *link, uint32_t now_us);
 
 /* Publishing works only while connected (as in ros_lib); false when dropped. */
