@@ -15,7 +15,7 @@ import tempfile
 import pytest
 
 # Each test file's measured seconds (setup, call and teardown of all its tests) and test count:
-# make test hands the longest work to the two workers first (tools/test_durations.py writes it).
+# make test hands the longest work to its workers first (tools/test_durations.py writes it).
 DURATIONS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "tools", "test_durations.json")
 GROUPS = "xdist_groups"  # under $HIL_TEST_FLIGHTS: each worker's {test id: group}
 
@@ -43,7 +43,7 @@ def shares_a_module_fixture(item):
 
 
 def pytest_collection_modifyitems(config, items):
-    """make test runs these tests on two workers (pytest-xdist, --dist loadgroup). A module whose
+    """make test runs these tests on three workers (pytest-xdist, --dist loadgroup). A module whose
     tests share a module-scoped fixture (one flight, one master, one build read by many tests)
     goes to one worker as a whole, so that fixture is still made once per run; every other test
     goes to whichever worker is free.
@@ -70,7 +70,7 @@ def pytest_xdist_make_scheduler(config, log):
     """--dist loadgroup: the tests of a module sharing a module fixture are one unit of work, every
     other test a unit of its own; a free worker takes the unit with the most measured seconds left
     (tools/test_durations.json; a file not in it counts DEFAULT_S a test), so the long flights
-    start first and the short tests fill the end, where both workers finish together."""
+    start first and the short tests fill the end, where the workers finish together."""
     if config.getvalue("dist") != "loadgroup":
         return None
     from xdist.scheduler import LoadScopeScheduling
