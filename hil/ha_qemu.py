@@ -67,6 +67,8 @@ class QemuBoard:
         self.tx_dropped = 0  # bytes the board's UARTs could not send (its latest reply's count)
         self.rx_dropped = 0  # bytes that came to a full receive ring of the board (the same)
         self.hp_link_dropped = 0  # bytes for the host its pty could not take
+        self.to_host = self.to_board = 0  # bytes the HP link's relay carried each way
+        self.relay_end = None  # why the relay stopped before stop() asked it to
 
     def start(self, timeout_s=20.0):
         self.dir = tempfile.mkdtemp(prefix="ha_qemu_")
@@ -111,27 +113,38 @@ class QemuBoard:
     def _carry_hp_link(self):
         """The HP link's bytes both ways; what the host's side cannot take now is dropped, as a
         full USB buffer drops it (the link is built to lose bytes). The board's bytes go on to the
-        host a whole rosserial frame at a time (whole_frames)."""
+        host a whole rosserial frame at a time (whole_frames). A relay that stops before stop()
+        says why on stderr at once: the link is dead from then on (CI, once: the arduino node's
+        topic requests never answered for 120 s, and nothing told which side had gone)."""
         held = bytearray()
-        while not self.stopping.is_set():
-            r, _, _ = select.select([self.hp_master, self.hp_sock], [], [], 0.2)
-            try:
-                if self.hp_sock in r:
-                    data = self.hp_sock.recv(65536)
-                    if not data:
-                        return
-                    held += data
-                    out = whole_frames(held)
-                    try:
-                        self.hp_link_dropped += len(out) - (os.write(self.hp_master, out) if out else 0)
-                    except BlockingIOError:
-                        self.hp_link_dropped += len(out)
-                if self.hp_master in r:
-                    self.hp_sock.sendall(os.read(self.hp_master, 65536))
-            except (BlockingIOError, InterruptedError):
-                continue
-            except OSError:
-                return
+        try:
+            while not self.stopping.is_set():
+                r, _, _ = select.select([self.hp_master, self.hp_sock], [], [], 0.2)
+                try:
+                    if self.hp_sock in r:
+                        data = self.hp_sock.recv(65536)
+                        if not data:
+                            self.relay_end = "QEMU closed the HP link's socket"
+                            break
+                        held += data
+                        out = whole_frames(held)
+                        try:
+                            written = os.write(self.hp_master, out) if out else 0
+                        except BlockingIOError:
+                            written = 0
+                        self.to_host += written
+                        self.hp_link_dropped += len(out) - written
+                    if self.hp_master in r:
+                        data = os.read(self.hp_master, 65536)
+                        self.hp_sock.sendall(data)
+                        self.to_board += len(data)
+                except (BlockingIOError, InterruptedError):
+                    continue
+        except Exception as e:  # noqa: BLE001  any end of the relay is the HP link's end: say which
+            self.relay_end = "%s: %s" % (type(e).__name__, e)
+        if self.relay_end is not None and not self.stopping.is_set():
+            print("ha_qemu: the HP link's relay stopped: %s (%d bytes to the host, %d to the board)" %
+                  (self.relay_end, self.to_host, self.to_board), file=sys.stderr, flush=True)
 
     def write_raw(self, data):
         """Bytes onto the control UART as they are (tests send damaged frames this way)."""
@@ -288,8 +301,9 @@ def main(argv=None):
         if log:
             log.close()
         print("ha_qemu: %d replies, %d reply frames dropped here, %d bytes dropped by the board's UARTs, "
-              "%d bytes for the host its pty could not take" % (replies, board.reader.bad, board.tx_dropped,
-                                                               board.hp_link_dropped), file=sys.stderr)
+              "%d bytes for the host its pty could not take; HP link %d bytes to the host, %d to the board" % (
+                  replies, board.reader.bad, board.tx_dropped, board.hp_link_dropped, board.to_host,
+                  board.to_board), file=sys.stderr)
     return 0
 
 
