@@ -70,6 +70,16 @@ void ArduinoLinkNode::run() {
           // A silent or rebooted device: ask again, as rosserial hosts do.
           last_topic_request_ = at;
           (void)send_raw(topic_request_frame());
+        } else if (link_up_ && !confirm_topics_at_.isZero() && at >= confirm_topics_at_) {
+          // No frame says a device has announced all its topics, and one TopicInfo lost on the
+          // wire (a full USB buffer) left a topic unannounced while the others brought the link
+          // up, for good: CI's QEMU board lost its two subscribers' and the HA never got a
+          // command. Every answer that brings a new topic is confirmed by asking once more; the
+          // device answers whole each time, and an answer with nothing new ends it.
+          confirm_topics_at_ = ros::WallTime();
+          last_topic_request_ = at;
+          ++counters_.topic_confirmations;
+          (void)send_raw(topic_request_frame());
         }
       }
     }
@@ -215,6 +225,11 @@ void ArduinoLinkNode::on_publisher_info(const Frame &f) {
   ROS_INFO("arduino: device publishes %s [%s] as id %u", ep.name.c_str(), ep.type.c_str(),
            info.topic_id);
   endpoints_[info.topic_id] = ep;
+  confirm_topics_later();
+}
+
+void ArduinoLinkNode::confirm_topics_later() {
+  confirm_topics_at_ = ros::WallTime::now() + ros::WallDuration(params_.topic_request_period_s);
 }
 
 void ArduinoLinkNode::on_subscriber_info(const Frame &f) {
@@ -242,6 +257,7 @@ void ArduinoLinkNode::on_subscriber_info(const Frame &f) {
   }
   ROS_INFO("arduino: device subscribes to %s [%s] as id %u", ep.name.c_str(), ep.type.c_str(), id);
   endpoints_[id] = ep;  // replaces (and so unsubscribes) an older subscriber on this id
+  confirm_topics_later();
 }
 
 void ArduinoLinkNode::on_ros_message(uint16_t topic_id,
@@ -435,6 +451,7 @@ void ArduinoLinkNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper &stat
   stat.add("port", params_.port);
   stat.add("port_open", port_.is_open());
   stat.add("outages", counters_.outages.load());
+  stat.add("topic_confirmations", counters_.topic_confirmations.load());
   stat.add("last_gap_s", last_gap_s_);
   stat.add("port_opens", counters_.port_opens.load());
   stat.add("frames_ok", fc.frames_ok);

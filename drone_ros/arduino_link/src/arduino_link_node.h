@@ -36,6 +36,7 @@ struct LinkCounters {
   std::atomic<uint64_t> outages{0};        // link up -> down transitions
   std::atomic<uint64_t> port_opens{0};
   std::atomic<uint64_t> commands_forwarded{0};
+  std::atomic<uint64_t> topic_confirmations{0};  // topic requests sent again after an answer
 };
 
 class ArduinoLinkNode {
@@ -73,6 +74,7 @@ class ArduinoLinkNode {
   bool send(uint16_t topic_id, const std::vector<uint8_t> &payload);
   bool send_raw(const std::vector<uint8_t> &bytes);
   void update_link_state(const ros::WallTime &now);
+  void confirm_topics_later();
   void publish_lost_pwm();
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper &stat);
 
@@ -94,6 +96,8 @@ class ArduinoLinkNode {
   ros::Time last_rx_;
   ros::WallTime last_open_attempt_;
   ros::WallTime last_topic_request_;
+  // When to ask for topics again to confirm the last answer whole (zero: no need), see run().
+  ros::WallTime confirm_topics_at_;
   ros::WallTime lost_since_;
   ros::WallTime last_lost_pwm_;
   double last_gap_s_ = 0.0;

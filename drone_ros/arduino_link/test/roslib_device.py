@@ -134,8 +134,11 @@ class Endpoint:
 class RoslibDevice:
     """ros_lib's NodeHandle over a pty; `port` becomes a symlink to the pty's slave end."""
 
-    def __init__(self, port):
+    def __init__(self, port, lose_subscriber_infos_once=False):
+        """lose_subscriber_infos_once: the first answer to a topic request loses its subscribers'
+        TopicInfos on the wire (never written), as a full USB buffer loses them."""
         self.port = port
+        self.lose_subscriber_infos = lose_subscriber_infos_once
         self.master, self.slave = os.openpty()
         tty.setraw(self.slave)
         attrs = termios.tcgetattr(self.slave)
@@ -235,10 +238,15 @@ class RoslibDevice:
     def negotiate_topics(self):
         for p in self.publishers:
             self.publish(ID_PUBLISHER, ser_topic_info(p.id, p.topic_name, p.msg_type, p.md5sum, OUTPUT_SIZE))
-        for s in self.subscribers:
-            self.publish(ID_SUBSCRIBER, ser_topic_info(s.id, s.topic_name, s.msg_type, s.md5sum, INPUT_SIZE))
+        announced = [p.id for p in self.publishers]
+        if self.lose_subscriber_infos:
+            self.lose_subscriber_infos = False
+        else:
+            for s in self.subscribers:
+                self.publish(ID_SUBSCRIBER, ser_topic_info(s.id, s.topic_name, s.msg_type, s.md5sum, INPUT_SIZE))
+            announced += [s.id for s in self.subscribers]
         self.configured = True
-        self.record("negotiated", [p.id for p in self.publishers] + [s.id for s in self.subscribers])
+        self.record("negotiated", announced)
 
     def log(self, level, text):
         self.publish(ID_LOG, ser_log(level, text))
