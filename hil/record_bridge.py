@@ -113,6 +113,9 @@ class RecordBridge:
         self.records = self.replies = 0
         self.records_unsent = 0  # record bytes the native port could not take
         self.ins_dropped = 0  # VN-200 bytes the adapter could not take
+        # The board's own counts as of its latest reply: bytes its UARTs could not send, and bytes
+        # that came to a full receive ring (what ha_qemu's and ha_due's closing lines report).
+        self.tx_dropped = self.rx_dropped = 0
         # What the board sent before this bridge was made would be dated at its late arrival:
         # gone, here and not in run(), so that nothing sent once the bridge exists is dropped
         # however late its thread first runs.
@@ -164,6 +167,7 @@ class RecordBridge:
             self.reader.bad += 1
             return
         dropped, ticks, tx_dropped, rx_dropped = TRAILER.unpack_from(payload, REPLY_LEN)
+        self.tx_dropped, self.rx_dropped = tx_dropped, rx_dropped
         reply = bytearray(payload[:REPLY_LEN])
         due_us = struct.unpack_from("<Q", reply, T_US_AT)[0] & 0xFFFFFFFF
         host_us = self.clock.to_host(due_us, arrival_us & 0xFFFFFFFF)

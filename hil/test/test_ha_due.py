@@ -86,10 +86,10 @@ class Rig:
         self.bridge.chan.close()
 
 
-def reply_frame(t_us, controller=2):
+def reply_frame(t_us, controller=2, tx_dropped=0, rx_dropped=0):
     body = ha_channel.REPLY.pack(ha_channel.MAGIC_REPLY, ha_channel.VERSION, ha_channel.R_STEPPED, t_us,
                                  *([0.0] * 8), controller, 0, 0, 0, 0, 0, 0, 0.0, 0.0, 0.0, 0, 0, 0, 0, 0)
-    return record_bridge.frame(body + record_bridge.TRAILER.pack(0, 0, 0, 0))
+    return record_bridge.frame(body + record_bridge.TRAILER.pack(0, 0, tx_dropped, rx_dropped))
 
 
 def test_a_record_reaches_the_due_framed_and_its_reply_comes_back_on_the_hosts_clock():
@@ -109,11 +109,13 @@ def test_a_record_reaches_the_due_framed_and_its_reply_comes_back_on_the_hosts_c
         # (its first, so its latency is the clock's offset).
         assert reply.controller == 2
         assert ((reply.t_us - before_us) & 0xFFFFFFFF) <= ((after_us - before_us) & 0xFFFFFFFF)
-        os.write(rig.native_m, reply_frame(5_010_000))
+        os.write(rig.native_m, reply_frame(5_010_000, tx_dropped=848, rx_dropped=3))
         assert ((ha_channel.decode_reply(rig.sim.recv(256)).t_us - reply.t_us) & 0xFFFFFFFF) <= 10_000
     finally:
         rig.close()
     assert rig.bridge.replies == 2 and rig.bridge.reader.bad == 0
+    # The board's own drop counts, as its latest reply carried them, for the closing line.
+    assert (rig.bridge.tx_dropped, rig.bridge.rx_dropped) == (848, 3)
 
 
 def test_a_reply_frame_failing_its_crc_is_counted_and_dropped_and_the_next_passes():
