@@ -403,6 +403,27 @@ class Sketch:
         self.loop()
 
 
+class RunningSketch:
+    """The sketch on its own device, run in a thread of its own, as the link stories run it;
+    stop() ends both."""
+
+    def __init__(self, port, **device_options):
+        self.device = RoslibDevice(port, **device_options)
+        self.sketch = Sketch(self.device)
+        self.thread = threading.Thread(target=self.sketch.run, daemon=True)
+        self.thread.start()
+
+    def events(self, kind):
+        """The details of the device's events of this kind, in order."""
+        with self.device.lock:
+            return [d for k, d in self.device.events if k == kind]
+
+    def stop(self):
+        self.sketch.stop = True
+        self.thread.join(timeout=5.0)
+        self.device.close()
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--port", required=True, help="path of the symlink to create for the host")

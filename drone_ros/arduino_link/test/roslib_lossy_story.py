@@ -5,14 +5,13 @@ USB buffer drops bytes; CI's QEMU board lost exactly these two, and the HA never
 The publishers bring the link up; the node must still ask again, learn of the subscribers and
 forward what ROS publishes on them. Run by roslib_lossy_negotiation.test."""
 import struct
-import threading
 import unittest
 
 import rospy
 import rostest
 from std_msgs.msg import Bool, Int32, String
 
-from roslib_device import RoslibDevice, Sketch  # noqa: E402
+from roslib_device import RunningSketch  # noqa: E402
 from link_diagnostics import LinkDiagnostics  # noqa: E402
 from stack_testing.story_wait import wait_for  # noqa: E402
 
@@ -26,20 +25,15 @@ class LostSubscriberInfos(unittest.TestCase):
         cls.diag = LinkDiagnostics()
         cls.led = rospy.Publisher("led", Bool, queue_size=10)
         cls.setpoint = rospy.Publisher("setpoint", Int32, queue_size=10)
-        cls.device = RoslibDevice(rospy.get_param("~node_port"), lose_subscriber_infos_once=True)
-        cls.sketch = Sketch(cls.device)
-        cls.thread = threading.Thread(target=cls.sketch.run, daemon=True)
-        cls.thread.start()
+        cls.rig = RunningSketch(rospy.get_param("~node_port"), lose_subscriber_infos_once=True)
+        cls.device, cls.sketch = cls.rig.device, cls.rig.sketch
 
     @classmethod
     def tearDownClass(cls):
-        cls.sketch.stop = True
-        cls.thread.join(timeout=5.0)
-        cls.device.close()
+        cls.rig.stop()
 
     def events(self, kind):
-        with self.device.lock:
-            return [d for k, d in self.device.events if k == kind]
+        return self.rig.events(kind)
 
     def test_the_node_asks_again_and_forwards_to_the_subscribers_the_first_answer_lost(self):
         wait_for(lambda: len(self.chatter) >= 3, 20.0, "the link up on the publishers alone")

@@ -3,7 +3,6 @@
 roslib_device.py (ros_lib's NodeHandle restated from the protocol, nothing shared with our own
 device code) on a pseudo-terminal. Run by roslib_compat.test."""
 import struct
-import threading
 import unittest
 
 import rospy
@@ -12,7 +11,7 @@ from rosgraph_msgs.msg import Log
 from roscpp.srv import SetLoggerLevel
 from std_msgs.msg import Bool, Float32, Int32, String
 
-from roslib_device import RoslibDevice, Sketch, ser_string  # noqa: E402
+from roslib_device import RunningSketch, ser_string  # noqa: E402
 from link_diagnostics import LinkDiagnostics  # noqa: E402
 from stack_testing.story_wait import wait_for  # noqa: E402
 from stack_testing.kept_messages import KeptMessages  # noqa: E402
@@ -34,16 +33,12 @@ class RoslibSketchStories(unittest.TestCase):
         # the node's logger is at debug; set it before the sketch logs anything.
         rospy.wait_for_service("/arduino/set_logger_level", timeout=30.0)
         rospy.ServiceProxy("/arduino/set_logger_level", SetLoggerLevel)("ros.drone_ros", "debug")
-        cls.device = RoslibDevice(rospy.get_param("~node_port"))
-        cls.sketch = Sketch(cls.device)
-        cls.thread = threading.Thread(target=cls.sketch.run, daemon=True)
-        cls.thread.start()
+        cls.rig = RunningSketch(rospy.get_param("~node_port"))
+        cls.device, cls.sketch = cls.rig.device, cls.rig.sketch
 
     @classmethod
     def tearDownClass(cls):
-        cls.sketch.stop = True
-        cls.thread.join(timeout=5.0)
-        cls.device.close()
+        cls.rig.stop()
 
     @classmethod
     def _log(cls, m):
@@ -51,8 +46,7 @@ class RoslibSketchStories(unittest.TestCase):
             cls.kept.keep(cls.rosout, (m.level, m.msg))
 
     def events(self, kind):
-        with self.device.lock:
-            return [d for k, d in self.device.events if k == kind]
+        return self.rig.events(kind)
 
     def test_01_the_node_asks_for_topics_with_the_documented_bytes_and_takes_the_sketchs(self):
         wait_for(lambda: self.events("negotiated"), 20.0, "the sketch to negotiate its topics")
