@@ -37,7 +37,7 @@ import rosgraph
 import rospy
 import yaml
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
-from drone_ros.msg import DecisionStatus, HilTruth, HomePosition, LockstepStep, ServoCommand, hil_data, pwm, way
+from drone_ros.msg import DecisionStatus, HilTruth, LockstepStep, ServoCommand, hil_data, way
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import Temperature
 
@@ -379,13 +379,20 @@ class Simulation:
         # that axis). In lockstep the records are the HA's periods.
         self.ha_periods = [] if self.realtime else None
         self.pace0_mono = None
-        rospy.Subscriber("vn200/temperature", Temperature, self.on_vn_delivered, queue_size=1000, tcp_nodelay=True)
-        rospy.Subscriber("decision_status", DecisionStatus, lambda m: self.waiter.hit("status", m), queue_size=1000, tcp_nodelay=True)
-        # The HA's own reports only: the arduino node's link-down /pwm (usbstatus 0) runs on the wall clock.
-        rospy.Subscriber("pwm", pwm, lambda m: m.usbstatus and self.waiter.hit("pwm"), queue_size=1000, tcp_nodelay=True)
+        # Topics only counted are taken as bytes (rospy.AnyMsg): decoding them in rospy's receive
+        # threads was a seventh of this node's CPU, taken from the stepping thread by the GIL.
+        # The real-time latency probe reads the VN-200 packets' stamps, so there they are decoded.
+        vn_type = Temperature if self.realtime else rospy.AnyMsg
+        rospy.Subscriber("vn200/temperature", vn_type, self.on_vn_delivered, queue_size=1000, tcp_nodelay=True)
+        rospy.Subscriber("decision_status", rospy.AnyMsg, lambda m: self.waiter.hit("status"), queue_size=1000,
+                         tcp_nodelay=True)
+        # The HA's own reports only: the arduino node's link-down /pwm (usbstatus 0) runs on the wall
+        # clock. usbstatus is the message's last field, a byte.
+        rospy.Subscriber("pwm", rospy.AnyMsg, lambda m: m._buff[-1] and self.waiter.hit("pwm"), queue_size=1000,
+                         tcp_nodelay=True)
         rospy.Subscriber("servo_op", ServoCommand, self.on_servo_op, queue_size=1000, tcp_nodelay=True)
         rospy.Subscriber("way", way, lambda m: self.waiter.hit("way", m), queue_size=10)
-        rospy.Subscriber("home", HomePosition, lambda m: self.waiter.hit("home", m), queue_size=100, tcp_nodelay=True)
+        rospy.Subscriber("home", rospy.AnyMsg, lambda m: self.waiter.hit("home"), queue_size=100, tcp_nodelay=True)
         rospy.Subscriber("to_hil", hil_data, self.on_to_hil, queue_size=1000)
         self.relay_pub = None if self.relay_topic is None else \
             rospy.Publisher(self.relay_topic, ServoCommand, queue_size=None, tcp_nodelay=True)

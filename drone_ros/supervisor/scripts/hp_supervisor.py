@@ -13,11 +13,12 @@ it is this node's child and is stopped with it.
 Parameters: ~node (the node to supervise, default /controller_DG808), ~package and ~type (its
 executable, default drone_ros controller_DG808), ~kill_grace_s (1.0), ~boot_delay_s (0.0).
 
-Diagnostics (/diagnostics, once a second, "hp_supervisor: <node>"): OK while supervising, WARN
+Diagnostics (/diagnostics, once a wall-clock second, "hp_supervisor: <node>"): OK while supervising, WARN
 while a restart is under way, ERROR when the last one could not start the node (no executable);
 its values: restarts, how the last old process ended, the PID
 of the new one.
 """
+import io
 import os
 import signal
 import socket
@@ -35,6 +36,22 @@ from stack_common.rospy_shutdown import exit_promptly
 
 # node_query.py lies beside this file (the devel space runs it from the source folder).
 from supervisor_core.node_query import ThreadMasters, ask_pid, node_uri  # noqa: E402
+
+
+def restart_requested_offset():
+    """The byte of restart_requested in a serialized DecisionStatus (all its fields have fixed
+    sizes), found by serializing one each way: every report is read at that byte instead of
+    decoded whole, a hundred times a simulated second."""
+    off, on = io.BytesIO(), io.BytesIO()
+    DecisionStatus(restart_requested=False).serialize(off)
+    DecisionStatus(restart_requested=True).serialize(on)
+    differ = [i for i, (a, b) in enumerate(zip(off.getvalue(), on.getvalue())) if a != b]
+    if len(differ) != 1 or len(off.getvalue()) != len(on.getvalue()):
+        raise RuntimeError("DecisionStatus.restart_requested is not one byte at a fixed place")
+    return differ[0], len(off.getvalue())
+
+
+RESTART_REQUESTED_AT, STATUS_BYTES = restart_requested_offset()
 
 
 def local(uri):
@@ -73,17 +90,30 @@ class Supervisor:
         self.last_stop = None  # how the last restart ended the old process
         self.failure = None  # why the last restart could not start the node, if it could not
         self.started_pid = None
+        self.bad_reports = 0  # /decision_status messages not of DecisionStatus's size
         self.diag_pub = rospy.Publisher("/diagnostics", DiagnosticArray, queue_size=1)
-        rospy.Timer(rospy.Duration(1.0), self.publish_diagnostics)
+        # On the wall clock: a rospy.Timer on simulated time woke at every /clock, 1,400 times a
+        # wall second in a lockstep flight, for a status a second.
+        threading.Thread(target=self.diagnostics_loop, daemon=True).start()
         self.learner = threading.Thread(target=self.learn_pids, daemon=True)
         self.learner.start()
-        rospy.Subscriber("decision_status", DecisionStatus, self.on_status, queue_size=10)
+        rospy.Subscriber("decision_status", rospy.AnyMsg, self.on_report, queue_size=10)
         rospy.loginfo("hp_supervisor: restarts %s when the HA asks (boot delay %.1f s)",
                       self.node, self.boot_delay_s)
 
-    def on_status(self, msg):
-        rising = msg.restart_requested and not self.requested
-        self.requested = msg.restart_requested
+    def on_report(self, raw):
+        """A /decision_status as bytes: only its restart_requested is read."""
+        if len(raw._buff) != STATUS_BYTES:
+            self.bad_reports += 1
+            if self.bad_reports == 1:
+                rospy.logwarn("hp_supervisor: a /decision_status of %d bytes, not %d: ignored (and counted "
+                              "in /diagnostics as 'bad reports')", len(raw._buff), STATUS_BYTES)
+            return
+        self.on_request(bool(raw._buff[RESTART_REQUESTED_AT]))
+
+    def on_request(self, requested):
+        rising = requested and not self.requested
+        self.requested = requested
         if not rising:
             return
         if not self.busy.acquire(blocking=False):
@@ -91,7 +121,13 @@ class Supervisor:
             return
         threading.Thread(target=self.restart, daemon=True).start()
 
-    def publish_diagnostics(self, _event=None):
+    def diagnostics_loop(self):
+        while not rospy.is_shutdown():
+            time.sleep(1.0)
+            if not rospy.is_shutdown():
+                self.publish_diagnostics()
+
+    def publish_diagnostics(self):
         st = DiagnosticStatus(name="hp_supervisor: %s" % self.node, hardware_id="HP computer")
         if self.failure:
             st.level, st.message = DiagnosticStatus.ERROR, "cannot restart: %s" % self.failure
@@ -100,7 +136,8 @@ class Supervisor:
         else:
             st.level, st.message = DiagnosticStatus.OK, "supervising (%d restarts)" % self.restarts
         st.values = [KeyValue("restarts", str(self.restarts)), KeyValue("last stop", self.last_stop or "-"),
-                     KeyValue("started pid", str(self.started_pid or "-"))]
+                     KeyValue("started pid", str(self.started_pid or "-")),
+                     KeyValue("bad reports", str(self.bad_reports))]
         self.diag_pub.publish(DiagnosticArray(header=rospy.Header(stamp=rospy.Time.now()), status=[st]))
 
     def learn_pids(self):
