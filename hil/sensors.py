@@ -108,6 +108,13 @@ class InsSolutionErrors:
         self.index = None  # grid index of the newest value
         self.values = {}
 
+    def draw_until(self, sensor_t_s):
+        """Draws the grid up to sensor time sensor_t_s ahead of the packets that will read it:
+        the values are those at() would draw then. Nothing before the first packet's request,
+        which fixes where the grid starts."""
+        if self.index is not None:
+            self._draw_to(int(math.floor(sensor_t_s * self.GRID_HZ + 1e-6)))
+
     def at(self, sensor_t_s):
         """(attitude, position, velocity) errors at sensor time sensor_t_s."""
         k = int(math.floor(sensor_t_s * self.GRID_HZ + 1e-6))
@@ -115,6 +122,11 @@ class InsSolutionErrors:
             self.index = self.first = k
             x = self.x
             self.values[k] = (x[0:3], x[3:6], x[6:9])
+        self._draw_to(k)
+        # Older than remembered (never in a flight) or than the first request: the oldest kept.
+        return self.values[max(k, self.first, self.index - self.KEEP + 1)]
+
+    def _draw_to(self, k):
         if self.index < k:
             n = k - self.index
             z = unit_normals(self.rng, 9 * n)
@@ -126,8 +138,6 @@ class InsSolutionErrors:
                 values[self.index] = (x[0:3], x[3:6], x[6:9])
                 values.pop(self.index - keep, None)
             self.x = x
-        # Older than remembered (never in a flight) or than the first request: the oldest kept.
-        return self.values[max(k, self.first, self.index - self.KEEP + 1)]
 
 
 class Vn200Errors:

@@ -419,6 +419,7 @@ class Simulation:
         self.truth_log = open(os.path.join(self.out_dir, "truth.bin"), "wb")
         # One VN-200: both ports carry its one navigation solution, errors included.
         ins_errors = sensors.InsSolutionErrors(self.seed)
+        self.ins_errors = ins_errors
         self.hp_vn = sensors.Vn200Port(ports["hp_vn200_port"], 2, self.seed, sensors.HP_VN200_BAUD,
                                        solution_errors=ins_errors)
         if self.latency is not None:
@@ -640,6 +641,10 @@ class Simulation:
         expect_command = self.controller_steps_at(t_us) and self.hp_alive
         want = self.waiter.count("servo_op") + 1  # counted before the clock moves: it may answer at once
         self.publish_step(t_us)
+        # While the controller computes, on the other core: the navigation filter's errors for the
+        # next step's packets, which do not depend on the flight (drawn in the same order, so
+        # the same values; a third of the packets' cost, off the step's critical path).
+        self.ins_errors.draw_until((t_us + self.period_us) * 1e-6)
         cmd_seq = None
         msg = None
         if expect_command:

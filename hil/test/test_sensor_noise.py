@@ -50,3 +50,20 @@ def test_the_filter_errors_at_packet_times_are_the_per_draw_process_to_the_bit()
         got = [errors.at(t) for t in times]
         assert [[[v.hex() for v in part] for part in e] for e in got] == \
             [[[v.hex() for v in part] for part in e] for e in per_draw_errors(seed, times)], seed
+
+
+def test_errors_drawn_ahead_while_the_controller_computes_are_the_ones_drawn_on_demand():
+    # The simulator draws the next step's grid while it waits for the controller: the packets
+    # then read what they would have drawn themselves, whatever came ahead or not at all.
+    times = [i * 0.01 for i in range(300)]
+    for seed in (1, 11, 26):
+        ahead = sensors.InsSolutionErrors(seed)
+        ahead.draw_until(0.5)  # before the first packet: the first packet fixes the grid
+        got = []
+        for t in times:
+            got.append(ahead.at(t))
+            if int(round(t * 100)) % 3:  # not every step waits for a controller
+                ahead.draw_until(t + 0.01)
+        want = per_draw_errors(seed, times)
+        assert [[[v.hex() for v in part] for part in e] for e in got] == \
+            [[[v.hex() for v in part] for part in e] for e in want], seed
