@@ -35,19 +35,35 @@ class Regions:
         self.stall_ftps = c["stall_speed_ftps"]
         self.ceiling_ft = c["ceiling_agl_ft"]
         self.airborne_ft = c["airborne_agl_ft"]
+        # A flight's verdicts ask each period's rows two or three times (every check that reads
+        # them): the summary's largest cost, a tenth of a flight's CPU. Bounded: a Regions may
+        # judge many flights.
+        self._rows = {}
 
     @staticmethod
     def _max_row(rows, v, v0):
-        return max(sum(a * (x - x0) for a, x, x0 in zip(r, v, v0)) for r in rows)
+        # The differences once, not once a row: each row's sum has the same terms in the same
+        # order as sum(a * (x - x0)), so the same value to the bit.
+        d = [x - x0 for x, x0 in zip(v, v0)]
+        return max(sum([a * e for a, e in zip(r, d)]) for r in rows)
+
+    def _max_row_of(self, key, rows, v, v0):
+        row = self._rows.get(key)
+        if row is None:
+            if len(self._rows) >= 100000:
+                self._rows.clear()
+            row = self._rows[key] = self._max_row(rows, v, v0)
+        return row
 
     def su_max(self, u):
         """max_i (S_u (u - u0))_i for u = (elevator, aileron, rudder, throttle)."""
-        return self._max_row(self.su, u, self.u0)
+        u = tuple(u)
+        return self._max_row_of(("u",) + u, self.su, u, self.u0)
 
     def sx_max(self, m):
-        x = [m.alpha_deg, m.beta_deg, m.roll_deg, m.pitch_deg, m.p_deg_s, m.q_deg_s, m.r_deg_s,
-             m.height_above_home_ft]
-        return self._max_row(self.sx, x, self.x0)
+        x = (m.alpha_deg, m.beta_deg, m.roll_deg, m.pitch_deg, m.p_deg_s, m.q_deg_s, m.r_deg_s,
+             m.height_above_home_ft)
+        return self._max_row_of(x, self.sx, x, self.x0)
 
 
 def reason_names(mask):
