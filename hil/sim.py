@@ -37,13 +37,12 @@ import rosgraph
 import rospy
 import yaml
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
-from drone_ros.msg import DecisionStatus, HilTruth, LockstepStep, ServoCommand, hil_data, way
-from rosgraph_msgs.msg import Clock
+from drone_ros.msg import DecisionStatus, HilTruth, ServoCommand, hil_data, way
 from sensor_msgs.msg import Temperature
 
 from stack_tools.paths import ROOT  # noqa: E402  (aircraft/ of the source tree or the install)
 from supervisor_core import node_query  # noqa: E402  (the supervisor's node queries: the same PID lookup)
-from hil import faults, gs_monitor, ha_channel, link_relay, mission, sensors, verdicts  # noqa: E402
+from hil import faults, gs_monitor, ha_channel, link_relay, lockstep_io, mission, sensors, verdicts  # noqa: E402
 from hil.faults.base import Board, rc_trimmed  # noqa: E402
 from hil.aircraft_period import decision_rate_hz, design_airspeed_ftps  # noqa: E402
 from hil.design_wind import DesignWind  # noqa: E402
@@ -66,14 +65,18 @@ def isa_temperature_c(elevation_ft):
 
 
 class Waiter:
-    """Counters fed by subscriber threads, waited on by the stepping thread."""
+    """Counters fed by subscriber threads, waited on by the stepping thread. In lockstep the
+    topics a step waits for are counted by the native node instead (hil.lockstep_io, `native`):
+    its keys are asked there, the rest (the mission's /way) here."""
 
-    def __init__(self):
+    def __init__(self, native=None):
         self.cond = threading.Condition()
         self.counts = {}
         self.latest = {}
         self.lost = {}
         self.silent_at = {}
+        self.native = native
+        self.native_keys = native.keys if native is not None else frozenset()
 
     def hit(self, key, msg=None):
         with self.cond:
@@ -82,8 +85,25 @@ class Waiter:
             self.cond.notify_all()
 
     def count(self, key):
+        if key in self.native_keys:
+            return self.native.count(key)
         with self.cond:
             return self.counts.get(key, 0)
+
+    def latest_seq(self, key):
+        """The seq of key's newest message (its first field, a uint32; None before the first)."""
+        if key in self.native_keys:
+            return self.native.latest_seq(key)
+        with self.cond:
+            m = self.latest.get(key)
+        return None if m is None else m.seq
+
+    def latest_of(self, key, msg_class):
+        """The newest message of key (None before the first)."""
+        if key in self.native_keys:
+            return self.native.latest(key, msg_class)
+        with self.cond:
+            return self.latest.get(key)
 
     def wait_published(self, key, expected, timeout_s):
         """Waits until `expected` messages of `key` have arrived, less those given up on before.
@@ -106,11 +126,17 @@ class Waiter:
 
     def silent(self, key):
         """Whether the publisher of `key` is given up on until it publishes again."""
-        with self.cond:
-            return key in self.silent_at and self.counts.get(key, 0) == self.silent_at[key]
+        return key in self.silent_at and self.count(key) == self.silent_at[key]
 
     def wait_count(self, key, at_least, timeout_s):
         deadline = time.monotonic() + timeout_s
+        if key in self.native_keys:
+            while True:  # in slices: a shutdown is seen within 0.1 s
+                left = deadline - time.monotonic()
+                if self.native.wait_count(key, at_least, min(max(left, 0.0), 0.1)):
+                    return True
+                if left <= 0.0 or rospy.is_shutdown():
+                    return False
         with self.cond:
             while self.counts.get(key, 0) < at_least:
                 left = deadline - time.monotonic()
@@ -360,13 +386,18 @@ class Simulation:
     def _open_ros_io(self):
         """The publishers and subscriptions of the step loop, and its bookkeeping."""
         self.master = rosgraph.Master(rospy.get_name())
-        self.waiter = Waiter()
-        # queue_size None: published in this thread before publish() returns, which is what
-        # makes "published" mean "on its way to every subscriber" in the stepping order.
+        # Lockstep: /clock, /hil/lockstep and the topics each step waits for, by the native node
+        # (hil.lockstep_io), which publishes in this thread before it returns: "published" means
+        # "on its way to every subscriber" in the stepping order. In real time nothing is waited
+        # for, and the latency probe decodes what it reads: rospy subscriptions.
+        self.io = None if self.realtime else lockstep_io.LockstepIo(
+            {"vn": rospy.resolve_name("vn200/temperature"), "status": rospy.resolve_name("decision_status"),
+             "pwm": rospy.resolve_name("pwm"), "home": rospy.resolve_name("home"), "servo_op": self.servo_op_topic})
+        # The node whose connections the counted topics are: the preflight asks it.
+        self.io_node = rospy.get_name() if self.io is None else self.io.name
+        self.waiter = Waiter(self.io)
+        # queue_size None: published in this thread before publish() returns.
         warnings.filterwarnings("ignore", message="The publisher should be created with an explicit keyword")
-        # /clock is the master's one time (use_sim_time is global too): the one absolute name.
-        self.clock_pub = rospy.Publisher("/clock", Clock, queue_size=None)
-        self.lockstep_pub = rospy.Publisher("hil/lockstep", LockstepStep, queue_size=None, tcp_nodelay=True)
         self.truth_pub = rospy.Publisher("hil/truth", HilTruth, queue_size=None)
         # The master's one /diagnostics, as every node's: how fast the simulation goes, and in
         # real time whether it keeps up with the wall clock.
@@ -379,20 +410,21 @@ class Simulation:
         # that axis). In lockstep the records are the HA's periods.
         self.ha_periods = [] if self.realtime else None
         self.pace0_mono = None
-        # Topics only counted are taken as bytes (rospy.AnyMsg): decoding them in rospy's receive
-        # threads was a seventh of this node's CPU, taken from the stepping thread by the GIL.
-        # The real-time latency probe reads the VN-200 packets' stamps, so there they are decoded.
-        vn_type = Temperature if self.realtime else rospy.AnyMsg
-        rospy.Subscriber("vn200/temperature", vn_type, self.on_vn_delivered, queue_size=1000, tcp_nodelay=True)
-        rospy.Subscriber("decision_status", rospy.AnyMsg, lambda m: self.waiter.hit("status"), queue_size=1000,
-                         tcp_nodelay=True)
-        # The HA's own reports only: the arduino node's link-down /pwm (usbstatus 0) runs on the wall
-        # clock. usbstatus is the message's last field, a byte.
-        rospy.Subscriber("pwm", rospy.AnyMsg, lambda m: m._buff[-1] and self.waiter.hit("pwm"), queue_size=1000,
-                         tcp_nodelay=True)
-        rospy.Subscriber("servo_op", ServoCommand, self.on_servo_op, queue_size=1000, tcp_nodelay=True)
+        if self.io is None:
+            # Topics only counted are taken as bytes (rospy.AnyMsg); the latency probe reads the
+            # VN-200 packets' and the commands' stamps, so those are decoded.
+            rospy.Subscriber("vn200/temperature", Temperature, self.on_vn_delivered, queue_size=1000,
+                             tcp_nodelay=True)
+            rospy.Subscriber("decision_status", rospy.AnyMsg, lambda m: self.waiter.hit("status"), queue_size=1000,
+                             tcp_nodelay=True)
+            # The HA's own reports only: the arduino node's link-down /pwm (usbstatus 0) runs on the
+            # wall clock. usbstatus is the message's last field, a byte.
+            rospy.Subscriber("pwm", rospy.AnyMsg, lambda m: m._buff[-1] and self.waiter.hit("pwm"),
+                             queue_size=1000, tcp_nodelay=True)
+            rospy.Subscriber("servo_op", ServoCommand, self.on_servo_op, queue_size=1000, tcp_nodelay=True)
+            rospy.Subscriber("home", rospy.AnyMsg, lambda m: self.waiter.hit("home"), queue_size=100,
+                             tcp_nodelay=True)
         rospy.Subscriber("way", way, lambda m: self.waiter.hit("way", m), queue_size=10)
-        rospy.Subscriber("home", rospy.AnyMsg, lambda m: self.waiter.hit("home"), queue_size=100, tcp_nodelay=True)
         rospy.Subscriber("to_hil", hil_data, self.on_to_hil, queue_size=1000)
         self.relay_pub = None if self.relay_topic is None else \
             rospy.Publisher(self.relay_topic, ServoCommand, queue_size=None, tcp_nodelay=True)
@@ -524,7 +556,7 @@ class Simulation:
         subscriber has connected to it, and the step would wait it out as an HP that is gone."""
         return inbound_connected(self.master, self.controller_node, self.controller_inputs) and \
             inbound_connected(self.master, self.arduino_node, [self.arduino_input]) and \
-            publisher_connected(self.master, rospy.get_name(), self.servo_op_topic, self.controller_node)
+            publisher_connected(self.master, self.io_node, self.servo_op_topic, self.controller_node)
 
     def service_while_waiting(self):
         self.hp_vn.service_commands()
@@ -598,8 +630,8 @@ class Simulation:
         # packet and HA report): a report sent before its own subscriber connected would leave the
         # count one short for the rest of the flight, every step waiting out wait_s.
         self.wait_subscribed({self.controller_node: inputs, self.arduino_node: [self.arduino_input],
-                              rospy.get_name(): [rospy.resolve_name(t) for t in
-                                                 ("vn200/temperature", "decision_status", "pwm", "home")]}, 120.0)
+                              self.io_node: [rospy.resolve_name(t) for t in
+                                             ("vn200/temperature", "decision_status", "pwm", "home")]}, 120.0)
         # With the relay, what reaches the HA must be what the relay sends, and nothing else.
         self.relay_verified = self.relay_topic is not None and \
             inbound_connected(self.master, self.arduino_node, [self.relay_topic]) and \
@@ -649,8 +681,9 @@ class Simulation:
         msg = None
         if expect_command:
             if self.waiter.wait_count("servo_op", want, self.wait_s):
-                msg = self.waiter.latest["servo_op"]
-                cmd_seq = msg.seq
+                cmd_seq = self.waiter.latest_seq("servo_op")
+                # Decoded only for a fault that reads it (it may corrupt or withhold it).
+                msg = None if fault is None else self.waiter.latest_of("servo_op", ServoCommand)
             else:
                 self.hp_alive = False
                 self.event(t_s, "controller did not answer within %.1f s: not waited for until it is back" % self.wait_s)
@@ -721,15 +754,14 @@ class Simulation:
         published since its last step, for the controller to wait for. Each VN-200 packet is one
         message on each of its five topics, each HA report one /decision_status and one /pwm;
         home and the plan as they went out."""
-        clock = rospy.Time(t_us // 1000000, (t_us % 1000000) * 1000)
-        self.clock_pub.publish(Clock(clock=clock))
-        rospy.rostime._set_rostime(clock)  # this node's own ROS time (main())
         now = self.delivered()
         packets, reports, homes, ways = (n - d for n, d in zip(now, self.declared))
         self.declared = now
-        self.lockstep_pub.publish(LockstepStep(clock=clock, ins=packets, attitude=packets, gps_position=packets,
-                                               gps_velocity=packets, imu_pqr_acceleration=packets,
-                                               pwm=reports, decision_status=reports, home=homes, way=ways))
+        # LockstepStep's order: ins, attitude, gps_position, gps_velocity, imu_pqr_acceleration,
+        # pwm, decision_status, home, way.
+        self.io.publish_step(t_us, (packets,) * 5 + (reports, reports, homes, ways))
+        # This node's own ROS time (main()).
+        rospy.rostime._set_rostime(rospy.Time(t_us // 1000000, (t_us % 1000000) * 1000))
 
     def step_realtime(self, k):
         """Real time: nobody is waited for; the SIL runs its own periods on the wall clock and the
@@ -959,7 +991,7 @@ class Simulation:
         while time.monotonic() < t_end:
             self.service_while_waiting()
             time.sleep(0.05)
-        self.event(t_s, "mission accepted; /way has %d waypoints" % self.waiter.latest["way"].fp)
+        self.event(t_s, "mission accepted; /way has %d waypoints" % self.waiter.latest_of("way", way).fp)
 
     def write_progress(self, t_s):
         tmp = self.progress_path + ".tmp"
@@ -996,6 +1028,8 @@ class Simulation:
             except OSError:
                 pass
         self.fdm.close()
+        if self.io is not None:
+            self.io.close()
 
 
 def process_start_time():
