@@ -275,6 +275,26 @@ def reannounce_publishers(master, name, topic):
     return code == 1
 
 
+def publishers_serve(master, topic, subscriber):
+    """Whether every publisher of topic lists node `subscriber` among its own outbound
+    connections on it. A publisher lists a subscriber once their handshake is done, and only
+    then is a message it publishes delivered there. The subscriber's own list is no proof:
+    roscpp lists a publisher as soon as it starts to connect, and a restarted controller's first
+    command could go out before the arduino node's connection was taken (HiL: the HA's wait for
+    that command ran out, once in some fifteen crash flights)."""
+    try:
+        pubs, _, _ = master.getSystemState()
+    except (rosgraph.MasterException, OSError):
+        return False
+    nodes = next((n for t, n in pubs if t == topic), [])
+    for n in nodes:
+        uri = node_query.node_uri(master, n)
+        info = None if uri is None else node_query.bus_info(uri, rospy.get_name())
+        if info is None or not any(c[2] == "o" and c[4] == topic and c[1] == subscriber for c in info):
+            return False
+    return True  # none yet (a mission's /way before its upload): nothing to go by
+
+
 def publisher_connected(master, name, topic, publisher):
     """Whether node `name` has a live inbound connection on topic from node `publisher` (rospy
     names an inbound connection by the publisher's XML-RPC URI)."""
@@ -429,6 +449,9 @@ class Simulation:
         self.relay_pub = None if self.relay_topic is None else \
             rospy.Publisher(self.relay_topic, ServoCommand, queue_size=None, tcp_nodelay=True)
         self.arduino_input = self.relay_topic or self.servo_op_topic
+        # Who must have the controller's commands (with the relay, the arduino node takes the
+        # relay's, which this node publishes).
+        self.command_takers = [self.io_node] + ([] if self.relay_topic else [self.arduino_node])
         self.relayed = 0        # commands the HA's link must have delivered (relay)
         self.relayed_last = None
         self.relay_verified = False
@@ -556,7 +579,16 @@ class Simulation:
         subscriber has connected to it, and the step would wait it out as an HP that is gone."""
         return inbound_connected(self.master, self.controller_node, self.controller_inputs) and \
             inbound_connected(self.master, self.arduino_node, [self.arduino_input]) and \
-            publisher_connected(self.master, self.io_node, self.servo_op_topic, self.controller_node)
+            publisher_connected(self.master, self.io_node, self.servo_op_topic, self.controller_node) and \
+            all(publishers_serve(self.master, t, self.controller_node) for t in self.controller_inputs) and \
+            all(publishers_serve(self.master, self.servo_op_topic, n) for n in self.command_takers)
+
+    def graph_served(self, inputs, counted):
+        """Every publisher of the controller's inputs, of its commands and of what this node
+        counts has taken its subscriber on (publishers_serve)."""
+        return all(publishers_serve(self.master, t, self.controller_node) for t in inputs) and \
+            all(publishers_serve(self.master, self.servo_op_topic, n) for n in self.command_takers) and \
+            all(publishers_serve(self.master, t, self.io_node) for t in counted)
 
     def service_while_waiting(self):
         self.hp_vn.service_commands()
@@ -632,6 +664,10 @@ class Simulation:
         self.wait_subscribed({self.controller_node: inputs, self.arduino_node: [self.arduino_input],
                               self.io_node: [rospy.resolve_name(t) for t in
                                              ("vn200/temperature", "decision_status", "pwm", "home")]}, 120.0)
+        # Each of those connections taken by its publisher too (publishers_serve).
+        counted = [rospy.resolve_name(t) for t in ("vn200/temperature", "decision_status", "pwm", "home")]
+        self.wait_until("every publisher to take on the controller, the arduino node and this node as "
+                        "subscribers", lambda r: self.graph_served(inputs, counted), 60.0)
         # With the relay, what reaches the HA must be what the relay sends, and nothing else.
         self.relay_verified = self.relay_topic is not None and \
             inbound_connected(self.master, self.arduino_node, [self.relay_topic]) and \
