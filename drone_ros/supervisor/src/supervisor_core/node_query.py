@@ -1,9 +1,8 @@
 """Asking a ROS node about itself through the master and the node's own XML-RPC API, always with
-a deadline: a hung node accepts the connection and never answers. hp_supervisor.py finds the
-controller's process this way, and so does the HiL simulator (hil/sim.py), which also asks a node
-which topics it is connected on."""
+a deadline: a hung node accepts the connection and never answers. The HiL simulator (hil/sim.py)
+finds the controller's process this way and asks a node which topics it is connected on
+(hp_supervisor's own, in C++: ../node_query.cpp)."""
 import http.client
-import threading
 import xmlrpc.client
 
 import rosgraph
@@ -20,24 +19,6 @@ class TimeoutTransport(xmlrpc.client.Transport):
         conn = super().make_connection(host)
         conn.timeout = self.timeout_s
         return conn
-
-
-class ThreadMasters:
-    """The master's API, one connection per thread. xmlrpc.client keeps one HTTP connection per
-    proxy and is not thread-safe: the supervisor's PID learner and a restart asking through one
-    proxy at the same moment failed the restart with http.client.CannotSendRequest (HiL: the
-    request lost, the HA flying 15 s more until it asked again)."""
-
-    def __init__(self, caller_id, master_uri=None):
-        self.caller_id, self.master_uri = caller_id, master_uri
-        self.local = threading.local()
-
-    def get(self):
-        """This thread's rosgraph.Master."""
-        master = getattr(self.local, "master", None)
-        if master is None:
-            master = self.local.master = rosgraph.Master(self.caller_id, master_uri=self.master_uri)
-        return master
 
 
 def node_uri(master, name):
