@@ -17,10 +17,12 @@ from launch_procs import echo, free_port, private_master, stop, wait_for
 
 # ha_sil is no ROS node (the HA speaks rosserial over its pty, as the Due does): /decision_status
 # flowing from the arduino node below is what shows it up.
+# The simulator's process holds two nodes in lockstep: hil_sim and hil_sim_io, the roscpp node of
+# its per-step I/O (/clock, /hil/lockstep; hil/HIL_INTERFACES.md, section 3).
 NODES = ["/controller_DG808", "/hp_supervisor", "/vn200", "/arduino", "/microhard_gs", "/hil_sim",
-         "/flight_markers", "/recorder"]
+         "/hil_sim_io", "/flight_markers", "/recorder"]
 # Topic: the node that must publish it.
-TOPICS = {"/clock": "/hil_sim", "/hil/truth": "/hil_sim", "/ins": "/vn200", "/attitude": "/vn200",
+TOPICS = {"/clock": "/hil_sim_io", "/hil/lockstep": "/hil_sim_io", "/hil/truth": "/hil_sim", "/ins": "/vn200", "/attitude": "/vn200",
           "/gps_position": "/vn200", "/gps_velocity": "/vn200", "/imu_PQR_acceleration": "/vn200",
           "/servo_op": "/controller_DG808", "/data": "/controller_DG808", "/to_hil": "/controller_DG808",
           "/pwm": "/arduino", "/decision_status": "/arduino", "/home": "/arduino", "/way": "/microhard_gs",
