@@ -20,7 +20,6 @@
 #include <atomic>
 #include <chrono>
 #include <cstdlib>
-#include <fstream>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -63,17 +62,6 @@ bool load(const ros::NodeHandle &pnh, Params *p, std::string *error) {
 
 void sleep_s(double s) {
   std::this_thread::sleep_for(std::chrono::microseconds(static_cast<int64_t>(s * 1e6)));
-}
-
-// Runs no more: gone, or a zombie (a dead child of roslaunch or of this node until reaped).
-bool alive(int pid) {
-  if (kill(pid, 0) != 0) {
-    return errno == EPERM;
-  }
-  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
-  std::string text((std::istreambuf_iterator<char>(stat)), std::istreambuf_iterator<char>());
-  const size_t paren = text.rfind(')');
-  return paren != std::string::npos && paren + 2 < text.size() && text[paren + 2] != 'Z';
 }
 
 std::string uri_host(const std::string &uri) {
@@ -149,18 +137,28 @@ class Supervisor {
   // Remembers the node's PID while it answers: a hung node cannot be asked.
   void learn_pids() {
     while (!stopping_ && ros::ok()) {
-      const std::string uri = node_uri(p_.node);
-      if (!uri.empty() && uri != known_uri() && local(uri)) {
-        const std::optional<int> pid =
-            supervisor::ask_pid(uri, ros::this_node::getName(), kAskTimeoutS);
-        if (pid) {
-          std::lock_guard<std::mutex> lock(mutex_);
-          known_uri_ = uri;
-          known_pid_ = *pid;
-        }
+      try {
+        learn_pid();
+      } catch (const std::exception &e) {
+        ROS_WARN_THROTTLE(10.0, "hp_supervisor: learning %s's PID: %s", p_.node.c_str(), e.what());
+      } catch (...) {
+        ROS_WARN_THROTTLE(10.0, "hp_supervisor: learning %s's PID failed", p_.node.c_str());
       }
       reap_children();
       sleep_s(kLearnPeriodS);
+    }
+  }
+
+  void learn_pid() {
+    const std::string uri = node_uri(p_.node);
+    if (!uri.empty() && uri != known_uri() && local(uri)) {
+      const std::optional<int> pid =
+          supervisor::ask_pid(uri, ros::this_node::getName(), kAskTimeoutS);
+      if (pid) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        known_uri_ = uri;
+        known_pid_ = *pid;
+      }
     }
   }
 
@@ -192,7 +190,7 @@ class Supervisor {
 
   void stop_running() {
     const int pid = find_pid();
-    if (pid <= 0 || !alive(pid)) {
+    if (pid <= 0 || !supervisor::process_running(pid)) {
       ROS_WARN("hp_supervisor: %s is not running (crashed)", p_.node.c_str());
       std::lock_guard<std::mutex> lock(mutex_);
       if (last_stop_.empty()) {  // not set by find_pid: not a node elsewhere
@@ -205,16 +203,16 @@ class Supervisor {
     set_last_stop("SIGTERM");
     const auto deadline = std::chrono::steady_clock::now() +
                           std::chrono::microseconds(static_cast<int64_t>(p_.kill_grace_s * 1e6));
-    while (std::chrono::steady_clock::now() < deadline && alive(pid)) {
+    while (std::chrono::steady_clock::now() < deadline && supervisor::process_running(pid)) {
       reap_children();
       sleep_s(0.01);
     }
-    if (alive(pid)) {
+    if (supervisor::process_running(pid)) {
       ROS_WARN("hp_supervisor: %s did not stop within %.1f s (hung): SIGKILL", p_.node.c_str(),
                p_.kill_grace_s);
       kill(pid, SIGKILL);
       set_last_stop("SIGKILL (hung)");
-      while (alive(pid)) {
+      while (supervisor::process_running(pid)) {
         reap_children();
         sleep_s(0.01);
       }
@@ -255,14 +253,27 @@ class Supervisor {
   }
 
   void restart() {
-    set_last_stop("");
-    stop_running();
-    if (p_.boot_delay_s > 0.0) {
-      ros::Duration(p_.boot_delay_s).sleep();
+    // A restart that died unseen would leave the HA flying on: it says why, in /diagnostics too.
+    try {
+      set_last_stop("");
+      stop_running();
+      if (p_.boot_delay_s > 0.0) {
+        ros::Duration(p_.boot_delay_s).sleep();
+      }
+      if (ros::ok() && !stopping_) {
+        start_new();
+      }
+    } catch (const std::exception &e) {
+      fail_restart(e.what());
+    } catch (...) {
+      fail_restart("an exception that is not a std::exception");
     }
-    if (ros::ok() && !stopping_) {
-      start_new();
-    }
+  }
+
+  void fail_restart(const std::string &why) {
+    ROS_ERROR("hp_supervisor: restarting %s failed: %s", p_.node.c_str(), why.c_str());
+    std::lock_guard<std::mutex> lock(mutex_);
+    failure_ = "restart failed: " + why;
   }
 
   void set_last_stop(const std::string &s) {
@@ -287,11 +298,11 @@ class Supervisor {
     }
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(3);
     for (pid_t c : children) {
-      while (alive(c) && std::chrono::steady_clock::now() < deadline) {
+      while (supervisor::process_running(c) && std::chrono::steady_clock::now() < deadline) {
         reap_children();
         sleep_s(0.01);
       }
-      if (alive(c)) {
+      if (supervisor::process_running(c)) {
         kill(c, SIGKILL);
       }
     }

@@ -2,9 +2,11 @@
 
 #include <netdb.h>
 #include <poll.h>
+#include <signal.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <unistd.h>
+#include <xmlrpcpp/XmlRpcException.h>
 #include <xmlrpcpp/XmlRpcValue.h>
 
 #include <fcntl.h>
@@ -187,12 +189,16 @@ std::optional<int> node_api_int_value(const std::string &http_response) {
   }
   int offset = static_cast<int>(param + std::strlen("<param>"));
   XmlRpc::XmlRpcValue v;
-  if (!v.fromXml(http_response, &offset) || v.getType() != XmlRpc::XmlRpcValue::TypeArray ||
-      v.size() != 3 || v[0].getType() != XmlRpc::XmlRpcValue::TypeInt ||
-      static_cast<int>(v[0]) != 1 || v[2].getType() != XmlRpc::XmlRpcValue::TypeInt) {
+  try {  // XmlRpcValue throws on a type it did not expect
+    if (!v.fromXml(http_response, &offset) || v.getType() != XmlRpc::XmlRpcValue::TypeArray ||
+        v.size() != 3 || v[0].getType() != XmlRpc::XmlRpcValue::TypeInt ||
+        static_cast<int>(v[0]) != 1 || v[2].getType() != XmlRpc::XmlRpcValue::TypeInt) {
+      return std::nullopt;
+    }
+    return static_cast<int>(v[2]);
+  } catch (const XmlRpc::XmlRpcException &) {
     return std::nullopt;
   }
-  return static_cast<int>(v[2]);
 }
 
 std::optional<int> ask_pid(const std::string &uri, const std::string &caller_id, double timeout_s) {
@@ -205,6 +211,37 @@ std::optional<int> ask_pid(const std::string &uri, const std::string &caller_id,
       "<string>" +
       xml_escaped(caller_id) + "</string></value></param></params></methodCall>";
   return node_api_int_value(post(*at, body, timeout_s));
+}
+
+std::optional<char> process_state(int stat_fd) {
+  char buf[512];
+  const ssize_t n = pread(stat_fd, buf, sizeof(buf) - 1, 0);
+  if (n <= 0) {
+    return std::nullopt;
+  }
+  const std::string text(buf, static_cast<size_t>(n));
+  const size_t paren = text.rfind(')');
+  if (paren == std::string::npos || paren + 2 >= text.size()) {
+    return std::nullopt;
+  }
+  return text[paren + 2];
+}
+
+bool process_running(int pid) {
+  if (pid <= 0) {
+    return false;
+  }
+  if (kill(pid, 0) != 0) {
+    return errno == EPERM;
+  }
+  const std::string path = "/proc/" + std::to_string(pid) + "/stat";
+  const int fd = open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) {
+    return false;
+  }
+  const std::optional<char> state = process_state(fd);
+  close(fd);
+  return state && *state != 'Z';
 }
 
 std::string find_node_executable(const std::string &prefix_path, const std::string &package,

@@ -31,4 +31,14 @@ std::optional<int> ask_pid(const std::string &uri, const std::string &caller_id,
 std::string find_node_executable(const std::string &prefix_path, const std::string &package,
                                  const std::string &type);
 
+// Whether process pid still runs: not gone and not a zombie (a dead child of roslaunch or of
+// the supervisor until it is reaped).
+bool process_running(int pid);
+
+// The state letter of an open /proc/<pid>/stat (R, S, Z, ...); nullopt when it cannot be read,
+// as once the process has gone (ESRCH). Read with read(2): libstdc++'s streams throw from that
+// error whatever their exception mask, and an ifstream here ended hp_supervisor with SIGABRT as
+// the HA asked for its first restart in a HiL flight.
+std::optional<char> process_state(int stat_fd);
+
 }  // namespace supervisor

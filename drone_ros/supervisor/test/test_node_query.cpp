@@ -2,10 +2,13 @@
 // getPid as a ROS node does (roscpp's own XML-RPC server), one that accepts and never answers (a
 // hung node: the deadline ends the wait), a closed port (a dead node), and the answers a broken
 // or failing node gives.
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>
+#include <signal.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 #include <xmlrpcpp/XmlRpcServer.h>
 #include <xmlrpcpp/XmlRpcServerMethod.h>
@@ -26,6 +29,7 @@ using supervisor::ask_pid;
 using supervisor::find_node_executable;
 using supervisor::node_api_int_value;
 using supervisor::parse_http_uri;
+using supervisor::process_running;
 
 class GetPid : public XmlRpc::XmlRpcServerMethod {
  public:
@@ -162,6 +166,43 @@ TEST(NodeQuery, TheNodesExecutableIsFoundUnderTheFirstPrefixThatHasIt) {
   EXPECT_EQ(find_node_executable(a, "pkg", "node"), "");
   std::remove((a + "/lib/pkg/not_executable").c_str());
   std::remove((b + "/lib/pkg/node").c_str());
+}
+
+TEST(NodeQuery, AProcessRunsUntilItExitsAndAZombieRunsNoMore) {
+  EXPECT_TRUE(process_running(getpid()));
+  EXPECT_FALSE(process_running(0));
+  const pid_t child = fork();
+  if (child == 0) {
+    _exit(0);
+  }
+  ASSERT_GT(child, 0);
+  // Exited, not yet reaped: a zombie.
+  for (int i = 0; i < 1000 && process_running(child); ++i) {
+    usleep(1000);
+  }
+  EXPECT_FALSE(process_running(child));
+  int status = 0;
+  waitpid(child, &status, 0);
+  EXPECT_FALSE(process_running(child));
+}
+
+TEST(NodeQuery, AProcessThatGoesWhileItsStatIsOpenReadsAsUnknownNotAnError) {
+  const pid_t child = fork();
+  if (child == 0) {
+    pause();
+    _exit(0);
+  }
+  ASSERT_GT(child, 0);
+  const std::string path = "/proc/" + std::to_string(child) + "/stat";
+  const int fd = open(path.c_str(), O_RDONLY);
+  ASSERT_GE(fd, 0);
+  EXPECT_TRUE(supervisor::process_state(fd).has_value());  // alive: S, sleeping in pause()
+  kill(child, SIGKILL);
+  int status = 0;
+  waitpid(child, &status, 0);
+  // Gone while the file is open: the read fails (ESRCH), where an ifstream threw.
+  EXPECT_EQ(supervisor::process_state(fd), std::nullopt);
+  close(fd);
 }
 
 }  // namespace
