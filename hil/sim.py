@@ -224,6 +224,35 @@ class PhaseTimer:
         self.t = now
 
 
+class GraphLook:
+    """One look at the ROS graph: the master's answers and each node's connections, each asked at
+    most once, for the many checks of one poll (a restart's wait polls every 20 ms; asked check by
+    check, one poll took some forty XML-RPC calls). Passed where a rosgraph.Master is."""
+
+    def __init__(self, master):
+        self.master, self.nodes, self.state, self.infos = master, {}, None, {}
+
+    def lookupNode(self, name):  # noqa: N802  (rosgraph.Master's name)
+        if name not in self.nodes:
+            self.nodes[name] = self.master.lookupNode(name)
+        return self.nodes[name]
+
+    def getSystemState(self):  # noqa: N802
+        if self.state is None:
+            self.state = self.master.getSystemState()
+        return self.state
+
+    def bus_info(self, uri):
+        if uri not in self.infos:
+            self.infos[uri] = node_query.bus_info(uri, rospy.get_name())
+        return self.infos[uri]
+
+
+def bus_info(master, uri):
+    """The node's getBusInfo connections (None: it does not answer), from the look if one is given."""
+    return master.bus_info(uri) if isinstance(master, GraphLook) else node_query.bus_info(uri, rospy.get_name())
+
+
 def node_pid(master, name):
     return node_query.node_pid(master, name, rospy.get_name())
 
@@ -232,7 +261,7 @@ def inbound_missing(master, name, topics):
     """Those of topics on which node `name` has no live inbound connection (all of them while
     the node does not answer)."""
     uri = node_query.node_uri(master, name)
-    info = None if uri is None else node_query.bus_info(uri, rospy.get_name())
+    info = None if uri is None else bus_info(master, uri)
     if info is None:
         return list(topics)
     got = {c[4] for c in info if c[2] == "i" and (len(c) < 6 or c[5])}
@@ -289,7 +318,7 @@ def publishers_serve(master, topic, subscriber):
     nodes = next((n for t, n in pubs if t == topic), [])
     for n in nodes:
         uri = node_query.node_uri(master, n)
-        info = None if uri is None else node_query.bus_info(uri, rospy.get_name())
+        info = None if uri is None else bus_info(master, uri)
         if info is None or not any(c[2] == "o" and c[4] == topic and c[1] == subscriber for c in info):
             return False
     return True  # none yet (a mission's /way before its upload): nothing to go by
@@ -299,7 +328,7 @@ def publisher_connected(master, name, topic, publisher):
     """Whether node `name` has a live inbound connection on topic from node `publisher` (rospy
     names an inbound connection by the publisher's XML-RPC URI)."""
     uri, pub = node_query.node_uri(master, name), node_query.node_uri(master, publisher)
-    info = None if uri is None or pub is None else node_query.bus_info(uri, rospy.get_name())
+    info = None if uri is None or pub is None else bus_info(master, uri)
     if info is None:
         return False
     return any(c[2] == "i" and c[4] == topic and (len(c) < 6 or c[5]) and c[1].rstrip("/") == pub.rstrip("/")
@@ -573,22 +602,25 @@ class Simulation:
         rospy.loginfo("hil_sim: t=%.2f s: %s", t_s, what)
 
     # --- participants ----------------------------------------------------------------------
-    def controller_connected(self):
+    def controller_connected(self, graph=None):
         """The controller takes every input, the arduino node takes its commands, and so does this
         node: a restarted controller's first command would otherwise go by before this node's
-        subscriber has connected to it, and the step would wait it out as an HP that is gone."""
-        return inbound_connected(self.master, self.controller_node, self.controller_inputs) and \
-            inbound_connected(self.master, self.arduino_node, [self.arduino_input]) and \
-            publisher_connected(self.master, self.io_node, self.servo_op_topic, self.controller_node) and \
-            all(publishers_serve(self.master, t, self.controller_node) for t in self.controller_inputs) and \
-            all(publishers_serve(self.master, self.servo_op_topic, n) for n in self.command_takers)
+        subscriber has connected to it, and the step would wait it out as an HP that is gone.
+        graph: a GraphLook to ask (a new one by default)."""
+        g = graph if graph is not None else GraphLook(self.master)
+        return inbound_connected(g, self.controller_node, self.controller_inputs) and \
+            inbound_connected(g, self.arduino_node, [self.arduino_input]) and \
+            publisher_connected(g, self.io_node, self.servo_op_topic, self.controller_node) and \
+            all(publishers_serve(g, t, self.controller_node) for t in self.controller_inputs) and \
+            all(publishers_serve(g, self.servo_op_topic, n) for n in self.command_takers)
 
     def graph_served(self, inputs, counted):
         """Every publisher of the controller's inputs, of its commands and of what this node
         counts has taken its subscriber on (publishers_serve)."""
-        return all(publishers_serve(self.master, t, self.controller_node) for t in inputs) and \
-            all(publishers_serve(self.master, self.servo_op_topic, n) for n in self.command_takers) and \
-            all(publishers_serve(self.master, t, self.io_node) for t in counted)
+        g = GraphLook(self.master)
+        return all(publishers_serve(g, t, self.controller_node) for t in inputs) and \
+            all(publishers_serve(g, self.servo_op_topic, n) for n in self.command_takers) and \
+            all(publishers_serve(g, t, self.io_node) for t in counted)
 
     def service_while_waiting(self):
         self.hp_vn.service_commands()
@@ -905,8 +937,9 @@ class Simulation:
         t0 = time.monotonic()
 
         def back(_reply):
-            pid = node_pid(self.master, self.controller_node)
-            return pid is not None and pid != old and self.controller_connected()
+            g = GraphLook(self.master)
+            pid = node_pid(g, self.controller_node)
+            return pid is not None and pid != old and self.controller_connected(g)
         try:
             self.wait_until("hp_supervisor to restart the controller", back, self.restart_wait_s)
         except RuntimeError:
