@@ -14,7 +14,6 @@ from stack_common import native
 
 # hil/native/lockstep_io.cpp's Counted, by the keys hil.sim.Waiter counts them under.
 KEYS = ("vn", "status", "pwm", "home", "servo_op")
-SERVO_OP_BYTES = 64  # a ServoCommand is 46 bytes serialized: room to spare
 
 
 def library():
@@ -45,7 +44,7 @@ class LockstepIo:
         if not self.lib.hio_init(ns.encode(), self.name.rsplit("/", 1)[-1].encode(), names):
             raise RuntimeError("libhil_lockstep_io: its node is already up in this process")
         self.declared = (ctypes.c_uint32 * 9)()
-        self.buf = ctypes.create_string_buffer(SERVO_OP_BYTES)
+        self.buf = ctypes.create_string_buffer(64)  # grown by _latest_bytes() if a message needs more
 
     def count(self, key):
         return self.lib.hio_count(self.index[key])
@@ -56,18 +55,22 @@ class LockstepIo:
 
     def latest(self, key, msg_class):
         """The newest message of key, decoded as msg_class (None before the first)."""
-        n = self.lib.hio_latest(self.index[key], self.buf, SERVO_OP_BYTES)
-        if n == 0 or n > SERVO_OP_BYTES:
-            return None
-        return msg_class().deserialize(self.buf.raw[:n])
+        b = self._latest_bytes(key)
+        return msg_class().deserialize(b) if b else None
+
+    def _latest_bytes(self, key):
+        """The newest message of key as serialized (b"" before the first)."""
+        n = self.lib.hio_latest(self.index[key], self.buf, len(self.buf))
+        if n > len(self.buf):  # a bigger one than any before: room for it, and ask again
+            self.buf = ctypes.create_string_buffer(2 * n)
+            n = self.lib.hio_latest(self.index[key], self.buf, len(self.buf))
+        return self.buf.raw[:n]
 
     def latest_seq(self, key):
         """The first field of the newest message of key, a uint32 (ServoCommand.seq; None
         before the first), read without decoding the rest."""
-        n = self.lib.hio_latest(self.index[key], self.buf, SERVO_OP_BYTES)
-        if n < 4 or n > SERVO_OP_BYTES:
-            return None
-        return int.from_bytes(self.buf.raw[:4], "little")
+        b = self._latest_bytes(key)
+        return int.from_bytes(b[:4], "little") if len(b) >= 4 else None
 
     def publish_step(self, t_us, declared):
         """/clock to t_us, then /hil/lockstep with declared: the nine counts in LockstepStep's order."""

@@ -59,6 +59,11 @@ CONTROLLER_INPUTS = ["hil/lockstep", "ins", "attitude", "gps_position", "gps_vel
                      "imu_PQR_acceleration", "pwm", "decision_status", "way", "home"]
 
 
+# What each step counts of what the vn200 and arduino nodes publish (hil.lockstep_io's keys),
+# and the controller's commands: the topics this node subscribes to and waits for.
+COUNTED = {"vn": "vn200/temperature", "status": "decision_status", "pwm": "pwm", "home": "home"}
+
+
 def isa_temperature_c(elevation_ft):
     """ISA's temperature at an elevation in the troposphere: 15 C at sea level, 1.98 C per 1,000 ft."""
     return 15.0 - 0.0019812 * elevation_ft
@@ -439,9 +444,9 @@ class Simulation:
         # (hil.lockstep_io), which publishes in this thread before it returns: "published" means
         # "on its way to every subscriber" in the stepping order. In real time nothing is waited
         # for, and the latency probe decodes what it reads: rospy subscriptions.
+        self.counted = [rospy.resolve_name(t) for t in COUNTED.values()]
         self.io = None if self.realtime else lockstep_io.LockstepIo(
-            {"vn": rospy.resolve_name("vn200/temperature"), "status": rospy.resolve_name("decision_status"),
-             "pwm": rospy.resolve_name("pwm"), "home": rospy.resolve_name("home"), "servo_op": self.servo_op_topic})
+            dict(zip(COUNTED, self.counted), servo_op=self.servo_op_topic))
         # The node whose connections the counted topics are: the preflight asks it.
         self.io_node = rospy.get_name() if self.io is None else self.io.name
         self.waiter = Waiter(self.io)
@@ -462,16 +467,16 @@ class Simulation:
         if self.io is None:
             # Topics only counted are taken as bytes (rospy.AnyMsg); the latency probe reads the
             # VN-200 packets' and the commands' stamps, so those are decoded.
-            rospy.Subscriber("vn200/temperature", Temperature, self.on_vn_delivered, queue_size=1000,
+            rospy.Subscriber(COUNTED["vn"], Temperature, self.on_vn_delivered, queue_size=1000,
                              tcp_nodelay=True)
-            rospy.Subscriber("decision_status", rospy.AnyMsg, lambda m: self.waiter.hit("status"), queue_size=1000,
+            rospy.Subscriber(COUNTED["status"], rospy.AnyMsg, lambda m: self.waiter.hit("status"), queue_size=1000,
                              tcp_nodelay=True)
             # The HA's own reports only: the arduino node's link-down /pwm (usbstatus 0) runs on the
             # wall clock. usbstatus is the message's last field, a byte.
-            rospy.Subscriber("pwm", rospy.AnyMsg, lambda m: m._buff[-1] and self.waiter.hit("pwm"),
+            rospy.Subscriber(COUNTED["pwm"], rospy.AnyMsg, lambda m: m._buff[-1] and self.waiter.hit("pwm"),
                              queue_size=1000, tcp_nodelay=True)
             rospy.Subscriber("servo_op", ServoCommand, self.on_servo_op, queue_size=1000, tcp_nodelay=True)
-            rospy.Subscriber("home", rospy.AnyMsg, lambda m: self.waiter.hit("home"), queue_size=100,
+            rospy.Subscriber(COUNTED["home"], rospy.AnyMsg, lambda m: self.waiter.hit("home"), queue_size=100,
                              tcp_nodelay=True)
         rospy.Subscriber("way", way, lambda m: self.waiter.hit("way", m), queue_size=10)
         rospy.Subscriber("to_hil", hil_data, self.on_to_hil, queue_size=1000)
@@ -611,13 +616,12 @@ class Simulation:
         return inbound_connected(g, self.controller_node, self.controller_inputs) and \
             inbound_connected(g, self.arduino_node, [self.arduino_input]) and \
             publisher_connected(g, self.io_node, self.servo_op_topic, self.controller_node) and \
-            all(publishers_serve(g, t, self.controller_node) for t in self.controller_inputs) and \
-            all(publishers_serve(g, self.servo_op_topic, n) for n in self.command_takers)
+            self.graph_served(self.controller_inputs, (), g)
 
-    def graph_served(self, inputs, counted):
+    def graph_served(self, inputs, counted, graph=None):
         """Every publisher of the controller's inputs, of its commands and of what this node
         counts has taken its subscriber on (publishers_serve)."""
-        g = GraphLook(self.master)
+        g = graph if graph is not None else GraphLook(self.master)
         return all(publishers_serve(g, t, self.controller_node) for t in inputs) and \
             all(publishers_serve(g, self.servo_op_topic, n) for n in self.command_takers) and \
             all(publishers_serve(g, t, self.io_node) for t in counted)
@@ -694,12 +698,10 @@ class Simulation:
         # packet and HA report): a report sent before its own subscriber connected would leave the
         # count one short for the rest of the flight, every step waiting out wait_s.
         self.wait_subscribed({self.controller_node: inputs, self.arduino_node: [self.arduino_input],
-                              self.io_node: [rospy.resolve_name(t) for t in
-                                             ("vn200/temperature", "decision_status", "pwm", "home")]}, 120.0)
+                              self.io_node: self.counted}, 120.0)
         # Each of those connections taken by its publisher too (publishers_serve).
-        counted = [rospy.resolve_name(t) for t in ("vn200/temperature", "decision_status", "pwm", "home")]
         self.wait_until("every publisher to take on the controller, the arduino node and this node as "
-                        "subscribers", lambda r: self.graph_served(inputs, counted), 60.0)
+                        "subscribers", lambda r: self.graph_served(inputs, self.counted), 60.0)
         # With the relay, what reaches the HA must be what the relay sends, and nothing else.
         self.relay_verified = self.relay_topic is not None and \
             inbound_connected(self.master, self.arduino_node, [self.relay_topic]) and \

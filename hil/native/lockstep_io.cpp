@@ -103,8 +103,9 @@ class LockstepIo {
  private:
   void on_message(int topic, const topic_tools::ShapeShifter &m) {
     const auto t = static_cast<size_t>(topic);
-    std::vector<uint8_t> bytes(m.size());
+    std::vector<uint8_t> bytes;  // read only where a byte of it matters: a counted topic is counted
     if (topic == kPwm || topic == kServoOp) {
+      bytes.resize(m.size());
       ros::serialization::OStream stream(bytes.data(), static_cast<uint32_t>(bytes.size()));
       m.write(stream);
     }

@@ -17,6 +17,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdlib>
@@ -281,9 +282,14 @@ class Supervisor {
     last_stop_ = s;
   }
 
+  // A reaped child's PID is free for the system to give again: it leaves children_, so that no
+  // signal of stop_children() reaches whatever process gets that PID next.
   void reap_children() {
     int status = 0;
-    while (waitpid(-1, &status, WNOHANG) > 0) {
+    pid_t gone;
+    while ((gone = waitpid(-1, &status, WNOHANG)) > 0) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      children_.erase(std::remove(children_.begin(), children_.end(), gone), children_.end());
     }
   }
 
