@@ -2,8 +2,10 @@
 
 #include <drone_ros/HomePosition.h>
 #include <drone_ros/pwm.h>
+#include <ros/callback_queue_interface.h>
 #include <ros/names.h>
 #include <ros/serialization.h>
+#include <rosgraph_msgs/Clock.h>
 #include <std_msgs/Time.h>
 #include <xmlrpcpp/XmlRpcValue.h>
 
@@ -21,6 +23,15 @@ constexpr uint16_t kIdParameterRequest = ROSSERIAL_MSGS_TOPICINFO_ID_PARAMETER_R
 constexpr uint16_t kIdLog = ROSSERIAL_MSGS_TOPICINFO_ID_LOG;
 constexpr uint16_t kIdTime = ROSSERIAL_MSGS_TOPICINFO_ID_TIME;
 constexpr int kReadTimeoutMs = 20;
+
+// Runs a callback in the thread that hands it over (roscpp's receive thread), with no queue.
+class ImmediateQueue : public ros::CallbackQueueInterface {
+ public:
+  void addCallback(const ros::CallbackInterfacePtr &callback, uint64_t /*owner_id*/) override {
+    callback->call();
+  }
+  void removeByID(uint64_t /*owner_id*/) override {}
+};
 }  // namespace
 
 ArduinoLinkNode::ArduinoLinkNode(ros::NodeHandle nh, ros::NodeHandle pnh, const LinkParams &params)
@@ -32,6 +43,19 @@ ArduinoLinkNode::ArduinoLinkNode(ros::NodeHandle nh, ros::NodeHandle pnh, const 
   updater_.setHardwareID(params_.port);
   updater_.add("HA link", this, &ArduinoLinkNode::diagnose);
   lost_since_ = ros::WallTime::now();
+  if (ros::Time::isSimTime()) {
+    clock_queue_ = std::make_unique<ImmediateQueue>();
+    ros::SubscribeOptions ops;
+    ops.init<rosgraph_msgs::Clock>("/clock", 1, [this](const rosgraph_msgs::Clock::ConstPtr &m) {
+      const uint64_t ns = m->clock.toNSec();
+      uint64_t seen = newest_clock_ns_.load();
+      while (ns > seen && !newest_clock_ns_.compare_exchange_weak(seen, ns)) {
+      }
+    });
+    ops.callback_queue = clock_queue_.get();
+    ops.transport_hints = ros::TransportHints().tcpNoDelay();
+    clock_sub_ = nh_.subscribe(ops);
+  }
 }
 
 ArduinoLinkNode::~ArduinoLinkNode() {
@@ -316,8 +340,25 @@ void ArduinoLinkNode::on_device_data(Endpoint &ep, const Frame &f) {
   ep.pub.publish(shape);
 }
 
-void ArduinoLinkNode::on_time_request() {
+// The device sets its clock by this answer and stamps what it publishes with it. Under simulated
+// time ros::Time::now() is the last /clock roscpp's own thread has taken from its queue: on a
+// loaded machine a lockstep simulator may be 0.2 s further on by then, and the device's stamps
+// would lag the flight by that until its next sync. The same message reaches our subscription
+// first, in the receive thread, so its newest /clock is never older.
+ros::Time ArduinoLinkNode::time_for_device() {
   const ros::Time now = ros::Time::now();
+  const uint64_t newest_ns = newest_clock_ns_.load();
+  if (newest_ns <= now.toNSec()) return now;
+  counters_.time_answers_behind_clock++;
+  const uint64_t lag_ns = newest_ns - now.toNSec();
+  if (lag_ns > counters_.time_answer_lag_max_ns.load()) counters_.time_answer_lag_max_ns = lag_ns;
+  ros::Time t;
+  t.fromNSec(newest_ns);
+  return t;
+}
+
+void ArduinoLinkNode::on_time_request() {
+  const ros::Time now = time_for_device();
   std_msgs_Time t;
   t.data.sec = now.sec;
   t.data.nsec = now.nsec;
@@ -467,6 +508,11 @@ void ArduinoLinkNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper &stat
   stat.add("tx_failed", counters_.tx_failed.load());
   stat.add("tx_too_big", counters_.tx_too_big.load());
   stat.add("commands_forwarded", counters_.commands_forwarded.load());
+  if (ros::Time::isSimTime()) {
+    stat.add("time_answers_behind_clock", counters_.time_answers_behind_clock.load());
+    stat.add("time_answer_lag_max_s",
+             1e-9 * static_cast<double>(counters_.time_answer_lag_max_ns.load()));
+  }
 }
 
 }  // namespace arduino_link

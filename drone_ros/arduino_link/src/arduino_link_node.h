@@ -7,12 +7,14 @@
 #define ARDUINO_LINK_ARDUINO_LINK_NODE_H
 
 #include <diagnostic_updater/diagnostic_updater.h>
+#include <ros/callback_queue_interface.h>
 #include <ros/ros.h>
 #include <topic_tools/shape_shifter.h>
 
 #include <atomic>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -37,6 +39,9 @@ struct LinkCounters {
   std::atomic<uint64_t> port_opens{0};
   std::atomic<uint64_t> commands_forwarded{0};
   std::atomic<uint64_t> topic_confirmations{0};  // topic requests sent again after an answer
+  // Simulated time: answers to the device's time request that would have lagged /clock.
+  std::atomic<uint64_t> time_answers_behind_clock{0};
+  std::atomic<uint64_t> time_answer_lag_max_ns{0};  // the most ros::Time::now() lagged by
 };
 
 class ArduinoLinkNode {
@@ -64,6 +69,7 @@ class ArduinoLinkNode {
   void on_publisher_info(const Frame &frame);
   void on_subscriber_info(const Frame &frame);
   void on_time_request();
+  ros::Time time_for_device();
   void on_param_request(const Frame &frame);
   void on_log(const Frame &frame);
   void on_device_data(Endpoint &ep, const Frame &frame);
@@ -103,6 +109,10 @@ class ArduinoLinkNode {
   double last_gap_s_ = 0.0;
   std::string last_error_;
   LinkCounters counters_;
+  // Simulated time only: the newest /clock, set in roscpp's receive thread (see time_for_device).
+  std::unique_ptr<ros::CallbackQueueInterface> clock_queue_;
+  ros::Subscriber clock_sub_;
+  std::atomic<uint64_t> newest_clock_ns_{0};
 };
 
 }  // namespace arduino_link
