@@ -329,6 +329,17 @@ def publishers_serve(master, topic, subscriber):
     return True  # none yet (a mission's /way before its upload): nothing to go by
 
 
+def clock_served(master):
+    """Whether every node on simulated time (each subscriber of /clock) is served /clock by its
+    publisher. A node that is not has a time of zero: the arduino node answered the HA's time
+    requests with it, and the HA's reports of the first 9 s of a loaded flight were stamped 0.51 s."""
+    try:
+        _, subs, _ = master.getSystemState()
+    except (rosgraph.MasterException, OSError):
+        return False
+    return all(publishers_serve(master, "/clock", n) for n in next((n for t, n in subs if t == "/clock"), []))
+
+
 def publisher_connected(master, name, topic, publisher):
     """Whether node `name` has a live inbound connection on topic from node `publisher` (rospy
     names an inbound connection by the publisher's XML-RPC URI)."""
@@ -702,6 +713,9 @@ class Simulation:
         # Each of those connections taken by its publisher too (publishers_serve).
         self.wait_until("every publisher to take on the controller, the arduino node and this node as "
                         "subscribers", lambda r: self.graph_served(inputs, self.counted), 60.0)
+        if not self.realtime:
+            self.wait_until("every node on simulated time to be served /clock",
+                            lambda r: clock_served(GraphLook(self.master)), 60.0)
         # With the relay, what reaches the HA must be what the relay sends, and nothing else.
         self.relay_verified = self.relay_topic is not None and \
             inbound_connected(self.master, self.arduino_node, [self.relay_topic]) and \

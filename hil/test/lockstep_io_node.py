@@ -6,12 +6,13 @@ import json
 import sys
 import time
 
+import rosgraph
 import rospy
 from drone_ros.msg import DecisionStatus, HomePosition, LockstepStep, ServoCommand, pwm
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import Temperature
 
-from hil import lockstep_io
+from hil import lockstep_io, sim
 
 
 def wait(cond, timeout_s=20.0):
@@ -62,6 +63,16 @@ def main():
     m = io.latest("servo_op", ServoCommand)
     out["latest"] = [m.seq, m.elevator_deg, m.throttle, m.crc32]
     wait(lambda: all(sub.get_num_connections() > 0 for sub in subs))
+    # The preflight's wait for every node on simulated time: this node's /clock subscriber is
+    # served; a node the master lists as one that has not connected (its URI answers nothing)
+    # is not, until it goes.
+    master = rosgraph.Master("/late_node")
+    wait(lambda: sim.clock_served(sim.GraphLook(master)))
+    out["clock_served"] = sim.clock_served(sim.GraphLook(master))
+    master.registerSubscriber("/clock", "rosgraph_msgs/Clock", "http://127.0.0.1:9/")
+    out["clock_served_with_late_node"] = sim.clock_served(sim.GraphLook(master))
+    master.unregisterSubscriber("/clock", "http://127.0.0.1:9/")
+    out["clock_served_after_it_went"] = sim.clock_served(sim.GraphLook(master))
     io.publish_step(1230000, (4, 4, 4, 4, 4, 3, 3, 1, 0))
     wait(lambda: seen["clock"] and seen["lockstep"])
     out["clock"], out["lockstep"] = seen["clock"], seen["lockstep"]

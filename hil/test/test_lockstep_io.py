@@ -2,7 +2,8 @@
 its ROS interface, under a master of the test's own: it counts what each topic the step waits for
 delivers (the arduino node's link-down /pwm aside), gives the newest command's seq and the whole
 command, publishes /clock and /hil/lockstep as LockstepStep declares them, and refuses a second
-node in one process. The flights (test_determinism and every lockstep test) fly on it too."""
+node in one process. The preflight's check that every node on simulated time is served /clock
+is asked of it too. The flights (test_determinism and every lockstep test) fly on it too."""
 import json
 import os
 import subprocess
@@ -30,5 +31,6 @@ def test_the_native_node_counts_what_the_step_waits_for_and_declares_the_step():
     assert out["latest_seq"] == 42
     assert out["latest"] == [42, -2.5, 0.5, 0xDEADBEEF]
     assert out["clock"] == [1230000000]
+    assert out["clock_served"] and not out["clock_served_with_late_node"] and out["clock_served_after_it_went"]
     assert out["lockstep"] == [[1230000000, 4, 4, 4, 4, 4, 3, 3, 1, 0]]
     assert out["after_close"] == 0  # a closed node answers nothing
