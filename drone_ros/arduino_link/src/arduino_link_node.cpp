@@ -2,7 +2,6 @@
 
 #include <drone_ros/HomePosition.h>
 #include <drone_ros/pwm.h>
-#include <ros/callback_queue_interface.h>
 #include <ros/names.h>
 #include <ros/serialization.h>
 #include <rosgraph_msgs/Clock.h>
@@ -23,15 +22,6 @@ constexpr uint16_t kIdParameterRequest = ROSSERIAL_MSGS_TOPICINFO_ID_PARAMETER_R
 constexpr uint16_t kIdLog = ROSSERIAL_MSGS_TOPICINFO_ID_LOG;
 constexpr uint16_t kIdTime = ROSSERIAL_MSGS_TOPICINFO_ID_TIME;
 constexpr int kReadTimeoutMs = 20;
-
-// Runs a callback in the thread that hands it over (roscpp's receive thread), with no queue.
-class ImmediateQueue : public ros::CallbackQueueInterface {
- public:
-  void addCallback(const ros::CallbackInterfacePtr &callback, uint64_t /*owner_id*/) override {
-    callback->call();
-  }
-  void removeByID(uint64_t /*owner_id*/) override {}
-};
 }  // namespace
 
 ArduinoLinkNode::ArduinoLinkNode(ros::NodeHandle nh, ros::NodeHandle pnh, const LinkParams &params)
@@ -44,7 +34,6 @@ ArduinoLinkNode::ArduinoLinkNode(ros::NodeHandle nh, ros::NodeHandle pnh, const 
   updater_.add("HA link", this, &ArduinoLinkNode::diagnose);
   lost_since_ = ros::WallTime::now();
   if (ros::Time::isSimTime()) {
-    clock_queue_ = std::make_unique<ImmediateQueue>();
     ros::SubscribeOptions ops;
     ops.init<rosgraph_msgs::Clock>("/clock", 1, [this](const rosgraph_msgs::Clock::ConstPtr &m) {
       const uint64_t ns = m->clock.toNSec();
@@ -52,13 +41,14 @@ ArduinoLinkNode::ArduinoLinkNode(ros::NodeHandle nh, ros::NodeHandle pnh, const 
       while (ns > seen && !newest_clock_ns_.compare_exchange_weak(seen, ns)) {
       }
     });
-    ops.callback_queue = clock_queue_.get();
+    ops.callback_queue = &inline_;
     ops.transport_hints = ros::TransportHints().tcpNoDelay();
     clock_sub_ = nh_.subscribe(ops);
   }
 }
 
 ArduinoLinkNode::~ArduinoLinkNode() {
+  inline_.close();  // no subscriber callback runs on what goes below
   std::lock_guard<std::mutex> lock(port_mutex_);
   if (port_.is_open()) {
     const auto stop = tx_stop_frame();  // tell the device we are going, as rosserial does
@@ -68,8 +58,8 @@ ArduinoLinkNode::~ArduinoLinkNode() {
 }
 
 void ArduinoLinkNode::run() {
-  ros::AsyncSpinner spinner(1);  // subscriber callbacks write to the port without waiting for us
-  spinner.start();
+  // No spinner: the node's only callbacks, its subscribers', run in roscpp's receive thread, and
+  // nothing it creates puts one on the global queue (no publisher has a connect callback).
   std::vector<uint8_t> buf(4096);
   std::vector<Frame> frames;
   while (ros::ok()) {
@@ -110,7 +100,6 @@ void ArduinoLinkNode::run() {
     update_link_state(ros::WallTime::now());
     updater_.update();
   }
-  spinner.stop();
 }
 
 void ArduinoLinkNode::try_open(const ros::WallTime &now) {
@@ -167,13 +156,20 @@ void ArduinoLinkNode::handle_frame(const Frame &f) {
     default:
       break;
   }
-  std::lock_guard<std::mutex> lock(endpoints_mutex_);
-  auto it = endpoints_.find(f.topic_id);
-  if (it == endpoints_.end() || !it->second.pub) {
-    ++counters_.unknown_topic;
-    return;
+  Endpoint ep;
+  {
+    std::lock_guard<std::mutex> lock(endpoints_mutex_);
+    auto it = endpoints_.find(f.topic_id);
+    if (it == endpoints_.end() || !it->second.pub) {
+      ++counters_.unknown_topic;
+      return;
+    }
+    ep = it->second;
   }
-  on_device_data(it->second, f);
+  // Published outside the lock: a device subscribed to a topic it publishes gets the message back
+  // in this thread (roscpp's intraprocess link, then the inline queue), and on_ros_message takes
+  // it.
+  on_device_data(ep, f);
 }
 
 void ArduinoLinkNode::refuse(const char *what, const std::string &why) {
@@ -261,28 +257,39 @@ void ArduinoLinkNode::on_subscriber_info(const Frame &f) {
   if (!accept_announcement(f, &info)) return;
   negotiated_ = true;
   const uint16_t id = info.topic_id;
-  std::lock_guard<std::mutex> lock(endpoints_mutex_);
-  auto existing = endpoints_.find(id);
-  if (existing != endpoints_.end() && existing->second.sub && existing->second.name == info.name &&
-      existing->second.md5 == info.md5) {
-    existing->second.buffer_size = info.buffer_size;
-    return;
+  {
+    std::lock_guard<std::mutex> lock(endpoints_mutex_);
+    auto existing = endpoints_.find(id);
+    if (existing != endpoints_.end() && existing->second.sub &&
+        existing->second.name == info.name && existing->second.md5 == info.md5) {
+      existing->second.buffer_size = info.buffer_size;
+      return;
+    }
   }
+  // Subscribed, and an older subscriber on this id let go, outside endpoints_mutex_: roscpp holds
+  // the subscription's own lock while on_ros_message runs, which takes endpoints_mutex_.
   Endpoint ep = endpoint_for(info);
-  boost::function<void(const topic_tools::ShapeShifter::ConstPtr &)> cb =
-      [this, id](const topic_tools::ShapeShifter::ConstPtr &msg) { on_ros_message(id, msg); };
   try {
-    // TCP_NODELAY: a servo command must not wait for Nagle.
-    ep.sub = nh_.subscribe<topic_tools::ShapeShifter>(ep.name, 10, cb, ros::VoidConstPtr(),
-                                                      ros::TransportHints().tcpNoDelay());
+    ros::SubscribeOptions ops;
+    ops.init<topic_tools::ShapeShifter>(
+        ep.name, 10,
+        [this, id](const topic_tools::ShapeShifter::ConstPtr &msg) { on_ros_message(id, msg); });
+    ops.transport_hints = ros::TransportHints().tcpNoDelay();  // a command must not wait for Nagle
+    ops.callback_queue = &inline_;  // a command goes to the port as it arrives
+    ep.sub = nh_.subscribe(ops);
   } catch (const ros::Exception &e) {
     refuse("subscriber", ep.name + ": " + e.what());
     return;
   }
   ROS_INFO("arduino: device subscribes to %s [%s] as id %u", ep.name.c_str(), ep.type.c_str(), id);
-  endpoints_[id] = ep;  // replaces (and so unsubscribes) an older subscriber on this id
+  Endpoint older;
+  {
+    std::lock_guard<std::mutex> lock(endpoints_mutex_);
+    older = std::move(endpoints_[id]);
+    endpoints_[id] = ep;
+  }
   confirm_topics_later();
-}
+}  // older's subscriber, if any, unsubscribes here
 
 void ArduinoLinkNode::on_ros_message(uint16_t topic_id,
                                      const topic_tools::ShapeShifter::ConstPtr &msg) {

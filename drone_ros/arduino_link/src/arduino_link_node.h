@@ -7,19 +7,18 @@
 #define ARDUINO_LINK_ARDUINO_LINK_NODE_H
 
 #include <diagnostic_updater/diagnostic_updater.h>
-#include <ros/callback_queue_interface.h>
 #include <ros/ros.h>
 #include <topic_tools/shape_shifter.h>
 
 #include <atomic>
 #include <cstdint>
 #include <map>
-#include <memory>
 #include <mutex>
 #include <string>
 #include <vector>
 
 #include "device_payloads.h"
+#include "drone_ros_common/inline_queue.h"
 #include "drone_ros_common/serial_port.h"
 #include "link_params.h"
 #include "message_definitions.h"
@@ -93,6 +92,9 @@ class ArduinoLinkNode {
 
   std::mutex port_mutex_;  // the port is written from subscriber callbacks too
   drone_ros_common::SerialPort port_;
+  // The subscribers' callbacks (on_ros_message, the /clock one) run in roscpp's receive thread as
+  // each message arrives (inline_queue.h). Before endpoints_ and clock_sub_: it outlives them.
+  drone_ros_common::InlineQueue inline_;
   std::mutex endpoints_mutex_;  // subscriber callbacks look up the device's buffer size
   std::map<uint16_t, Endpoint> endpoints_;
 
@@ -110,9 +112,8 @@ class ArduinoLinkNode {
   std::string last_error_;
   LinkCounters counters_;
   // Simulated time only: the newest /clock, set in roscpp's receive thread (see time_for_device).
-  std::unique_ptr<ros::CallbackQueueInterface> clock_queue_;
-  ros::Subscriber clock_sub_;
   std::atomic<uint64_t> newest_clock_ns_{0};
+  ros::Subscriber clock_sub_;
 };
 
 }  // namespace arduino_link

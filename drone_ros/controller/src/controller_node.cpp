@@ -52,8 +52,12 @@ ControllerNode::ControllerNode(ros::NodeHandle &nh, ros::NodeHandle &pnh,
   // On its own clock only the newest sample matters (queue of 1). In lockstep every message a
   // step declares must reach a callback to be counted, so none may be pushed out of the queue.
   pnh_.param("lockstep", lockstep_, false);
-  subscribe_home_and_plan(nh);
-  subscribe_inputs(nh);
+  // In lockstep a step's last input runs the step in the thread that received it. Not on the
+  // real clock: there a packet re-arms the fallback timer, which an inline callback may not do.
+  ros::NodeHandle sub_nh(nh);
+  if (lockstep_) sub_nh.setCallbackQueue(&inline_);
+  subscribe_home_and_plan(sub_nh);
+  subscribe_inputs(sub_nh);
   servo_pub_ = nh.advertise<drone_ros::ServoCommand>("servo_op", 10);
   data_pub_ = nh.advertise<drone_ros::data>("data", 10);
   hil_pub_ = nh.advertise<drone_ros::hil_data>("to_hil", 10);
@@ -61,7 +65,7 @@ ControllerNode::ControllerNode(ros::NodeHandle &nh, ros::NodeHandle &pnh,
   set_tunable_srv_ = pnh_.advertiseService("set_tunable", &ControllerNode::on_set_tunable, this);
 
   start_diagnostics();
-  start_stepping(nh);
+  start_stepping(nh, sub_nh);
   ROS_INFO("controller_%s stepping at %.1f Hz%s", GNC_AIRCRAFT_NAME, params_.rate_hz,
            lockstep_ ? " on /hil/lockstep"
            : pacer_  ? " on the VN-200's packets"
@@ -161,14 +165,16 @@ void ControllerNode::start_diagnostics() {
 }
 
 // On /hil/lockstep's steps, or on its own timer.
-void ControllerNode::start_stepping(ros::NodeHandle &nh) {
+void ControllerNode::start_stepping(ros::NodeHandle &nh, ros::NodeHandle &sub_nh) {
   if (lockstep_) {
-    lockstep_sub_ = nh.subscribe("hil/lockstep", 100, &ControllerNode::on_lockstep, this,
-                                 ros::TransportHints().tcpNoDelay());
+    lockstep_sub_ = sub_nh.subscribe("hil/lockstep", 100, &ControllerNode::on_lockstep, this,
+                                     ros::TransportHints().tcpNoDelay());
     // Wall time: a declared message that never comes (a defect) must not stop the flight.
-    lockstep_wait_timer_ = nh.createSteadyTimer(
-        ros::WallDuration(kLockstepWaitS),
-        [this](const ros::SteadyTimerEvent &) { on_lockstep_wait_over(); }, true, false);
+    lockstep_wait_check_ = nh.createSteadyTimer(ros::WallDuration(kLockstepWaitS / 4.0),
+                                                [this](const ros::SteadyTimerEvent &) {
+                                                  std::lock_guard<std::mutex> lock(inline_.mutex());
+                                                  on_lockstep_wait_check();
+                                                });
   } else if (params_.packets_per_step > 0) {
     pacer_ = std::make_unique<PacketPacer>(params_.gnc.dt_s, params_.packets_per_step);
     // One shot, armed again by every step: it fires only when no packet has run one.
@@ -181,7 +187,10 @@ void ControllerNode::start_stepping(ros::NodeHandle &nh) {
   }
 }
 
-ControllerNode::~ControllerNode() { gnc_terminate(); }
+ControllerNode::~ControllerNode() {
+  inline_.close();  // no callback runs on what goes below
+  gnc_terminate();
+}
 
 void ControllerNode::restart_gnc() {
   gnc_terminate();
@@ -194,6 +203,7 @@ void ControllerNode::restart_gnc() {
 
 bool ControllerNode::on_set_tunable(drone_ros::SetTunable::Request &req,
                                     drone_ros::SetTunable::Response &res) {
+  std::lock_guard<std::mutex> lock(inline_.mutex());  // lockstep: not between a step's callbacks
   ControllerParams next;
   ParamValues next_values;
   const TunableResult r =
@@ -310,8 +320,7 @@ void ControllerNode::on_lockstep(const drone_ros::LockstepStep::ConstPtr &msg) {
   if (gate_.complete()) {
     run_lockstep_step();
   } else {
-    lockstep_wait_timer_.stop();
-    lockstep_wait_timer_.start();
+    lockstep_pending_since_s_ = ros::SteadyTime::now().toSec();
   }
 }
 
@@ -328,8 +337,9 @@ void ControllerNode::on_input(LockstepInput input) {
   }
 }
 
-void ControllerNode::on_lockstep_wait_over() {
-  if (!lockstep_pending_) {
+void ControllerNode::on_lockstep_wait_check() {
+  if (!lockstep_pending_ ||
+      ros::SteadyTime::now().toSec() - lockstep_pending_since_s_ < kLockstepWaitS) {
     return;
   }
   ++lockstep_wait_timeouts_;
@@ -340,7 +350,6 @@ void ControllerNode::on_lockstep_wait_over() {
 
 void ControllerNode::run_lockstep_step() {
   lockstep_pending_ = false;
-  lockstep_wait_timer_.stop();
   const ros::Time stamp = lockstep_pending_stamp_;
   if (const drone_ros::HomePosition *home = held_home_.release(gate_.declared(kInHome))) {
     take_home(*home);

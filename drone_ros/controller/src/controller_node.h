@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "controller_params.h"
+#include "drone_ros_common/inline_queue.h"
 #include "lockstep_gate.h"
 #include "packet_pacer.h"
 #include "sensor_board.h"
@@ -51,7 +52,7 @@ class ControllerNode {
   void take_home(const drone_ros::HomePosition &m);
   void take_way(const drone_ros::way &m);
   void start_diagnostics();
-  void start_stepping(ros::NodeHandle &nh);
+  void start_stepping(ros::NodeHandle &nh, ros::NodeHandle &sub_nh);
   // Arrival times of sensor messages: the monotonic clock in flight; in lockstep the time of the
   // last step, so that when a message arrived in wall time between two steps changes nothing.
   double now_s() const { return lockstep_ ? lockstep_step_s_ : ros::SteadyTime::now().toSec(); }
@@ -62,7 +63,7 @@ class ControllerNode {
   void on_lockstep(const drone_ros::LockstepStep::ConstPtr &msg);
   // A sensor message arrived (after the board took it): may complete a pending lockstep step.
   void on_input(LockstepInput input);
-  void on_lockstep_wait_over();
+  void on_lockstep_wait_check();
   void run_lockstep_step();
   void step(double now, const ros::Time &stamp);
   void on_decision(const drone_ros::DecisionStatus::ConstPtr &msg);
@@ -76,6 +77,9 @@ class ControllerNode {
   ParamValues values_;  // the raw values of params_, by key
   std::string frame_id_;
   SensorBoard board_;
+  // Lockstep: the subscriptions' callbacks run in roscpp's receive thread (inline_queue.h); the
+  // node's other callbacks take inline_.mutex(). Before subs_: it outlives them.
+  drone_ros_common::InlineQueue inline_;
   std::vector<ros::Subscriber> subs_;
   ros::Publisher servo_pub_, data_pub_, hil_pub_;
   ros::SteadyTimer timer_;
@@ -88,8 +92,10 @@ class ControllerNode {
   LockstepGate gate_;
   HeldInput<drone_ros::HomePosition> held_home_;
   HeldInput<drone_ros::way> held_way_;
-  ros::SteadyTimer lockstep_wait_timer_;
-  bool lockstep_pending_ = false;  // a step is due, waiting for its inputs
+  // Periodic, not armed per step: an inline callback may not start or stop a timer.
+  ros::SteadyTimer lockstep_wait_check_;
+  bool lockstep_pending_ = false;          // a step is due, waiting for its inputs
+  double lockstep_pending_since_s_ = 0.0;  // since when, on the monotonic clock
   ros::Time lockstep_pending_stamp_;
   int64_t lockstep_index_ = -1;   // the last period stepped: floor(clock / dt)
   double lockstep_step_s_ = 0.0;  // its clock time
