@@ -36,13 +36,9 @@ ArduinoLinkNode::ArduinoLinkNode(ros::NodeHandle nh, ros::NodeHandle pnh, const 
   if (ros::Time::isSimTime()) {
     ros::SubscribeOptions ops;
     ops.init<rosgraph_msgs::Clock>("/clock", 1, [this](const rosgraph_msgs::Clock::ConstPtr &m) {
-      const uint64_t ns = m->clock.toNSec();
-      uint64_t seen = newest_clock_ns_.load();
-      while (ns > seen && !newest_clock_ns_.compare_exchange_weak(seen, ns)) {
-      }
+      newest_clock_ns_ = m->clock.toNSec();  // the latest: a simulation started again goes back
     });
     ops.callback_queue = &inline_;
-    ops.transport_hints = ros::TransportHints().tcpNoDelay();
     clock_sub_ = nh_.subscribe(ops);
   }
 }
@@ -58,8 +54,10 @@ ArduinoLinkNode::~ArduinoLinkNode() {
 }
 
 void ArduinoLinkNode::run() {
-  // No spinner: the node's only callbacks, its subscribers', run in roscpp's receive thread, and
-  // nothing it creates puts one on the global queue (no publisher has a connect callback).
+  // Under simulated time the node's only callbacks, its subscribers', run in roscpp's receive
+  // thread (see on_subscriber_info); on the wall clock this spinner runs them.
+  ros::AsyncSpinner spinner(1);
+  if (!ros::Time::isSimTime()) spinner.start();
   std::vector<uint8_t> buf(4096);
   std::vector<Frame> frames;
   while (ros::ok()) {
@@ -100,6 +98,7 @@ void ArduinoLinkNode::run() {
     update_link_state(ros::WallTime::now());
     updater_.update();
   }
+  spinner.stop();
 }
 
 void ArduinoLinkNode::try_open(const ros::WallTime &now) {
@@ -166,9 +165,7 @@ void ArduinoLinkNode::handle_frame(const Frame &f) {
     }
     ep = it->second;
   }
-  // Published outside the lock: a device subscribed to a topic it publishes gets the message back
-  // in this thread (roscpp's intraprocess link, then the inline queue), and on_ros_message takes
-  // it.
+  // Published outside the lock: it is held for the lookup only.
   on_device_data(ep, f);
 }
 
@@ -208,6 +205,10 @@ void ArduinoLinkNode::on_publisher_info(const Frame &f) {
   if (!accept_announcement(f, &info)) return;
   negotiated_ = true;
   Endpoint ep = endpoint_for(info);
+  // Declared before the lock, so destroyed after it: an id the device used for a subscriber has
+  // one to let go, and that waits for the subscription's lock, held while on_ros_message waits
+  // for endpoints_mutex_.
+  Endpoint older;
   std::lock_guard<std::mutex> lock(endpoints_mutex_);
   auto it = endpoints_.find(info.topic_id);
   if (it != endpoints_.end() && it->second.pub && it->second.name == ep.name &&
@@ -244,6 +245,7 @@ void ArduinoLinkNode::on_publisher_info(const Frame &f) {
   }
   ROS_INFO("arduino: device publishes %s [%s] as id %u", ep.name.c_str(), ep.type.c_str(),
            info.topic_id);
+  older = std::move(endpoints_[info.topic_id]);
   endpoints_[info.topic_id] = ep;
   confirm_topics_later();
 }
@@ -266,30 +268,42 @@ void ArduinoLinkNode::on_subscriber_info(const Frame &f) {
       return;
     }
   }
-  // Subscribed, and an older subscriber on this id let go, outside endpoints_mutex_: roscpp holds
-  // the subscription's own lock while on_ros_message runs, which takes endpoints_mutex_.
+  // The new entry goes in first, so that a message on the new subscription finds its own md5;
+  // the older subscriber (a re-announced id) is let go and the new one made outside
+  // endpoints_mutex_: roscpp holds a subscription's own lock while it hands on_ros_message a
+  // message, and on_ros_message takes endpoints_mutex_.
   Endpoint ep = endpoint_for(info);
+  {
+    Endpoint older;
+    {
+      std::lock_guard<std::mutex> lock(endpoints_mutex_);
+      older = std::move(endpoints_[id]);
+      endpoints_[id] = ep;
+    }
+  }
+  ros::Subscriber sub;
   try {
     ros::SubscribeOptions ops;
     ops.init<topic_tools::ShapeShifter>(
         ep.name, 10,
         [this, id](const topic_tools::ShapeShifter::ConstPtr &msg) { on_ros_message(id, msg); });
     ops.transport_hints = ros::TransportHints().tcpNoDelay();  // a command must not wait for Nagle
-    ops.callback_queue = &inline_;  // a command goes to the port as it arrives
-    ep.sub = nh_.subscribe(ops);
+    // Simulated time: a command goes to the port as it arrives (inline_queue.h). On the wall
+    // clock the spinner writes it, so that a port that stops draining (a write waits up to
+    // 100 ms) never holds up roscpp's receive thread, which also sends what the node publishes.
+    if (ros::Time::isSimTime()) ops.callback_queue = &inline_;
+    sub = nh_.subscribe(ops);
   } catch (const ros::Exception &e) {
     refuse("subscriber", ep.name + ": " + e.what());
     return;
   }
   ROS_INFO("arduino: device subscribes to %s [%s] as id %u", ep.name.c_str(), ep.type.c_str(), id);
-  Endpoint older;
   {
     std::lock_guard<std::mutex> lock(endpoints_mutex_);
-    older = std::move(endpoints_[id]);
-    endpoints_[id] = ep;
+    endpoints_[id].sub = sub;
   }
   confirm_topics_later();
-}  // older's subscriber, if any, unsubscribes here
+}
 
 void ArduinoLinkNode::on_ros_message(uint16_t topic_id,
                                      const topic_tools::ShapeShifter::ConstPtr &msg) {

@@ -203,7 +203,9 @@ void ControllerNode::restart_gnc() {
 
 bool ControllerNode::on_set_tunable(drone_ros::SetTunable::Request &req,
                                     drone_ros::SetTunable::Response &res) {
-  std::lock_guard<std::mutex> lock(inline_.mutex());  // lockstep: not between a step's callbacks
+  // Lockstep: not between a step's callbacks. Released before the parameter server's calls
+  // below, which have no deadline and would hold up the receive thread meanwhile.
+  std::unique_lock<std::mutex> lock(inline_.mutex());
   ControllerParams next;
   ParamValues next_values;
   const TunableResult r =
@@ -237,6 +239,7 @@ bool ControllerNode::on_set_tunable(drone_ros::SetTunable::Request &req,
   values_ = next_values;
   board_.apply_params(params_);
   ++tunables_changed_;
+  lock.unlock();
   // The parameter server shows what is in force, so a later HP restart or a reader sees it, in
   // the type the file gave it: a switch or selection stays an int.
   XmlRpc::XmlRpcValue loaded;
