@@ -11,7 +11,9 @@ namespace drone_ros_common {
 // Given to a subscription (SubscribeOptions::callback_queue, NodeHandle::setCallbackQueue), its
 // callback runs in roscpp's receive thread as the message arrives, with no spinner thread to
 // wake: a lockstep step's last input reached the controller, and a command the arduino node,
-// 20-30 us sooner each (a 60 s HiL flight at 100 Hz: 17.9x -> 19.4x real time).
+// 20-30 us sooner each (a 60 s HiL flight at 100 Hz: 17.9x -> 18.5x real time). Both use it
+// under simulated time only: on the wall clock a callback that may wait (a write to a port that
+// stops draining, a timer to re-arm) stays on a spinner thread.
 //
 // The callbacks run one at a time, under mutex(), which a node's other callbacks (timers,
 // services: ros::spin()'s) take too, so that the node still runs one callback at a time. Rules
