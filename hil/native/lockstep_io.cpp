@@ -9,7 +9,7 @@
 // One node per process, made by hio_init and ended by hio_shutdown; every other call before
 // hio_init or after hio_shutdown returns 0 and does nothing.
 #include <drone_ros/LockstepStep.h>
-#include <ros/callback_queue_interface.h>
+#include <drone_ros_common/inline_queue.h>
 #include <ros/ros.h>
 #include <rosgraph_msgs/Clock.h>
 #include <topic_tools/shape_shifter.h>
@@ -28,16 +28,6 @@ namespace {
 
 // The topics counted, by the index hil/lockstep_io.py names them with.
 enum Counted : int { kVn = 0, kStatus, kPwm, kHome, kServoOp, kCountedTopics };
-
-// Runs each callback the moment roscpp's network thread hands it over: counting a message needs
-// no second thread, and waking one cost a hand-off per message.
-class ImmediateQueue : public ros::CallbackQueueInterface {
- public:
-  void addCallback(const ros::CallbackInterfacePtr &callback, uint64_t /*owner_id*/) override {
-    callback->call();
-  }
-  void removeByID(uint64_t /*owner_id*/) override {}
-};
 
 class LockstepIo {
  public:
@@ -124,7 +114,9 @@ class LockstepIo {
     changed_.notify_all();
   }
 
-  ImmediateQueue queue_;
+  // Counting a message in roscpp's network thread needs no second thread, and waking one cost a
+  // hand-off per message.
+  drone_ros_common::InlineQueue queue_;
   ros::Publisher clock_pub_;
   ros::Publisher lockstep_pub_;
   std::vector<ros::Subscriber> subs_;

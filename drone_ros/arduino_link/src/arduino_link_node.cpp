@@ -155,18 +155,15 @@ void ArduinoLinkNode::handle_frame(const Frame &f) {
     default:
       break;
   }
-  Endpoint ep;
-  {
-    std::lock_guard<std::mutex> lock(endpoints_mutex_);
-    auto it = endpoints_.find(f.topic_id);
-    if (it == endpoints_.end() || !it->second.pub) {
-      ++counters_.unknown_topic;
-      return;
-    }
-    ep = it->second;
+  // Published under the lock, as before the callbacks went inline: a publish only queues the
+  // message for roscpp's receive thread, so it never waits on a callback that waits on the lock.
+  std::lock_guard<std::mutex> lock(endpoints_mutex_);
+  auto it = endpoints_.find(f.topic_id);
+  if (it == endpoints_.end() || !it->second.pub) {
+    ++counters_.unknown_topic;
+    return;
   }
-  // Published outside the lock: it is held for the lookup only.
-  on_device_data(ep, f);
+  on_device_data(it->second, f);
 }
 
 void ArduinoLinkNode::refuse(const char *what, const std::string &why) {

@@ -42,10 +42,14 @@ struct Params {
 };
 
 bool load(const ros::NodeHandle &pnh, Params *p, std::string *error) {
+  // The controller is the aircraft's (controller_<aircraft>): hp_supervisor.launch names it, and
+  // no aircraft is assumed here.
   std::string node;
-  pnh.param<std::string>("node", node, "controller_DG808");
+  if (!pnh.getParam("node", node) || !pnh.getParam("type", p->type)) {
+    *error = "~node and ~type (the controller's node name and executable) must be given";
+    return false;
+  }
   pnh.param<std::string>("package", p->package, "drone_ros");
-  pnh.param<std::string>("type", p->type, "controller_DG808");
   pnh.param("kill_grace_s", p->kill_grace_s, 1.0);
   pnh.param("boot_delay_s", p->boot_delay_s, 0.0);
   if (node.empty() || p->package.empty() || p->type.empty()) {
