@@ -10,6 +10,7 @@
 // hio_init or after hio_shutdown returns 0 and does nothing.
 #include <drone_ros/LockstepStep.h>
 #include <drone_ros_common/inline_queue.h>
+#include <drone_ros_common/xmlrpc_wake.h>
 #include <ros/ros.h>
 #include <rosgraph_msgs/Clock.h>
 #include <topic_tools/shape_shifter.h>
@@ -149,7 +150,14 @@ int hio_init(const char *ns, const char *name, const char *const topics[kCounted
   remappings["__ns"] = ns;
   // rospy has SIGINT; the simulator logs through rospy, so no /rosout publisher here either.
   ros::init(remappings, name, ros::init_options::NoSigintHandler | ros::init_options::NoRosout);
-  g_io.reset(new LockstepIo(names));
+  try {
+    g_io.reset(new LockstepIo(names));
+    drone_ros_common::XmlRpcWake::install(drone_ros_common::kXmlRpcWakePeriodS);
+  } catch (const std::exception &e) {
+    ROS_ERROR("hil_lockstep_io: %s", e.what());
+    g_io.reset();
+    return 0;
+  }
   return 1;
 }
 

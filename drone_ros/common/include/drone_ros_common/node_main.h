@@ -3,8 +3,11 @@
 // named (a node launched required="true" then ends the launch with the reason on screen).
 #pragma once
 
+#include "drone_ros_common/xmlrpc_wake.h"
+
 #include <ros/ros.h>
 
+#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -17,6 +20,12 @@ int node_main(int argc, char **argv, const std::string &name, Load load, Run run
   ros::init(argc, argv, name);
   ros::NodeHandle nh;
   ros::NodeHandle pnh("~");
+  try {
+    XmlRpcWake::install(kXmlRpcWakePeriodS);
+  } catch (const std::runtime_error &e) {
+    ROS_FATAL("%s: %s", name.c_str(), e.what());
+    return 1;
+  }
   Params params{};
   std::string error;
   if (!load(pnh, &params, &error)) {
