@@ -15,7 +15,7 @@ def wrapper_only(path):
 
 def count(results_dir):
     passed = failed = skipped = 0
-    failures = []
+    failures, skips = [], []
     for path in sorted(Path(results_dir).rglob("*.xml")):
         try:
             root = ET.parse(path).getroot()
@@ -35,15 +35,19 @@ def count(results_dir):
                 failures.append(f"{path.name}: {name}")
             elif case.find("skipped") is not None:
                 skipped += 1
+                why = case.find("skipped").get("message") or case.find("skipped").text or "no reason given"
+                skips.append(f"{path.name}: {name}: {why.strip()}")
             elif wrapper_only(path):
                 continue  # its cases are counted from the rosunit-*.xml of the same rostest
             else:
                 passed += 1
-    return passed, failed, skipped, failures
+    return passed, failed, skipped, failures, skips
 
 
 def main():
-    passed, failed, skipped, failures = count(sys.argv[1])
+    passed, failed, skipped, failures, skips = count(sys.argv[1])
+    for line in skips:  # a skip is never silent: each says which test and why
+        print(f"SKIPPED {line}")
     for line in failures:
         print(f"FAILED {line}")
     print(f"{passed} passed, {failed} failed, {skipped} skipped")

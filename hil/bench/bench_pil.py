@@ -20,11 +20,10 @@ import os
 import subprocess
 import sys
 import tempfile
-import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 from stack_tools.bench_machine import machine  # noqa: E402
-from stack_testing.ha_in_loop import HP, PIC, PilRig, build_pil_image, frame, negotiate, servo_command  # noqa: E402
+from stack_testing.ha_in_loop import HP, PIC, PilRig, build_pil_image, frame, loop_speed, negotiate, servo_command  # noqa: E402
 
 INSN_PER_TICK = 40
 BUDGET = 16800
@@ -35,37 +34,10 @@ def qemu_version():
     return out.decode().split()[3]
 
 
-def qemu_cpu_s(pid):
-    """User and system CPU seconds QEMU has used (proc(5): fields 14 and 15 of stat)."""
-    with open("/proc/%d/stat" % pid) as f:
-        fields = f.read().rsplit(")", 1)[1].split()
-    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
-
-
-def speed(image, steps=1000):
-    """The loop's pace as a flight sets it (no -icount): the HP's ServoCommand and the VN-200's
-    bytes each period, the step record, the reply. Returns (steps/s, QEMU's CPU % of one core)."""
-    rig = PilRig(image)
-    try:
-        k = 0
-        for k in range(0, 50):
-            rig.step(k)
-        topic, k = negotiate(rig, k + 1)
-        t0, cpu0 = time.monotonic(), qemu_cpu_s(rig.board.proc.pid)
-        for seq in range(1, steps + 1):
-            os.write(rig.host, frame(topic, servo_command(seq, -2.5)))
-            rig.step(k + seq, wait_for=seq)
-            rig.frames_from_ha()  # the HP reads what the HA sends, as the arduino node does
-        wall, cpu = time.monotonic() - t0, qemu_cpu_s(rig.board.proc.pid) - cpu0
-    finally:
-        rig.close()
-    return steps / wall, 100.0 * cpu / wall
-
-
 def main():
     header = machine("QEMU %s" % qemu_version())
     image = build_pil_image(tempfile.mkdtemp(prefix="bench_pil_"))
-    rate, cpu = speed(image)
+    rate, cpu = loop_speed(image)
     print("metric: pil_steps_per_s %.0f steps/s (%.2fx real time at 100 Hz; 1,000 periods with the HP's "
           "commands, lockstep, no -icount)" % (rate, rate / 100.0))
     print("metric: pil_qemu_cpu %.0f %% of one core" % cpu)

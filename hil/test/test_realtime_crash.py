@@ -17,9 +17,17 @@ import pytest
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 from hil.campaigns.flight import run_completed  # noqa: E402  (a flight that runs out of time, killed whole)
 from stack_testing.gs_harness import free_port  # noqa: E402
+from stack_testing.ha_in_loop import build_pil_image, loop_speed  # noqa: E402
 
 CRASH_AT_S = 8.0  # the HP has the servos from 5 s (the airborne start at 2 s, 1 s, the stable window)
 FLIGHTS = 3
+# In a real-time flight QEMU must emulate each of the Due's periods within the period, beside the
+# simulator, the HP's nodes and the bridge on the same 2 cores. It can when it runs the PIL loop
+# (make bench-pil's, lockstep) at 2x real time or more, so that it needs at most half a core: on
+# the machine whose loop ran 4.9x the flight passed in every CI run; on one whose loop ran 0.99x
+# (QEMU a whole core) the board fell behind, lost bytes of the HP link and its reports, and
+# three flights of three broke the verdict. There the flight judges the host, not the HA.
+MIN_PIL_LOOP_X = 2.0
 pytestmark = pytest.mark.realtime  # flown alone, after the rest (conftest.py)
 
 
@@ -76,7 +84,18 @@ def test_a_crash_in_real_time_is_taken_over_in_the_period_the_deadline_is_missed
     assert_taken_over_in_the_period_the_deadline_is_missed(fly_until_the_hp_flies_at_the_crash("sil"))
 
 
+def qemu_keeps_the_dues_real_time():
+    """Measured here and now: (whether QEMU runs the PIL loop at MIN_PIL_LOOP_X, what it ran)."""
+    steps_per_s, cpu = loop_speed(build_pil_image(tempfile.mkdtemp(prefix="rt_pil_")), steps=300)
+    x = steps_per_s / 100.0
+    return x >= MIN_PIL_LOOP_X, "QEMU ran the PIL loop at %.2fx real time (%.0f %% of a core); a real-time " \
+        "flight with the HA in QEMU needs %.1fx on this machine's cores" % (x, cpu, MIN_PIL_LOOP_X)
+
+
 def test_a_crash_in_real_time_with_the_ha_in_qemu_is_taken_over_in_the_period_the_deadline_is_missed():
+    fast_enough, measured = qemu_keeps_the_dues_real_time()
+    if not fast_enough:
+        pytest.skip("this machine cannot emulate the Due in real time: " + measured)
     s = fly_until_the_hp_flies_at_the_crash("qemu")
     assert_taken_over_in_the_period_the_deadline_is_missed(s)
     # The board answered its own periods, in order (on its clock and on the host's), about one a

@@ -1,11 +1,12 @@
 """What the stories of the HA in the loop share, on either board (the host SIL, ha_sil; the QEMU
 board, hil/ha_qemu.py): the parked aircraft its INS sees, the PIL image built for a run, and a rig
-driving the QEMU board as the simulator and the HP would (used by test_pil_qemu.py and
-hil/bench/bench_pil.py)."""
+driving the QEMU board as the simulator and the HP would (used by test_pil_qemu.py,
+test_realtime_crash.py and hil/bench/bench_pil.py)."""
 import os
 import struct
 import subprocess
 import tempfile
+import time
 import zlib
 
 from stack_tools.paths import ROOT  # noqa: E402
@@ -88,3 +89,30 @@ def negotiate(rig, k):
             if topic == SUBSCRIBER_INFO and b"drone_ros/ServoCommand" in f:
                 return f[7] | f[8] << 8, k + 1
     raise AssertionError("the HA never announced its ServoCommand subscriber")
+
+
+def qemu_cpu_s(pid):
+    """User and system CPU seconds QEMU has used (proc(5): fields 14 and 15 of stat)."""
+    with open("/proc/%d/stat" % pid) as f:
+        fields = f.read().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def loop_speed(image, steps=1000):
+    """The PIL loop's pace as a flight sets it (no -icount): the HP's ServoCommand and the VN-200's
+    bytes each period, the step record, the reply. Returns (steps/s, QEMU's CPU % of one core)."""
+    rig = PilRig(image)
+    try:
+        k = 0
+        for k in range(0, 50):
+            rig.step(k)
+        topic, k = negotiate(rig, k + 1)
+        t0, cpu0 = time.monotonic(), qemu_cpu_s(rig.board.proc.pid)
+        for seq in range(1, steps + 1):
+            os.write(rig.host, frame(topic, servo_command(seq, -2.5)))
+            rig.step(k + seq, wait_for=seq)
+            rig.frames_from_ha()  # the HP reads what the HA sends, as the arduino node does
+        wall, cpu = time.monotonic() - t0, qemu_cpu_s(rig.board.proc.pid) - cpu0
+    finally:
+        rig.close()
+    return steps / wall, 100.0 * cpu / wall
