@@ -8,29 +8,16 @@
 #include <utility>
 
 #include "command_builder.h"
+#include "param_tree.h"
 
 namespace controller {
 
 bool load_params(const ros::NodeHandle &pnh, ControllerParams *params, ParamValues *values,
                  std::string *frame_id, std::string *error) {
-  const ParamLookup lookup = [&pnh](const std::string &key, double *value) {
-    XmlRpc::XmlRpcValue v;
-    if (!pnh.getParam(key, v)) {
-      return false;
-    }
-    switch (v.getType()) {
-      case XmlRpc::XmlRpcValue::TypeDouble:
-        *value = static_cast<double>(v);
-        return true;
-      case XmlRpc::XmlRpcValue::TypeInt:
-        *value = static_cast<int>(v);
-        return true;
-      case XmlRpc::XmlRpcValue::TypeBoolean:
-        *value = static_cast<bool>(v) ? 1.0 : 0.0;
-        return true;
-      default:
-        return false;
-    }
+  XmlRpc::XmlRpcValue all;  // left empty (no struct) if the namespace has nothing: all missing
+  (void)pnh.getParam(pnh.getNamespace(), all);
+  const ParamLookup lookup = [&all](const std::string &key, double *value) {
+    return number_at(all, key, value);
   };
   if (!build_controller_params(lookup, params, error, values)) {
     return false;

@@ -15,6 +15,7 @@
 #include "hp_command.h"
 #include "lockstep_gate.h"
 #include "packet_pacer.h"
+#include "param_tree.h"
 #include "sensor_board.h"
 #include "servo_command_as_ha.h"
 #include "tunables_table.h"
@@ -83,6 +84,70 @@ TEST(ControllerParams, OutOfRangeOrMissingValuesAreRefusedByName) {
             std::string::npos);
   EXPECT_NE(refusal({{"Q_weight", 2.0}}).find("design_gains.py"), std::string::npos);
   EXPECT_NE(refusal({{"max_bank_deg", 70.0}}).find("max_bank_deg"), std::string::npos);
+}
+
+// The node fetches its namespace once, as the master returns it: a struct of structs.
+XmlRpc::XmlRpcValue as_master_tree(const std::map<std::string, double> &flat) {
+  XmlRpc::XmlRpcValue tree;
+  for (const auto &kv : flat) {
+    XmlRpc::XmlRpcValue *node = &tree;
+    std::string rest = kv.first;
+    for (std::string::size_type slash; (slash = rest.find('/')) != std::string::npos;) {
+      node = &(*node)[rest.substr(0, slash)];
+      rest = rest.substr(slash + 1);
+    }
+    (*node)[rest] = kv.second;
+  }
+  return tree;
+}
+
+TEST(ParamTree, TheNamespaceFetchedWholeGivesEachValueItsKeyGaveOneByOne) {
+  const auto flat = controller_test::aircraft_params(AIRCRAFT_DIR);
+  XmlRpc::XmlRpcValue tree = as_master_tree(flat);
+  for (const auto &kv : flat) {
+    double v = -1.0;
+    ASSERT_TRUE(controller::number_at(tree, kv.first, &v)) << kv.first;
+    EXPECT_EQ(v, kv.second) << kv.first;
+  }
+  controller::ControllerParams p;
+  std::string error;
+  ASSERT_TRUE(controller::build_controller_params(
+      [&tree](const std::string &k, double *v) { return controller::number_at(tree, k, v); }, &p,
+      &error, nullptr))
+      << error;
+  EXPECT_DOUBLE_EQ(p.rate_hz, aircraft().rate_hz);
+}
+
+TEST(ParamTree, IntsAndBoolsAreNumbersAndOtherLeavesAreNot) {
+  XmlRpc::XmlRpcValue tree;
+  tree["hmcmd"] = 3;
+  tree["limits"]["decision"]["latch"] = true;
+  tree["frame_id"] = std::string("DG808");
+  double v = 0.0;
+  EXPECT_TRUE(controller::number_at(tree, "hmcmd", &v));
+  EXPECT_EQ(v, 3.0);
+  EXPECT_TRUE(controller::number_at(tree, "limits/decision/latch", &v));
+  EXPECT_EQ(v, 1.0);
+  EXPECT_FALSE(controller::number_at(tree, "frame_id", &v));
+  EXPECT_FALSE(controller::number_at(tree, "limits/decision", &v));  // a struct, not a number
+}
+
+// A typo'd or absent key is refused by name (build_controller_params), never read as 0, and the
+// lookup leaves the tree as it was (XmlRpcValue's operator[] would add the member).
+TEST(ParamTree, AMissingKeyIsMissingAndStaysOutOfTheTree) {
+  XmlRpc::XmlRpcValue tree;
+  tree["limits"]["state"]["stall_speed_ftps"] = 40.0;
+  double v = 0.0;
+  for (const char *key : {"dt", "limits/state/ceiling_ft", "limits/stat/stall_speed_ftps",
+                          "limits/state/stall_speed_ftps/x", "/limits/state/stall_speed_ftps",
+                          "limits//state/stall_speed_ftps", ""}) {
+    EXPECT_FALSE(controller::number_at(tree, key, &v)) << key;
+  }
+  EXPECT_FALSE(tree.hasMember("dt"));
+  EXPECT_FALSE(tree["limits"].hasMember("stat"));
+  EXPECT_EQ(tree["limits"]["state"].size(), 1);
+  XmlRpc::XmlRpcValue nothing;  // the master had no namespace: every value is missing
+  EXPECT_FALSE(controller::number_at(nothing, "dt", &v));
 }
 
 // controller_param.yaml's dt was the thesis's 20 Hz while the HA decides at 100 Hz: the HA found
