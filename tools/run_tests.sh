@@ -26,13 +26,13 @@ mapfile -t pytest_dirs < <(cd "$root" && for d in test */test */*/test; do [ -d 
 # a core to the third; the 558 tests took 400 s on three, 440 s on two (one clone, back to back).
 workers=${TEST_WORKERS:-3}
 parallel=()
+[ "$workers" -gt 1 ] && parallel=(-n "$workers" --dist loadgroup)
+# Then the flights on the wall clock (the realtime mark, conftest.py), one after another with
+# nothing else running: they judge deadlines, and whatever runs beside them takes the CPU their
+# HP needs to be on time. Side by side (three workers) they took 25 s instead of 64 s on a fast
+# machine, where a real-time flight keeps a third of a core busy; on one 3.5x slower (2026-12-07)
+# the HP beside two others was late before the crash in three flights of three, and CI failed.
 realtime_parallel=(-p no:xdist)
-[ "$workers" -gt 1 ] && parallel=(-n "$workers" --dist loadgroup) && realtime_parallel=(-n 3)
-# Then the flights on the wall clock (the realtime mark, conftest.py) with no lockstep flight
-# running: they judge deadlines, and a lockstep flight beside them takes both cores. They run side
-# by side, one worker each: a real-time flight keeps a third of a core busy (the three: 28 s of CPU
-# in 25 s on two cores; 64 s one after another), and each still takes over in the period of its
-# deadline miss.
 if [ ${#pytest_dirs[@]} -gt 0 ]; then
   "$venv/bin/python" -m pytest -q -p no:cacheprovider "${parallel[@]}" --durations=25 -m "not realtime" \
     --junitxml="$results/drone_ros/pytest.xml" "${pytest_dirs[@]}" || status=1
