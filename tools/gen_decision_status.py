@@ -2,7 +2,7 @@
 """Writes the DecisionStatus CONTROLLER_* numbers and REASON_* bits, with their names, from
 msg/DecisionStatus.msg, the one place they are defined:
 
-  --c     the HA core's C99 header (arduino_ha/src/core/ha_decision_status.h; checked in because
+  --c     the HA core's C99 header (arduino_ha/src/generated/ha_decision_status.h; checked in because
           arduino-cli compiles only the sketch folder, kept identical by
           arduino_ha/test/test_sketch_assembly.py)
   --cpp   the ground station's C++ name tables (written by CMake and microhard_gs/make.mk at build

@@ -132,6 +132,6 @@ def test_decision_status_header_is_the_one_the_message_generates(tmp_path):
     fresh = tmp_path / "ha_decision_status.h"
     subprocess.run([sys.executable, str(ROOT / "tools" / "gen_decision_status.py"), "--c",
                     str(ROOT / "msg" / "DecisionStatus.msg"), str(fresh)], check=True)
-    checked_in = HA / "src" / "core" / "ha_decision_status.h"
+    checked_in = HA / "src" / "generated" / "ha_decision_status.h"
     assert checked_in.read_text() == fresh.read_text(), \
-        "run `make due-sketch-msgs` and check in arduino_ha/src/core/ha_decision_status.h"
+        "run `make due-sketch-msgs` and check in arduino_ha/src/generated/ha_decision_status.h"

@@ -6,6 +6,7 @@ builds; a test keeps them identical). It builds the safety regions S_x and S_u f
 converts times to integer microseconds and refuses a configuration that makes no sense.
 
 usage: python3 -m stack_tools.gen_aircraft_config <limits.yaml> <out.h>     (out '-' writes to stdout)
+       python3 -m stack_tools.gen_aircraft_config --types <out.h>   (the struct: ha_config_schema.py)
 """
 import math
 import os
@@ -17,15 +18,9 @@ from stack_tools import check_config  # aircraft/schema/limits.schema.json: no u
 from stack_tools.generated_file import run_generator
 from stack_tools.paths import ROOT
 
-# Order of the state and actuator vectors: must match HA_X_* and HA_U_* in src/core/ha_config.h.
-X_NAMES = ["alpha_deg", "beta_deg", "roll_deg", "pitch_deg", "p_deg_s", "q_deg_s", "r_deg_s",
-           "alt_agl_ft"]
-U_NAMES = ["elevator_deg", "aileron_deg", "rudder_deg", "throttle"]
-SX_MAX_ROWS = 20
-SU_MAX_ROWS = 10
-SX_MAX_TERMS = 64
-SU_MAX_TERMS = 24
-MAX_RESTARTS_CAP = 16
+# The struct the values fill, its vectors' order and its array sizes: one table (HaAircraftConfig).
+from stack_tools.ha_config_schema import (MAX_RESTARTS_CAP, SU_MAX_ROWS, SU_MAX_TERMS, SX_MAX_ROWS,
+                                          SX_MAX_TERMS, U_NAMES, X_NAMES, check_values, render_types)
 
 
 class ConfigError(Exception):
@@ -602,6 +597,10 @@ def render_region(name, rows):
 
 
 def render(c, source):
+    try:
+        check_values(c)
+    except ValueError as err:
+        raise ConfigError(str(err)) from err
     floats = [k for k in c if isinstance(c[k], float)]
     ints = [k for k in c if isinstance(c[k], int)]
     lines = [
@@ -654,6 +653,9 @@ def write_header(path, text):
 
 
 def main(argv):
+    if len(argv) == 3 and argv[1] == "--types":
+        write_header(argv[2], render_types())
+        return 0
     return run_generator(argv, __doc__, "gen_aircraft_config", generate,
                          (ConfigError, check_config.ConfigError), write_header)
 

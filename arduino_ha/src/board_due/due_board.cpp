@@ -15,7 +15,7 @@
 
 namespace {
 
-/* Indexed by HA_U_* (core/ha_config.h), the order ha_surfaces_to_pulses_us() fills. */
+/* Indexed by HA_U_* (generated/ha_config.h), the order ha_surfaces_to_pulses_us() fills. */
 const uint32_t kServoPins[HA_U_DIM] = {DUE_PIN_SERVO_ELEVATOR, DUE_PIN_SERVO_AILERON,
                                        DUE_PIN_SERVO_RUDDER, DUE_PIN_SERVO_THROTTLE};
 Servo g_servos[HA_U_DIM];

@@ -10,7 +10,7 @@
 #include <stdint.h>
 
 #include "../core/ha_board.h"
-#include "../core/ha_config.h"
+#include "../generated/ha_config.h"
 
 typedef struct {
   const HaAircraftConfig *cfg;

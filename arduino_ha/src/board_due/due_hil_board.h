@@ -29,8 +29,8 @@
 #include <stdint.h>
 
 #include "../core/ha_board.h"
-#include "../core/ha_config.h"
 #include "../firmware/ha_firmware.h"
+#include "../generated/ha_config.h"
 #include "../hil/ha_sil_pins.h"
 #include "../hil/pil_frame.h"
 

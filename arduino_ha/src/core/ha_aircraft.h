@@ -3,7 +3,7 @@
 #ifndef HA_AIRCRAFT_H
 #define HA_AIRCRAFT_H
 
-#include "ha_config.h"
+#include "../generated/ha_config.h"
 
 #ifdef __cplusplus
 extern "C" {

@@ -7,8 +7,8 @@
 
 #include <stdint.h>
 
-#include "ha_config.h"
-#include "ha_decision_status.h"
+#include "../generated/ha_config.h"
+#include "../generated/ha_decision_status.h"
 #include "ha_types.h"
 #include "hp_command.h"
 

@@ -21,8 +21,8 @@
 
 #include <stdint.h>
 
+#include "../generated/ha_config.h"
 #include "geo_wgs84.h"
-#include "ha_config.h"
 #include "ha_core.h"
 
 #ifdef __cplusplus

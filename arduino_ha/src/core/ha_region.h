@@ -2,7 +2,7 @@
 #ifndef HA_REGION_H
 #define HA_REGION_H
 
-#include "ha_config.h"
+#include "../generated/ha_config.h"
 
 /* x as ha_state_view leaves it: every component clamped to its plausibility span, which keeps
  * the arithmetic finite. u may be anything (its components are clamped here). */

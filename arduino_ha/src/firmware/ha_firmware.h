@@ -28,7 +28,7 @@
 
 #include "../core/ha_app.h"
 #include "../core/ha_board.h"
-#include "../core/ha_config.h"
+#include "../generated/ha_config.h"
 #include "../link/ha_link.h"
 #include "../vn200/ha_vn200_feed.h"
 

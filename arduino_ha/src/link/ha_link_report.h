@@ -10,9 +10,9 @@
 
 #include <stdint.h>
 
-#include "../core/ha_config.h"
 #include "../core/ha_core.h"
 #include "../core/ha_ins.h"
+#include "../generated/ha_config.h"
 #include "ha_link.h"
 
 #ifdef __cplusplus

@@ -13,9 +13,9 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "../core/ha_config.h"
 #include "../core/ha_core.h"
 #include "../core/ha_ins.h"
+#include "../generated/ha_config.h"
 #include "vn_binary.h"
 #include "vn_framer.h"
 
