@@ -40,10 +40,13 @@ HA_FLOOR_SRC := $(HA_FLOOR_DIR)/geo_wgs84.c $(HA_FLOOR_DIR)/hp_command.c
 # The functions EVA takes by their contract instead of their body: each is proved by make
 # prove-ha (WP_ha's --fct), so EVA rests on a proof, not on trust (src/core/README.md "Proofs").
 HA_BY_CONTRACT := ha_clampf
+# The period around the core on a Board (src/firmware): the drivers step the core through it, as
+# the firmware does, so it is analysed, reached and measured with the core.
+HA_APP_SRC := $(HA_DIR)/src/firmware/ha_app.c $(HA_DIR)/src/firmware/ha_retained.c
 EVA_COMPONENTS += ha
-EVA_ha_SOURCES = $(sort $(wildcard $(HA_CORE_DIR)/*.c)) $(HA_FLOOR_SRC) $(HA_DIR)/verify/eva_main.c
-EVA_ha_ARGS = -I $(HA_CORE_DIR) -I $(HA_FLOOR_DIR) --negative $(HA_DIR)/verify/eva_negative_control.c \
-  --reach $(HA_CORE_DIR) $(addprefix --reach ,$(HA_FLOOR_SRC)) \
+EVA_ha_SOURCES = $(sort $(wildcard $(HA_CORE_DIR)/*.c)) $(HA_FLOOR_SRC) $(HA_APP_SRC) $(HA_DIR)/verify/eva_main.c
+EVA_ha_ARGS = -I $(HA_CORE_DIR) -I $(HA_FLOOR_DIR) -I $(HA_DIR)/src/firmware --negative $(HA_DIR)/verify/eva_negative_control.c \
+  --reach $(HA_CORE_DIR) $(addprefix --reach ,$(HA_FLOOR_SRC) $(HA_APP_SRC)) \
   --case finite-any-periods:main:1:non-finite:-DHA_EVA_STEPS=0 \
   --case any-bits-any-periods:main:1:none:-DHA_EVA_ANY_BITS,-DHA_EVA_STEPS=0 \
   --use-spec $(HA_BY_CONTRACT)
@@ -56,7 +59,7 @@ EVA_COMPONENTS += ha-fw
 EVA_ha-fw_SOURCES = $(HA_DIR)/verify/eva_firmware_main.c $(HA_DIR)/src/firmware/ha_firmware.c \
   $(HA_DIR)/src/vn200/ha_vn200_feed.c $(addprefix $(ROOT)/common/vn200/,vn_framer.c vn_binary.c vn_checksum.c vn_ascii.c) \
   $(addprefix $(HA_DIR)/src/link/,ha_link.c ha_link_frame.c ha_link_report.c) $(LINK_GEN_DIR)/ha_msgs.c \
-  $(sort $(wildcard $(HA_CORE_DIR)/*.c)) $(HA_FLOOR_SRC)
+  $(sort $(wildcard $(HA_CORE_DIR)/*.c)) $(HA_FLOOR_SRC) $(HA_APP_SRC)
 EVA_ha-fw_ARGS = -I $(HA_CORE_DIR) -I $(HA_FLOOR_DIR) -I $(ROOT)/common/link -I $(HA_DIR)/src/link -I $(HA_DIR)/src/firmware -I $(HA_DIR)/src/vn200 \
   -I $(ROOT)/common/vn200 -D 'HA_LINK_GENERATED_HEADER="$(LINK_GEN_DIR)/ha_msgs.h"' \
   --reach $(HA_DIR)/src/firmware --case any-board:main:1:none --use-spec $(HA_BY_CONTRACT)

@@ -23,7 +23,7 @@ sketch=$(bash "$ha/tools/assemble_sketch.sh" "$out/sketch")
 gen=$sketch/src/link/generated
 
 m3_cflags=(-mcpu=cortex-m3 -mthumb -Os -std=c99 -ffunction-sections -fdata-sections -fstack-usage
-  -Wall -Wextra -Werror -pedantic -I"$ha/src/core" -I"$ha/src/link" -I"$ha/src/vn200"
+  -Wall -Wextra -Werror -pedantic -I"$ha/src/core" -I"$ha/src/firmware" -I"$ha/src/link" -I"$ha/src/vn200"
   -I"$root/common/src" -I"$root/common/vn200" -I"$root/common/link" -I"$ha/bench" -DHA_LINK_GENERATED_HEADER="\"$gen/ha_msgs.h\""
   -DHA_AIRCRAFT_CONFIG_HEADER="\"$sketch/src/generated/aircraft_config.h\"" ${PIL_CFLAGS:-})
 sources=("$ha"/src/core/*.c "$ha"/src/firmware/*.c "$ha"/src/link/*.c "$gen"/*.c

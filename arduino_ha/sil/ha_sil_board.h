@@ -1,14 +1,15 @@
-/* The SIL's Board (core/ha_board.h): what the Due reads from its pins comes from the simulator's
- * latest control record (ha_sil_pins.h), its clock is the host's or the simulator's, its HP
- * link is a pseudo-terminal standing in for the USB cable and its INS port the pty the simulator
- * writes the VN-200's port 1 to. Everything else is the firmware loop's (src/firmware/). */
+/* The SIL's Board (src/firmware/ha_board.h): what the Due reads from its pins comes from the
+ * simulator's latest control record (ha_sil_pins.h), its clock is the host's or the simulator's,
+ * its HP link is a pseudo-terminal standing in for the USB cable and its INS port the pty the
+ * simulator writes the VN-200's port 1 to. Everything else is the firmware loop's (src/firmware/).
+ */
 #ifndef HA_SIL_BOARD_H
 #define HA_SIL_BOARD_H
 
 #include <signal.h>
 #include <stdint.h>
 
-#include "../src/core/ha_board.h"
+#include "../src/firmware/ha_board.h"
 #include "../src/hil/ha_sil_channel.h"
 #include "../src/hil/ha_sil_pins.h"
 

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # `make coverage-ha`: branch coverage of the HA core (arduino_ha/src/core, with the ground floor it
-# runs on: common/src/geo_wgs84.c and hp_command.c) by the project's own
+# runs on: common/src/geo_wgs84.c and hp_command.c, and the period around it on a Board:
+# src/firmware/ha_app.c and ha_retained.c) by the project's own
 # host tests. The package is built a second time, in .build/coverage_ws, with gcc's --coverage
 # at -O0 (the flight build's -O2 folds branches away); only the HA's test binaries are built and
 # run: test_ha_core (stories, unit tests), test_ha_core_properties (random steps) and
@@ -36,8 +37,10 @@ done
 # Each object of a core source that ran, its counts into gcov's JSON (one .gcov.json.gz each).
 out=$ws/gcov
 rm -rf "$out" && mkdir -p "$out"
-mapfile -t gcda < <(find "$ws/build" -name '*.gcda' \( -path '*src/core/*' -o -path '*common/*' \))
+mapfile -t gcda < <(find "$ws/build" -name '*.gcda' \( -path '*src/core/*' -o -path '*common/*' \
+  -o -name 'ha_app.c.gcda' -o -name 'ha_retained.c.gcda' \))
 (cd "$out" && gcov --branch-probabilities --json-format --preserve-paths "${gcda[@]}" > gcov.log 2>&1)
 python3 "$root/arduino_ha/tools/coverage_report.py" --core "$root/arduino_ha/src/core" \
   --core "$root/common/src/geo_wgs84.c" --core "$root/common/src/hp_command.c" \
+  --core "$root/arduino_ha/src/firmware/ha_app.c" --core "$root/arduino_ha/src/firmware/ha_retained.c" \
   "$@" "$out"/*.gcov.json.gz

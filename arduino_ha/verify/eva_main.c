@@ -95,9 +95,10 @@ static void any_inputs(HaInputs *in) {
 
 /* The decision reported to the HP side is always one of the defined values. */
 static void check_decision(const HaOutputs *out) {
+  const uint8_t leds = ha_app_leds(out);
   /*@ assert controller_defined: out->controller <= HA_CONTROLLER_MANUAL; */
   /*@ assert reasons_defined: (out->reasons & ~(uint32_t)0x7FFFu) == 0; */
-  /*@ assert leds_defined: (out->leds & ~(uint8_t)0x0Fu) == 0; */
+  /*@ assert leds_defined: (leds & ~(uint8_t)0x0Fu) == 0; */
 }
 
 /* One VN-200 solution with every field unknown, as the Due's seam hands it to the adapter. */

@@ -1,15 +1,16 @@
-/* The Due's implementation of the core's Board interface (core/ha_board.h) with the Arduino API:
- * Servo library outputs at 50 Hz, RC capture on pin-change interrupts, the AMS 5812 on I2C, the
- * battery on an ADC pin, the HP reset line, status LEDs, the SAM3X hardware watchdog, the SAM3X's
- * backup registers, and the two byte ports: the HP link on the USB port DUE_HP_LINK_PORT chooses
- * (due_config.h) and the VN-200 on Serial1. Thin on purpose: every decision is the core's, every
- * byte's meaning the firmware loop's (src/firmware/); this file only moves values in and out. */
+/* The Due's implementation of the core's Board interface (firmware/ha_board.h) with the Arduino
+ * API: Servo library outputs at 50 Hz, RC capture on pin-change interrupts, the AMS 5812 on I2C,
+ * the battery on an ADC pin, the HP reset line, status LEDs, the SAM3X hardware watchdog, the
+ * SAM3X's backup registers, and the two byte ports: the HP link on the USB port DUE_HP_LINK_PORT
+ * chooses (due_config.h) and the VN-200 on Serial1. Thin on purpose: every decision is the core's,
+ * every byte's meaning the firmware loop's (src/firmware/); this file only moves values in and out.
+ */
 #ifndef DUE_BOARD_H
 #define DUE_BOARD_H
 
 #include <stdint.h>
 
-#include "../core/ha_board.h"
+#include "../firmware/ha_board.h"
 #include "../generated/ha_config.h"
 
 typedef struct {

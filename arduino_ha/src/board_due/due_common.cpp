@@ -66,7 +66,7 @@ void kick_watchdog(void *ctx) {
 /* The SAM3X8E's eight general-purpose backup registers (SUPC backup domain, datasheet 17/18):
  * kept across watchdog, software and user resets and a brown-out of the core supply, lost when
  * the power goes (the Due has no backup battery on VDDBU). Random at power-up: the record's CRC
- * tells (core/ha_retained.c). */
+ * tells (firmware/ha_retained.c). */
 int read_retained(void *ctx, uint32_t words[HA_RETAINED_WORDS]) {
   (void)ctx;
   for (uint32_t i = 0u; i < HA_RETAINED_WORDS; ++i) {

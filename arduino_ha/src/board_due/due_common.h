@@ -7,7 +7,7 @@
 
 #include <stdint.h>
 
-#include "../core/ha_board.h"
+#include "../firmware/ha_board.h"
 
 /* Pins (HP reset low, LEDs off) and both serial ports started. */
 void due_common_begin(void);

@@ -28,7 +28,7 @@
 
 #include <stdint.h>
 
-#include "../core/ha_board.h"
+#include "../firmware/ha_board.h"
 #include "../firmware/ha_firmware.h"
 #include "../generated/ha_config.h"
 #include "../hil/ha_sil_pins.h"

@@ -284,7 +284,6 @@ static uint8_t choose_source(const HaCore *core) {
 
 static void fill_outputs(const HaCore *core, const HaStateView *view, const HaInputs *in,
                          uint32_t reasons, float sx_max, float su_max, HaOutputs *out) {
-  static const uint8_t kLeds[] = {HA_LED_HP, HA_LED_HA, HA_LED_HA, HA_LED_HA, HA_LED_MANUAL};
   out->surfaces = core->applied;
   out->controller = core->controller;
   out->reasons = reasons;
@@ -301,8 +300,6 @@ static void fill_outputs(const HaCore *core, const HaStateView *view, const HaIn
   out->actuator_region_max = su_max;
   out->on_ground = view->on_ground;
   out->self_test_active = core->self_test.active;
-  out->leds = (uint8_t)(kLeds[core->controller <= HA_CONTROLLER_MANUAL ? core->controller : 1u] |
-                        (reasons != 0u ? HA_LED_FAULT : 0u));
   out->operator_ack_id = core->operator_ack_id;
   out->operator_ack_accepted = core->operator_ack_accepted;
   out->operator_ack_count = core->operator_ack_count;

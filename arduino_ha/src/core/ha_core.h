@@ -112,7 +112,6 @@ typedef struct {
    * adapter takes its first home and accepts SET_HOME only on it (ha_ins.h). */
   uint8_t on_ground;
   uint8_t self_test_active;
-  uint8_t leds; /* HA_LED_* */
   /* Acknowledgement of the operator request answered last: operator_ack_count counts every
    * request answered, one a period at most (a repeat of the request executed last is answered
    * again with its answer, not executed again); operator_ack_count + operator_lost equals the

@@ -34,14 +34,6 @@ typedef struct {
   uint8_t valid;
 } HaRcInputs;
 
-/* LED bits (HaOutputs.leds, Board.set_leds). */
-enum {
-  HA_LED_HP = 1u,     /* HP drives the servos */
-  HA_LED_HA = 2u,     /* HA safety controller drives (incl. recovering, latched) */
-  HA_LED_MANUAL = 4u, /* pilot in command */
-  HA_LED_FAULT = 8u   /* some check is failing this period */
-};
-
 #ifdef __cplusplus
 }
 #endif

@@ -1,6 +1,6 @@
 /* The HA firmware's loop, one for every board: the Due (board_due/), the host SIL (sil/ha_sil.c)
  * and the host tests' fake board (test/fake_board.cpp) run this and add only their Board
- * (core/ha_board.h: pins, clock, retained words and the two byte ports).
+ * (ha_board.h: pins, clock, retained words and the two byte ports).
  *
  * What it does, so no board does it again:
  *  - the period schedule: one ha_app_period (the core's step, servos, reset line, LEDs, retained
@@ -26,11 +26,11 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "../core/ha_app.h"
-#include "../core/ha_board.h"
 #include "../generated/ha_config.h"
 #include "../link/ha_link.h"
 #include "../vn200/ha_vn200_feed.h"
+#include "ha_app.h"
+#include "ha_board.h"
 
 #ifdef __cplusplus
 extern "C" {

@@ -9,7 +9,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "../core/ha_board.h"
+#include "../firmware/ha_board.h"
 #include "ha_sil_channel.h"
 
 #ifdef __cplusplus

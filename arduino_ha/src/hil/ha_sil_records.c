@@ -86,7 +86,7 @@ void ha_sil_encode_reply(const HaFirmware *fw, const HaSilReplyBoard *board,
   put_f32(out, &at, o->ha_command.rudder_deg);
   put_f32(out, &at, o->ha_command.throttle);
   out[at++] = o->controller;
-  out[at++] = o->leds;
+  out[at++] = ha_app_leds(o);
   put_u16(out, &at, o->restart_count);
   ha_sil_put_u32(out, &at, o->reasons);
   ha_sil_put_u32(out, &at, o->reasons_at_switch);

@@ -6,9 +6,9 @@
 #ifndef HA_APP_H
 #define HA_APP_H
 
+#include "../core/ha_core.h"
+#include "../core/ha_ins.h"
 #include "ha_board.h"
-#include "ha_core.h"
-#include "ha_ins.h"
 #include "ha_retained.h"
 
 #ifdef __cplusplus
@@ -40,6 +40,10 @@ void ha_app_restore(HaApp *app, const HaBoard *board, HaIns *ins);
  * (after ha_app_restore), and kicks the watchdog. A failed airspeed or battery reading is passed
  * on as -1, which the core's range checks reject. */
 void ha_app_period(HaApp *app, const HaBoard *board);
+
+/* The status LEDs (HA_LED_*) for the core's outputs: who drives the servos (the HA's lamp for
+ * the HA, recovering and latched), and FAULT while any check fails. */
+uint8_t ha_app_leds(const HaOutputs *out);
 
 #ifdef __cplusplus
 }

@@ -8,7 +8,13 @@ void ha_app_init(HaApp *app, const HaAircraftConfig *cfg) {
   /* Before the first period the HA is in charge and the servos idle. */
   app->outputs.controller = HA_CONTROLLER_HA;
   app->outputs.surfaces.throttle = cfg->throttle_min;
-  app->outputs.leds = HA_LED_HA;
+}
+
+uint8_t ha_app_leds(const HaOutputs *out) {
+  const uint8_t source = out->controller == HA_CONTROLLER_HP       ? HA_LED_HP
+                         : out->controller == HA_CONTROLLER_MANUAL ? HA_LED_MANUAL
+                                                                   : HA_LED_HA;
+  return (uint8_t)(source | (out->reasons != 0u ? HA_LED_FAULT : 0u));
 }
 
 /* A failed reading enters the core as -1: below every valid airspeed (and voltage), so the
@@ -59,7 +65,7 @@ void ha_app_period(HaApp *app, const HaBoard *board) {
   ha_core_step(&app->core, &app->inputs, now_us, &app->outputs);
   board->write_servos(board->ctx, &app->outputs.surfaces);
   board->set_hp_reset(board->ctx, app->outputs.hp_reset_asserted);
-  board->set_leds(board->ctx, app->outputs.leds);
+  board->set_leds(board->ctx, ha_app_leds(&app->outputs));
   keep_retained(app, board);
   board->kick_watchdog(board->ctx);
 }

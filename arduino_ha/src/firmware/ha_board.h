@@ -10,12 +10,20 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "../core/ha_types.h"
 #include "ha_retained.h"
-#include "ha_types.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
+
+/* LED bits (Board.set_leds; ha_app_leds says which from the core's outputs). */
+enum {
+  HA_LED_HP = 1u,     /* HP drives the servos */
+  HA_LED_HA = 2u,     /* HA safety controller drives (incl. recovering, latched) */
+  HA_LED_MANUAL = 4u, /* pilot in command */
+  HA_LED_FAULT = 8u   /* some check is failing this period */
+};
 
 /* A serial port, as rosflight's board offers one: what has arrived is read without waiting. */
 typedef struct {
@@ -42,7 +50,7 @@ typedef struct {
   int (*read_battery_v)(void *ctx, float *battery_v);
   /* Level of the HP reset line: 1 = hold the HP computer in reset, 0 = release. */
   void (*set_hp_reset)(void *ctx, int asserted);
-  /* HA_LED_* bits. */
+  /* HA_LED_* bits (ha_app_leds). */
   void (*set_leds)(void *ctx, uint8_t leds);
   /* Called once per completed period; a hung loop stops kicking and the watchdog resets. */
   void (*kick_watchdog)(void *ctx);
