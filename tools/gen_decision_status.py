@@ -7,11 +7,14 @@ msg/DecisionStatus.msg, the one place they are defined:
           arduino_ha/test/test_sketch_assembly.py)
   --cpp   the ground station's C++ name tables (written by CMake and microhard_gs/make.mk at build
           time, never checked in)
+  --c-operator  the HA core's HA_OP_* numbers from msg/OperatorCommand.msg
+          (arduino_ha/src/generated/ha_operator_command.h, checked in and kept like the first)
 
 Every REASON_* must be one bit and every CONTROLLER_* a distinct small number counted from 0,
 or the generator stops with the offending line.
 
 usage: gen_decision_status.py --c|--cpp DECISION_STATUS_MSG OUTPUT
+       gen_decision_status.py --c-operator OPERATOR_COMMAND_MSG OUTPUT
 """
 import re
 import sys
@@ -93,10 +96,37 @@ def cpp_header(controllers, reasons):
     return "\n".join(lines)
 
 
+OPERATOR = re.compile(r"^\s*uint8\s+([A-Z][A-Z0-9_]*)\s*=\s*(\d+)\s*(?:#.*)?$")
+
+
+def operator_header(path):
+    """HA_OP_* from the message's uint8 constants: distinct, 0 left for HA_OP_NONE."""
+    with open(path) as f:
+        ops = [(m.group(1), int(m.group(2))) for m in map(OPERATOR.match, f) if m]
+    values = [v for _, v in ops]
+    if not ops or 0 in values or len(set(values)) != len(values) or max(values) > 255:
+        raise ValueError("%s: the commands must be distinct uint8 numbers above 0 (0 is none)" % path)
+    lines = ["/* Generated from msg/OperatorCommand.msg by tools/gen_decision_status.py: edit the",
+             " * message, then run `make due-sketch-msgs`. */",
+             "#ifndef HA_OPERATOR_COMMAND_H", "#define HA_OPERATOR_COMMAND_H", "",
+             "/* the operator's request (OperatorCommand.command) */", "enum {", "  HA_OP_NONE = 0,"]
+    lines += ["  HA_OP_%s = %d%s" % (n, v, "," if i + 1 < len(ops) else "")
+              for i, (n, v) in enumerate(sorted(ops, key=lambda o: o[1]))]
+    lines += ["};", "", "#endif", ""]
+    return "\n".join(lines)
+
+
 def main(argv):
-    if len(argv) != 4 or argv[1] not in ("--c", "--cpp"):
+    if len(argv) != 4 or argv[1] not in ("--c", "--cpp", "--c-operator"):
         sys.stderr.write(__doc__)
         return 2
+    if argv[1] == "--c-operator":
+        try:
+            write_if_changed(argv[3], operator_header(argv[2]))
+        except ValueError as err:
+            sys.stderr.write("%s\n" % err)
+            return 1
+        return 0
     controllers, reasons, errors = parse(argv[2])
     if errors:
         sys.stderr.write("".join(e + "\n" for e in errors))

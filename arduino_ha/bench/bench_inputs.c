@@ -167,7 +167,7 @@ uint32_t ha_bench_timeline_next(HaBenchTimeline *t, HaInputs *in) {
   ++t->period;
   fly_level(t, cfg, in);
   in->state_rx_us = t->now_us - jitter_us;
-  in->battery_v = uniform(t, 10.0f, 12.6f);
+  (void)uniform(t, 10.0f, 12.6f); /* was the battery's, which the core no longer takes */
   rc_sticks(t, cfg, in);
   healthy_command(t, cfg, &cmd);
   if (apply_segment(t, cfg, segment, in, &cmd)) {
@@ -175,10 +175,11 @@ uint32_t ha_bench_timeline_next(HaBenchTimeline *t, HaInputs *in) {
     if (segment == 6u && (t->period % 4u) == 0u) {
       cmd.crc32 ^= 0x00010000u; /* a corrupted frame now and then */
     }
-    ha_inputs_put_hp_command(in, &cmd, t->now_us - jitter_us);
-  }
-  if ((t->period % 997u) == 0u) {
-    ha_inputs_put_operator(in, HA_OP_NONE, t->period);
+    /* As the link delivers it (ha_inputs_put_hp_command, src/firmware/ha_app.c): the core alone
+     * is measured here. */
+    in->hp_cmd = cmd;
+    in->hp_cmd_rx_us = t->now_us - jitter_us;
+    in->hp_cmd_count++;
   }
   return t->now_us;
 }

@@ -1,6 +1,6 @@
 # arduino_ha/link targets (included by the root Makefile).
-#   make due-sketch-msgs   write the core's DecisionStatus numbers and reasons into
-#                          arduino_ha/src/generated/ha_decision_status.h (arduino-cli cannot run the generator; run this after any msg/ change,
+#   make due-sketch-msgs   write the core's DecisionStatus numbers and reasons and its
+#                          OperatorCommand numbers into arduino_ha/src/generated/ (arduino-cli cannot run the generator; run this after any msg/ change,
 #                          before compiling the sketch; CMake builds regenerate it on their own)
 #   make fuzz-link         libFuzzer (clang, ASan + UBSan) on the device link, the host framer and
 #                          the host's handling of announcements, logs and parameters,
@@ -25,7 +25,9 @@ VERIFY_TARGETS += verify-link
 due-sketch-msgs:
 	@$(PYTHON) $(ROOT)/tools/gen_decision_status.py --c $(ROOT)/msg/DecisionStatus.msg \
 	  $(ROOT)/arduino_ha/src/generated/ha_decision_status.h
-	@echo "due-sketch-msgs: wrote arduino_ha/src/generated/ha_decision_status.h"
+	@$(PYTHON) $(ROOT)/tools/gen_decision_status.py --c-operator $(ROOT)/msg/OperatorCommand.msg \
+	  $(ROOT)/arduino_ha/src/generated/ha_operator_command.h
+	@echo "due-sketch-msgs: wrote arduino_ha/src/generated/ha_decision_status.h and ha_operator_command.h"
 
 # The message code host builds use, generated into .build (CMake builds make their own).
 $(LINK_GEN_DIR)/ha_msgs.c: $(LINK_MSGS_DIR)/gen/make_c99_msgs.py $(LINK_MSGS_DIR)/gen/device_types.txt $(wildcard $(ROOT)/msg/*.msg)

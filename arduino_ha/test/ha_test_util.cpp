@@ -105,9 +105,7 @@ int Timeline::ReachHp(int max_periods) {
   return -1;
 }
 
-void Timeline::Operator(uint8_t command) {
-  ha_inputs_put_operator(&app.inputs, command, ++operator_id);
-}
+void Timeline::Operator(uint8_t command) { ha_app_put_operator(&app, command, ++operator_id); }
 
 namespace {
 constexpr float kDegPerRad = 57.29578f;

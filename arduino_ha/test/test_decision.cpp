@@ -397,7 +397,7 @@ TEST(HaDecision, RestartCapLatchesHa) {
   t.Operator(HA_OP_SELECT_HP);
   for (int i = 0; i < 1000; ++i) t.StepWithGood();
   EXPECT_EQ(t.controller(), HA_CONTROLLER_HA_LATCHED);
-  EXPECT_EQ(t.out().operator_ack_accepted, 0u);
+  EXPECT_EQ(t.app.requests.ack_accepted, 0u);
 }
 
 TEST(HaDecision, HpThatNeverReturnsIsRestartedUntilTheCapThenLatched) {
@@ -635,8 +635,8 @@ TEST(HaDecision, OperatorSelectsHaThenHpWithoutRestart) {
   EXPECT_EQ(t.controller(), HA_CONTROLLER_HA);
   EXPECT_EQ(t.out().reasons, HA_REASON_GROUND_COMMAND);
   EXPECT_EQ(t.out().restart_count, 0u);  // the operator's choice is no HP failure
-  EXPECT_EQ(t.out().operator_ack_accepted, 1u);
-  EXPECT_EQ(t.out().operator_ack_id, t.operator_id);
+  EXPECT_EQ(t.app.requests.ack_accepted, 1u);
+  EXPECT_EQ(t.app.requests.ack_id, t.operator_id);
   for (int i = 0; i < 500; ++i) t.StepWithGood();
   EXPECT_EQ(t.controller(), HA_CONTROLLER_HA);
   t.Operator(HA_OP_SELECT_HP);
@@ -657,7 +657,7 @@ TEST(HaDecision, OperatorRestartPulsesResetLine) {
   ASSERT_GT(t.ReachHp(), 0);
   t.Operator(HA_OP_RESTART_HP);
   t.StepWithGood();
-  EXPECT_EQ(t.out().operator_ack_accepted, 0u);
+  EXPECT_EQ(t.app.requests.ack_accepted, 0u);
   EXPECT_EQ(t.controller(), HA_CONTROLLER_HP);
 }
 

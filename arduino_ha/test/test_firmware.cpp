@@ -123,14 +123,14 @@ TEST(HaFirmwareStories, SetHomeFromTheLinkIsRoutedToTheInsAdapter) {
   }
   ASSERT_EQ(ha.fw.ins.ins.home_latched, 1u) << "no home from parked VN-200 packets on the INS port";
   const uint32_t home_seq = ha.fw.ins.ins.home_seq;
-  const uint32_t requests_for_the_core = ha.fw.app.inputs.operator_count;
+  const uint32_t requests_for_the_core = ha.fw.app.requests.count;
   ha.Ins(parked_packet());
   ha.Hp(operator_frame(HA_OP_SET_HOME, 77u, 45.001, -122.002, 101.5));
   ha.Period();
   EXPECT_EQ(ha.fw.ins.ins.home_seq, home_seq + 1u);
   EXPECT_DOUBLE_EQ(ha.fw.ins.ins.home.lat_deg, 45.001);
   EXPECT_DOUBLE_EQ(ha.fw.ins.ins.home.lon_deg, -122.002);
-  EXPECT_EQ(ha.fw.app.inputs.operator_count, requests_for_the_core);
+  EXPECT_EQ(ha.fw.app.requests.count, requests_for_the_core);
   const std::vector<std::string> said = logs(ha.board.hp_tx);
   EXPECT_NE(std::find(said.begin(), said.end(), "SET_HOME: home moved"), said.end());
 }
@@ -145,8 +145,8 @@ TEST(HaFirmwareStories, SelectHaFromTheLinkIsQueuedForTheCoreAndAcknowledged) {
   const HaOutputs& out = ha.PeriodWithCommand(servo_frame);
   EXPECT_EQ(out.controller, HA_CONTROLLER_HA);
   EXPECT_EQ(out.reasons & HA_REASON_GROUND_COMMAND, HA_REASON_GROUND_COMMAND);
-  EXPECT_EQ(out.operator_ack_id, 41u);
-  EXPECT_EQ(out.operator_ack_accepted, 1u);
+  EXPECT_EQ(ha.fw.app.requests.ack_id, 41u);
+  EXPECT_EQ(ha.fw.app.requests.ack_accepted, 1u);
   EXPECT_EQ(ha.fw.ins.ins.home_seq, home_seq);
 }
 

@@ -83,6 +83,8 @@ struct LinkedHa {
   // Operator requests the link handed over (their CRC-32 matched).
   uint32_t operator_handed_over() const { return link.counters.operator_commands; }
   const HaOutputs& out() const { return t.fw.app.outputs; }
+  // The operator's requests as the firmware queues and answers them (ha_app.h).
+  const HaOperatorQueue& requests() const { return t.fw.app.requests; }
 };
 
 Bytes operator_frame(uint8_t command, uint32_t request_id) {
@@ -125,17 +127,17 @@ TEST(HaLinkStories, TwoOperatorRequestsInOnePeriodAreBothExecutedInOrderAndEachA
   EXPECT_EQ(ha.operator_handed_over(), 2u);
   EXPECT_EQ(first.controller, HA_CONTROLLER_HA);  // SELECT_HA, executed
   EXPECT_EQ(first.reasons & HA_REASON_GROUND_COMMAND, HA_REASON_GROUND_COMMAND);
-  EXPECT_EQ(first.operator_ack_id, 41u);
-  EXPECT_EQ(first.operator_ack_accepted, 1u);
-  EXPECT_EQ(first.operator_ack_count, 1u);  // the restart has not run yet: not acknowledged
+  EXPECT_EQ(ha.requests().ack_id, 41u);
+  EXPECT_EQ(ha.requests().ack_accepted, 1u);
+  EXPECT_EQ(ha.requests().ack_count, 1u);  // the restart has not run yet: not acknowledged
   EXPECT_EQ(first.restart_count, 0u);
   const HaOutputs& second = ha.PeriodWithCommand();
-  EXPECT_EQ(second.operator_ack_id, 42u);  // RESTART_HP, with the HA now in control: executed
-  EXPECT_EQ(second.operator_ack_accepted, 1u);
-  EXPECT_EQ(second.operator_ack_count, 2u);
+  EXPECT_EQ(ha.requests().ack_id, 42u);  // RESTART_HP, with the HA now in control: executed
+  EXPECT_EQ(ha.requests().ack_accepted, 1u);
+  EXPECT_EQ(ha.requests().ack_count, 2u);
   EXPECT_EQ(second.restart_count, 1u);
   EXPECT_TRUE(ha.t.board.hp_reset);
-  EXPECT_EQ(second.operator_lost, 0u);
+  EXPECT_EQ(ha.requests().lost, 0u);
 }
 
 // K7: a sender that hears no answer sends its request again, and a link may deliver one twice.
@@ -149,9 +151,9 @@ TEST(HaLinkStories, RestartRequestDeliveredThreeTimesRestartsTheHpOnceAndIsAckno
   ASSERT_EQ(ha.out().controller, HA_CONTROLLER_HA);
   for (int delivery = 1; delivery <= 3; ++delivery) {
     const HaOutputs& out = ha.PeriodWithCommand(operator_frame(HA_OP_RESTART_HP, 0u));
-    EXPECT_EQ(out.operator_ack_id, 0u) << "delivery " << delivery;
-    EXPECT_EQ(out.operator_ack_accepted, 1u) << "delivery " << delivery;
-    EXPECT_EQ(out.operator_ack_count, 1u + static_cast<uint32_t>(delivery));
+    EXPECT_EQ(ha.requests().ack_id, 0u) << "delivery " << delivery;
+    EXPECT_EQ(ha.requests().ack_accepted, 1u) << "delivery " << delivery;
+    EXPECT_EQ(ha.requests().ack_count, 1u + static_cast<uint32_t>(delivery));
     EXPECT_EQ(out.restart_count, 1u) << "delivery " << delivery;
     for (int i = 0; i < 100; ++i) ha.PeriodWithCommand();  // a retry a second later
   }
@@ -159,7 +161,7 @@ TEST(HaLinkStories, RestartRequestDeliveredThreeTimesRestartsTheHpOnceAndIsAckno
   // The next request, even one whose id wrapped around to 0 again after 2^32 - 1, is new.
   ha.Period(operator_frame(HA_OP_SELECT_HA, 0xFFFFFFFFu));
   ha.Period(operator_frame(HA_OP_RESTART_HP, 0u));
-  EXPECT_EQ(ha.out().operator_ack_id, 0u);
+  EXPECT_EQ(ha.requests().ack_id, 0u);
   EXPECT_EQ(ha.out().restart_count, 2u);
 }
 
@@ -184,7 +186,7 @@ TEST(HaLinkStories, OperatorRequestChangedByABytePairTheFrameSumCannotSeeIsNever
   EXPECT_EQ(ha.link.counters.operator_bad_crc, 1u);
   EXPECT_EQ(ha.operator_handed_over(), 1u);  // only SELECT_HA (50)
   EXPECT_EQ(ha.out().controller, HA_CONTROLLER_HA);
-  EXPECT_EQ(ha.out().operator_ack_id, 50u);
+  EXPECT_EQ(ha.requests().ack_id, 50u);
 
   // A SET_HOME whose latitude's bytes took a +1/-1 pair (40.4237054 -> 40.4315179 deg: 867 m
   // north) likewise.
@@ -206,6 +208,6 @@ TEST(HaLinkStories, OperatorRequestChangedByABytePairTheFrameSumCannotSeeIsNever
   // Intact requests still go through.
   ha.PeriodWithCommand(operator_frame(HA_OP_SELECT_HP, 54u));
   EXPECT_EQ(ha.operator_handed_over(), 2u);
-  EXPECT_EQ(ha.out().operator_ack_id, 54u);
-  EXPECT_EQ(ha.out().operator_ack_accepted, 1u);
+  EXPECT_EQ(ha.requests().ack_id, 54u);
+  EXPECT_EQ(ha.requests().ack_accepted, 1u);
 }

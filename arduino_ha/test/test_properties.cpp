@@ -154,15 +154,20 @@ TEST(HaProperties, ServosAlwaysFiniteInsideSuAndOutsideCommandsNeverReachThem) {
       in.on_ground = h.Chance(p) ? static_cast<uint8_t>(h.U32()) : (parked ? 1u : 0u);
       in.state_valid = h.Chance(p) ? static_cast<uint8_t>(h.U32()) : 1u;
       in.state_rx_us = h.Chance(p) ? h.U32() : now;
-      in.battery_v = h.Maybe(p, 12.0f);
+      (void)h.Maybe(p, 12.0f);  // was the battery's, which the core no longer takes: same draws
       for (int c = 0; c < HA_RC_CHANNELS; ++c) {
         in.rc.pulse_us[c] = static_cast<uint16_t>(h.Chance(p) ? h.U32() : 1000u + h.U32() % 400u);
       }
       in.rc.valid = h.Chance(p) ? static_cast<uint8_t>(h.U32()) : 1u;
+      // The operator's request of this period (the firmware hands over one at most); the ids
+      // are drawn still, so that a seed replays the runs it did before the queue left the core.
+      in.operator_command = HA_OP_NONE;
       if (parked && i == 100) {  // before the HP has earned control: the self-test may run
-        ha_inputs_put_operator(&in, HA_OP_SELF_TEST, h.U32());
+        in.operator_command = HA_OP_SELF_TEST;
+        (void)h.U32();
       } else if (h.Chance(p * 0.1)) {
-        ha_inputs_put_operator(&in, static_cast<uint8_t>(h.U32() % 6u), h.U32());
+        in.operator_command = static_cast<uint8_t>(h.U32() % 6u);
+        (void)h.U32();
       }
       // The HP command: mostly valid and fresh; sometimes late, stale, corrupt or hostile.
       if (!h.Chance(p)) {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "ha_aircraft.h"
+#include "ha_board.h"
 #include "ha_core.h"
 
 extern "C" {

@@ -15,8 +15,8 @@ TEST(HaSelfTest, SelfTestRefusedInFlight) {
   t.Operator(HA_OP_SELF_TEST);
   const size_t from = t.board.servo_writes.size();
   for (int i = 0; i < 300; ++i) t.Step();
-  EXPECT_EQ(t.out().operator_ack_count, 1u);
-  EXPECT_EQ(t.out().operator_ack_accepted, 0u);
+  EXPECT_EQ(t.app.requests.ack_count, 1u);
+  EXPECT_EQ(t.app.requests.ack_accepted, 0u);
   EXPECT_EQ(t.out().self_test_active, 0u);
   for (size_t i = from; i < t.board.servo_writes.size(); ++i) {
     ASSERT_LT(std::fabs(t.board.servo_writes[i].elevator_deg), 0.9f * t.cfg.elevator_limit_deg);
@@ -29,7 +29,7 @@ TEST(HaSelfTest, OnGroundSweepsEachSurfaceToBothLimitsThenThrottle) {
   for (int i = 0; i < 10; ++i) t.Step();
   t.Operator(HA_OP_SELF_TEST);
   t.Step();
-  EXPECT_EQ(t.out().operator_ack_accepted, 1u);
+  EXPECT_EQ(t.app.requests.ack_accepted, 1u);
   EXPECT_EQ(t.out().self_test_active, 1u);
   HaSurfaces lo{}, hi{};
   int periods = 0;
@@ -68,8 +68,8 @@ TEST(HaSelfTest, PilotSwitchAbortsSelfTest) {
 // The answer to a SELF_TEST that must be refused: acknowledged once, not accepted, not started,
 // and whoever had the servos keeps them.
 void ExpectSelfTestRefusedAndServosKept(const Timeline& t, uint8_t controller) {
-  EXPECT_EQ(t.out().operator_ack_count, 1u);
-  EXPECT_EQ(t.out().operator_ack_accepted, 0u);
+  EXPECT_EQ(t.app.requests.ack_count, 1u);
+  EXPECT_EQ(t.app.requests.ack_accepted, 0u);
   EXPECT_EQ(t.out().self_test_active, 0u);
   EXPECT_EQ(t.controller(), controller);
 }
@@ -109,9 +109,9 @@ TEST(HaSelfTest, MoreOperatorRequestsInOnePeriodThanTheQueueHoldsAreCountedLostN
   const uint32_t sent = HA_OPERATOR_QUEUE_LEN + 2u;
   for (uint32_t k = 0; k < sent; ++k) t.Operator(k == 0 ? HA_OP_SELF_TEST : HA_OP_SELECT_HA);
   for (int i = 0; i < 10; ++i) t.Step();
-  EXPECT_EQ(t.out().operator_lost, 2u);
-  EXPECT_EQ(t.out().operator_ack_count + t.out().operator_lost, sent);
-  EXPECT_EQ(t.out().operator_ack_id, t.operator_id);  // the last one sent was answered
+  EXPECT_EQ(t.app.requests.lost, 2u);
+  EXPECT_EQ(t.app.requests.ack_count + t.app.requests.lost, sent);
+  EXPECT_EQ(t.app.requests.ack_id, t.operator_id);  // the last one sent was answered
   EXPECT_EQ(t.out().self_test_active, 0u) << "the overwritten SELF_TEST ran";
 }
 
@@ -121,13 +121,13 @@ TEST(HaSelfTest, ARequestIdReusedForAnotherCommandIsANewRequest) {
   Timeline t;
   t.Parked();
   for (int i = 0; i < 10; ++i) t.Step();
-  ha_inputs_put_operator(&t.app.inputs, HA_OP_SELECT_HA, 7u);
+  ha_app_put_operator(&t.app, HA_OP_SELECT_HA, 7u);
   t.Step();
-  ASSERT_EQ(t.out().operator_ack_accepted, 1u);
-  ha_inputs_put_operator(&t.app.inputs, HA_OP_SELF_TEST, 7u);
+  ASSERT_EQ(t.app.requests.ack_accepted, 1u);
+  ha_app_put_operator(&t.app, HA_OP_SELF_TEST, 7u);
   t.Step();
-  EXPECT_EQ(t.out().operator_ack_count, 2u);
-  EXPECT_EQ(t.out().operator_ack_accepted, 1u);
+  EXPECT_EQ(t.app.requests.ack_count, 2u);
+  EXPECT_EQ(t.app.requests.ack_accepted, 1u);
   EXPECT_EQ(t.out().self_test_active, 1u) << "taken for a repeat of SELECT_HA";
 }
 
@@ -158,7 +158,7 @@ TEST(HaSelfTest, SelfTestRefusedUnlessLevelStillAndStopped) {
     for (int i = 0; i < 10; ++i) t.Step();
     t.Operator(HA_OP_SELF_TEST);
     t.Step();
-    EXPECT_EQ(t.out().operator_ack_accepted, 0u);
+    EXPECT_EQ(t.app.requests.ack_accepted, 0u);
     EXPECT_EQ(t.out().self_test_active, 0u);
   }
 }

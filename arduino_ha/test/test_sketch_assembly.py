@@ -135,3 +135,22 @@ def test_decision_status_header_is_the_one_the_message_generates(tmp_path):
     checked_in = HA / "src" / "generated" / "ha_decision_status.h"
     assert checked_in.read_text() == fresh.read_text(), \
         "run `make due-sketch-msgs` and check in arduino_ha/src/generated/ha_decision_status.h"
+
+
+def test_operator_numbers_are_the_ones_the_message_generates(tmp_path):
+    """HA_OP_* are defined once, in msg/OperatorCommand.msg, like the decision's numbers."""
+    fresh = tmp_path / "ha_operator_command.h"
+    subprocess.run([sys.executable, str(ROOT / "tools" / "gen_decision_status.py"), "--c-operator",
+                    str(ROOT / "msg" / "OperatorCommand.msg"), str(fresh)], check=True)
+    checked_in = HA / "src" / "generated" / "ha_operator_command.h"
+    assert checked_in.read_text() == fresh.read_text(), \
+        "run `make due-sketch-msgs` and check in arduino_ha/src/generated/ha_operator_command.h"
+
+
+def test_operator_numbers_that_collide_are_refused(tmp_path):
+    msg = tmp_path / "OperatorCommand.msg"
+    msg.write_text("uint8 SELECT_HP = 1\nuint8 SELECT_HA = 1\nuint8 command\n")
+    done = subprocess.run([sys.executable, str(ROOT / "tools" / "gen_decision_status.py"), "--c-operator",
+                           str(msg), str(tmp_path / "out.h")], capture_output=True, text=True)
+    assert done.returncode == 1 and "distinct" in done.stderr
+    assert not (tmp_path / "out.h").exists()

@@ -46,7 +46,7 @@ void run_ms(unsigned ms) {
       std::printf("period %u %u %u %u %u %u %u %.3f %.3f\n", fw->period_at_us, in.rc.pulse_us[0],
                   in.rc.pulse_us[1], in.rc.pulse_us[2], in.rc.pulse_us[3], in.rc.pulse_us[4],
                   in.rc.valid, static_cast<double>(in.airspeed_ftps),
-                  static_cast<double>(in.battery_v));
+                  static_cast<double>(fw->app.battery_v));
     }
   }
 }

@@ -74,22 +74,27 @@ static void any_link_inputs(HaInputs *in) {
     in->hp_cmd_count = any_u32();
     in->hp_cmd_rx_us = any_u32();
   }
+  in->operator_command = any_u8();
+}
+
+/* The operator's requests as the link queues them, or a queue whose bookkeeping is anything. */
+static void any_operator_requests(HaApp *a) {
+  HaOperatorQueue *q = &a->requests;
   if (Frama_C_nondet(0, 1)) {
-    ha_inputs_put_operator(in, any_u8(), any_u32());
+    ha_app_put_operator(a, any_u8(), any_u32());
   } else {
     uint32_t k;
     for (k = 0u; k < HA_OPERATOR_QUEUE_LEN; ++k) {
-      in->operator_queue[k].command = any_u8();
-      in->operator_queue[k].request_id = any_u32();
+      q->queue[k].command = any_u8();
+      q->queue[k].request_id = any_u32();
     }
-    in->operator_count = any_u32();
+    q->count = any_u32();
   }
 }
 
 static void any_inputs(HaInputs *in) {
   any_link_inputs(in);
   in->airspeed_ftps = any_float();
-  in->battery_v = any_float();
   any_rc(&in->rc);
 }
 
@@ -152,6 +157,7 @@ static void one_period(const HaBoard *board) {
   /* Through the app exactly as the firmware runs it: the link's fields unknown, then (or not) an
    * INS solution through the adapter, as the Due's seam applies it ... */
   any_link_inputs(&app.inputs);
+  any_operator_requests(&app);
   if (Frama_C_nondet(0, 1)) {
     any_ins_sample(&sample);
     (void)ha_ins_update(&ins, &ha_aircraft_config, &sample, any_u8(), any_u32(), &app.inputs);

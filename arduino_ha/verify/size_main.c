@@ -86,7 +86,7 @@ int main(void) {
     cmd.seq = i;
     cmd.crc32 = ha_hp_command_compute_crc(&cmd);
     ha_inputs_put_hp_command(&app.inputs, &cmd, fake_clock_us);
-    ha_inputs_put_operator(&app.inputs, HA_OP_NONE, i);
+    ha_app_put_operator(&app, HA_OP_NONE, i);
     ha_app_period(&app, &board);
   }
   return (int)app.outputs.controller;

@@ -19,8 +19,9 @@ from stack_tools.generated_file import run_generator
 from stack_tools.paths import ROOT
 
 # The struct the values fill, its vectors' order and its array sizes: one table (HaAircraftConfig).
-from stack_tools.ha_config_schema import (MAX_RESTARTS_CAP, SU_MAX_ROWS, SU_MAX_TERMS, SX_MAX_ROWS,
-                                          SX_MAX_TERMS, U_NAMES, X_NAMES, check_values, render_types)
+from stack_tools.ha_config_schema import (MAX_RESTARTS_CAP, SELF_TEST_STEPS, SU_MAX_ROWS, SU_MAX_TERMS,
+                                          SX_MAX_ROWS, SX_MAX_TERMS, U_NAMES, X_NAMES, check_values,
+                                          render_types)
 
 
 class ConfigError(Exception):
@@ -466,6 +467,15 @@ def _self_test(c, selft):
     if step_s <= slowest:
         raise ConfigError("self_test step_s must exceed %.3f s (slew limit to limit)" % slowest)
     c["self_test_step_us"] = us(step_s, "step_s")
+    # The sequence as the targets the core flies, a row per step in HA_U_* order: each surface to
+    # + and - its limit and back, then the throttle to half and all of its test maximum and back.
+    half = 0.5 * (c["self_test_throttle_max"] - c["throttle_min"])
+    c["self_test_u"] = [[d * c[key] if j == i else 0.0 for j in range(3)] + [c["throttle_min"]]
+                        for i, key in enumerate(("elevator_limit_deg", "aileron_limit_deg",
+                                                 "rudder_limit_deg"))
+                        for d in (1.0, -1.0, 0.0)]
+    c["self_test_u"] += [[0.0, 0.0, 0.0, c["throttle_min"] + k * half] for k in (1, 2, 0)]
+    assert len(c["self_test_u"]) == SELF_TEST_STEPS
     c["self_test_max_tilt_deg"] = need(selft, "max_tilt_deg", 0.0, 45.0)
     c["self_test_max_rate_deg_s"] = need(selft, "max_rate_deg_s", 0.0, 30.0)
     c["self_test_max_groundspeed_ftps"] = need(selft, "max_groundspeed_ftps", 0.0,
@@ -618,6 +628,7 @@ def render(c, source):
     ]
     lines += render_region("sx", c["sx"]) + ["    .x0 = %s, \\" % row(c["x0"])]
     lines += render_region("su", c["su"]) + ["    .u0 = %s, \\" % row(c["u0"])]
+    lines += ["    .self_test_u = { \\"] + ["      %s, \\" % row(r) for r in c["self_test_u"]] + ["    }, \\"]
     for key in floats:
         lines.append("    .%s = %s, \\" % (key, f32(c[key])))
     for key in ints:

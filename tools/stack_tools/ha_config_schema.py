@@ -18,6 +18,7 @@ SU_MAX_ROWS = 10
 SX_MAX_TERMS = 64
 SU_MAX_TERMS = 24
 MAX_RESTARTS_CAP = 16  # the restart history is a fixed array
+SELF_TEST_STEPS = 12  # the pre-flight self-test's sequence: 3 surfaces x 3, the throttle x 3
 
 # (C type, field, what it is); ("", "", text) says what the fields after it are. Times are integer microseconds (the generator converts), so the core never
 # converts a float to an integer time.
@@ -169,6 +170,9 @@ FIELDS = [
     ('', '', 'Pre-flight surface self-test.'),
     ('uint32_t', 'self_test_step_us', ''),
     ('float', 'self_test_throttle_max', ''),
+    ('float', 'self_test_u[HA_SELF_TEST_STEPS][HA_U_DIM]',
+     'The sequence, a step a row of targets in HA_U_* order (derived): each surface to + and - its '
+     'limit and back, then the throttle to half and all of self_test_throttle_max and back.'),
     ('', '',
      'Parked, for the self-test: roll and pitch within, body rates within, ground speed below.'),
     ('float', 'self_test_max_tilt_deg', ''),
@@ -224,23 +228,23 @@ FIELDS = [
     ('float', 'sc_blind_fade_auth_per_s', ''),
 ]
 
-# Written from the limits' regions, not scalars of their own.
-REGION_FIELDS = ("aircraft", "sx_rows", "sx_row_end", "sx", "x0", "su_rows", "su_row_end", "su",
-                 "u0")
+# Written from the limits' regions and the self-test's sequence, not scalars of their own.
+TABLE_FIELDS = ("aircraft", "sx_rows", "sx_row_end", "sx", "x0", "su_rows", "su_row_end", "su",
+                 "u0", "self_test_u")
 C_TYPES = {"float": float, "uint32_t": int}
 
 
 def scalar_fields():
     """{name: Python type} of the fields the generator fills from a value of its own."""
     return {name: C_TYPES[ctype] for row in FIELDS if row[0]
-            for ctype, name in [row[:2]] if name.split("[")[0] not in REGION_FIELDS}
+            for ctype, name in [row[:2]] if name.split("[")[0] not in TABLE_FIELDS}
 
 
 def check_values(c):
     """Raises ValueError unless c's scalar values are exactly the struct's scalar fields, each of
     its C type."""
     want = scalar_fields()
-    have = {k: type(v) for k, v in c.items() if k not in REGION_FIELDS}
+    have = {k: type(v) for k, v in c.items() if k not in TABLE_FIELDS}
     missing = sorted(set(want) - set(have))
     extra = sorted(set(have) - set(want))
     wrong = sorted(k for k in set(want) & set(have) if want[k] is not have[k])
@@ -272,7 +276,8 @@ def render_types():
         out += ["  %sDIM = %d" % (prefix, len(names)), "};", ""]
     out += ["#define HA_SX_MAX_ROWS %d" % SX_MAX_ROWS, "#define HA_SU_MAX_ROWS %d" % SU_MAX_ROWS,
             "#define HA_SX_MAX_TERMS %d" % SX_MAX_TERMS, "#define HA_SU_MAX_TERMS %d" % SU_MAX_TERMS,
-            "#define HA_MAX_RESTARTS_CAP %d" % MAX_RESTARTS_CAP, ""]
+            "#define HA_MAX_RESTARTS_CAP %d" % MAX_RESTARTS_CAP,
+            "#define HA_SELF_TEST_STEPS %d" % SELF_TEST_STEPS, ""]
     out += comment("A nonzero coefficient of a region's row, S[row][col]: only these are stored, "
                    "so that no zero is multiplied or even looked at per period (on the Due the "
                    "scan of the dense 15 x 8 and 8 x 4 matrices cost some 1,300 instructions a "

@@ -25,8 +25,6 @@
 #define HA_AD_MIN_SPEED_FTPS 1.0f
 #define HA_AD_RAD_PER_DEG 0.017453293f
 
-static uint32_t add_sat(uint32_t a, uint32_t b) { return a > UINT32_MAX - b ? UINT32_MAX : a + b; }
-
 static void set_density(HaAirdata *a, float msl_ft) {
   a->density_below_ft = msl_ft - HA_AD_DENSITY_STEP_FT;
   a->density_above_ft = msl_ft + HA_AD_DENSITY_STEP_FT;
@@ -134,7 +132,7 @@ static void learn_wind(HaAirdata *a, const HaAircraftConfig *cfg, const HaVeloci
   }
   a->wind_north_ftps = ha_clampf(n, -max, max);
   a->wind_east_ftps = ha_clampf(e, -max, max);
-  a->wind_learned_us = add_sat(a->wind_learned_us, dt_us);
+  a->wind_learned_us = ha_add_sat(a->wind_learned_us, dt_us);
 }
 
 /* The density at the INS's height, recomputed once per HA_AD_DENSITY_STEP_FT of climb. */
@@ -154,7 +152,7 @@ static int pitot_stuck(HaAirdata *a, const HaAircraftConfig *cfg, int read, floa
                        uint32_t dt_us) {
   const int same = read && ha_order_key(ias_ftps) == ha_order_key(a->last_reading_ftps) &&
                    ha_greater(ias_ftps, 0.0f);
-  a->same_reading_us = same ? add_sat(a->same_reading_us, dt_us) : 0u;
+  a->same_reading_us = same ? ha_add_sat(a->same_reading_us, dt_us) : 0u;
   if (read) {
     a->last_reading_ftps = ias_ftps;
   }
@@ -176,7 +174,7 @@ int ha_airdata_track(HaAirdata *a, const HaAircraftConfig *cfg, const HaInputs *
       learn_wind(a, cfg, &a->velocity, tas, dt_us);
     }
   }
-  a->pitot_doubted_us = (read && agrees) ? 0u : add_sat(a->pitot_doubted_us, dt_us);
+  a->pitot_doubted_us = (read && agrees) ? 0u : ha_add_sat(a->pitot_doubted_us, dt_us);
   if (a->pitot_doubted_us >= cfg->wind_forget_us) {
     a->wind_learned_us = 0u; /* doubted this long, the wind may have changed: unknown again */
   }

@@ -13,8 +13,6 @@
 /* Who produced the surfaces last period (a change starts a rate-limited transition). */
 enum { SRC_HA = 0, SRC_HP = 1, SRC_MANUAL = 2, SRC_SELF_TEST = 3 };
 
-static uint32_t add_sat(uint32_t a, uint32_t b) { return a > UINT32_MAX - b ? UINT32_MAX : a + b; }
-
 void ha_core_init(HaCore *core, const HaAircraftConfig *cfg) {
   memset(core, 0, sizeof *core);
   core->cfg = cfg;
@@ -64,8 +62,8 @@ static void track_command(HaCore *core, const HaInputs *in, uint32_t now_us, uin
       core->have_seq = 1u;
     }
   } else {
-    core->late_periods = add_sat(core->late_periods, 1u);
-    core->cmd_age_us = add_sat(core->cmd_age_us, dt_us);
+    core->late_periods = ha_add_sat(core->late_periods, 1u);
+    core->cmd_age_us = ha_add_sat(core->cmd_age_us, dt_us);
   }
   f->have_cmd = core->have_cmd;
   f->intact = intact;
@@ -88,7 +86,7 @@ static void track_own_sensors(HaCore *core, const HaInputs *in, uint32_t now_us,
     core->seen_state_rx_us = in->state_rx_us;
     own->state_age_us = ha_elapsed_us(now_us, in->state_rx_us);
   } else {
-    own->state_age_us = add_sat(own->state_age_us, dt_us);
+    own->state_age_us = ha_add_sat(own->state_age_us, dt_us);
   }
   fresh = own->state_age_us <= core->cfg->state_timeout_us && in->state_valid != 0u;
   /* A reading the INS contradicts, low or high (ha_airdata.c), is a lying sensor (zeroed,
@@ -99,7 +97,7 @@ static void track_own_sensors(HaCore *core, const HaInputs *in, uint32_t now_us,
     own->airspeed_ftps = ias_ftps;
     own->airspeed_age_us = 0u;
   } else {
-    own->airspeed_age_us = add_sat(own->airspeed_age_us, dt_us);
+    own->airspeed_age_us = ha_add_sat(own->airspeed_age_us, dt_us);
   }
 }
 
@@ -117,7 +115,7 @@ static void decide_airborne(HaCore *core, uint32_t dt_us, HaStateView *v) {
     core->airborne = 1u;
     core->landed_for_us = 0u;
   } else if (v->landed_evidence) {
-    core->landed_for_us = add_sat(core->landed_for_us, dt_us);
+    core->landed_for_us = ha_add_sat(core->landed_for_us, dt_us);
     if (core->landed_for_us >= core->cfg->landed_confirm_us) {
       core->airborne = 0u;
     }
@@ -208,54 +206,27 @@ static int boot_overdue(const HaCore *core, uint32_t now_us) {
          ha_elapsed_us(now_us, core->reset_released_us) >= core->cfg->hp_boot_timeout_us;
 }
 
-/* Operator requests never bypass a check: they only move the HA's own intent. One request a
- * period, oldest first, so each sees what the one before it did (SELECT_HA, then RESTART_HP of
- * the HP it took over from). Returns 1 for an accepted RESTART_HP, which the policy then decides
- * together with every other reason. */
-static int handle_operator(HaCore *core, const HaInputs *in, const HaStateView *view,
-                           uint32_t now_us) {
-  const uint32_t waiting = in->operator_count - core->seen_operator_count;
-  const HaOperatorRequest *req;
+/* Operator requests never bypass a check: they only move the HA's own intent. Returns 1 for an
+ * accepted RESTART_HP, which the policy then decides together with every other reason. */
+static int handle_operator(HaCore *core, uint8_t command, const HaStateView *view, uint32_t now_us,
+                           HaOutputs *out) {
   int accepted = 0, restart = 0;
-  if (waiting == 0u) {
-    return 0;
-  }
-  if (waiting > HA_OPERATOR_QUEUE_LEN) { /* overwritten before their turn: never run nor acked */
-    core->operator_lost += waiting - HA_OPERATOR_QUEUE_LEN;
-    core->seen_operator_count = in->operator_count - HA_OPERATOR_QUEUE_LEN;
-  }
-  req = &in->operator_queue[core->seen_operator_count & (HA_OPERATOR_QUEUE_LEN - 1u)];
-  core->seen_operator_count++;
-  core->operator_ack_count++;
-  core->operator_ack_id = req->request_id;
-  /* A repeat of the request executed last (a sender that heard no answer, a link that delivered
-   * it twice) is answered again, so the sender stops, and not executed again: three deliveries
-   * of one RESTART_HP would fill the restart cap. */
-  if (core->operator_executed && req->request_id == core->last_operator_id &&
-      req->command == core->last_operator_command) {
-    core->operator_ack_accepted = core->last_operator_accepted;
-    return 0;
-  }
-  if (req->command == HA_OP_SELECT_HP && !core->latched) {
+  if (command == HA_OP_SELECT_HP && !core->latched) {
     core->ground_command = 0u;
     accepted = 1;
-  } else if (req->command == HA_OP_SELECT_HA) {
+  } else if (command == HA_OP_SELECT_HA) {
     core->ground_command = 1u;
     accepted = 1;
-  } else if (req->command == HA_OP_RESTART_HP && !core->latched &&
+  } else if (command == HA_OP_RESTART_HP && !core->latched &&
              core->controller != HA_CONTROLLER_HP) {
     restart = 1;
     accepted = 1;
-  } else if (req->command == HA_OP_SELF_TEST && view->parked &&
-             core->controller != HA_CONTROLLER_HP && core->controller != HA_CONTROLLER_MANUAL) {
+  } else if (command == HA_OP_SELF_TEST && view->parked && core->controller != HA_CONTROLLER_HP &&
+             core->controller != HA_CONTROLLER_MANUAL) {
     ha_self_test_start(&core->self_test, now_us);
     accepted = 1;
   }
-  core->operator_ack_accepted = (uint8_t)accepted;
-  core->operator_executed = 1u;
-  core->last_operator_command = req->command;
-  core->last_operator_id = req->request_id;
-  core->last_operator_accepted = (uint8_t)accepted;
+  out->operator_accepted = (uint8_t)accepted;
   return restart;
 }
 
@@ -300,17 +271,14 @@ static void fill_outputs(const HaCore *core, const HaStateView *view, const HaIn
   out->actuator_region_max = su_max;
   out->on_ground = view->on_ground;
   out->self_test_active = core->self_test.active;
-  out->operator_ack_id = core->operator_ack_id;
-  out->operator_ack_accepted = core->operator_ack_accepted;
-  out->operator_ack_count = core->operator_ack_count;
-  out->operator_lost = core->operator_lost;
 }
 
 /* The windows the hand-back waits out: the commands clear, the HA's own state whole. */
 static void update_windows(HaCore *core, uint32_t reasons, uint32_t dt_us) {
-  core->stable_for_us = (reasons & HA_REASONS_COMMAND) ? 0u : add_sat(core->stable_for_us, dt_us);
+  core->stable_for_us =
+      (reasons & HA_REASONS_COMMAND) ? 0u : ha_add_sat(core->stable_for_us, dt_us);
   core->own_state_for_us =
-      (reasons & HA_REASON_NO_HA_STATE) ? 0u : add_sat(core->own_state_for_us, dt_us);
+      (reasons & HA_REASON_NO_HA_STATE) ? 0u : ha_add_sat(core->own_state_for_us, dt_us);
   if (!(reasons & HA_REASONS_COMMAND)) {
     core->awaiting_boot = 0u; /* the HP is back */
     core->hp_up = 1u;
@@ -409,7 +377,8 @@ void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *
   ha_state_view(cfg, in, facts.cmd, facts.have_cmd, &core->own, &view);
   ha_airdata_view(&core->airdata, cfg, &view);
   decide_airborne(core, dt_us, &view);
-  policy.operator_restart = (uint8_t)handle_operator(core, in, &view, now_us);
+  policy.operator_restart =
+      (uint8_t)handle_operator(core, in->operator_command, &view, now_us, out);
   reasons = ha_checks_evaluate(cfg, &facts, &view, &sx_max, &su_max) |
             (core->ground_command ? HA_REASON_GROUND_COMMAND : 0u);
   /* The stall is flown out only on a speed the HA may fly by: the INS's speed over the ground,
@@ -448,17 +417,4 @@ void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *
   core->last_step_us = now_us;
   fill_outputs(core, &view, in, reasons, sx_max, su_max, out);
   out->ha_command = ha_cmd;
-}
-
-void ha_inputs_put_hp_command(HaInputs *in, const HaHpCommand *cmd, uint32_t now_us) {
-  in->hp_cmd = *cmd;
-  in->hp_cmd_rx_us = now_us;
-  in->hp_cmd_count++;
-}
-
-void ha_inputs_put_operator(HaInputs *in, uint8_t command, uint32_t request_id) {
-  HaOperatorRequest *slot = &in->operator_queue[in->operator_count & (HA_OPERATOR_QUEUE_LEN - 1u)];
-  slot->command = command;
-  slot->request_id = request_id;
-  in->operator_count++;
 }

@@ -1,7 +1,8 @@
 /* The HA core: one call per control period decides who drives the servos (HP, HA safety
  * controller, or the pilot) and what goes to them. Pure: time and inputs in, outputs out; no
  * board access, no heap, no recursion. CONTROLLER_* and REASON_* are generated from
- * msg/DecisionStatus.msg (ha_decision_status.h); HA_OP_* are those of msg/OperatorCommand.msg. */
+ * msg/DecisionStatus.msg (ha_decision_status.h), HA_OP_* from msg/OperatorCommand.msg
+ * (ha_operator_command.h; SET_HOME is the INS adapter's, ha_ins_set_home, not the core's). */
 #ifndef HA_CORE_H
 #define HA_CORE_H
 
@@ -9,31 +10,13 @@
 
 #include "../generated/ha_config.h"
 #include "../generated/ha_decision_status.h"
+#include "../generated/ha_operator_command.h"
 #include "ha_types.h"
 #include "hp_command.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
-
-/* msg/OperatorCommand.msg command (0: no request) */
-enum {
-  HA_OP_NONE = 0,
-  HA_OP_SELECT_HP = 1,
-  HA_OP_SELECT_HA = 2,
-  HA_OP_RESTART_HP = 3,
-  HA_OP_SELF_TEST = 4,
-  HA_OP_SET_HOME = 5 /* not the decision logic's: the INS adapter's (ha_ins_set_home) */
-};
-
-/* Requests waiting for their turn, at most (a power of two: the index is a mask). The ground
- * station sends queued requests back to back; the core takes one a period. */
-#define HA_OPERATOR_QUEUE_LEN 4u
-
-typedef struct {
-  uint8_t command; /* HA_OP_* */
-  uint32_t request_id;
-} HaOperatorRequest;
 
 typedef struct {
   /* Aircraft state. Airspeed is the HA's own pitot; attitude, rates, altitude and position come
@@ -71,7 +54,6 @@ typedef struct {
   uint32_t state_rx_us; /* when that state arrived */
 
   HaRcInputs rc;
-  float battery_v; /* reported only */
 
   /* The latest HP command (alpha/beta estimates are its alpha_est_deg/beta_est_deg). The link
    * increments hp_cmd_count on every command it delivers; 0 means none yet. */
@@ -79,12 +61,10 @@ typedef struct {
   uint32_t hp_cmd_count;
   uint32_t hp_cmd_rx_us;
 
-  /* Operator requests as they arrive (ha_inputs_put_operator): the k-th since boot (from 0) is
-   * in operator_queue[k % HA_OPERATOR_QUEUE_LEN], and operator_count is how many arrived. The
-   * core executes them in order, one per period; one overwritten before its turn is counted
-   * lost and never executed nor acknowledged. */
-  HaOperatorRequest operator_queue[HA_OPERATOR_QUEUE_LEN];
-  uint32_t operator_count;
+  /* The operator's request for this period, HA_OP_*, HA_OP_NONE for none: the firmware queues
+   * what the link delivers and hands over one a period, oldest first (ha_app.c), so each sees
+   * what the one before it did. SET_HOME is the INS adapter's, never the core's. */
+  uint8_t operator_command;
 } HaInputs;
 
 typedef struct {
@@ -112,14 +92,7 @@ typedef struct {
    * adapter takes its first home and accepts SET_HOME only on it (ha_ins.h). */
   uint8_t on_ground;
   uint8_t self_test_active;
-  /* Acknowledgement of the operator request answered last: operator_ack_count counts every
-   * request answered, one a period at most (a repeat of the request executed last is answered
-   * again with its answer, not executed again); operator_ack_count + operator_lost equals the
-   * input's operator_count once every request had its turn. */
-  uint32_t operator_ack_id;
-  uint8_t operator_ack_accepted;
-  uint32_t operator_ack_count;
-  uint32_t operator_lost; /* requests overwritten in the queue before their turn */
+  uint8_t operator_accepted; /* this period's operator_command was executed */
 } HaOutputs;
 
 /* Cascaded-PID safety controller memory. */
@@ -204,18 +177,6 @@ typedef struct {
   uint32_t reset_released_us;
   uint8_t awaiting_boot; /* reset, and no valid command since */
   uint8_t hp_up;         /* a wholly valid command since power-up or the last reset */
-  /* operator */
-  uint32_t seen_operator_count; /* requests answered or lost */
-  uint32_t operator_ack_id;
-  uint8_t operator_ack_accepted;
-  uint32_t operator_ack_count;
-  uint32_t operator_lost;
-  /* The request executed last, to know a repeat of it (operator_executed: one since boot, as
-   * request_id 0 is an id like any other). */
-  uint8_t operator_executed;
-  uint8_t last_operator_command;
-  uint32_t last_operator_id;
-  uint8_t last_operator_accepted;
   /* bumpless transfer */
   HaSurfaces applied; /* what went to the servos last period */
   uint8_t transition_active;
@@ -235,16 +196,6 @@ void ha_core_restore(HaCore *core, uint8_t airborne, uint8_t latched, uint8_t gr
 
 /* One control period at now_us (free-running, wrapping microsecond clock). */
 void ha_core_step(HaCore *core, const HaInputs *in, uint32_t now_us, HaOutputs *out);
-
-/* Helpers for the link and the board layer. */
-/* Records a received HP command (increments hp_cmd_count). */
-void ha_inputs_put_hp_command(HaInputs *in, const HaHpCommand *cmd, uint32_t now_us);
-/* Queues an operator request (increments operator_count); the core takes it in its next step,
- * or later if requests queued before it are still waiting (one a step). */
-void ha_inputs_put_operator(HaInputs *in, uint8_t command, uint32_t request_id);
-/* Servo pulse width for a surface value already inside S_u (cfg servo calibration). */
-void ha_surfaces_to_pulses_us(const HaAircraftConfig *cfg, const HaSurfaces *s,
-                              uint16_t pulses_us[HA_U_DIM]);
 
 #ifdef __cplusplus
 }

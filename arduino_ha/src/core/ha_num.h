@@ -114,4 +114,9 @@ float ha_clampf(float v, float lo, float hi);
 #endif
 static inline uint32_t ha_elapsed_us(uint32_t now_us, uint32_t then_us) { return now_us - then_us; }
 
+/* a + b, stuck at UINT32_MAX: an age or a window that saturates never looks young again. */
+static inline uint32_t ha_add_sat(uint32_t a, uint32_t b) {
+  return a > UINT32_MAX - b ? UINT32_MAX : a + b;
+}
+
 #endif /* HA_NUM_H */

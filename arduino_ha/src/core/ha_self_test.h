@@ -1,6 +1,7 @@
 /* Pre-flight surface self-test (the original firmware's auto_test): each surface to + and - its
- * limit and back, then throttle steps. The core starts it only on the ground and on command, and
- * rate-limits what it commands like any other source. */
+ * limit and back, then throttle steps, as the generator's table (HaAircraftConfig.self_test_u)
+ * lists them. The core starts it only on the ground and on command, and rate-limits what it
+ * commands like any other source. */
 #ifndef HA_SELF_TEST_H
 #define HA_SELF_TEST_H
 

@@ -111,22 +111,3 @@ void ha_surfaces_from_cmd(const HaHpCommand *cmd, HaSurfaces *out) {
   out->aileron_deg = cmd->aileron_deg;
   out->rudder_deg = cmd->rudder_deg;
 }
-
-static uint16_t to_pulse(const HaAircraftConfig *cfg, float value, float lo, float hi) {
-  const float span_us = (float)(cfg->servo_pulse_max_us - cfg->servo_pulse_min_us);
-  /* Clamp the value first: a NaN then maps to neutral (or idle), not to a full deflection. */
-  const float f = (ha_clampf(value, lo, hi) - lo) / (hi - lo);
-  /* + 0.5 rounds to nearest; f in [0, 1] keeps the result inside the configured pulse range. */
-  return (uint16_t)((float)cfg->servo_pulse_min_us + f * span_us + 0.5f);
-}
-
-void ha_surfaces_to_pulses_us(const HaAircraftConfig *cfg, const HaSurfaces *s,
-                              uint16_t pulses_us[HA_U_DIM]) {
-  pulses_us[HA_U_ELEVATOR_DEG] =
-      to_pulse(cfg, s->elevator_deg, -cfg->elevator_limit_deg, cfg->elevator_limit_deg);
-  pulses_us[HA_U_AILERON_DEG] =
-      to_pulse(cfg, s->aileron_deg, -cfg->aileron_limit_deg, cfg->aileron_limit_deg);
-  pulses_us[HA_U_RUDDER_DEG] =
-      to_pulse(cfg, s->rudder_deg, -cfg->rudder_limit_deg, cfg->rudder_limit_deg);
-  pulses_us[HA_U_THROTTLE] = to_pulse(cfg, s->throttle, cfg->throttle_min, cfg->throttle_max);
-}

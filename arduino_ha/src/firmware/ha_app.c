@@ -2,6 +2,8 @@
 
 #include <string.h>
 
+#include "../core/ha_num.h"
+
 void ha_app_init(HaApp *app, const HaAircraftConfig *cfg) {
   memset(app, 0, sizeof *app);
   ha_core_init(&app->core, cfg);
@@ -15,6 +17,42 @@ uint8_t ha_app_leds(const HaOutputs *out) {
                          : out->controller == HA_CONTROLLER_MANUAL ? HA_LED_MANUAL
                                                                    : HA_LED_HA;
   return (uint8_t)(source | (out->reasons != 0u ? HA_LED_FAULT : 0u));
+}
+
+void ha_inputs_put_hp_command(HaInputs *in, const HaHpCommand *cmd, uint32_t now_us) {
+  in->hp_cmd = *cmd;
+  in->hp_cmd_rx_us = now_us;
+  in->hp_cmd_count++;
+}
+
+void ha_app_put_operator(HaApp *app, uint8_t command, uint32_t request_id) {
+  HaOperatorQueue *q = &app->requests;
+  HaOperatorRequest *slot = &q->queue[q->count & (HA_OPERATOR_QUEUE_LEN - 1u)];
+  slot->command = command;
+  slot->request_id = request_id;
+  q->count++;
+}
+
+/* This period's request for the core: the oldest waiting, answered now. Returns 0 when none is
+ * waiting or it repeats the one executed last (answered with its first answer). */
+static int take_operator(HaOperatorQueue *q, HaOperatorRequest *req) {
+  const uint32_t waiting = q->count - q->seen;
+  if (waiting == 0u) {
+    return 0;
+  }
+  if (waiting > HA_OPERATOR_QUEUE_LEN) { /* overwritten before their turn: never run nor acked */
+    q->lost += waiting - HA_OPERATOR_QUEUE_LEN;
+    q->seen = q->count - HA_OPERATOR_QUEUE_LEN;
+  }
+  *req = q->queue[q->seen & (HA_OPERATOR_QUEUE_LEN - 1u)];
+  q->seen++;
+  q->ack_count++;
+  q->ack_id = req->request_id;
+  if (q->executed && req->request_id == q->last.request_id && req->command == q->last.command) {
+    q->ack_accepted = q->last_accepted;
+    return 0;
+  }
+  return 1;
 }
 
 /* A failed reading enters the core as -1: below every valid airspeed (and voltage), so the
@@ -54,6 +92,8 @@ static void keep_retained(HaApp *app, const HaBoard *board) {
 }
 
 void ha_app_period(HaApp *app, const HaBoard *board) {
+  HaOperatorRequest req;
+  const int handed = take_operator(&app->requests, &req);
   float airspeed_ftps = 0.0f;
   float battery_v = 0.0f;
   const uint32_t now_us = board->micros(board->ctx);
@@ -61,8 +101,15 @@ void ha_app_period(HaApp *app, const HaBoard *board) {
   const int battery_ok = board->read_battery_v(board->ctx, &battery_v);
   board->read_rc(board->ctx, &app->inputs.rc);
   app->inputs.airspeed_ftps = reading_or_invalid(airspeed_ok, airspeed_ftps);
-  app->inputs.battery_v = reading_or_invalid(battery_ok, battery_v);
+  app->battery_v = reading_or_invalid(battery_ok, battery_v);
+  app->inputs.operator_command = handed ? req.command : (uint8_t)HA_OP_NONE;
   ha_core_step(&app->core, &app->inputs, now_us, &app->outputs);
+  if (handed) {
+    app->requests.ack_accepted = app->outputs.operator_accepted;
+    app->requests.executed = 1u;
+    app->requests.last = req;
+    app->requests.last_accepted = app->outputs.operator_accepted;
+  }
   board->write_servos(board->ctx, &app->outputs.surfaces);
   board->set_hp_reset(board->ctx, app->outputs.hp_reset_asserted);
   board->set_leds(board->ctx, ha_app_leds(&app->outputs));
@@ -86,4 +133,23 @@ void ha_app_restore(HaApp *app, const HaBoard *board, HaIns *ins) {
   }
   ha_core_restore(&app->core, r.airborne, r.restart_latched, r.ground_command);
   app->kept = r;
+}
+
+static uint16_t to_pulse(const HaAircraftConfig *cfg, float value, float lo, float hi) {
+  const float span_us = (float)(cfg->servo_pulse_max_us - cfg->servo_pulse_min_us);
+  /* Clamp the value first: a NaN then maps to neutral (or idle), not to a full deflection. */
+  const float f = (ha_clampf(value, lo, hi) - lo) / (hi - lo);
+  /* + 0.5 rounds to nearest; f in [0, 1] keeps the result inside the configured pulse range. */
+  return (uint16_t)((float)cfg->servo_pulse_min_us + f * span_us + 0.5f);
+}
+
+void ha_surfaces_to_pulses_us(const HaAircraftConfig *cfg, const HaSurfaces *s,
+                              uint16_t pulses_us[HA_U_DIM]) {
+  pulses_us[HA_U_ELEVATOR_DEG] =
+      to_pulse(cfg, s->elevator_deg, -cfg->elevator_limit_deg, cfg->elevator_limit_deg);
+  pulses_us[HA_U_AILERON_DEG] =
+      to_pulse(cfg, s->aileron_deg, -cfg->aileron_limit_deg, cfg->aileron_limit_deg);
+  pulses_us[HA_U_RUDDER_DEG] =
+      to_pulse(cfg, s->rudder_deg, -cfg->rudder_limit_deg, cfg->rudder_limit_deg);
+  pulses_us[HA_U_THROTTLE] = to_pulse(cfg, s->throttle, cfg->throttle_min, cfg->throttle_max);
 }

@@ -11,6 +11,7 @@
 #include <stdint.h>
 
 #include "../core/ha_types.h"
+#include "../generated/ha_config.h"
 #include "ha_retained.h"
 
 #ifdef __cplusplus
@@ -66,6 +67,11 @@ typedef struct {
   /* The VN-200's port 1 (the Due's Serial1; a pty the simulator writes on the host). */
   HaBytePort ins;
 } HaBoard;
+
+/* The servo pulse widths for surfaces the core output (inside S_u), in HA_U_* order, by the
+ * aircraft's servo calibration: what a board's write_servos puts on its pins (ha_app.c). */
+void ha_surfaces_to_pulses_us(const HaAircraftConfig *cfg, const HaSurfaces *s,
+                              uint16_t pulses_us[HA_U_DIM]);
 
 #ifdef __cplusplus
 }

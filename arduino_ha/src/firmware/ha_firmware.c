@@ -72,7 +72,7 @@ static void link_on_operator(void *ctx, const drone_ros_OperatorCommand *op, uin
   int r;
   (void)arrival_us;
   if (op->command != HA_OP_SET_HOME) {
-    ha_inputs_put_operator(&fw->app.inputs, op->command, op->request_id);
+    ha_app_put_operator(&fw->app, op->command, op->request_id);
     return;
   }
   /* Home is the INS adapter's, not the decision logic's: judged on the core's latest verdict. */

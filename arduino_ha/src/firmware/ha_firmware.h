@@ -16,7 +16,7 @@
  *    which hands each solution to the core's INS adapter;
  *  - operator routing: SET_HOME to the INS adapter (judged on the core's latest on-the-ground
  *    verdict, answered in the host's log), every other request (restart, HP/HA selection) queued
- *    for the core (ha_inputs_put_operator); HP commands into the core's inputs;
+ *    for the core (ha_app_put_operator); HP commands into the core's inputs;
  *  - the reports: DecisionStatus, pwm and home each period (link/ha_link_report.h), a log when
  *    the host negotiated the link, and the link's drop counters whenever it dropped something new.
  * C99, no heap, no recursion, every loop bounded, time from the board's clock. */

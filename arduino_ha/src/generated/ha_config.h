@@ -37,6 +37,7 @@ enum {
 #define HA_SX_MAX_TERMS 64
 #define HA_SU_MAX_TERMS 24
 #define HA_MAX_RESTARTS_CAP 16
+#define HA_SELF_TEST_STEPS 12
 
 /* A nonzero coefficient of a region's row, S[row][col]: only these are stored, so that no zero is
  * multiplied or even looked at per period (on the Due the scan of the dense 15 x 8 and 8 x 4
@@ -188,6 +189,9 @@ typedef struct {
   /* Pre-flight surface self-test. */
   uint32_t self_test_step_us;
   float self_test_throttle_max;
+  /* The sequence, a step a row of targets in HA_U_* order (derived): each surface to + and - its
+   * limit and back, then the throttle to half and all of self_test_throttle_max and back. */
+  float self_test_u[HA_SELF_TEST_STEPS][HA_U_DIM];
 
   /* Parked, for the self-test: roll and pitch within, body rates within, ground speed below. */
   float self_test_max_tilt_deg;
