@@ -89,7 +89,7 @@ def test_the_sketch_runs_the_core_on_the_ground_floor_the_host_tests_test(tmp_pa
     compiled = sorted(str(p.relative_to(sketch)) for p in sketch.rglob("*.c") if p.name in floor)
     assert compiled == ["src/core/geo_wgs84.c", "src/core/hp_command.c"]
     forwarders = sorted(p for p in (sketch / "src").rglob("hp_command.h") if p.parent.name != "core")
-    assert [p.parent.name for p in forwarders] == ["hil", "link"]
+    assert [p.parent.name for p in forwarders] == ["firmware", "hil", "link"]  # firmware: the retained record's CRC
     assert all(len(p.read_text().splitlines()) == 2 for p in forwarders)
 
 

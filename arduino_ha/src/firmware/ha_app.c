@@ -92,7 +92,7 @@ static void keep_retained(HaApp *app, const HaBoard *board) {
 }
 
 void ha_app_period(HaApp *app, const HaBoard *board) {
-  HaOperatorRequest req;
+  HaOperatorRequest req = {HA_OP_NONE, 0u}; /* written whole by take_operator when handed */
   const int handed = take_operator(&app->requests, &req);
   float airspeed_ftps = 0.0f;
   float battery_v = 0.0f;
