@@ -126,25 +126,26 @@ def test_no_ground_floor_file_is_checked_in_under_arduino_ha():
     assert copies == [], "common/ is the one source; the sketch gets it at assembly"
 
 
+def assert_generated_from_message(tmp_path, mode, message, header):
+    """The checked-in src/generated/<header> is what gen_decision_status.py <mode> writes from
+    msg/<message> (arduino-cli runs no generator)."""
+    fresh = tmp_path / header
+    subprocess.run([sys.executable, str(ROOT / "tools" / "gen_decision_status.py"), mode,
+                    str(ROOT / "msg" / message), str(fresh)], check=True)
+    checked_in = HA / "src" / "generated" / header
+    assert checked_in.read_text() == fresh.read_text(), \
+        "run `make due-sketch-msgs` and check in arduino_ha/src/generated/%s" % header
+
+
 def test_decision_status_header_is_the_one_the_message_generates(tmp_path):
     """CONTROLLER_* and REASON_* are defined once, in msg/DecisionStatus.msg; the core's header
     is generated from it and must not drift."""
-    fresh = tmp_path / "ha_decision_status.h"
-    subprocess.run([sys.executable, str(ROOT / "tools" / "gen_decision_status.py"), "--c",
-                    str(ROOT / "msg" / "DecisionStatus.msg"), str(fresh)], check=True)
-    checked_in = HA / "src" / "generated" / "ha_decision_status.h"
-    assert checked_in.read_text() == fresh.read_text(), \
-        "run `make due-sketch-msgs` and check in arduino_ha/src/generated/ha_decision_status.h"
+    assert_generated_from_message(tmp_path, "--c", "DecisionStatus.msg", "ha_decision_status.h")
 
 
 def test_operator_numbers_are_the_ones_the_message_generates(tmp_path):
     """HA_OP_* are defined once, in msg/OperatorCommand.msg, like the decision's numbers."""
-    fresh = tmp_path / "ha_operator_command.h"
-    subprocess.run([sys.executable, str(ROOT / "tools" / "gen_decision_status.py"), "--c-operator",
-                    str(ROOT / "msg" / "OperatorCommand.msg"), str(fresh)], check=True)
-    checked_in = HA / "src" / "generated" / "ha_operator_command.h"
-    assert checked_in.read_text() == fresh.read_text(), \
-        "run `make due-sketch-msgs` and check in arduino_ha/src/generated/ha_operator_command.h"
+    assert_generated_from_message(tmp_path, "--c-operator", "OperatorCommand.msg", "ha_operator_command.h")
 
 
 def test_operator_numbers_that_collide_are_refused(tmp_path):
