@@ -12,8 +12,9 @@ import rospy
 
 from stack_common import native
 
-# hil/native/lockstep_io.cpp's Counted, by the keys hil.sim.Waiter counts them under.
-KEYS = ("vn", "status", "pwm", "home", "servo_op")
+# hil/native/lockstep_io.cpp's Counted, by the keys hil.sim.Waiter counts them under; "to_hil",
+# the controller's guidance record, is not waited for: its waypoint changes are kept (waypoints()).
+KEYS = ("vn", "status", "pwm", "home", "servo_op", "to_hil")
 
 
 def library():
@@ -25,6 +26,7 @@ def library():
             ("hio_wait_count", c_int, [c_int, u64, dbl]),
             ("hio_latest", ctypes.c_size_t, [c_int, ctypes.c_void_p, ctypes.c_size_t]),
             ("hio_publish_step", c_int, [u64, ctypes.POINTER(ctypes.c_uint32)]),
+            ("hio_waypoints", ctypes.c_size_t, [ctypes.POINTER(u64), ctypes.POINTER(ctypes.c_int32), ctypes.c_size_t]),
             ("hio_shutdown", None, [])):
         f = getattr(lib, name)
         f.restype, f.argtypes = restype, argtypes
@@ -71,6 +73,14 @@ class LockstepIo:
         before the first), read without decoding the rest."""
         b = self._latest_bytes(key)
         return int.from_bytes(b[:4], "little") if len(b) >= 4 else None
+
+    def waypoints(self):
+        """[(t_s, waypoint index)] at each change of the controller's guidance (/to_hil), t_s the
+        controller step's stamp."""
+        n = self.lib.hio_waypoints(None, None, 0)
+        stamps, indexes = (ctypes.c_uint64 * n)(), (ctypes.c_int32 * n)()
+        n = min(n, self.lib.hio_waypoints(stamps, indexes, n))
+        return [(round(stamps[i] / 1e6, 3), int(indexes[i])) for i in range(n)]
 
     def publish_step(self, t_us, declared):
         """/clock to t_us, then /hil/lockstep with declared: the nine counts in LockstepStep's order."""

@@ -457,7 +457,7 @@ class Simulation:
         # for, and the latency probe decodes what it reads: rospy subscriptions.
         self.counted = [rospy.resolve_name(t) for t in COUNTED.values()]
         self.io = None if self.realtime else lockstep_io.LockstepIo(
-            dict(zip(COUNTED, self.counted), servo_op=self.servo_op_topic))
+            dict(zip(COUNTED, self.counted), servo_op=self.servo_op_topic, to_hil=rospy.resolve_name("to_hil")))
         # The node whose connections the counted topics are: the preflight asks it.
         self.io_node = rospy.get_name() if self.io is None else self.io.name
         self.waiter = Waiter(self.io)
@@ -490,7 +490,8 @@ class Simulation:
             rospy.Subscriber(COUNTED["home"], rospy.AnyMsg, lambda m: self.waiter.hit("home"), queue_size=100,
                              tcp_nodelay=True)
         rospy.Subscriber("way", way, lambda m: self.waiter.hit("way", m), queue_size=10)
-        rospy.Subscriber("to_hil", hil_data, self.on_to_hil, queue_size=1000)
+        if self.io is None:  # in lockstep the native node keeps the waypoint changes
+            rospy.Subscriber("to_hil", hil_data, self.on_to_hil, queue_size=1000)
         self.relay_pub = None if self.relay_topic is None else \
             rospy.Publisher(self.relay_topic, ServoCommand, queue_size=None, tcp_nodelay=True)
         self.arduino_input = self.relay_topic or self.servo_op_topic
@@ -1038,6 +1039,8 @@ class Simulation:
         finally:
             self.wall_s = time.monotonic() - wall0
             self.cpu_s = time.process_time() - cpu0
+            if self.io is not None:
+                self.waypoint_log = self.io.waypoints()
             self.write_progress(k * self.period_us * 1e-6)
 
     def publish_diagnostics(self, k, now, since):

@@ -6,9 +6,14 @@
 // there without being decoded, and a waiting step is woken by a condition variable; ctypes lets go
 // of the GIL for as long as a call into this library lasts.
 //
+// The controller's /to_hil (the guidance's waypoint index, every controller step) is read here
+// too, and only its changes kept: a rospy subscription decoded it in a Python thread each step,
+// which took the GIL from the stepping thread while the step's HA period and truth were due.
+//
 // One node per process, made by hio_init and ended by hio_shutdown; every other call before
 // hio_init or after hio_shutdown returns 0 and does nothing.
 #include <drone_ros/LockstepStep.h>
+#include <drone_ros/hil_data.h>
 #include <drone_ros_common/inline_queue.h>
 #include <drone_ros_common/xmlrpc_wake.h>
 #include <ros/ros.h>
@@ -28,7 +33,15 @@
 namespace {
 
 // The topics counted, by the index hil/lockstep_io.py names them with.
-enum Counted : int { kVn = 0, kStatus, kPwm, kHome, kServoOp, kCountedTopics };
+enum Counted : int { kVn = 0, kStatus, kPwm, kHome, kServoOp, kToHil, kCountedTopics };
+
+// Waypoint changes kept: a mission has at most a few hundred, a restart starts the count again.
+constexpr size_t kWaypointLogMax = 4096;
+
+struct WaypointChange {
+  uint64_t stamp_us;
+  int32_t index;
+};
 
 class LockstepIo {
  public:
@@ -71,6 +84,18 @@ class LockstepIo {
     return bytes.size();
   }
 
+  // The guidance's waypoint index at each change, stamped with the controller step that made it
+  // (the message's header): the same log whenever the step reads it. Its size; copied up to
+  // capacity entries.
+  size_t waypoints(uint64_t *stamps_us, int32_t *indexes, size_t capacity) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (size_t i = 0; i < waypoints_.size() && i < capacity; ++i) {
+      stamps_us[i] = waypoints_[i].stamp_us;
+      indexes[i] = waypoints_[i].index;
+    }
+    return waypoints_.size();
+  }
+
   void publish_step(uint64_t t_us, const uint32_t declared[9]) {
     const ros::Time stamp(static_cast<uint32_t>(t_us / 1000000u),
                           static_cast<uint32_t>((t_us % 1000000u) * 1000u));
@@ -94,6 +119,10 @@ class LockstepIo {
  private:
   void on_message(int topic, const topic_tools::ShapeShifter &m) {
     const auto t = static_cast<size_t>(topic);
+    if (topic == kToHil) {
+      on_guidance(*m.instantiate<drone_ros::hil_data>());
+      return;
+    }
     std::vector<uint8_t> bytes;  // read only where a byte of it matters: a counted topic is counted
     if (topic == kPwm || topic == kServoOp) {
       bytes.resize(m.size());
@@ -115,6 +144,15 @@ class LockstepIo {
     changed_.notify_all();
   }
 
+  void on_guidance(const drone_ros::hil_data &m) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++counts_[kToHil];
+    if ((waypoints_.empty() || waypoints_.back().index != m.waypoint_index) &&
+        waypoints_.size() < kWaypointLogMax) {
+      waypoints_.push_back({m.header.stamp.toNSec() / 1000u, m.waypoint_index});
+    }
+  }
+
   // Counting a message in roscpp's network thread needs no second thread, and waking one cost a
   // hand-off per message.
   drone_ros_common::InlineQueue queue_;
@@ -125,6 +163,7 @@ class LockstepIo {
   std::condition_variable changed_;
   std::array<uint64_t, kCountedTopics> counts_{};
   std::array<std::vector<uint8_t>, kCountedTopics> latest_{};
+  std::vector<WaypointChange> waypoints_;
 };
 
 std::unique_ptr<LockstepIo> g_io;
@@ -174,6 +213,12 @@ int hio_wait_count(int topic, uint64_t at_least, double timeout_s) {
 
 size_t hio_latest(int topic, uint8_t *out, size_t capacity) {
   return g_io && topic >= 0 && topic < kCountedTopics ? g_io->latest(topic, out, capacity) : 0u;
+}
+
+size_t hio_waypoints(uint64_t *stamps_us, int32_t *indexes, size_t capacity) {
+  return g_io && (capacity == 0 || (stamps_us != nullptr && indexes != nullptr))
+             ? g_io->waypoints(stamps_us, indexes, capacity)
+             : 0u;
 }
 
 // /clock to t_us, then /hil/lockstep declaring, in LockstepStep's order, the messages of each

@@ -8,7 +8,7 @@ import time
 
 import rosgraph
 import rospy
-from drone_ros.msg import DecisionStatus, HomePosition, LockstepStep, ServoCommand, pwm
+from drone_ros.msg import DecisionStatus, HomePosition, LockstepStep, ServoCommand, hil_data, pwm
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import Temperature
 
@@ -27,7 +27,8 @@ def main():
     rospy.init_node("hil_sim", disable_rostime=True)
     rospy.rostime._set_rostime(rospy.Time(0, 0))
     topics = {k: rospy.resolve_name(t) for k, t in (("vn", "vn200/temperature"), ("status", "decision_status"),
-                                                     ("pwm", "pwm"), ("home", "home"), ("servo_op", "servo_op"))}
+                                                     ("pwm", "pwm"), ("home", "home"), ("servo_op", "servo_op"),
+                                                     ("to_hil", "to_hil"))}
     io = lockstep_io.LockstepIo(topics)
     out = {"name": io.name, "second_node_refused": False}
     try:
@@ -36,7 +37,7 @@ def main():
         out["second_node_refused"] = True
     pubs = {k: rospy.Publisher(topics[k], cls, queue_size=100) for k, cls in
             (("vn", Temperature), ("status", DecisionStatus), ("pwm", pwm), ("home", HomePosition),
-             ("servo_op", ServoCommand))}
+             ("servo_op", ServoCommand), ("to_hil", hil_data))}
     seen = {"clock": [], "lockstep": []}
     subs = [rospy.Subscriber("/clock", Clock, lambda m: seen["clock"].append(m.clock.to_nsec()))]
     subs.append(rospy.Subscriber("hil/lockstep", LockstepStep, lambda m: seen["lockstep"].append(
@@ -55,11 +56,19 @@ def main():
     pubs["home"].publish(HomePosition())
     for seq in (41, 42):
         pubs["servo_op"].publish(ServoCommand(seq=seq, elevator_deg=-2.5, throttle=0.5, crc32=0xDEADBEEF))
+    out["waypoints_before"] = io.waypoints()
+    # The guidance's record every controller step: only the waypoint index's changes are kept,
+    # each at the stamp of the step that made it (a restarted controller starts again at 0).
+    for t_ms, index in ((10, 0), (20, 0), (30, 1), (40, 1), (50, 2), (60, 0), (70, 0)):
+        m = hil_data(waypoint_index=index)
+        m.header.stamp = rospy.Time(0, t_ms * 1000000)
+        pubs["to_hil"].publish(m)
     out["waited"] = {k: io.wait_count(k, n, 20.0) for k, n in
-                     (("vn", 4), ("status", 2), ("pwm", 3), ("home", 1), ("servo_op", 2))}
+                     (("vn", 4), ("status", 2), ("pwm", 3), ("home", 1), ("servo_op", 2), ("to_hil", 7))}
     time.sleep(0.3)  # anything more would have come by now
     out["after"] = {k: io.count(k) for k in lockstep_io.KEYS}
     out["latest_seq"] = io.latest_seq("servo_op")
+    out["waypoints"] = io.waypoints()
     m = io.latest("servo_op", ServoCommand)
     out["latest"] = [m.seq, m.elevator_deg, m.throttle, m.crc32]
     wait(lambda: all(sub.get_num_connections() > 0 for sub in subs))
@@ -78,6 +87,7 @@ def main():
     out["clock"], out["lockstep"] = seen["clock"], seen["lockstep"]
     io.close()
     out["after_close"] = io.count("vn")
+    out["waypoints_after_close"] = io.waypoints()
     print(json.dumps(out))
 
 
