@@ -296,7 +296,8 @@ def launch_command(args, d, run_dir, out, gs_bind, gs_remote):
     controller_hz = controller_rate_hz(args)
     rates = (["rate_hz:=%g" % args.rate_hz] if args.rate_hz else []) + \
         (["dt:=%g" % (1.0 / controller_hz)] if controller_hz else [])
-    launch = ["roslaunch", "--wait", "drone_ros", "hil.launch", "aircraft:=" + args.aircraft,
+    # --skip-log-check: the flight's log folder is its own and new; its size needs no `du`.
+    launch = ["roslaunch", "--wait", "--skip-log-check", "drone_ros", "hil.launch", "aircraft:=" + args.aircraft,
               "run_dir:=" + run_dir, "out_dir:=" + out, "seed:=%d" % args.seed,
               "mode:=" + ("realtime" if args.realtime else "lockstep"),
               "duration_s:=%g" % args.duration, "crash_at_s:=%g" % args.crash_at, "fault:=" + args.fault,
@@ -386,7 +387,10 @@ def main(argv=None):
     master_uri = "http://127.0.0.1:%d" % port
     env = dict(os.environ, ROS_MASTER_URI=master_uri, ROS_HOSTNAME="127.0.0.1", ROS_IP="127.0.0.1",
                ROS_HOME=os.path.join(out, "ros"), ROS_LOG_DIR=os.path.join(out, "ros", "log"),
-               PYTHONUNBUFFERED="1")
+               PYTHONUNBUFFERED="1",
+               # roslaunch imports rosclean, which imports distutils: setuptools' own copy unless
+               # this says the standard library's (0.26 s of CPU a flight importing setuptools).
+               SETUPTOOLS_USE_DISTUTILS="stdlib")
     env.pop("ROS_NAMESPACE", None)
     procs = Processes(env, out)
     gs_bind = args.vehicle_port or (14555 if d.external_gcs else free_port(socket.SOCK_DGRAM))

@@ -7,8 +7,12 @@ aircraft, ptys), the preflight (until every node is connected), the verdict and 
 teardown. The flights are the shortest that still fly (SIM_S of simulated time: 2 s parked, the
 mission upload, the airborne start), no fault, no bag; the figures are the median of RUNS flights,
 from run_flight_times.json and sim_times.json (wall-clock marks both write in the flight's
-folder), plus the CPU time of the flight's whole process tree. Wall time on a shared machine
+folder), plus the CPU time of the flight's whole process tree and its split by process: each
+process of the flight (found by a token in its environment, which every process the flight starts
+inherits) is read from /proc every 20 ms, and its last reading counts, so the CPU of a process's
+last 20 ms is missed (a lower bound, short by a few ms a process). Wall time on a shared machine
 measures the neighbours too. Prints `metric: value unit` lines, then `machine: ...`."""
+import collections
 import json
 import os
 import resource
@@ -17,9 +21,13 @@ import subprocess
 import sys
 import tempfile
 import time
+import uuid
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 from stack_tools.bench_machine import machine  # noqa: E402
+from hil import proc_stat  # noqa: E402
+
+TOKEN_VAR = "BENCH_FLIGHT_OVERHEAD_TOKEN"
 
 RUNS = int(os.environ.get("BENCH_FLIGHT_RUNS", "3"))
 SIM_S = 3.0
@@ -37,17 +45,74 @@ PHASES = [("run_flight_start_to_master_up", "start", "master_up"),
           ("run_flight_exit", "stopped", "end")]
 
 
+def process_name(pid):
+    """What a process of the flight is: its ROS node name (__name:=), else its program (the
+    script, for an interpreter)."""
+    try:
+        with open("/proc/%d/cmdline" % pid, "rb") as f:
+            argv = [a.decode(errors="replace") for a in f.read().split(b"\0") if a]
+    except OSError:
+        return None
+    for a in argv:
+        if a.startswith("__name:="):
+            return a[len("__name:="):]
+    prog = [os.path.basename(a) for a in argv[:2]]
+    return prog[1] if prog and prog[0].startswith("python") and len(prog) > 1 else (prog[0] if prog else None)
+
+
+class ProcessCpu:
+    """CPU seconds of every process holding the token, by name, as last read from /proc."""
+
+    def __init__(self, token):
+        self.needle = ("%s=%s" % (TOKEN_VAR, token)).encode()
+        self.last = {}     # pid -> (name, cpu s)
+        self.skip = set()  # pids seen without the token
+        self.tick = os.sysconf("SC_CLK_TCK")
+
+    def poll(self):
+        for entry in os.listdir("/proc"):
+            if not entry.isdigit() or int(entry) in self.skip:
+                continue
+            pid = int(entry)
+            if pid not in self.last:
+                try:
+                    with open("/proc/%d/environ" % pid, "rb") as f:
+                        held = self.needle in f.read().split(b"\0")
+                except OSError:
+                    continue
+                if not held:
+                    self.skip.add(pid)
+                    continue
+                self.last[pid] = (process_name(pid), 0.0)
+            fields = proc_stat.stat_fields(pid)
+            if fields is not None:  # utime, stime: fields 14 and 15 of stat(5)
+                self.last[pid] = (self.last[pid][0], (int(fields[11]) + int(fields[12])) / self.tick)
+
+    def by_name(self):
+        out = collections.defaultdict(float)
+        for name, cpu in self.last.values():
+            out[name or "?"] += cpu
+        return dict(out)
+
+
 def fly():
     folder = os.path.join(tempfile.mkdtemp(prefix="bench_overhead_"), "flight")
     cpu0 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    token = uuid.uuid4().hex
+    procs = ProcessCpu(token)
     t0 = time.time()
-    r = subprocess.run([sys.executable, os.path.join(HERE, "..", "run_flight.py"), "--quiet", "--no-bag",
-                        "--fault", "none", "--duration", "%g" % SIM_S, "--folder", folder],
-                       stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
+    p = subprocess.Popen([sys.executable, os.path.join(HERE, "..", "run_flight.py"), "--quiet", "--no-bag",
+                          "--fault", "none", "--duration", "%g" % SIM_S, "--folder", folder],
+                         env=dict(os.environ, **{TOKEN_VAR: token}), stdout=subprocess.PIPE,
+                         stderr=subprocess.STDOUT)
+    while p.poll() is None:
+        procs.poll()
+        time.sleep(0.02)
+    output = p.stdout.read()
     end = time.time()
     cpu1 = resource.getrusage(resource.RUSAGE_CHILDREN)
-    if r.returncode != 0:
-        sys.stdout.write(r.stdout.decode(errors="replace")[-2000:])
+    if p.returncode != 0:
+        sys.stdout.write(output.decode(errors="replace")[-2000:])
         raise SystemExit("bench-flight-overhead: the flight failed")
     marks = {}
     for name in ("run_flight_times.json", "sim_times.json"):
@@ -59,7 +124,7 @@ def fly():
     phases = {name: marks[b] - marks[a] for name, a, b in PHASES}
     phases["whole_flight"] = end - t0
     cpu = (cpu1.ru_utime - cpu0.ru_utime) + (cpu1.ru_stime - cpu0.ru_stime)
-    return phases, cpu
+    return phases, cpu, procs.by_name()
 
 
 def main():
@@ -69,6 +134,10 @@ def main():
         print("flight_overhead_%s: %.2f s" % (name, statistics.median(r[0][name] for r in runs)))
     print("flight_overhead_cpu_whole_flight: %.2f s (every process of the flight)" %
           statistics.median(r[1] for r in runs))
+    names = sorted({n for r in runs for n in r[2]}, key=lambda n: -statistics.median(r[2].get(n, 0.0) for r in runs))
+    for name in names:
+        print("flight_overhead_cpu_%s: %.2f s" % (name.replace(".", "_").replace("-", "_"),
+                                                 statistics.median(r[2].get(name, 0.0) for r in runs)))
     print("machine: %s" % header)
 
 
