@@ -389,7 +389,7 @@ def main(argv=None):
                ROS_HOME=os.path.join(out, "ros"), ROS_LOG_DIR=os.path.join(out, "ros", "log"),
                PYTHONUNBUFFERED="1",
                # roslaunch imports rosclean, which imports distutils: setuptools' own copy unless
-               # this says the standard library's (0.26 s of CPU a flight importing setuptools).
+               # this says the standard library's (0.38 s of CPU a flight on a slow machine).
                SETUPTOOLS_USE_DISTUTILS="stdlib")
     env.pop("ROS_NAMESPACE", None)
     procs = Processes(env, out)

@@ -35,7 +35,8 @@ namespace {
 // The topics counted, by the index hil/lockstep_io.py names them with.
 enum Counted : int { kVn = 0, kStatus, kPwm, kHome, kServoOp, kToHil, kCountedTopics };
 
-// Waypoint changes kept: a mission has at most a few hundred, a restart starts the count again.
+// Waypoint changes kept: a mission has at most a few hundred, a restart starts the count again;
+// changes past this many are not kept (no flight comes near it).
 constexpr size_t kWaypointLogMax = 4096;
 
 struct WaypointChange {
