@@ -100,16 +100,18 @@ def fly():
     cpu0 = resource.getrusage(resource.RUSAGE_CHILDREN)
     token = uuid.uuid4().hex
     procs = ProcessCpu(token)
+    log = tempfile.TemporaryFile()  # not a pipe: polling /proc, this would not drain one
     t0 = time.time()
     p = subprocess.Popen([sys.executable, os.path.join(HERE, "..", "run_flight.py"), "--quiet", "--no-bag",
                           "--fault", "none", "--duration", "%g" % SIM_S, "--folder", folder],
-                         env=dict(os.environ, **{TOKEN_VAR: token}), stdout=subprocess.PIPE,
-                         stderr=subprocess.STDOUT)
+                         env=dict(os.environ, **{TOKEN_VAR: token}), stdout=log, stderr=subprocess.STDOUT)
     while p.poll() is None:
         procs.poll()
         time.sleep(0.02)
-    output = p.stdout.read()
     end = time.time()
+    log.seek(0)
+    output = log.read()
+    log.close()
     cpu1 = resource.getrusage(resource.RUSAGE_CHILDREN)
     if p.returncode != 0:
         sys.stdout.write(output.decode(errors="replace")[-2000:])
