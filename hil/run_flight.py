@@ -30,6 +30,7 @@ import signal
 import socket
 import subprocess
 import sys
+import sysconfig
 import tempfile
 import time
 import uuid
@@ -41,6 +42,8 @@ from hil.aircraft_period import decision_rate_hz  # noqa: E402
 from hil import proc_stat  # noqa: E402  (a process's /proc/PID/stat fields, one parser)
 from stack_tools.paths import ROOT  # noqa: E402  (aircraft/ of the source tree or the install)
 from stack_tools.ports import free_port  # noqa: E402  (below the ephemeral range: nothing autobinds there)
+# Python 3.12 dropped distutils: there setuptools' copy is the only one.
+STDLIB_HAS_DISTUTILS = os.path.isdir(os.path.join(sysconfig.get_paths()["stdlib"], "distutils"))
 BAG_TOPICS = ["/hil/truth", "/decision_status", "/servo_op", "/pwm", "/ins", "/data", "/to_hil",
               "/way", "/home", "/rosout_agg", "/diagnostics"]
 
@@ -387,10 +390,11 @@ def main(argv=None):
     master_uri = "http://127.0.0.1:%d" % port
     env = dict(os.environ, ROS_MASTER_URI=master_uri, ROS_HOSTNAME="127.0.0.1", ROS_IP="127.0.0.1",
                ROS_HOME=os.path.join(out, "ros"), ROS_LOG_DIR=os.path.join(out, "ros", "log"),
-               PYTHONUNBUFFERED="1",
-               # roslaunch imports rosclean, which imports distutils: setuptools' own copy unless
-               # this says the standard library's (0.38 s of CPU a flight on a slow machine).
-               SETUPTOOLS_USE_DISTUTILS="stdlib")
+               PYTHONUNBUFFERED="1")
+    if STDLIB_HAS_DISTUTILS:
+        # roslaunch imports rosclean, which imports distutils: setuptools' own copy unless this
+        # says the standard library's (0.38 s of CPU a flight on a slow machine).
+        env["SETUPTOOLS_USE_DISTUTILS"] = "stdlib"
     env.pop("ROS_NAMESPACE", None)
     procs = Processes(env, out)
     gs_bind = args.vehicle_port or (14555 if d.external_gcs else free_port(socket.SOCK_DGRAM))

@@ -26,8 +26,7 @@ import uuid
 HERE = os.path.dirname(os.path.abspath(__file__))
 from stack_tools.bench_machine import machine  # noqa: E402
 from hil import proc_stat  # noqa: E402
-
-TOKEN_VAR = "BENCH_FLIGHT_OVERHEAD_TOKEN"
+from hil.campaigns import flight as flight_mod  # noqa: E402  (a flight's processes, by its token)
 
 RUNS = int(os.environ.get("BENCH_FLIGHT_RUNS", "3"))
 SIM_S = 3.0
@@ -61,32 +60,21 @@ def process_name(pid):
 
 
 class ProcessCpu:
-    """CPU seconds of every process holding the token, by name, as last read from /proc."""
+    """CPU seconds of every process holding the flight's token (hil.campaigns.flight's), by
+    name, as last read from /proc."""
 
     def __init__(self, token):
-        self.needle = ("%s=%s" % (TOKEN_VAR, token)).encode()
+        self.token = token
         self.last = {}     # pid -> (name, cpu s)
-        self.skip = set()  # pids seen without the token
+        self.skip = set()  # pids read without the token
         self.tick = os.sysconf("SC_CLK_TCK")
 
     def poll(self):
-        for entry in os.listdir("/proc"):
-            if not entry.isdigit() or int(entry) in self.skip:
-                continue
-            pid = int(entry)
-            if pid not in self.last:
-                try:
-                    with open("/proc/%d/environ" % pid, "rb") as f:
-                        held = self.needle in f.read().split(b"\0")
-                except OSError:
-                    continue
-                if not held:
-                    self.skip.add(pid)
-                    continue
-                self.last[pid] = (process_name(pid), 0.0)
+        for pid in flight_mod.holders(self.token, self.skip):
             fields = proc_stat.stat_fields(pid)
             if fields is not None:  # utime, stime: fields 14 and 15 of stat(5)
-                self.last[pid] = (self.last[pid][0], (int(fields[11]) + int(fields[12])) / self.tick)
+                name = self.last[pid][0] if pid in self.last else process_name(pid)
+                self.last[pid] = (name, (int(fields[11]) + int(fields[12])) / self.tick)
 
     def by_name(self):
         out = collections.defaultdict(float)
@@ -104,7 +92,7 @@ def fly():
     t0 = time.time()
     p = subprocess.Popen([sys.executable, os.path.join(HERE, "..", "run_flight.py"), "--quiet", "--no-bag",
                           "--fault", "none", "--duration", "%g" % SIM_S, "--folder", folder],
-                         env=dict(os.environ, **{TOKEN_VAR: token}), stdout=log, stderr=subprocess.STDOUT)
+                         env=dict(os.environ, **{flight_mod.TOKEN_VAR: token}), stdout=log, stderr=subprocess.STDOUT)
     while p.poll() is None:
         procs.poll()
         time.sleep(0.02)
@@ -136,10 +124,9 @@ def main():
         print("flight_overhead_%s: %.2f s" % (name, statistics.median(r[0][name] for r in runs)))
     print("flight_overhead_cpu_whole_flight: %.2f s (every process of the flight)" %
           statistics.median(r[1] for r in runs))
-    names = sorted({n for r in runs for n in r[2]}, key=lambda n: -statistics.median(r[2].get(n, 0.0) for r in runs))
-    for name in names:
-        print("flight_overhead_cpu_%s: %.2f s" % (name.replace(".", "_").replace("-", "_"),
-                                                 statistics.median(r[2].get(name, 0.0) for r in runs)))
+    by_name = {n: statistics.median(r[2].get(n, 0.0) for r in runs) for n in set().union(*(r[2] for r in runs))}
+    for name, cpu in sorted(by_name.items(), key=lambda kv: -kv[1]):
+        print("flight_overhead_cpu_%s: %.2f s" % (name.replace(".", "_").replace("-", "_"), cpu))
     print("machine: %s" % header)
 
 

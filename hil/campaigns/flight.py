@@ -32,19 +32,23 @@ COLUMNS = ["flight_id", "fault_class", "seed", "fault_at_s", "fault_duration_s",
            "exit_code", "leftovers_killed", "worker", "folder", "command"]
 
 
-def holders(token):
-    """pid -> process group of every process whose environment holds this flight's token."""
+def holders(token, skip=None):
+    """pid -> process group of every process whose environment holds this flight's token.
+    skip: a set of pids known not to hold it, not read again, and to which every pid read
+    without it is added (a caller that polls reads each process's environment once)."""
     needle = ("%s=%s" % (TOKEN_VAR, token)).encode()
     found = {}
     me = os.getpid()
     for pid in os.listdir("/proc"):
-        if not pid.isdigit() or int(pid) == me:
+        if not pid.isdigit() or int(pid) == me or (skip is not None and int(pid) in skip):
             continue
         try:
             with open("/proc/%s/environ" % pid, "rb") as f:
                 env = f.read().split(b"\0")
             if needle in env:
                 found[int(pid)] = os.getpgid(int(pid))
+            elif skip is not None and env != [b""]:  # empty while a process execs: read again
+                skip.add(int(pid))
         except (OSError, ProcessLookupError):
             continue
     return found
