@@ -92,8 +92,9 @@ def test_mavproxy_at_another_address_sees_the_vehicle_online_and_downloads_its_m
         while flight.is_alive() and not rows:
             mark = mavproxy.mark()
             mavproxy.command("wp list")
-            saved = mavproxy.wait_for("Saved", 2, since=mark)
-            if saved is not None and "waypoints to" in saved:
+            # Its parameters' "Saved 24 parameters to ..." may come first: waited past.
+            saved = mavproxy.wait_for(" waypoints to ", 2, since=mark)
+            if saved is not None:
                 # Every row: the vehicle's items are the waypoints from seq 0, no home row
                 # (the simulator uploads as QGroundControl does: microhard_gs/README.md, "Item 0 as home").
                 rows = read_qgc_wpl(saved.split(" to ", 1)[1].strip())

@@ -54,8 +54,10 @@ def listed(gcs):
     _, mavproxy = gcs
     mark = mavproxy.mark()
     mavproxy.command("wp list")
-    saved = mavproxy.wait_for("Saved", 30, since=mark)
-    assert saved is not None and "waypoints to" in saved, mavproxy.output(mark)
+    # Not just "Saved": MAVProxy fetches the vehicle's parameters meanwhile and prints "Saved 24
+    # parameters to ..." when it has them, which in CI came first (2026-12-07).
+    saved = mavproxy.wait_for(" waypoints to ", 30, since=mark)
+    assert saved is not None, mavproxy.output(mark)
     return read_qgc_wpl(saved.split(" to ", 1)[1].strip())
 
 
