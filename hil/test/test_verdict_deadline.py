@@ -138,3 +138,13 @@ def test_the_has_ticks_are_dated_on_its_own_wrapping_32_bit_microsecond_clock():
     (t_a, n_a, c_a, _), (t_b, n_b, c_b, why) = Sim.ha_periods
     assert round(now - t_a, 6) == 0.0025 and (n_a, c_a) == (7, 0)
     assert round(t_b - now, 6) == 0.000003 and (n_b, c_b, why) == (8, 1, DEADLINE_MISS)
+
+
+def test_who_had_the_servos_before_the_crash_is_read_on_the_has_ticks():
+    # The HP kept its deadline up to the kill: the HP, whatever the simulator's late steps showed.
+    on_time = verdicts.crash_takeover(verdicts.ha_periods(RealtimeSim(realtime_periods(0.0002, hp_commands(0.0041, 29.9941)))), 30.0, REGIONS)
+    assert on_time["controller_before_crash"] == "HP", on_time
+    # The HP fell silent 50 ms before the kill (late on a loaded machine): the HA already flew,
+    # and this flight's takeover says nothing of the crash's.
+    late = verdicts.crash_takeover(verdicts.ha_periods(RealtimeSim(realtime_periods(0.0002, hp_commands(0.0041, 29.9441)))), 30.0, REGIONS)
+    assert late["controller_before_crash"] == "HA", late
