@@ -21,6 +21,8 @@ ROSENV := source $(WS)/devel/setup.bash && export PATH=$(VENV)/bin:$$PATH &&
 export PATH := $(VENV)/bin:$(PATH)
 
 VERIFY_TARGETS :=
+VERIFY_FIRST :=
+VERIFY_PREP :=
 BENCH_TARGETS :=
 FUZZ_TARGETS :=
 FUZZ_SMOKE_TARGETS :=
@@ -29,7 +31,7 @@ FUZZ_SMOKE_TARGETS :=
 # fuzz-smoke-<c> (before the aggregate targets below, which list them).
 include $(ROOT)/tools/kit.mk
 
-.PHONY: help deps build test test-each run lint verify bench fuzz fuzz-smoke check-user-ws check-install check-aircraft-folder clean
+.PHONY: help deps build test test-each run lint verify verify-each bench fuzz fuzz-smoke check-user-ws check-install check-workspaces check-aircraft-folder clean
 help:
 	@echo "make run    set up and fly the main job"
 	@echo "make test   set up, build and run every test"
@@ -67,7 +69,14 @@ test-each: build
 run: build
 	@$(ROSENV) $(ROOT)/tools/run_main.sh $(WS) --aircraft $(AIRCRAFT)
 
-verify: $(VERIFY_TARGETS)
+# The analyses run JOBS at a time, each one's output kept together: the firmware loop's EVA alone
+# takes ~17 min on the slow CI machine, the rest ~12 min, which ran after it in turn (29 min).
+# VERIFY_FIRST (components' make.mk) names the longest, started first: deps and VERIFY_PREP (what
+# it needs made) are made before, or make would fill both slots with later targets meanwhile.
+verify:
+	@$(MAKE) --no-print-directory deps $(VERIFY_PREP)
+	@$(MAKE) --no-print-directory -j$(JOBS) --output-sync=target -o deps verify-each
+verify-each: $(VERIFY_FIRST) $(VERIFY_TARGETS)
 bench: $(BENCH_TARGETS)
 fuzz: $(FUZZ_TARGETS)
 fuzz-smoke: $(FUZZ_SMOKE_TARGETS)
@@ -76,6 +85,11 @@ fuzz-smoke: $(FUZZ_SMOKE_TARGETS)
 # plain catkin_make in a new workspace (tools/check_user_workspace.sh). CI runs it.
 check-user-ws:
 	@$(ROOT)/tools/check_user_workspace.sh
+
+# Both on one fresh clone, as CI runs them: the user's workspace, then its `catkin_make install`
+# (tools/check_workspaces.sh): one full build fewer.
+check-workspaces:
+	@JOBS=$(JOBS) $(ROOT)/tools/check_workspaces.sh
 
 # An aircraft is a folder: a fresh clone with a new aircraft folder (a changed copy of the DG808)
 # designs, builds and flies it, and nothing else in its tree changes (tools/check_aircraft_folder.sh).

@@ -1,6 +1,6 @@
 /* Frama-C EVA analysis driver for the firmware loop (arduino_ha/src/firmware) with everything it
  * runs: the core, the link and its reports, the VN-200 feed and the VN-200 protocol core. Not
- * compiled into anything: make verify-ha-fw-eva (part of make verify-ha-eva, tools/eva.sh) hands
+ * compiled into anything: make verify-ha-fw-eva (part of make verify-ha, tools/eva.sh) hands
  * it to frama-c with those sources.
  *
  * The board is as hostile as its types allow: its clock jumps anywhere, every reading is any
