@@ -9,22 +9,32 @@
 # installed check_config.py (with install/setup.bash sourced) accepts the installed aircraft.
 # Leaves nothing behind unless KEEP=1.
 # usage: check_install_space.sh [WORKSPACE_DIR]   (default: a new folder under /tmp)
+#        check_install_space.sh --in WORKSPACE_DIR  (a workspace `make check-user-ws` built and
+#                                                   kept: its user runs `catkin_make install`)
 # JOBS (default 2) is catkin_make's -j. mavgen (a build step, not needed at run time) runs with
 # this checkout's .venv Python when it has one, else `make deps` makes the clone's.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 # shellcheck source=tools/fresh_clone_workspace.sh
 source "$root/tools/fresh_clone_workspace.sh"
-new_workspace check-install install "${1:-}"
-
-mavgen_python=${DRONE_ROS_PYMAVLINK_PYTHON:-$root/.venv/bin/python}
-if [ ! -x "$mavgen_python" ]; then
-  (cd "$ws/src/drone_ros" && "${login_env[@]}" make deps)
+if [ "${1:-}" = --in ]; then
+  # The user's workspace as check_user_workspace.sh left it (its clone's make deps made the venv):
+  # installed with its own configuration, the caller removes it.
+  ws=$2
+  [ -f "$ws/devel/setup.bash" ] || { echo "check-install: $ws is not a built workspace"; exit 1; }
   mavgen_python=$ws/src/drone_ros/.venv/bin/python
+  build_workspace check-install -j"${JOBS:-2}" install
+else
+  new_workspace check-install install "${1:-}"
+  mavgen_python=${DRONE_ROS_PYMAVLINK_PYTHON:-$root/.venv/bin/python}
+  if [ ! -x "$mavgen_python" ]; then
+    (cd "$ws/src/drone_ros" && "${login_env[@]}" make deps)
+    mavgen_python=$ws/src/drone_ros/.venv/bin/python
+  fi
+  build_workspace check-install -j"${JOBS:-2}" -DPYTHON_EXECUTABLE=/usr/bin/python3 \
+    -Ddrone_ros_PYMAVLINK_PYTHON="$mavgen_python" -DCATKIN_ENABLE_TESTING=OFF \
+    -DCMAKE_INSTALL_PREFIX="$ws/install" install
 fi
-build_workspace check-install -j"${JOBS:-2}" -DPYTHON_EXECUTABLE=/usr/bin/python3 \
-  -Ddrone_ros_PYMAVLINK_PYTHON="$mavgen_python" -DCATKIN_ENABLE_TESTING=OFF \
-  -DCMAKE_INSTALL_PREFIX="$ws/install" install
 
 # Nothing but the install space from here on: the sources, build and devel spaces are moved away.
 mkdir "$ws/aside"
