@@ -4,10 +4,12 @@ airborne start, its controller is killed at CRASH_AT_S, the HA takes over within
 deadline, the restarted HP gets control back, waypoints are reached, and the verdict is ok (the
 wing never stalled while the HA flew, nothing outside S_x under the HA).
 
-The winds are hil/wind_sweep.py's: calm; 5 and 9 m/s from 8 directions (the start heading and
-every 45 deg from it: a headwind, a tailwind, crosswinds and quartering winds); moderate
-turbulence on 5 m/s from the same 8. 25 short lockstep flights; the sweep script flies the same
-winds for the whole mission (table in hil/README.md).
+The winds are hil/wind_sweep.py's: calm; 9 m/s from 8 directions (the start heading and every
+45 deg from it: a headwind, a tailwind, crosswinds and quartering winds); moderate turbulence on
+5 m/s from the same 8. 17 short lockstep flights. The sweep script also flies 5 m/s steady from
+the 8 for the whole mission (table in hil/README.md); here they would be weaker cases of two that
+are flown (the same directions at 9 m/s, the same mean wind with gusts), and cost make test some
+4 min of CI's 90 on the slow machine (8 flights of about 65 s, two at a time).
 
 Before the estimator fix the HP never got control in a headwind or a crosswind: the air-data EKF
 claimed convergence on a wrong branch (alpha 80-87 deg, beta +-55 deg) and the HA refused it at
@@ -33,7 +35,7 @@ HP_WITHIN_S = 10.0   # estimator converged and the HA's stable window (2 s) pass
 START_HEADING_DEG = 82.0
 # (case, wind m/s, from deg, turbulence): from 82 a headwind, from 262 a tailwind.
 WINDS = [(name.replace(" ", "_").replace(",", "").replace("/", "p"), v, d, turb)
-         for name, v, d, turb in winds([5.0, 9.0], [(START_HEADING_DEG + 45.0 * k) % 360.0 for k in range(8)],
+         for name, v, d, turb in winds([9.0], [(START_HEADING_DEG + 45.0 * k) % 360.0 for k in range(8)],
                                        5.0, calm=True)]
 
 
