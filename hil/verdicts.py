@@ -299,14 +299,14 @@ def crash_takeover(periods, crash_s, regions):
     # The flight ended before the deadline: lockstep's rule (the crash's period is the first late).
     first_miss_s, deadline_miss_s = miss or (crash_s, crash_s + tolerated * period_s)
     t_ha = first_takeover_s(periods, crash_s)
-    before = [p.controller for p in periods if p.t_s < crash_s - 1e-9]
+    before = next((p.controller for p in reversed(periods) if p.t_s < crash_s - 1e-9), None)
     return {
         "crash_injected_s": round(crash_s, 3),
         # Who had the servos in the HA's last period before the kill, on the HA's own ticks: in real
         # time a simulator step runs after the HA ticks it shows, so who_flew's periods put the
         # takeover up to two periods before the HA made it (the step of 8.00 s showing the
         # takeover of 8.017 s, measured).
-        "controller_before_crash": CONTROLLERS.get(before[-1], str(before[-1])) if before else None,
+        "controller_before_crash": None if before is None else CONTROLLERS.get(before, str(before)),
         "first_missed_period_s": round(first_miss_s, 3),
         "deadline_miss_s": round(deadline_miss_s, 3),
         "takeover_s": None if t_ha is None else round(t_ha, 3),
