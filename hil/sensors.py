@@ -22,7 +22,7 @@ import math
 import os
 import random
 
-from hil import ptys  # noqa: E402
+from hil import ins_noise, ptys  # noqa: E402
 from stack_common import geo  # noqa: E402
 from stack_common.units import FT_PER_M, G_MPS2  # noqa: E402
 from vn200_sim.vn200_emulation import (INS_STATUS_TRACKING_FIX, NS_PER_WEEK, Registers, Solution,  # noqa: E402
@@ -62,51 +62,27 @@ class GaussMarkov:
         return self.x
 
 
-def unit_normals(rng, n):
-    """The next n values of rng.gauss(0.0, 1.0), to the bit, at a third of the cost of n calls:
-    random.Random.gauss's own Box-Muller pairs (its cached second value first, and the last
-    pair's second cached back), inline."""
-    out = []
-    z = rng.gauss_next
-    rng.gauss_next = None
-    if z is not None:
-        out.append(0.0 + z)
-    rnd, cos, sin, log, sqrt, two_pi = rng.random, math.cos, math.sin, math.log, math.sqrt, 2.0 * math.pi
-    while len(out) < n:
-        x2pi = rnd() * two_pi
-        g2rad = sqrt(-2.0 * log(1.0 - rnd()))
-        out.append(0.0 + cos(x2pi) * g2rad)
-        out.append(0.0 + sin(x2pi) * g2rad)
-    if len(out) > n:
-        rng.gauss_next = out.pop() - 0.0  # gauss adds 0.0 when it hands it out, as above
-    return out
-
-
 class InsSolutionErrors:
     """The slow errors of the VN-200's one navigation filter (attitude, position, velocity), on a
     grid of its 800 Hz IMU clock: both serial ports output the same solution, so both streams read
     the same errors at the same sensor time (one home latched from port 1 is then the same point
     port 2 measures from). Each grid step is drawn once, in order, whichever port asks first, so a
-    seed still fixes every byte."""
+    seed still fixes every byte. Drawn in C (hil.ins_noise): random.gauss's numbers, to the bit."""
 
     GRID_HZ = 800.0
-    KEEP = 4096  # grid steps remembered: far more than a step's packets on either port
 
     def __init__(self, seed):
         r = random.Random("%s/ins_solution" % seed)
-        self.rng = r
-        self.att = [GaussMarkov(r, 0.2, 20.0), GaussMarkov(r, 0.03, 20.0), GaussMarkov(r, 0.03, 20.0)]
-        self.pos = [GaussMarkov(r, 1.0 / math.sqrt(2.0), 60.0), GaussMarkov(r, 1.0 / math.sqrt(2.0), 60.0),
-                    GaussMarkov(r, 1.5, 60.0)]
-        self.vel = [GaussMarkov(r, 0.05, 5.0) for _ in range(3)]
-        # The nine processes' grid-step coefficients and states, in the order they draw
-        # (attitude, position, velocity): the grid step is the same for all of them.
-        chans = self.att + self.pos + self.vel
+        # The processes' initial values are drawn here, in this order (attitude, position,
+        # velocity); the grid step is the same for all nine.
+        chans = ([GaussMarkov(r, 0.2, 20.0), GaussMarkov(r, 0.03, 20.0), GaussMarkov(r, 0.03, 20.0)] +
+                 [GaussMarkov(r, 1.0 / math.sqrt(2.0), 60.0), GaussMarkov(r, 1.0 / math.sqrt(2.0), 60.0),
+                  GaussMarkov(r, 1.5, 60.0)] +
+                 [GaussMarkov(r, 0.05, 5.0) for _ in range(3)])
         ak = [e.coefficients(1.0 / self.GRID_HZ) for e in chans]
-        self.a, self.k = [a for a, _ in ak], [k for _, k in ak]
-        self.x = [e.x for e in chans]
+        self.noise = ins_noise.InsNoise(r, [a for a, _ in ak], [k for _, k in ak], [e.x for e in chans])
+        self.keep = self.noise.keep
         self.index = None  # grid index of the newest value
-        self.values = {}
 
     def draw_until(self, sensor_t_s):
         """Draws the grid up to sensor time sensor_t_s ahead of the packets that will read it:
@@ -120,24 +96,16 @@ class InsSolutionErrors:
         k = int(math.floor(sensor_t_s * self.GRID_HZ + 1e-6))
         if self.index is None:
             self.index = self.first = k
-            x = self.x
-            self.values[k] = (x[0:3], x[3:6], x[6:9])
+            self.noise.start(k)
         self._draw_to(k)
         # Older than remembered (never in a flight) or than the first request: the oldest kept.
-        return self.values[max(k, self.first, self.index - self.KEEP + 1)]
+        x = self.noise.at(max(k, self.first, self.index - self.keep + 1))
+        return x[0:3], x[3:6], x[6:9]
 
     def _draw_to(self, k):
         if self.index < k:
-            n = k - self.index
-            z = unit_normals(self.rng, 9 * n)
-            a, kk, x, values, keep = self.a, self.k, self.x, self.values, self.KEEP
-            for j in range(n):
-                zj = z[9 * j:9 * j + 9]
-                x = [a[i] * x[i] + kk[i] * zj[i] for i in range(9)]
-                self.index += 1
-                values[self.index] = (x[0:3], x[3:6], x[6:9])
-                values.pop(self.index - keep, None)
-            self.x = x
+            self.noise.draw_to(k)
+            self.index = k
 
 
 class Vn200Errors:

@@ -1,25 +1,47 @@
 """The VN-200's noise (hil/sensors.py) is a function of the seed alone: the navigation filter's
-Gauss-Markov errors, drawn nine at a time per 800 Hz grid step in batches, are the very numbers
-that one random.Random.gauss call per draw gives, whatever the batch sizes; a seeded flight flies
-as it did before they were batched (test_determinism holds a flight to itself)."""
+Gauss-Markov errors, drawn nine at a time per 800 Hz grid step in C (hil/native/ins_noise.c), are
+the very numbers that one random.Random.gauss call per draw gives, whatever the batch sizes; a
+seeded flight flies as it did when Python drew them (test_determinism holds a flight to itself)."""
 import math
 import random
 
-from hil import sensors
+import pytest
+
+from hil import ins_noise, sensors
 
 
-def test_batched_unit_normals_are_the_gauss_calls_draw_for_draw_across_every_split():
-    for sizes in ([1], [2], [9], [72, 9, 1, 3, 0, 8], [5, 5, 5, 5, 5, 5, 5]):
-        one_by_one, batched = random.Random("7/x"), random.Random("7/x")
-        one_by_one.gauss(0.0, 1.0)  # a pair cached: the batch starts with its second value
-        batched.gauss(0.0, 1.0)
+def test_the_c_draws_the_gauss_calls_normals_draw_for_draw_and_hands_the_generator_back():
+    for sizes in ([1], [2], [9], [72, 9, 1, 3, 0, 8], [5, 5, 5, 5, 5, 5, 5], [1400]):
+        one_by_one, handed = random.Random("7/x"), random.Random("7/x")
+        one_by_one.gauss(0.0, 1.0)  # a pair cached: the C starts with its second value
+        handed.gauss(0.0, 1.0)
+        noise = ins_noise.InsNoise(handed, [0.0] * 9, [0.0] * 9, [0.0] * 9)
         for n in sizes:
             want = [one_by_one.gauss(0.0, 1.0) for _ in range(n)]
-            got = sensors.unit_normals(batched, n)
+            got = noise.normals(n)
             assert [x.hex() for x in got] == [x.hex() for x in want], sizes
-        # Whatever the batch left cached, the generator goes on as the other does.
-        assert batched.gauss(0.0, 1.0).hex() == one_by_one.gauss(0.0, 1.0).hex()
-        assert batched.random() == one_by_one.random()
+        # Whatever the C left kept, the generator handed back goes on as the other does (1,400
+        # normals regenerate the twister's 624 words more than once).
+        back = random.Random()
+        back.setstate(noise.random_state())
+        assert back.gauss(0.0, 1.0).hex() == one_by_one.gauss(0.0, 1.0).hex()
+        assert back.random() == one_by_one.random()
+
+
+def test_a_state_random_does_not_give_is_refused():
+    version, words, cached = random.Random(3).getstate()
+    with pytest.raises(ValueError, match="not a random.Random state"):
+        ins_noise.InsNoise(_State(version, words[:624] + (625,), cached), [0.0] * 9, [0.0] * 9, [0.0] * 9)
+
+
+class _State:
+    """Something whose getstate() is a given state."""
+
+    def __init__(self, *state):
+        self.state = state
+
+    def getstate(self):
+        return self.state
 
 
 def per_draw_errors(seed, times_s):
