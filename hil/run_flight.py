@@ -108,8 +108,8 @@ def master_answers(master_uri):
 
 def start_master(procs, port, master_uri, stop):
     """The flight's own master, what roscore would make of it without roscore's own roslaunch:
-    rosmaster with roscore's command line, /run_id (which every roslaunch checks and logs under)
-    and /rosdistro set as roscore sets them, and the rosout node (/rosout_agg, in the bag).
+    rosmaster with roscore's command line, /run_id (which every roslaunch checks and logs under),
+    /rosversion and /rosdistro set as roscore sets them, and the rosout node (/rosout_agg, in the bag).
     roscore's roslaunch and its two `rosversion` processes were 1.2 s of CPU a flight, and
     closing it took a second. Returns once the master answers and this has set /run_id and
     started rosout (or at once when the run is being stopped); raises RuntimeError if the master
@@ -123,13 +123,53 @@ def start_master(procs, port, master_uri, stop):
             raise RuntimeError("rosmaster did not come up on port %d" % port)
         time.sleep(0.05)
     master = xmlrpc.client.ServerProxy(master_uri)
-    master.setParam("/run_flight", "/rosdistro", os.environ.get("ROS_DISTRO", "") + "\n")
+    for name, value in core_parameters().items():
+        master.setParam("/run_flight", "/" + name, value)
     master.setParam("/run_flight", "/run_id", str(uuid.uuid1()))
     from roslib.packages import find_node
     rosout = find_node("rosout", "rosout")
     if not rosout:
         raise RuntimeError("the rosout node is not installed (package rosout)")
     procs.start("rosout", [rosout[0], "__name:=rosout"])
+
+
+def core_parameters():
+    """roscore.xml's two parameters, as its `rosversion` commands print them (with their newline),
+    from rospkg's own rosversion functions in this process rather than two Python processes."""
+    from rospkg import rosversion
+    distro = os.environ["ROS_DISTRO"] if "ROS_DISTRO" in os.environ else rosversion.get_distro_name_from_roscore()
+    return {"rosversion": "%s\n" % (rosversion.get_version_from_package_name("roslaunch") or "<unversioned>"),
+            "rosdistro": "%s\n" % (distro or "Debian")}
+
+
+ROSCORE_XML = """<launch>
+  <!-- The flight's roscore.xml (hil/run_flight.py, flight_etc_dir): the master is up before the
+       flight's roslaunch starts, so only the parameters of this file reach the master, and
+       start_master has set them without the two rosversion processes of the system's file. -->
+  <group ns="/">
+    <node pkg="rosout" type="rosout" name="rosout" respawn="true"/>
+  </group>
+</launch>
+"""
+
+
+def flight_etc_dir(run_dir, env):
+    """ROS_ETC_DIR for the flight's processes: every roslaunch loads roscore.xml from there, and
+    the system's runs `rosversion` twice for its two parameters (two Python processes, 0.2 s of
+    CPU and 0.3 s of start-up a flight on the slow machine). Python nodes find their logging
+    configuration in ROS_ETC_DIR too: ROS_PYTHON_LOG_CONFIG_FILE keeps them on the system's."""
+    import rospkg
+    etc = os.path.join(run_dir, "etc")
+    os.makedirs(etc, exist_ok=True)
+    with open(os.path.join(etc, "roscore.xml"), "w") as f:
+        f.write(ROSCORE_XML)
+    if not env.get("ROS_PYTHON_LOG_CONFIG_FILE"):
+        system = rospkg.get_etc_ros_dir(env=env)
+        for name in ("python_logging.conf", "python_logging.yaml"):
+            if os.path.isfile(os.path.join(system, name)):
+                env["ROS_PYTHON_LOG_CONFIG_FILE"] = os.path.join(system, name)
+                break
+    env["ROS_ETC_DIR"] = etc
 
 
 def leftovers(master_uri):
@@ -396,6 +436,7 @@ def main(argv=None):
         # says the standard library's (0.38 s of CPU a flight on a slow machine).
         env["SETUPTOOLS_USE_DISTUTILS"] = "stdlib"
     env.pop("ROS_NAMESPACE", None)
+    flight_etc_dir(run_dir, env)
     procs = Processes(env, out)
     gs_bind = args.vehicle_port or (14555 if d.external_gcs else free_port(socket.SOCK_DGRAM))
     gs_remote = args.gcs_port or (14550 if d.external_gcs else free_port(socket.SOCK_DGRAM))
