@@ -7,7 +7,7 @@
  *  - the normals are random.gauss()'s Box-Muller pairs, the second of a pair kept for the next
  *    draw, through the C library's cos, sin, log and sqrt (which Python's math module calls);
  *  - x' = a x + k z in doubles, each product rounded (the build keeps the compiler from fusing
- *    them: -ffp-contract=off).
+ *    them, -ffp-contract=off, and from merging a pair's cos and sin into one sincos call).
  * Host-only simulator code, loaded by ctypes: the caller owns the state's memory. */
 #include <math.h>
 #include <stddef.h>
