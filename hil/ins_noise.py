@@ -22,7 +22,7 @@ def library():
                                                   ctypes.c_int32, ctypes.c_double, dp, dp, dp]),
                 ("ins_noise_start", None, [vp, i64]),
                 ("ins_noise_draw_to", None, [vp, i64]),
-                ("ins_noise_at", None, [vp, i64, dp]),
+                ("ins_noise_at", ctypes.c_int, [vp, i64, dp]),
                 ("ins_noise_normals", None, [vp, ctypes.c_size_t, dp]),
                 ("ins_noise_state", None, [vp, ctypes.POINTER(ctypes.c_uint32), ctypes.POINTER(ctypes.c_int32),
                                            ctypes.POINTER(ctypes.c_int32), dp])):
@@ -57,8 +57,9 @@ class InsNoise:
         self.lib.ins_noise_draw_to(self.state, index)
 
     def at(self, index):
-        """The nine values at a grid index among the last `keep` drawn."""
-        self.lib.ins_noise_at(self.state, index, self.out)
+        """The nine values at a grid index among the last `keep` drawn (IndexError for another)."""
+        if not self.lib.ins_noise_at(self.state, index, self.out):
+            raise IndexError("grid index %d is not among the last %d drawn" % (index, self.keep))
         return self.out[:]
 
     def normals(self, n):

@@ -106,9 +106,12 @@ void ins_noise_draw_to(InsNoise *s, int64_t index) {
   }
 }
 
-/* The values at a grid index the caller keeps within the last INS_KEEP drawn. */
-void ins_noise_at(const InsNoise *s, int64_t index, double *out) {
+/* The values at a grid index among the last INS_KEEP drawn; 0 (and out untouched) for one not
+ * drawn yet or no longer kept. */
+int ins_noise_at(const InsNoise *s, int64_t index, double *out) {
+  if (index > s->index || index <= s->index - INS_KEEP) return 0;
   memcpy(out, s->ring[slot(index)], sizeof s->x);
+  return 1;
 }
 
 /* The next n unit normals (for the test that holds them to random.gauss). */

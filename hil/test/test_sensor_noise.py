@@ -34,6 +34,16 @@ def test_a_state_random_does_not_give_is_refused():
         ins_noise.InsNoise(_State(version, words[:624] + (625,), cached), [0.0] * 9, [0.0] * 9, [0.0] * 9)
 
 
+def test_a_grid_index_not_drawn_or_no_longer_kept_is_refused():
+    noise = ins_noise.InsNoise(random.Random(5), [0.5] * 9, [1.0] * 9, [0.0] * 9)
+    noise.start(100)
+    noise.draw_to(100 + noise.keep)
+    assert len(noise.at(100 + noise.keep)) == 9 and len(noise.at(101)) == 9
+    for index in (100, 101 + noise.keep):
+        with pytest.raises(IndexError, match="not among the last"):
+            noise.at(index)
+
+
 class _State:
     """Something whose getstate() is a given state."""
 
