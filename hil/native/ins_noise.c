@@ -120,7 +120,8 @@ void ins_noise_normals(InsNoise *s, size_t n, double *out) {
 }
 
 /* The generator's state back (getstate()'s words and position, and the kept normal). */
-void ins_noise_state(const InsNoise *s, uint32_t *mt, int32_t *mti, int32_t *has_cached, double *cached) {
+void ins_noise_state(const InsNoise *s, uint32_t *mt, int32_t *mti, int32_t *has_cached,
+                     double *cached) {
   memcpy(mt, s->mt, sizeof s->mt);
   *mti = s->mti;
   *has_cached = s->has_cached;
