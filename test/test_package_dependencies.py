@@ -22,7 +22,7 @@ PYTHON_MODULES = {
     "setuptools": "python3-setuptools",
     "rospkg": "python3-rospkg", "rospy": "rospy", "rosbag": "rosbag", "rosgraph": "rosgraph",
     "rosparam": "rosparam", "roslib": "roslib", "rostest": "rostest", "genpy": "genpy", "genmsg": "genmsg",
-    "roscpp": "roscpp",
+    "roscpp": "roscpp", "roslaunch": "roslaunch",
     "std_msgs": "std_msgs", "sensor_msgs": "sensor_msgs", "geometry_msgs": "geometry_msgs",
     "diagnostic_msgs": "diagnostic_msgs", "rosgraph_msgs": "rosgraph_msgs", "tf2_msgs": "tf2_msgs",
     "visualization_msgs": "visualization_msgs", "nav_msgs": "nav_msgs",
