@@ -14,7 +14,8 @@ summary's "fault", "verdict" and "status" say whether it took effect and whether
 property held. Exit code 0 when the flight ran and its verdict was computed; otherwise the
 summary still says why ("died": the simulator stopped, "timeout": past --timeout-s of wall time).
 
-Each flight gets its own ROS master (a free port on loopback), its own ptys and control socket
+Each flight gets its own ROS master (a free port on loopback; or flies on the one --master names,
+which a campaign's worker keeps for its flights), its own ptys and control socket
 (a temporary folder) and its own output folder hil/out/<YYYY-MM-DD_HHMMSS>-<aircraft>-<seed>/
 with flight.bag (hil/HIL_INTERFACES.md section 3), flight.tlog (the ground link's MAVLink),
 summary.json and the logs. A progress bar goes to stderr. Every process started here is
@@ -33,6 +34,7 @@ import sys
 import sysconfig
 import tempfile
 import time
+import urllib.parse
 import uuid
 import xmlrpc.client
 
@@ -40,10 +42,13 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 from hil import faults  # noqa: E402
 from hil.aircraft_period import decision_rate_hz  # noqa: E402
 from hil import proc_stat  # noqa: E402  (a process's /proc/PID/stat fields, one parser)
+from hil import ros_master  # noqa: E402
 from stack_tools.paths import ROOT  # noqa: E402  (aircraft/ of the source tree or the install)
 from stack_tools.ports import free_port  # noqa: E402  (below the ephemeral range: nothing autobinds there)
 # Python 3.12 dropped distutils: there setuptools' copy is the only one.
 STDLIB_HAS_DISTUTILS = os.path.isdir(os.path.join(sysconfig.get_paths()["stdlib"], "distutils"))
+# Every process of a run holds this run's token in its environment: what its leftover hunt looks for.
+FLIGHT_VAR = "HIL_FLIGHT_RUN"
 BAG_TOPICS = ["/hil/truth", "/decision_status", "/servo_op", "/pwm", "/ins", "/data", "/to_hil",
               "/way", "/home", "/rosout_agg", "/diagnostics"]
 
@@ -96,16 +101,6 @@ def group_alive(pgid):
     return False
 
 
-def master_answers(master_uri):
-    """The master is up: it answers over its own XML-RPC, asked in this process (a `rosparam
-    get` per poll started a Python process each time, about 0.3 s of CPU)."""
-    try:
-        code, _, _ = xmlrpc.client.ServerProxy(master_uri).getPid("/run_flight")
-    except (OSError, xmlrpc.client.Error):
-        return False
-    return code == 1
-
-
 def start_master(procs, port, master_uri, stop):
     """The flight's own master, what roscore would make of it without roscore's own roslaunch:
     rosmaster with roscore's command line, /run_id (which every roslaunch checks and logs under),
@@ -113,33 +108,22 @@ def start_master(procs, port, master_uri, stop):
     roscore's roslaunch and its two `rosversion` processes were 1.2 s of CPU a flight, and
     closing it took a second. Returns once the master answers and this has set /run_id and
     started rosout (or at once when the run is being stopped); raises RuntimeError if the master
-    does not answer within 60 s or rosout is not installed."""
+    does not answer within 60 s or rosout is not installed. The master is polled over its own
+    XML-RPC here (a `rosparam get` per poll started a Python process each time, 0.3 s of CPU)."""
     procs.start("rosmaster", ["rosmaster", "--core", "-p", str(port), "-w", "3"])
     deadline = time.monotonic() + 60.0
-    while not master_answers(master_uri):
+    while not ros_master.answers(master_uri):
         if stop["now"]:
             return
         if time.monotonic() > deadline:
             raise RuntimeError("rosmaster did not come up on port %d" % port)
         time.sleep(0.05)
-    master = xmlrpc.client.ServerProxy(master_uri)
-    for name, value in core_parameters().items():
-        master.setParam("/run_flight", "/" + name, value)
-    master.setParam("/run_flight", "/run_id", str(uuid.uuid1()))
+    ros_master.set_core_parameters(master_uri, ros_master.core_parameters())
     from roslib.packages import find_node
     rosout = find_node("rosout", "rosout")
     if not rosout:
         raise RuntimeError("the rosout node is not installed (package rosout)")
     procs.start("rosout", [rosout[0], "__name:=rosout"])
-
-
-def core_parameters():
-    """roscore.xml's two parameters, as its `rosversion` commands print them (with their newline),
-    from rospkg's own rosversion functions in this process rather than two Python processes."""
-    from rospkg import rosversion
-    distro = os.environ["ROS_DISTRO"] if "ROS_DISTRO" in os.environ else rosversion.get_distro_name_from_roscore()
-    return {"rosversion": "%s\n" % (rosversion.get_version_from_package_name("roslaunch") or "<unversioned>"),
-            "rosdistro": "%s\n" % (distro or "Debian")}
 
 
 ROSCORE_XML = """<launch>
@@ -172,10 +156,24 @@ def flight_etc_dir(run_dir, env):
     env["ROS_ETC_DIR"] = etc
 
 
-def leftovers(master_uri):
-    """Processes that talk to this run's master (a controller hp_supervisor started after its own
-    end, say): ours, whatever group they ended up in."""
+def forget_flights_nodes(master_uri):
+    """The flight's registrations and parameters removed from a kept master, once its processes
+    are gone; a master that no longer answers has none to remove (the next flight on it is
+    refused)."""
+    try:
+        ros_master.forget_nodes(master_uri)
+        ros_master.clear_parameters(master_uri)
+    except (OSError, xmlrpc.client.Error, RuntimeError) as e:
+        print("run_flight: the flight's nodes were not unregistered from %s: %s" % (master_uri, e),
+              file=sys.stderr)
+
+
+def leftovers(token):
+    """Processes of this run still alive (a controller hp_supervisor started after its own end,
+    say), whatever group they ended up in: those whose environment holds the run's token
+    (FLIGHT_VAR). Not the master's URI: a kept master and its rosout have that too."""
     found = []
+    needle = ("%s=%s" % (FLIGHT_VAR, token)).encode()
     for pid in os.listdir("/proc"):
         if not pid.isdigit() or int(pid) == os.getpid():
             continue
@@ -184,7 +182,7 @@ def leftovers(master_uri):
                 env = f.read().split(b"\0")
         except OSError:
             continue
-        if ("ROS_MASTER_URI=" + master_uri).encode() in env:
+        if needle in env:
             found.append(int(pid))
     return found
 
@@ -267,6 +265,11 @@ def argument_parser():
     ap.add_argument("--vehicle-port", type=int, default=None,
                     help="the vehicle's UDP port (default: 14555 in real time or with --gcs-host, "
                          "where a ground station expects it; a free one otherwise)")
+    ap.add_argument("--master", default=None, metavar="URI",
+                    help="fly on this ROS master, already running with its rosout (a campaign "
+                         "worker keeps one for its flights): the last flight's parameters are "
+                         "deleted first and this flight's registrations after (default: the "
+                         "flight starts its own)")
     ap.add_argument("--no-bag", action="store_true")
     ap.add_argument("--quiet", action="store_true", help="no progress bar")
     return ap
@@ -311,6 +314,10 @@ def parse_args(argv):
         if missing:
             ap.error("--ha due: no device at %s (is the Due plugged in, and the adapter on RX1?)" %
                      ", ".join(missing))
+    if args.master is not None:
+        uri = urllib.parse.urlparse(args.master)
+        if uri.scheme != "http" or not uri.hostname or uri.port is None:
+            ap.error("--master must be a ROS master's URI, http://HOST:PORT, got %r" % args.master)
     stamp = datetime.datetime.utcnow().strftime("%Y-%m-%d_%H%M%S")
     out = args.folder or os.path.join(args.out, "%s-%s-%d" % (stamp, args.aircraft, args.seed))
     # A folder that already holds a flight is never flown over: its done file would end the new
@@ -416,6 +423,22 @@ def wait_for_done(args, launcher, out, stop):
     return done
 
 
+def flight_env(out, master_uri, run_dir):
+    """The environment of every process of the flight: its master, loopback, its own ROS_HOME and
+    logs, its token (FLIGHT_VAR) and its roscore.xml."""
+    env = dict(os.environ, ROS_MASTER_URI=master_uri, ROS_HOSTNAME="127.0.0.1", ROS_IP="127.0.0.1",
+               ROS_HOME=os.path.join(out, "ros"), ROS_LOG_DIR=os.path.join(out, "ros", "log"),
+               PYTHONUNBUFFERED="1")
+    env[FLIGHT_VAR] = uuid.uuid4().hex
+    if STDLIB_HAS_DISTUTILS:
+        # roslaunch imports rosclean, which imports distutils: setuptools' own copy unless this
+        # says the standard library's (0.38 s of CPU a flight on a slow machine).
+        env["SETUPTOOLS_USE_DISTUTILS"] = "stdlib"
+    env.pop("ROS_NAMESPACE", None)
+    flight_etc_dir(run_dir, env)
+    return env
+
+
 def main(argv=None):
     # Wall-clock marks of this run's phases (run_flight_times.json; hil/bench/bench_flight_overhead.py
     # puts them beside the simulator's sim_times.json): what every flight pays besides its steps.
@@ -426,17 +449,9 @@ def main(argv=None):
     out = d.out
     os.makedirs(out, exist_ok=True)
     run_dir = tempfile.mkdtemp(prefix="hil-")  # short: the control socket path must fit sun_path
-    port = free_port()
-    master_uri = "http://127.0.0.1:%d" % port
-    env = dict(os.environ, ROS_MASTER_URI=master_uri, ROS_HOSTNAME="127.0.0.1", ROS_IP="127.0.0.1",
-               ROS_HOME=os.path.join(out, "ros"), ROS_LOG_DIR=os.path.join(out, "ros", "log"),
-               PYTHONUNBUFFERED="1")
-    if STDLIB_HAS_DISTUTILS:
-        # roslaunch imports rosclean, which imports distutils: setuptools' own copy unless this
-        # says the standard library's (0.38 s of CPU a flight on a slow machine).
-        env["SETUPTOOLS_USE_DISTUTILS"] = "stdlib"
-    env.pop("ROS_NAMESPACE", None)
-    flight_etc_dir(run_dir, env)
+    port = None if args.master else free_port()
+    master_uri = args.master or "http://127.0.0.1:%d" % port
+    env = flight_env(out, master_uri, run_dir)
     procs = Processes(env, out)
     gs_bind = args.vehicle_port or (14555 if d.external_gcs else free_port(socket.SOCK_DGRAM))
     gs_remote = args.gcs_port or (14550 if d.external_gcs else free_port(socket.SOCK_DGRAM))
@@ -450,7 +465,10 @@ def main(argv=None):
     status = "died"
     error = None
     try:
-        start_master(procs, port, master_uri, stop)
+        if args.master:
+            ros_master.reset_for_flight(master_uri)
+        else:
+            start_master(procs, port, master_uri, stop)
         marks.append(("master_up", time.time()))
         if not args.no_bag:
             procs.start("rosbag", ["rosbag", "record", "-O", os.path.join(out, "flight.bag"),
@@ -475,11 +493,13 @@ def main(argv=None):
         code = 1
     finally:
         procs.stop_all()
-        for pid in leftovers(master_uri):
+        for pid in leftovers(env[FLIGHT_VAR]):
             try:
                 os.kill(pid, signal.SIGKILL)
             except ProcessLookupError:
                 pass
+        if args.master:
+            forget_flights_nodes(master_uri)
         shutil.rmtree(run_dir, ignore_errors=True)
         marks.append(("stopped", time.time()))
         with open(os.path.join(out, "run_flight_times.json"), "w") as f:

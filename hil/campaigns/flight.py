@@ -29,14 +29,15 @@ COLUMNS = ["flight_id", "fault_class", "seed", "fault_at_s", "fault_duration_s",
            "recovery_height_loss_ft",
            "min_height_agl_ft", "min_airspeed_margin_ftps",
            "mission_progress", "simulated_s", "flight_duration_s", "wall_s", "x_real_time",
-           "exit_code", "leftovers_killed", "worker", "folder", "command"]
+           "exit_code", "leftovers_killed", "worker", "master", "folder", "command"]
 
 
-def holders(token, skip=None):
-    """pid -> process group of every process whose environment holds this flight's token.
+def holders(token, skip=None, var=TOKEN_VAR):
+    """pid -> process group of every process whose environment holds this flight's token (var:
+    the variable that holds it).
     skip: a set of pids known not to hold it, not read again, and to which every pid read
     without it is added (a caller that polls reads each process's environment once)."""
-    needle = ("%s=%s" % (TOKEN_VAR, token)).encode()
+    needle = ("%s=%s" % (var, token)).encode()
     found = {}
     me = os.getpid()
     for pid in os.listdir("/proc"):
@@ -54,7 +55,7 @@ def holders(token, skip=None):
     return found
 
 
-def kill_all(token, popen=None, bound_s=30.0):
+def kill_all(token, popen=None, bound_s=30.0, var=TOKEN_VAR):
     """SIGKILL every process group of the flight until no process holds its token; returns how
     many processes were found. The flight's own group first (its leader may be a zombie until
     reaped, which is why it is reaped here)."""
@@ -66,7 +67,7 @@ def kill_all(token, popen=None, bound_s=30.0):
                 os.killpg(popen.pid, signal.SIGKILL)
             except (ProcessLookupError, PermissionError):
                 pass
-        found = holders(token)
+        found = holders(token, var=var)
         for pid, pgid in found.items():
             killed.add(pid)
             for target in (lambda: os.killpg(pgid, signal.SIGKILL), lambda: os.kill(pid, signal.SIGKILL)):
@@ -80,7 +81,7 @@ def kill_all(token, popen=None, bound_s=30.0):
             except subprocess.TimeoutExpired:
                 pass
         # Zombies still show their environment until their parent reaps them; a zombie is dead.
-        if not [p for p in holders(token) if not proc_stat.dead(p)]:
+        if not [p for p in holders(token, var=var) if not proc_stat.dead(p)]:
             return len(killed)
         if time.monotonic() > deadline:
             return len(killed)
@@ -176,9 +177,11 @@ def run_once_per_test_run(argv, timeout):
     return subprocess.CompletedProcess(d["argv"], d["returncode"], stdout=d["stdout"].encode()), folder
 
 
-def run(flight, argv, folder, wall_limit_s, term_grace_s=30.0, env=None):
+def run(flight, argv, folder, wall_limit_s, term_grace_s=30.0, env=None, master_uri=None):
     """Flies one flight (argv: its command) and returns its row. Never raises for what the flight
-    does: a flight that fails gives a row with status died or timeout."""
+    does: a flight that fails gives a row with status died or timeout. master_uri: a ROS master
+    kept by the worker to fly on (run_flight.py --master); the row's command flies on a master of
+    its own, which lockstep makes the same flight."""
     os.makedirs(folder, exist_ok=True)
     row = {c: None for c in COLUMNS}
     row.update(flight_id=flight.flight_id, fault_class=flight.fault_class, seed=flight.seed,
@@ -187,10 +190,12 @@ def run(flight, argv, folder, wall_limit_s, term_grace_s=30.0, env=None):
                wind_mps=getattr(flight, "wind_mps", 0.0), wind_from_deg=getattr(flight, "wind_from_deg", 0.0),
                turbulence=getattr(flight, "turbulence", "none"), ha=getattr(flight, "ha", "sil"),
                flight_duration_s=flight.duration_s, folder=folder,
-               command=" ".join(_quote(a) for a in argv), worker=socket.gethostname())
+               command=" ".join(_quote(a) for a in argv), worker=socket.gethostname(),
+               master="kept" if master_uri else "own")
+    flown = list(argv) + (["--master", master_uri] if master_uri else [])
     t0 = time.monotonic()
     with open(os.path.join(folder, "campaign_flight.log"), "wb") as log:
-        code, _, timed_out, row["leftovers_killed"] = _run_killed_whole(argv, wall_limit_s, env, term_grace_s, log)
+        code, _, timed_out, row["leftovers_killed"] = _run_killed_whole(flown, wall_limit_s, env, term_grace_s, log)
     row["wall_s"] = round(time.monotonic() - t0, 2)
     row["exit_code"] = code
     summary = None

@@ -59,6 +59,7 @@ class Interface:
     has_duration: bool
     has_params: bool
     has_wind: bool = False      # --wind-mps, --wind-from-deg, --turbulence
+    has_master: bool = False    # --master: the flights fly on their worker's kept ROS master
 
 
 def _help_text(run_flight):
@@ -75,6 +76,7 @@ def discover(run_flight=RUN_FLIGHT):
                      fault_at_flag="--fault-at" if "--fault-at" in text else "--crash-at",
                      has_duration="--fault-duration" in text,
                      has_params="--fault-param" in text,
+                     has_master="--master" in text,
                      has_wind=all(f in text for f in ("--wind-mps", "--wind-from-deg", "--turbulence")))
 
 

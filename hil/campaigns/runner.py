@@ -15,11 +15,22 @@ import sys
 import time
 
 from . import flight as flight_mod
+from . import kept_master
 from . import plan as plan_mod
 
 
-def _fly(flight, argv, folder, wall_limit_s):
-    return flight_mod.run(flight, argv, folder, wall_limit_s)
+def _fly(flight, argv, folder, wall_limit_s, kept=False):
+    """One flight on a worker: on the worker's kept master when the campaign keeps them, else (or
+    when that master cannot be had) on a master of the flight's own."""
+    master_uri = None
+    if kept:
+        from distributed import get_worker
+        plugin = get_worker().plugins.get(kept_master.PLUGIN_NAME)
+        try:
+            master_uri = plugin.ensure() if plugin is not None else None
+        except RuntimeError:
+            master_uri = None
+    return flight_mod.run(flight, argv, folder, wall_limit_s, master_uri=master_uri)
 
 
 class CsvSink:
@@ -96,9 +107,11 @@ def run_campaign(plan, interface, out_dir, scheduler=None, workers=None, wall_li
     """Flies every flight of plan, writing out_dir/flights.csv as they finish; returns the rows
     (in plan order). wall_limit_s: each flight's limit (default from its simulated length);
     on_row(row) is called in this process as each row is written; run_flight: what flies one."""
+    import uuid
     import cloudpickle
     from distributed import Client, as_completed
     cloudpickle.register_pickle_by_value(flight_mod)
+    cloudpickle.register_pickle_by_value(kept_master)
     os.makedirs(out_dir, exist_ok=True)
     python = python or sys.executable
     with open(os.path.join(out_dir, "plan.json"), "w") as f:
@@ -109,6 +122,12 @@ def run_campaign(plan, interface, out_dir, scheduler=None, workers=None, wall_li
         client = Client(cluster)
     else:
         client = Client(scheduler)
+    # Each worker keeps a ROS master for its flights (a master of its own cost a flight 1.1 s of
+    # CPU on the slow machine); their processes hold this campaign's token.
+    kept = bool(getattr(interface, "has_master", False))
+    token = uuid.uuid4().hex
+    if kept:
+        client.register_worker_plugin(kept_master.KeptMaster(token), name=kept_master.PLUGIN_NAME)
     sink = CsvSink(os.path.join(out_dir, "flights.csv"))
     bar = Progress(len(plan), enabled=progress)
     rows = {}
@@ -119,7 +138,7 @@ def run_campaign(plan, interface, out_dir, scheduler=None, workers=None, wall_li
             folder = os.path.join(os.path.abspath(out_dir), "flights", "%04d-%s-%d" % (fl.flight_id, fl.fault_class, fl.seed))
             argv = plan_mod.command(fl, folder, interface, run_flight=run_flight, python=python)
             limit = wall_limit_s or default_wall_limit_s(fl.duration_s)
-            fut = client.submit(_fly, fl, argv, folder, limit, key="flight-%d-%s" % (fl.flight_id, os.urandom(4).hex()),
+            fut = client.submit(_fly, fl, argv, folder, limit, kept, key="flight-%d-%s" % (fl.flight_id, os.urandom(4).hex()),
                                 pure=False)
             futures[fut] = (fl, argv, folder)
         for fut in as_completed(list(futures)):
@@ -141,15 +160,24 @@ def run_campaign(plan, interface, out_dir, scheduler=None, workers=None, wall_li
                 on_row(row)
     finally:
         sink.close()
+        if kept:
+            try:
+                client.unregister_worker_plugin(kept_master.PLUGIN_NAME)  # stops the masters
+            except Exception as e:  # a worker gone: its master died with it, or the sweep finds it
+                print("campaign: the workers' masters were not all stopped by Dask: %s" % e, file=sys.stderr)
         client.close()
         if cluster is not None:
             cluster.close()
+        if kept:
+            flight_mod.kill_all(token, var=kept_master.CAMPAIGN_VAR)
     wall = time.monotonic() - t0
     with open(os.path.join(out_dir, "campaign.json"), "w") as f:
         json.dump({"flights": len(plan), "wall_s": round(wall, 2),
                    "classes": sorted({fl.fault_class for fl in plan}),
                    "flight_duration_s": sorted({fl.duration_s for fl in plan}),
-                   "scheduler": scheduler or "LocalCluster(%d workers)" % (workers or os.cpu_count() or 1)},
+                   "scheduler": scheduler or "LocalCluster(%d workers)" % (workers or os.cpu_count() or 1),
+                   # The workers' masters hold it as HIL_CAMPAIGN: what finds one left behind.
+                   "ros_masters": "kept per worker" if kept else "one per flight", "token": token},
                   f, indent=1)
     return [rows[fl.flight_id] for fl in plan]
 

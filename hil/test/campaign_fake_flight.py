@@ -8,7 +8,9 @@ fault class one way a flight ends, so the runner's handling of each can be shown
   die      writes error.txt and exits 3, no summary (a flight that died)
   stuck    starts two processes in sessions of their own, as run_flight.py starts roscore and
            roslaunch, one of them ignoring SIGTERM, and never ends (a flight past its limit);
-           the pids go to <folder>/pids as they start"""
+           the pids go to <folder>/pids as they start
+--master URI (a worker's kept ROS master) is answered as run_flight.py would use it: the fake
+asks the master for its pid and writes what it found to <folder>/master.json."""
 import argparse
 import json
 import os
@@ -52,8 +54,14 @@ def main():
     ap.add_argument("--aircraft")
     ap.add_argument("--no-bag", action="store_true")
     ap.add_argument("--quiet", action="store_true")
+    ap.add_argument("--master", default=None)
     args = ap.parse_args()
     os.makedirs(args.folder, exist_ok=True)
+    if args.master:
+        import xmlrpc.client
+        code, _, pid = xmlrpc.client.ServerProxy(args.master).getPid("/campaign_fake_flight")
+        with open(os.path.join(args.folder, "master.json"), "w") as f:
+            json.dump({"uri": args.master, "code": code, "pid": pid}, f)
     if args.fault == "die":
         with open(os.path.join(args.folder, "error.txt"), "w") as f:
             f.write("the simulator stopped: test death\n")

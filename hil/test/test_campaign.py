@@ -10,6 +10,8 @@ import os
 import subprocess
 import sys
 import time
+import urllib.parse
+import xmlrpc.client
 
 import pytest
 
@@ -300,6 +302,32 @@ def test_rows_reach_the_table_as_flights_finish_and_none_is_dropped(monkeypatch,
     wait_for(lambda: not my_children(), "the Dask workers stopped", bound_s=60.0)
 
 
+def test_each_worker_keeps_one_ros_master_for_its_flights_and_none_outlives_the_campaign(tmp_path):
+    out = str(tmp_path)
+    kept = dataclasses.replace(AGREED, has_master=True)  # a run_flight.py that takes --master
+    plan = [plan_mod.Flight(i, "quick", 30 + i, 10.0, 1.0, (), 40.0) for i in range(6)]
+    rows = runner.run_campaign(plan, kept, out, workers=2, progress=False, run_flight=FAKE)
+    assert [(r["status"], r["master"]) for r in rows] == [("ok", "kept")] * 6
+    seen = []
+    for r in rows:
+        with open(os.path.join(r["folder"], "master.json")) as f:
+            seen.append(json.load(f))
+        assert "--master" not in r["command"]  # the replay flies on a master of its own
+    assert all(m["code"] == 1 for m in seen)  # each flight's master answered it
+    # Two workers, two masters, each serving several flights (a master a flight is 6 pids).
+    assert 1 <= len({m["pid"] for m in seen}) <= 2 and len({m["uri"] for m in seen}) <= 2
+    assert all(urllib.parse.urlparse(m["uri"]).hostname == "127.0.0.1" for m in seen)
+    with open(os.path.join(out, "campaign.json")) as f:
+        campaign = json.load(f)
+    assert campaign["ros_masters"] == "kept per worker"
+    wait_for(lambda: not my_children(), "the Dask workers stopped", bound_s=60.0)
+    leftover = [p for p in flight_mod.holders(campaign["token"], var="HIL_CAMPAIGN") if not proc_stat.dead(p)]
+    assert leftover == [], "the workers' masters outlived the campaign"
+    for m in seen:
+        with pytest.raises(OSError):
+            xmlrpc.client.ServerProxy(m["uri"]).getPid("/test")
+
+
 def test_the_same_campaign_runs_on_a_scheduler_given_by_its_address(tmp_path):
     from distributed import LocalCluster
     out = str(tmp_path)
@@ -352,8 +380,10 @@ def test_a_small_real_campaign_on_two_workers_gives_the_table_and_the_report(tmp
     iface = plan_mod.discover()
     plan = plan_mod.make_plan(3, 5, ("crash", "hang"), duration_s=20.0, fault_window_s=(8.0, 10.0),
                               interface=iface)
+    assert iface.has_master  # run_flight.py takes --master: each worker keeps one for its flights
     rows = runner.run_campaign(plan, iface, out, workers=2, progress=False)
     assert [r["status"] for r in rows] == ["ok"] * 3, [(r["status"], r["reason"]) for r in rows]
+    assert [r["master"] for r in rows] == ["kept"] * 3
     for r in rows:
         assert r["took_effect"] is True
         assert r["unsafe_commands"] == 0 and r["broke_property"] is False
@@ -365,3 +395,11 @@ def test_a_small_real_campaign_on_two_workers_gives_the_table_and_the_report(tmp
     assert "flights that broke the property: 0" in text
     assert os.path.exists(os.path.join(out, "report", "report.html"))
     wait_for(lambda: not my_children(), "the Dask workers stopped", bound_s=60.0)
+    # The last flight, flown on its worker's kept master (after another, with 3 on 2 workers), is the flight its replay
+    # command flies alone on a master of its own: every truth message, byte for byte.
+    alone = os.path.join(out, "alone")
+    r = flight_mod.run_completed(plan_mod.command(plan[-1], alone, iface), timeout=600)
+    assert r.returncode == 0, r.stdout.decode(errors="replace")[-3000:]
+    with open(os.path.join(rows[-1]["folder"], "truth.bin"), "rb") as a, \
+            open(os.path.join(alone, "truth.bin"), "rb") as b:
+        assert a.read() == b.read()

@@ -8,7 +8,7 @@ import roslaunch.config
 import roslaunch.xmlloader
 import rospkg
 
-from hil import run_flight
+from hil import ros_master, run_flight
 
 
 def printed(*argv):
@@ -16,7 +16,7 @@ def printed(*argv):
 
 
 def test_the_master_gets_what_roscores_rosversion_commands_print():
-    assert run_flight.core_parameters() == {"rosversion": printed("rosversion", "roslaunch"),
+    assert ros_master.core_parameters() == {"rosversion": printed("rosversion", "roslaunch"),
                                             "rosdistro": printed("rosversion", "-d")}
 
 

@@ -1,0 +1,106 @@
+"""The ROS master a flight flies on, spoken to over its own XML-RPC: the one a flight starts for
+itself (hil/run_flight.py) and the one a campaign worker keeps from flight to flight
+(hil/campaigns/kept_master.py).
+
+A kept master outlives the flights, so each flight on it starts from what a new master would
+hold: reset_for_flight() deletes the last flight's parameters and sets a new /run_id, and at its
+end forget_nodes() removes the registrations of the flight's nodes and clear_parameters() its
+parameters. The second matters
+for nodes that were SIGKILLed (the crash fault): their registrations stay in the master, which
+would send `shutdown` to their old XML-RPC address when a node of that name registers again,
+an address by then perhaps another live node's."""
+import uuid
+import xmlrpc.client
+
+CALLER = "/run_flight"
+# What a master holds between flights: roscore's parameters and the rosout node.
+CORE_PARAMS = ("rosversion", "rosdistro", "run_id")
+CORE_NODES = ("/rosout",)
+
+
+def answers(uri):
+    """The master at uri is up and answers (getPid)."""
+    try:
+        code, _, _ = xmlrpc.client.ServerProxy(uri).getPid(CALLER)
+    except (OSError, xmlrpc.client.Error):
+        return False
+    return code == 1
+
+
+def core_parameters():
+    """roscore.xml's two parameters, as its `rosversion` commands print them (with their newline),
+    from rospkg's own rosversion functions in this process rather than two Python processes."""
+    import os
+    from rospkg import rosversion
+    distro = os.environ["ROS_DISTRO"] if "ROS_DISTRO" in os.environ else rosversion.get_distro_name_from_roscore()
+    return {"rosversion": "%s\n" % (rosversion.get_version_from_package_name("roslaunch") or "<unversioned>"),
+            "rosdistro": "%s\n" % (distro or "Debian")}
+
+
+def set_core_parameters(uri, parameters):
+    """/rosversion and /rosdistro as roscore sets them, and a new /run_id (every roslaunch checks
+    it and logs under it)."""
+    master = xmlrpc.client.ServerProxy(uri)
+    for name, value in parameters.items():
+        master.setParam(CALLER, "/" + name, value)
+    master.setParam(CALLER, "/run_id", str(uuid.uuid1()))
+
+
+def clear_parameters(uri):
+    """Every parameter but CORE_PARAMS deleted. RuntimeError when the master does not answer."""
+    master = xmlrpc.client.ServerProxy(uri)
+    try:
+        code, msg, tree = master.getParam(CALLER, "/")
+        if code != 1:
+            raise RuntimeError("the ROS master at %s would not list its parameters: %s" % (uri, msg))
+        for key in sorted(tree):
+            if key not in CORE_PARAMS:
+                master.deleteParam(CALLER, "/" + key)
+    except (OSError, xmlrpc.client.Error) as e:
+        raise RuntimeError("the ROS master at %s does not answer: %s" % (uri, e))
+
+
+def reset_for_flight(uri):
+    """A kept master made ready for the next flight: what the last one left deleted
+    (clear_parameters) and a new /run_id. RuntimeError when the master does not answer."""
+    if not answers(uri):
+        raise RuntimeError("the ROS master at %s does not answer" % uri)
+    clear_parameters(uri)
+    try:
+        xmlrpc.client.ServerProxy(uri).setParam(CALLER, "/run_id", str(uuid.uuid1()))
+    except (OSError, xmlrpc.client.Error) as e:
+        raise RuntimeError("the ROS master at %s does not answer: %s" % (uri, e))
+
+
+def registered_nodes(uri):
+    """Every node with a topic or service registered in the master (getSystemState)."""
+    code, msg, (pubs, subs, srvs) = xmlrpc.client.ServerProxy(uri).getSystemState(CALLER)
+    if code != 1:
+        raise RuntimeError("the ROS master at %s would not give its state: %s" % (uri, msg))
+    return sorted({n for _, names in pubs + subs + srvs for n in names})
+
+
+def forget_nodes(uri, keep=CORE_NODES):
+    """Unregisters every topic and service of every node but keep, in their names and with the
+    XML-RPC address the master holds for them; returns the nodes' names. Nodes still running
+    are not stopped by this (the flight stops its own first)."""
+    master = xmlrpc.client.ServerProxy(uri)
+    code, msg, (pubs, subs, srvs) = master.getSystemState(CALLER)
+    if code != 1:
+        raise RuntimeError("the ROS master at %s would not give its state: %s" % (uri, msg))
+    apis = {}
+    for node in sorted({n for _, names in pubs + subs + srvs for n in names} - set(keep)):
+        code, _, api = master.lookupNode(CALLER, node)
+        if code == 1:
+            apis[node] = api
+    for entries, unregister in ((pubs, master.unregisterPublisher), (subs, master.unregisterSubscriber)):
+        for topic, names in entries:
+            for node in names:
+                if node in apis:
+                    unregister(node, topic, apis[node])
+    for service, names in srvs:
+        code, _, service_api = master.lookupService(CALLER, service)
+        for node in names:
+            if node in apis and code == 1:
+                master.unregisterService(node, service, service_api)
+    return sorted(apis)
