@@ -1170,6 +1170,12 @@ def main():
         with open(os.path.join(sim.out_dir, "error.txt"), "w") as f:
             f.write(str(e) + "\n")
         code = 1
+    except Exception as e:  # a bug here: the flight still ends with its reason, not "done 0" and no summary
+        import traceback
+        rospy.logfatal("hil_sim: %s", traceback.format_exc())
+        with open(os.path.join(sim.out_dir, "error.txt"), "w") as f:
+            f.write("the simulator failed: %s: %s\n" % (type(e).__name__, e))
+        code = 1
     finally:
         sim.close()
         # Atomic: run_flight.py reads it as soon as the name exists, and an empty file read

@@ -326,7 +326,8 @@ class Fdm:
         """Parked on its gear, at rest, throttle zero, surfaces neutral. held: a crew holds it until
         the next reset (tipped _HOLD_DEG from where it settled, it is put back at rest there), as
         the HiL's parked glider waiting for its airborne start; unheld, it rolls, steers and takes
-        off."""
+        off. Held or not, it is held within _HOLD_DEG while it settles, before t = 0. RuntimeError
+        when it still did not come to rest."""
         _check_finite(lat_deg=lat_deg, lon_deg=lon_deg, ground_msl_m=ground_msl_m, heading_deg=heading_deg)
         af = self.airframe
         wheel_z = max(c.z_m for c in af.contacts if c.kind == "BOGEY")
@@ -337,12 +338,23 @@ class Fdm:
             self._init_state(ex, (0.0, 0.0, 0.0), theta_rad, phi_rad)
 
         # Wheels touching, then let the springs take the weight, and start from where it came
-        # to rest (velocities zeroed) so t = 0 is already settled.
+        # to rest (velocities zeroed) so t = 0 is already settled. A crew holds it while it
+        # settles too: left alone crosswind in a strong gust, a glider's wing lifts and it rolls
+        # on its back (seed 721717211 in 9.2 m/s of moderate turbulence, heading 82 deg into a
+        # wind from 347 deg: inverted within 2 s, then JSBSim's state was NaN, the flight's truth
+        # too, and the simulator stopped on it).
         ground_ic(wheel_z, 0.0, 0.0)
         self._start([0.0, 0.0, 0.0, 0.0])
         for _ in range(int(round(_SETTLE_S / self.dt_s))):
             ex.run()
+            _, roll, pitch, _ = (n.get_double_value() for n in self._n_crash)
+            if not (abs(roll) <= _HOLD_DEG and abs(pitch) <= _HOLD_DEG):
+                ground_ic(wheel_z, 0.0, 0.0)
         settled = (ex["position/h-agl-ft"] * M_PER_FT, ex["attitude/theta-rad"], ex["attitude/phi-rad"])
+        if not all(math.isfinite(v) for v in settled):
+            self._exec = None
+            raise RuntimeError("the parked aircraft did not come to rest on its gear (non-finite state "
+                               "after %g s of settling)" % _SETTLE_S)
         ground_ic(*settled)
         self._start([0.0, 0.0, 0.0, 0.0])
         self._held = None

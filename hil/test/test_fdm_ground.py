@@ -35,6 +35,23 @@ def test_parked_start_rests_on_its_wheels():
     assert end.heading_deg == pytest.approx(270.0, abs=0.01)
 
 
+def test_a_glider_parked_crosswind_in_a_strong_gust_is_held_upright_by_its_crew():
+    # Flight 15 of a 16-flight campaign (seed 102, faults at 3-6 s): heading 82 deg for its first
+    # waypoint, the wind from 347 deg at 9.2 m/s with moderate turbulence. Left alone while it
+    # settled, the wing lifted, it rolled on its back and JSBSim's state went NaN, the flight's
+    # truth and sensors with it.
+    with Fdm(AIRCRAFT, seed=721717211, wind=Wind(346.8, 9.22, "moderate"),
+             temperature_deviation_c=0.0) as fdm:
+        fdm.reset_on_ground(38.95, -95.26, 260.0, 81.87, held=True)
+        start = fdm.truth()
+        fdm.advance(5.0)
+        end = fdm.truth()
+    for t in (start, end):
+        assert all(math.isfinite(v) for v in (t.lat_deg, t.lon_deg, t.height_agl_m, t.roll_deg, t.pitch_deg))
+        assert t.on_ground and abs(t.roll_deg) <= 3.5 and abs(t.pitch_deg) <= 3.5
+    assert end.lat_deg == pytest.approx(38.95, abs=1e-5) and end.lon_deg == pytest.approx(-95.26, abs=1e-5)
+
+
 def rolled(heading_deg, surfaces, seconds):
     """The truth after seconds on the ground from a parked start facing heading_deg, surfaces held."""
     with Fdm(AIRCRAFT, seed=2) as fdm:
