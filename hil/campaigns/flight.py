@@ -3,10 +3,9 @@
 The flight (hil/run_flight.py) runs in its own process group and session; the processes it starts
 (its master when it has its own, roslaunch and every node, a controller hp_supervisor restarts)
 each get their own group, so the flight is told apart by a token in the environment every one of
-them inherits. Past the
-wall-clock limit the flight gets SIGTERM (run_flight.py stops what it started), then every process
-group holding the token gets SIGKILL, until none is left: Dask cannot cancel a running task, so
-this wrapper is what enforces the limit. A flight that dies or runs out of time gives a row all
+them inherits. Past the wall-clock limit the flight gets SIGTERM (run_flight.py stops what it
+started), then every process group holding the token gets SIGKILL, until none is left: Dask cannot
+cancel a running task, so this wrapper is what enforces the limit. A flight that dies or runs out of time gives a row all
 the same, with its status and reason."""
 import json
 import math

@@ -1,6 +1,6 @@
 """A ROS master and its rosout node kept by a campaign's Dask worker for every flight it flies
 (run_flight.py --master), rather than one started and stopped per flight: 0.3-0.4 s of CPU a
-flight instead of the 1.1 s a master and rosout of the flight's own cost (hil/README.md).
+flight instead of the 0.9-1.0 s a master and rosout of the flight's own cost (hil/README.md).
 
 A Dask worker plugin: setup() starts rosmaster and rosout when the campaign registers the plugin,
 teardown() stops them when it unregisters it or the worker closes. ensure() is what a flight's
@@ -32,7 +32,12 @@ class KeptMaster:
         self.ready = False
 
     def setup(self, worker=None):
-        self.start()
+        # Never raises: Dask would fail the campaign's registration of the plugin with it. A master
+        # that cannot be started now is tried again, and reported, by ensure() at each flight.
+        try:
+            self.start()
+        except (RuntimeError, OSError):
+            self.stop()
 
     def teardown(self, worker=None):
         self.stop()
@@ -55,11 +60,14 @@ class KeptMaster:
         env.pop("ROS_NAMESPACE", None)
         for name, argv in (("rosmaster", ["rosmaster", "--core", "-p", str(port), "-w", "3"]),
                            ("rosout", [rosout[0], "__name:=rosout"])):
-            log = open(os.path.join(self.folder, name + ".log"), "w")
-            p = subprocess.Popen(["setpriv", "--pdeathsig", "TERM"] + argv, env=env, stdout=log,
-                                 stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL, start_new_session=True)
-            log.close()
-            self.procs.append(p)
+            with open(os.path.join(self.folder, name + ".log"), "w") as log:
+                try:
+                    self.procs.append(subprocess.Popen(
+                        ["setpriv", "--pdeathsig", "TERM"] + argv, env=env, stdout=log, stderr=subprocess.STDOUT,
+                        stdin=subprocess.DEVNULL, start_new_session=True))
+                except OSError:
+                    self.stop()  # the master without its rosout is no master for a flight
+                    raise
         self.ready = False
 
     def alive(self):

@@ -13,6 +13,7 @@ import math
 import os
 import sys
 import time
+import xmlrpc.client
 
 from . import flight as flight_mod
 from . import kept_master
@@ -28,7 +29,7 @@ def _fly(flight, argv, folder, wall_limit_s, kept=False):
         plugin = get_worker().plugins.get(kept_master.PLUGIN_NAME)
         try:
             master_uri = plugin.ensure() if plugin is not None else None
-        except RuntimeError:
+        except (RuntimeError, OSError, xmlrpc.client.Error):  # not up, setpriv missing, refused
             master_uri = None
     return flight_mod.run(flight, argv, folder, wall_limit_s, master_uri=master_uri)
 
@@ -122,8 +123,9 @@ def run_campaign(plan, interface, out_dir, scheduler=None, workers=None, wall_li
         client = Client(cluster)
     else:
         client = Client(scheduler)
-    # Each worker keeps a ROS master for its flights (a master of its own cost a flight 1.1 s of
-    # CPU on the slow machine); their processes hold this campaign's token.
+    # Each worker keeps a ROS master for its flights (a master and rosout of a flight's own cost
+    # 0.9-1.0 s of CPU a flight on the slow machine, a kept one about 0.3 s); their processes
+    # hold this campaign's token.
     kept = bool(getattr(interface, "has_master", False))
     token = uuid.uuid4().hex
     if kept:

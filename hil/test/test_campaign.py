@@ -328,6 +328,18 @@ def test_each_worker_keeps_one_ros_master_for_its_flights_and_none_outlives_the_
             xmlrpc.client.ServerProxy(m["uri"]).getPid("/test")
 
 
+def test_a_worker_that_cannot_start_its_master_flies_each_flight_on_a_master_of_its_own(monkeypatch, tmp_path):
+    out = str(tmp_path / "campaign")
+    # No rosmaster, rosout or setpriv to be found: the worker's master cannot be started.
+    monkeypatch.setenv("PATH", str(tmp_path))
+    kept = dataclasses.replace(AGREED, has_master=True)
+    plan = [plan_mod.Flight(i, "quick", 40 + i, 10.0, 1.0, (), 40.0) for i in range(3)]
+    rows = runner.run_campaign(plan, kept, out, workers=1, progress=False, run_flight=FAKE)
+    assert [(r["status"], r["master"]) for r in rows] == [("ok", "own")] * 3
+    assert not any(os.path.exists(os.path.join(r["folder"], "master.json")) for r in rows)
+    wait_for(lambda: not my_children(), "the Dask workers stopped", bound_s=60.0)
+
+
 def test_the_same_campaign_runs_on_a_scheduler_given_by_its_address(tmp_path):
     from distributed import LocalCluster
     out = str(tmp_path)
