@@ -17,11 +17,14 @@ import pytest
 from hil import ros_master
 from hil.campaigns import flight as flight_mod
 from hil.campaigns import kept_master
+from stack_testing import fault_flight
 from stack_tools.ports import free_port
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 RUN_FLIGHT = os.path.join(HERE, "..", "run_flight.py")
-FLIGHT = ["--seed", "11", "--duration", "20", "--crash-at", "8", "--no-bag", "--quiet"]
+# What stack_testing.fault_flight.fly("crash", at_s=15.0) flies.
+FLIGHT = ["--seed", "11", "--fault", "crash", "--fault-at", "15", "--fault-duration", "-1", "--duration", "35",
+          "--no-bag", "--quiet"]
 
 
 def wait_for(cond, what, bound_s=60.0):
@@ -94,10 +97,12 @@ def test_a_flight_on_a_kept_master_is_the_flight_on_its_own_and_leaves_the_maste
     master.registerPublisher("/left_by_a_killed_flight", "/left_topic", "std_msgs/String",
                              "http://127.0.0.1:%d/" % free_port())
     run_id = parameters(uri)["run_id"]
+    # The crash fault test's flight (hil/faults/test/test_crash.py), on a master of its own and
+    # shared with that test, then the same command on the kept master.
+    on_own = fault_flight.fly("crash", at_s=15.0)
     on_kept = fly(tmp_path / "kept", "--master", uri)
-    on_own = fly(tmp_path / "own")
     assert on_kept["verdict"]["ok"] is True and on_kept["fault"]["took_effect"] is True
-    assert truth(tmp_path / "kept") == truth(tmp_path / "own")  # every truth message, byte for byte
+    assert truth(tmp_path / "kept") == truth(on_own["_folder"])  # every truth message, byte for byte
     assert on_kept["who_flew"] == on_own["who_flew"]
     # The same master, holding what it held before the flight: roscore's parameters and rosout.
     assert kept.alive() and ros_master.answers(uri)
