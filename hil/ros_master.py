@@ -61,12 +61,14 @@ def clear_parameters(uri):
 
 
 def reset_for_flight(uri):
-    """A kept master made ready for the next flight: what the last one left deleted
-    (clear_parameters) and a new /run_id. RuntimeError when the master does not answer."""
+    """A kept master made ready for the next flight: what the last one left deleted (its nodes'
+    registrations, forget_nodes: a flight killed whole never removed its own; its parameters,
+    clear_parameters) and a new /run_id. RuntimeError when the master does not answer."""
     if not answers(uri):
         raise RuntimeError("the ROS master at %s does not answer" % uri)
-    clear_parameters(uri)
     try:
+        forget_nodes(uri)
+        clear_parameters(uri)
         xmlrpc.client.ServerProxy(uri).setParam(CALLER, "/run_id", str(uuid.uuid1()))
     except (OSError, xmlrpc.client.Error) as e:
         raise RuntimeError("the ROS master at %s does not answer: %s" % (uri, e))

@@ -129,6 +129,19 @@ def test_a_master_uri_that_is_not_one_is_refused_on_the_command_line(tmp_path):
     assert not os.path.exists(tmp_path / "f" / "summary.json")
 
 
+def test_a_flight_killed_whole_leaves_registrations_the_next_flight_forgets_before_it_starts(kept):
+    uri = kept.ensure()
+    wait_for(lambda: rosout_registered(uri), "rosout registered with the kept master")
+    master = xmlrpc.client.ServerProxy(uri)
+    # A flight SIGKILLed whole past its wall-clock limit: run_flight.py never cleaned up after it.
+    master.registerPublisher("/controller_DG808", "/pwm", "std_msgs/String", "http://127.0.0.1:%d/" % free_port())
+    master.setParam("/test", "/controller_DG808/kp_roll", 99.0)
+    ros_master.reset_for_flight(uri)
+    # Else the master would send `shutdown` to that address when the next controller registers.
+    assert rosout_registered(uri)
+    assert sorted(parameters(uri)) == ["rosdistro", "rosversion", "run_id"]
+
+
 def test_a_kept_master_that_died_is_started_anew_for_the_next_flight(kept):
     uri = kept.ensure()
     pid = xmlrpc.client.ServerProxy(uri).getPid("/test")[2]
