@@ -3,12 +3,11 @@ itself (hil/run_flight.py) and the one a campaign worker keeps from flight to fl
 (hil/campaigns/kept_master.py).
 
 A kept master outlives the flights, so each flight on it starts from what a new master would
-hold: reset_for_flight() deletes the last flight's parameters and sets a new /run_id, and at its
-end forget_nodes() removes the registrations of the flight's nodes and clear_parameters() its
-parameters. The second matters
-for nodes that were SIGKILLed (the crash fault): their registrations stay in the master, which
-would send `shutdown` to their old XML-RPC address when a node of that name registers again,
-an address by then perhaps another live node's."""
+hold and leaves it so: reset_for_flight() before it, forget_nodes() and clear_parameters() after.
+The registrations matter for nodes that were SIGKILLed (the crash fault, a flight killed whole):
+theirs stay in the master, which would send `shutdown` to their old XML-RPC address when a node
+of that name registers again, an address by then perhaps another live node's."""
+import os
 import uuid
 import xmlrpc.client
 
@@ -30,7 +29,6 @@ def answers(uri):
 def core_parameters():
     """roscore.xml's two parameters, as its `rosversion` commands print them (with their newline),
     from rospkg's own rosversion functions in this process rather than two Python processes."""
-    import os
     from rospkg import rosversion
     distro = os.environ["ROS_DISTRO"] if "ROS_DISTRO" in os.environ else rosversion.get_distro_name_from_roscore()
     return {"rosversion": "%s\n" % (rosversion.get_version_from_package_name("roslaunch") or "<unversioned>"),
@@ -74,11 +72,17 @@ def reset_for_flight(uri):
         raise RuntimeError("the ROS master at %s does not answer: %s" % (uri, e))
 
 
-def registered_nodes(uri):
-    """Every node with a topic or service registered in the master (getSystemState)."""
-    code, msg, (pubs, subs, srvs) = xmlrpc.client.ServerProxy(uri).getSystemState(CALLER)
+def _system_state(master, uri):
+    """(publishers, subscribers, services) as getSystemState gives them."""
+    code, msg, state = master.getSystemState(CALLER)
     if code != 1:
         raise RuntimeError("the ROS master at %s would not give its state: %s" % (uri, msg))
+    return state
+
+
+def registered_nodes(uri):
+    """Every node with a topic or service registered in the master."""
+    pubs, subs, srvs = _system_state(xmlrpc.client.ServerProxy(uri), uri)
     return sorted({n for _, names in pubs + subs + srvs for n in names})
 
 
@@ -87,9 +91,7 @@ def forget_nodes(uri, keep=CORE_NODES):
     XML-RPC address the master holds for them; returns the nodes' names. Nodes still running
     are not stopped by this (the flight stops its own first)."""
     master = xmlrpc.client.ServerProxy(uri)
-    code, msg, (pubs, subs, srvs) = master.getSystemState(CALLER)
-    if code != 1:
-        raise RuntimeError("the ROS master at %s would not give its state: %s" % (uri, msg))
+    pubs, subs, srvs = _system_state(master, uri)
     apis = {}
     for node in sorted({n for _, names in pubs + subs + srvs for n in names} - set(keep)):
         code, _, api = master.lookupNode(CALLER, node)

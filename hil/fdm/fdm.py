@@ -345,11 +345,10 @@ class Fdm:
         # too, and the simulator stopped on it).
         ground_ic(wheel_z, 0.0, 0.0)
         self._start([0.0, 0.0, 0.0, 0.0])
+        self._held = (lambda: ground_ic(wheel_z, 0.0, 0.0), 0.0, 0.0)
         for _ in range(int(round(_SETTLE_S / self.dt_s))):
             ex.run()
-            _, roll, pitch, _ = (n.get_double_value() for n in self._n_crash)
-            if not (abs(roll) <= _HOLD_DEG and abs(pitch) <= _HOLD_DEG):
-                ground_ic(wheel_z, 0.0, 0.0)
+            self._hold()
         settled = (ex["position/h-agl-ft"] * M_PER_FT, ex["attitude/theta-rad"], ex["attitude/phi-rad"])
         if not all(math.isfinite(v) for v in settled):
             self._exec = None

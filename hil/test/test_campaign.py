@@ -17,6 +17,7 @@ import pytest
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 from hil.campaigns import flight as flight_mod  # noqa: E402
+from hil.campaigns import kept_master  # noqa: E402
 from hil.campaigns import plan as plan_mod  # noqa: E402
 from hil.campaigns import report as report_mod  # noqa: E402
 from hil.campaigns import runner  # noqa: E402
@@ -321,7 +322,7 @@ def test_each_worker_keeps_one_ros_master_for_its_flights_and_none_outlives_the_
         campaign = json.load(f)
     assert campaign["ros_masters"] == "kept per worker"
     wait_for(lambda: not my_children(), "the Dask workers stopped", bound_s=60.0)
-    leftover = [p for p in flight_mod.holders(campaign["token"], var="HIL_CAMPAIGN") if not proc_stat.dead(p)]
+    leftover = [p for p in flight_mod.holders(campaign["token"], var=kept_master.CAMPAIGN_VAR) if not proc_stat.dead(p)]
     assert leftover == [], "the workers' masters outlived the campaign"
     for m in seen:
         with pytest.raises(OSError):

@@ -8,7 +8,6 @@ import os
 import signal
 import subprocess
 import sys
-import time
 import uuid
 import xmlrpc.client
 
@@ -18,6 +17,7 @@ from hil import ros_master
 from hil.campaigns import flight as flight_mod
 from hil.campaigns import kept_master
 from stack_testing import fault_flight
+from stack_testing.story_wait import wait_for
 from stack_tools.ports import free_port
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -25,14 +25,6 @@ RUN_FLIGHT = os.path.join(HERE, "..", "run_flight.py")
 # What stack_testing.fault_flight.fly("crash", at_s=15.0) flies.
 FLIGHT = ["--seed", "11", "--fault", "crash", "--fault-at", "15", "--fault-duration", "-1", "--duration", "35",
           "--no-bag", "--quiet"]
-
-
-def wait_for(cond, what, bound_s=60.0):
-    end = time.monotonic() + bound_s
-    while not cond():
-        if time.monotonic() > end:
-            raise AssertionError("still not the case after %g s: %s" % (bound_s, what))
-        time.sleep(0.05)
 
 
 def alive_holders(token):
@@ -72,7 +64,7 @@ def fly(folder, *extra):
 
 def test_a_sigkilled_nodes_topics_and_services_are_forgotten_and_rosout_kept(kept):
     uri = kept.ensure()
-    wait_for(lambda: rosout_registered(uri), "rosout registered with the kept master")
+    wait_for(lambda: rosout_registered(uri), 60.0, "rosout registered with the kept master")
     master = xmlrpc.client.ServerProxy(uri)
     # What a node SIGKILLed in the last flight leaves: its registrations, at an address now dead.
     dead = "http://127.0.0.1:%d/" % free_port()
@@ -88,7 +80,7 @@ def test_a_sigkilled_nodes_topics_and_services_are_forgotten_and_rosout_kept(kep
 
 def test_a_flight_on_a_kept_master_is_the_flight_on_its_own_and_leaves_the_master_as_it_found_it(kept, tmp_path):
     uri = kept.ensure()
-    wait_for(lambda: rosout_registered(uri), "rosout registered with the kept master")
+    wait_for(lambda: rosout_registered(uri), 60.0, "rosout registered with the kept master")
     master = xmlrpc.client.ServerProxy(uri)
     # What a last flight of another aircraft could have left: none of it may reach this one.
     master.setParam("/test", "/controller_DG808/kp_roll", 99.0)
@@ -131,7 +123,7 @@ def test_a_master_uri_that_is_not_one_is_refused_on_the_command_line(tmp_path):
 
 def test_a_flight_killed_whole_leaves_registrations_the_next_flight_forgets_before_it_starts(kept):
     uri = kept.ensure()
-    wait_for(lambda: rosout_registered(uri), "rosout registered with the kept master")
+    wait_for(lambda: rosout_registered(uri), 60.0, "rosout registered with the kept master")
     master = xmlrpc.client.ServerProxy(uri)
     # A flight SIGKILLed whole past its wall-clock limit: run_flight.py never cleaned up after it.
     master.registerPublisher("/controller_DG808", "/pwm", "std_msgs/String", "http://127.0.0.1:%d/" % free_port())
@@ -152,7 +144,7 @@ def test_a_kept_master_that_died_is_started_anew_for_the_next_flight(kept):
     assert ros_master.answers(again)
     assert xmlrpc.client.ServerProxy(again).getPid("/test")[2] != pid
     assert sorted(parameters(again)) == ["rosdistro", "rosversion", "run_id"]
-    wait_for(lambda: rosout_registered(again), "the new rosout registered")
+    wait_for(lambda: rosout_registered(again), 60.0, "the new rosout registered")
 
 
 def test_a_worker_killed_outright_takes_its_master_and_rosout_with_it():
@@ -167,7 +159,7 @@ def test_a_worker_killed_outright_takes_its_master_and_rosout_with_it():
         assert len(alive_holders(token)) == 2  # rosmaster and rosout
         worker.kill()
         worker.wait()
-        wait_for(lambda: alive_holders(token) == [], "the master and rosout gone with their worker", bound_s=30.0)
+        wait_for(lambda: alive_holders(token) == [], 30.0, "the master and rosout gone with their worker")
     finally:
         worker.kill()
         worker.wait()
